@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Plot a rodnet benchmark CSV (from bench_kernels or bench_solve) into a PNG.
+
+    python3 benchmarks/plot.py results/kernels.csv -o results/kernels.png
+
+kernels: median time per vertex against the number of vertices, one line per
+(shape, operation), log-log.  solve: median solve time and Newton/Krylov
+iterations against the number of vertices.  The title carries the commit and
+compiler recorded in the CSV.
+"""
+import argparse
+import csv
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit(f"plot.py: {path} has no data rows")
+    for key in ("commit", "compiler", "bench", "case", "size", "median", "min"):
+        if key not in rows[0]:
+            sys.exit(f"plot.py: {path} lacks the column '{key}'")
+    return rows
+
+
+def title(rows, what):
+    r = rows[0]
+    return f"rodnet {what} - commit {r['commit']}, {r['compiler']}, {r['ranks']} rank(s)"
+
+
+def plot_kernels(rows, ax):
+    series = defaultdict(list)
+    for r in rows:
+        series[(r["case"], r["op"])].append(
+            (int(r["size"]), float(r["median_per_vertex"]), float(r["min_per_vertex"])))
+    for (shape, op), pts in sorted(series.items()):
+        pts.sort()
+        style = "-" if shape == "straight" else "--"
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o",
+                label=f"{op} ({shape})")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("vertices")
+    ax.set_ylabel("median time per vertex [s]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize="small")
+
+
+def plot_solve(rows, ax):
+    by_solver = defaultdict(list)
+    for r in rows:
+        by_solver[r["case"]].append((int(r["size"]), float(r["median"]),
+                                     int(r["newton_iterations"]),
+                                     int(r["krylov_iterations"])))
+    ax2 = ax.twinx()
+    for solver, pts in sorted(by_solver.items()):
+        pts.sort()
+        n = [p[0] for p in pts]
+        ax.plot(n, [p[1] for p in pts], "-o", label=f"time ({solver})")
+        ax2.plot(n, [p[2] for p in pts], "--s", label=f"Newton its ({solver})")
+        ax2.plot(n, [p[3] for p in pts], ":^", label=f"Krylov its ({solver})")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax2.set_yscale("log")
+    ax.set_xlabel("vertices")
+    ax.set_ylabel("median solve time [s]")
+    ax2.set_ylabel("iterations")
+    ax.grid(True, which="both", alpha=0.3)
+    lines = ax.get_legend_handles_labels()
+    lines2 = ax2.get_legend_handles_labels()
+    ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize="small",
+              loc="upper left")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("csv", help="CSV written by bench_kernels or bench_solve")
+    p.add_argument("-o", "--output", help="PNG to write (default: CSV name with .png)")
+    args = p.parse_args()
+    rows = read_rows(args.csv)
+    kinds = {r["bench"] for r in rows}
+    if len(kinds) != 1:
+        sys.exit(f"plot.py: one benchmark per CSV, found {sorted(kinds)}")
+    kind = kinds.pop()
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    if kind == "kernels":
+        plot_kernels(rows, ax)
+    elif kind == "solve":
+        plot_solve(rows, ax)
+    else:
+        sys.exit(f"plot.py: unknown benchmark '{kind}'")
+    ax.set_title(title(rows, kind), fontsize="medium")
+    fig.tight_layout()
+    out = args.output or (args.csv.rsplit(".", 1)[0] + ".png")
+    fig.savefig(out, dpi=120)
+    print(f"plot.py: wrote {out}")
+
+
+if __name__ == "__main__":
+    main()

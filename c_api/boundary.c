@@ -1,0 +1,170 @@
+/* boundary.c - boundary conditions (clamp, pin, fixed angle, prescribed
+ * motions) and the load factor that moves the fixed DOFs. */
+#include <math.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+static rn_status check_end(const rn_network *net, const char *where, int rod, int end) {
+  rn_status st;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if (end != RN_START && end != RN_END)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d: end must be RN_START or RN_END, got %d",
+                   rod, end);
+  return RN_OK;
+}
+
+/* Resolves a vertex (negative = from the end) or records an error. */
+static rn_status resolve_vertex(const rn_network *net, const char *where, int rod,
+                                int vertex, int *v) {
+  rn_status st;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  *v = rn_wrap_index(vertex, net->rods[rod].nv);
+  if (*v < 0)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d: vertex %d out of range (%d vertices)",
+                   rod, vertex, net->rods[rod].nv);
+  return RN_OK;
+}
+
+rn_status rn_network_clamp(rn_network *net, int rod, int end) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_end(net, "rn_network_clamp", rod, end))) return st;
+  net->rods[rod].clamped[end] = 1;
+  return RN_OK;
+}
+
+rn_status rn_network_pin(rn_network *net, int rod, int vertex) {
+  rn_status st;
+  int v;
+  if (!net) return RN_ERR_ARG;
+  if ((st = resolve_vertex(net, "rn_network_pin", rod, vertex, &v))) return st;
+  net->rods[rod].pinned[v] = 1;
+  return RN_OK;
+}
+
+rn_status rn_network_fix_theta(rn_network *net, int rod, int edge) {
+  static const char *where = "rn_network_fix_theta";
+  rn_status st;
+  int j;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  j = rn_wrap_index(edge, net->rods[rod].ne);
+  if (j < 0)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d: edge %d out of range (%d edges)", rod,
+                   edge, net->rods[rod].ne);
+  net->rods[rod].theta_fixed[j] = 1;
+  return RN_OK;
+}
+
+rn_status rn_network_displace_end(rn_network *net, int rod, int end, const double disp[3],
+                                  const double rotvec[3]) {
+  static const char *where = "rn_network_displace_end";
+  rn_status st;
+  rn_rod *r;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_end(net, where, rod, end))) return st;
+  if ((disp && !rn_all_finite(3, disp)) || (rotvec && !rn_all_finite(3, rotvec)))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: motion is not finite", rod);
+  r = &net->rods[rod];
+  r->has_end_motion[end] = 1;
+  for (int k = 0; k < 3; ++k) {
+    r->end_disp[end][k] = disp ? disp[k] : 0.0;
+    r->end_rot[end][k] = rotvec ? rotvec[k] : 0.0;
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
+                                     const double disp[3]) {
+  static const char *where = "rn_network_displace_vertex";
+  rn_status st;
+  int v;
+  if (!net) return RN_ERR_ARG;
+  if ((st = resolve_vertex(net, where, rod, vertex, &v))) return st;
+  if (!disp) return rn_fail(net->ctx, RN_ERR_ARG, where, "disp is NULL");
+  if (!rn_all_finite(3, disp))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d vertex %d: displacement is not finite",
+                   rod, v);
+  net->rods[rod].has_vdisp[v] = 1;
+  memcpy(net->rods[rod].vdisp + 3 * v, disp, 3 * sizeof(double));
+  return RN_OK;
+}
+
+/* ---- load factor -------------------------------------------------------------- */
+/* The clamped edge and its first vertex at an end. */
+static int clamp_edge(const rn_rod *r, int end) { return end == RN_START ? 0 : r->ne - 1; }
+
+static void place_pins(rn_network *net, rn_rod *r) {
+  for (int v = 0; v < r->nv; ++v) {
+    double *x = net->xfull + rn_dof_vertex(r->off, v);
+    if (!r->pinned[v]) continue;
+    for (int k = 0; k < 3; ++k) x[k] = r->x0[3 * v + k] + net->lambda * r->vdisp[3 * v + k];
+  }
+}
+
+/* Clamped end: x = c0 + lambda d + R(lambda w)(x0 - c0) (+ lambda vertex
+ * displacement), c0 the midpoint of the clamped edge; its reference frame
+ * rotates with R. */
+static void place_clamp(rn_network *net, rn_rod *r, int end) {
+  int j = clamp_edge(r, end);
+  double w[3], R[9], c0[3];
+  for (int k = 0; k < 3; ++k) {
+    w[k] = net->lambda * r->end_rot[end][k];
+    c0[k] = 0.5 * (r->x0[3 * j + k] + r->x0[3 * (j + 1) + k]);
+  }
+  rn_rotation_matrix(w, R);
+  for (int v = j; v <= j + 1; ++v) {
+    double rel[3], rot[3], *x = net->xfull + rn_dof_vertex(r->off, v);
+    for (int k = 0; k < 3; ++k) rel[k] = r->x0[3 * v + k] - c0[k];
+    rn_mat_vec3(R, rel, rot);
+    for (int k = 0; k < 3; ++k)
+      x[k] = c0[k] + net->lambda * r->end_disp[end][k] + rot[k] +
+             net->lambda * r->vdisp[3 * v + k];
+  }
+  if (r->has_end_motion[end]) {
+    rn_mat_vec3(R, r->ref_base[j].t, r->ref[j].t);
+    rn_mat_vec3(R, r->ref_base[j].a1, r->ref[j].a1);
+  }
+}
+
+/* Continues the reference twist of the interior vertices next to a clamped
+ * edge whose frame was moved (keeps the 2 pi branch near the stored value). */
+static void continue_twist_near(rn_network *net, rn_rod *r, int j) {
+  for (int i = j; i <= j + 1; ++i) {
+    double q[RN_VERTEX_STENCIL], m;
+    if (i < 1 || i > r->nv - 2) continue;
+    memcpy(q, net->xfull + rn_dof_vertex_stencil(r->off, i), sizeof(q));
+    if (rnk_reference_twist(q, &r->ref[i - 1], r->ref_twist[i - 1], &m) == RNK_OK)
+      r->ref_twist[i - 1] = m;
+  }
+}
+
+rn_status rn_apply_load_factor(rn_network *net) {
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    rn_rod *r = &net->rods[ir];
+    place_pins(net, r);
+    for (int end = RN_START; end <= RN_END; ++end) {
+      if (!r->clamped[end]) continue;
+      place_clamp(net, r, end);
+      if (r->has_end_motion[end]) continue_twist_near(net, r, clamp_edge(r, end));
+    }
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_set_load_factor(rn_network *net, double lambda) {
+  static const char *where = "rn_network_set_load_factor";
+  if (!net) return RN_ERR_ARG;
+  if (!isfinite(lambda))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "load factor is not finite");
+  if (lambda < 0.0 || lambda > 1.0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "load factor %g is outside [0, 1]", lambda);
+  net->lambda = lambda;
+  return net->finalized ? rn_apply_load_factor(net) : RN_OK;
+}
+
+double rn_network_load_factor(const rn_network *net) { return net ? net->lambda : 0.0; }

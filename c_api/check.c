@@ -1,0 +1,233 @@
+/* check.c - derivative self-test: gradient and HVP against central
+ * differences with an h-sweep, CSR Hessian against the HVP, CSR symmetry.
+ *
+ * Directions and perturbations are scaled per DOF: positions by the mean
+ * rest edge length L, material angles by 1 (radian), so that h and perturb
+ * are relative sizes.  Directions d have entries L r or r with r uniform in
+ * [-1, 1) (splitmix64 from the seed: deterministic).  For each point and
+ * direction and h in 1e-2 .. 1e-5 (half decades):
+ *   gradient: e(h) = |(E(x+hd) - E(x-hd)) / 2h - g.d| / max(|g.d|, |g| |d| / sqrt(n))
+ *   HVP:      e(h) = |(g(x+hd) - g(x-hd)) / 2h - H d| / |H d|
+ * (absolute when the denominator is 0).  The error of a case is its minimum
+ * over h (the best h); the report holds the worst case.  The observed order
+ * is the least-squares slope of log e against log h over the leading part of
+ * the sweep where e still decreases (by at least a factor 2 per half decade:
+ * there truncation, not round-off, dominates); the report holds the smallest
+ * order over the cases, NaN if no case had two such points. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+static const char *where = "rn_network_check_derivatives";
+
+enum { N_SWEEP = 7, N_DIRECTIONS = 2 };
+
+typedef struct check_work {
+  size_t n;
+  double *scale, *x, *xp, *xm, *d, *g, *gp, *gm, *hv, *y, *vals;
+  uint64_t rng;
+} check_work;
+
+static double uniform(uint64_t *state) { /* splitmix64, [-1, 1) */
+  uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return (double)(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+}
+
+static double norm2(size_t n, const double *v) {
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i) s += v[i] * v[i];
+  return sqrt(s);
+}
+
+static double dot(size_t n, const double *a, const double *b) {
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i) s += a[i] * b[i];
+  return s;
+}
+
+/* Per reduced DOF: mean rest edge length for positions, 1 for angles. */
+static void dof_scales(const rn_network *net, double *scale) {
+  double lsum = 0.0;
+  size_t ne = 0;
+  for (int ir = 0; ir < net->nrods; ++ir)
+    for (int j = 0; j < net->rods[ir].ne; ++j, ++ne) lsum += net->rods[ir].lbar[j];
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    for (int v = 0; v < r->nv; ++v)
+      for (int k = 0; k < RN_DOFS_PER_VERTEX; ++k) {
+        int64_t m = net->map[rn_dof_vertex(r->off, v) + (size_t)k];
+        if (m >= 0) scale[m] = lsum / (double)ne;
+      }
+    for (int j = 0; j < r->ne; ++j) {
+      int64_t m = net->map[rn_dof_theta(r->off, j)];
+      if (m >= 0) scale[m] = 1.0;
+    }
+  }
+}
+
+static void random_scaled(check_work *w, double *v) {
+  for (size_t i = 0; i < w->n; ++i) v[i] = w->scale[i] * uniform(&w->rng);
+}
+
+/* Least-squares slope of log e against log h over the leading decreasing
+ * run of the sweep; NaN with fewer than two points. */
+static double sweep_order(const double *h, const double *e) {
+  int m = 1;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  if (!(e[0] > 0.0) || !isfinite(e[0])) return NAN;
+  while (m < N_SWEEP && e[m] > 0.0 && isfinite(e[m]) && e[m] < 0.5 * e[m - 1]) m++;
+  if (m < 2) return NAN;
+  for (int i = 0; i < m; ++i) {
+    double lx = log(h[i]), ly = log(e[i]);
+    sx += lx; sy += ly; sxx += lx * lx; sxy += lx * ly;
+  }
+  return ((double)m * sxy - sx * sy) / ((double)m * sxx - sx * sx);
+}
+
+static void record(const double *h, const double *e, double *worst, double *order) {
+  double best = INFINITY, p = sweep_order(h, e);
+  for (int k = 0; k < N_SWEEP; ++k)
+    if (e[k] < best) best = e[k];
+  if (isfinite(best) && best > *worst) *worst = best;
+  if (!isnan(p) && (isnan(*order) || p < *order)) *order = p;
+}
+
+static void shifted(const check_work *w, double h, double *xp, double *xm) {
+  for (size_t i = 0; i < w->n; ++i) {
+    xp[i] = w->x[i] + h * w->d[i];
+    xm[i] = w->x[i] - h * w->d[i];
+  }
+}
+
+/* One direction: gradient and HVP sweeps.  Trial points where the energy is
+ * degenerate count as infinite error at that h. */
+static rn_status check_direction(const rn_network *net, check_work *w, rn_check_report *rep) {
+  size_t n = w->n;
+  double h[N_SWEEP], eg[N_SWEEP], eh[N_SWEEP];
+  double gd = dot(n, w->g, w->d), hvn = norm2(n, w->hv);
+  double den_g = fmax(fabs(gd), norm2(n, w->g) * norm2(n, w->d) / sqrt((double)n));
+  if (!(den_g > 0.0)) den_g = 1.0;
+  if (!(hvn > 0.0)) hvn = 1.0;
+  for (int k = 0; k < N_SWEEP; ++k) {
+    double Ep, Em, diff = 0.0;
+    h[k] = pow(10.0, -2.0 - 0.5 * k);
+    eg[k] = eh[k] = INFINITY;
+    shifted(w, h[k], w->xp, w->xm);
+    if (rn_network_gradient(net, w->xp, &Ep, w->gp) != RN_OK ||
+        rn_network_gradient(net, w->xm, &Em, w->gm) != RN_OK)
+      continue;
+    eg[k] = fabs((Ep - Em) / (2.0 * h[k]) - gd) / den_g;
+    for (size_t i = 0; i < n; ++i) {
+      double r = (w->gp[i] - w->gm[i]) / (2.0 * h[k]) - w->hv[i];
+      diff += r * r;
+    }
+    eh[k] = sqrt(diff) / hvn;
+  }
+  record(h, eg, &rep->grad_rel_err, &rep->grad_order);
+  record(h, eh, &rep->hvp_rel_err, &rep->hvp_order);
+  return RN_OK;
+}
+
+/* Largest |H_ij - H_ji| relative to the largest |H_ij|. */
+static double csr_asymmetry(const rn_network *net, const double *vals) {
+  double amax = 0.0, dmax = 0.0;
+  for (size_t r = 0; r < net->nred; ++r)
+    for (int64_t p = net->rowptr[r]; p < net->rowptr[r + 1]; ++p) {
+      int64_t c = net->col[p], q;
+      amax = fmax(amax, fabs(vals[p]));
+      for (q = net->rowptr[c]; q < net->rowptr[c + 1] && net->col[q] != (int64_t)r; ++q) {
+      }
+      dmax = fmax(dmax, q < net->rowptr[c + 1] ? fabs(vals[p] - vals[q]) : fabs(vals[p]));
+    }
+  return amax > 0.0 ? dmax / amax : dmax;
+}
+
+/* CSR Hessian at w->x against the HVP along w->d; symmetry. */
+static rn_status check_csr(const rn_network *net, check_work *w, rn_check_report *rep) {
+  rn_status st;
+  double diff = 0.0, hvn;
+  if ((st = rn_network_hessian_values(net, w->x, w->vals))) return st;
+  for (size_t r = 0; r < w->n; ++r) {
+    double s = 0.0;
+    for (int64_t p = net->rowptr[r]; p < net->rowptr[r + 1]; ++p) s += w->vals[p] * w->d[net->col[p]];
+    w->y[r] = s;
+    diff += (s - w->hv[r]) * (s - w->hv[r]);
+  }
+  hvn = norm2(w->n, w->hv);
+  rep->hess_hvp_err = fmax(rep->hess_hvp_err, hvn > 0.0 ? sqrt(diff) / hvn : sqrt(diff));
+  rep->hess_sym_err = fmax(rep->hess_sym_err, csr_asymmetry(net, w->vals));
+  return RN_OK;
+}
+
+static rn_status check_point(const rn_network *net, check_work *w, rn_check_report *rep) {
+  rn_status st;
+  if ((st = rn_network_gradient(net, w->x, NULL, w->g))) return st;
+  for (int dir = 0; dir < N_DIRECTIONS; ++dir) {
+    random_scaled(w, w->d);
+    if ((st = rn_network_hvp(net, w->x, w->d, w->hv))) return st;
+    if (dir == 0 && (st = check_csr(net, w, rep))) return st;
+    if ((st = check_direction(net, w, rep))) return st;
+  }
+  rep->n_points++;
+  return RN_OK;
+}
+
+static rn_status work_alloc(const rn_network *net, check_work *w) {
+  size_t n = net->nred + 1;
+  double **arrays[] = {&w->scale, &w->x, &w->xp, &w->xm, &w->d,
+                       &w->g, &w->gp, &w->gm, &w->hv, &w->y};
+  memset(w, 0, sizeof(*w));
+  w->n = net->nred;
+  for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); ++i)
+    if (!(*arrays[i] = malloc(n * sizeof(double)))) return RN_ERR_ALLOC;
+  w->vals = malloc((net->nnz + 1) * sizeof(double));
+  return w->vals ? RN_OK : RN_ERR_ALLOC;
+}
+
+static void work_free(check_work *w) {
+  free(w->scale); free(w->x); free(w->xp); free(w->xm); free(w->d);
+  free(w->g); free(w->gp); free(w->gm); free(w->hv); free(w->y); free(w->vals);
+}
+
+static rn_status run_points(const rn_network *net, const double *x, int n_random, double perturb,
+                            check_work *w, rn_check_report *rep) {
+  rn_status st;
+  dof_scales(net, w->scale);
+  for (int p = 0; p <= n_random; ++p) {
+    if (x) memcpy(w->x, x, w->n * sizeof(double));
+    else rn_network_get_dofs(net, w->x);
+    for (size_t i = 0; p > 0 && i < w->n; ++i) w->x[i] += perturb * w->scale[i] * uniform(&w->rng);
+    st = check_point(net, w, rep);
+    if (st < 0 || (st > 0 && p == 0)) return st; /* degenerate perturbed points are skipped */
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_check_derivatives(const rn_network *net, const double *x, int n_random,
+                                       double perturb, uint64_t seed, rn_check_report *rep) {
+  check_work w;
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!rep) return rn_fail(net->ctx, RN_ERR_ARG, where, "rep is NULL");
+  if (n_random < 0 || !isfinite(perturb) || perturb < 0.0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "need n_random >= 0 and finite perturb >= 0");
+  if (x && !rn_all_finite(net->nred, x))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  memset(rep, 0, sizeof(*rep));
+  rep->grad_order = rep->hvp_order = NAN;
+  if (net->nred == 0) return RN_OK;
+  if (work_alloc(net, &w)) {
+    work_free(&w);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  w.rng = seed;
+  st = run_points(net, x, n_random, perturb, &w, rep);
+  work_free(&w);
+  return st;
+}

@@ -1,0 +1,170 @@
+/* finalize.c - validation, DOF map, per-stencil parameters, initial state. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+static const char *where = "rn_network_finalize";
+
+static rn_status validate_rod(const rn_network *net, int ir) {
+  const rn_rod *r = &net->rods[ir];
+  for (int j = 0; j < r->ne; ++j) {
+    if (!r->has_mat[j])
+      return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no material", ir,
+                     rn_network_rod_name(net, ir), j);
+    if (!r->has_sec[j])
+      return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no section", ir,
+                     rn_network_rod_name(net, ir), j);
+  }
+  for (int end = RN_START; end <= RN_END; ++end)
+    if (r->has_end_motion[end] && !r->clamped[end])
+      return rn_fail(net->ctx, RN_ERR_BC, where,
+                     "rod %d ('%s'): prescribed motion of the %s end, which is not clamped", ir,
+                     rn_network_rod_name(net, ir), end == RN_START ? "start" : "end");
+  for (int v = 0; v < r->nv; ++v) {
+    int in_clamp = (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
+    if (r->has_vdisp[v] && !r->pinned[v] && !in_clamp)
+      return rn_fail(net->ctx, RN_ERR_BC, where,
+                     "rod %d ('%s') vertex %d: prescribed displacement of a vertex that is "
+                     "neither pinned nor clamped",
+                     ir, rn_network_rod_name(net, ir), v);
+  }
+  return RN_OK;
+}
+
+static rn_status build_params(rn_rod *r) {
+  int nin = r->nv - 2;
+  r->fvert = calloc(3 * (size_t)r->nv, sizeof(double));
+  r->sp = calloc((size_t)r->ne, sizeof(rnk_stretch_param));
+  r->bp = calloc((size_t)(nin > 0 ? nin : 1), sizeof(rnk_bend_param));
+  r->tp = calloc((size_t)(nin > 0 ? nin : 1), sizeof(rnk_twist_param));
+  if (!r->fvert || !r->sp || !r->bp || !r->tp) return RN_ERR_ALLOC;
+  for (int j = 0; j < r->ne; ++j) {
+    r->sp[j].k = r->mat[j].E * r->sec[j].A;
+    r->sp[j].lbar = r->lbar[j];
+  }
+  for (int i = 1; i <= nin; ++i) { /* averages of the two adjacent edges */
+    const rn_material *ma = &r->mat[i - 1], *mb = &r->mat[i];
+    const rn_section *sa = &r->sec[i - 1], *sb = &r->sec[i];
+    rnk_bend_param *b = &r->bp[i - 1];
+    rnk_twist_param *t = &r->tp[i - 1];
+    b->B[0] = 0.5 * (ma->E * sa->I11 + mb->E * sb->I11);
+    b->B[1] = 0.5 * (ma->E * sa->I12 + mb->E * sb->I12);
+    b->B[2] = 0.5 * (ma->E * sa->I22 + mb->E * sb->I22);
+    b->kbar[0] = r->kbar[2 * (i - 1)];
+    b->kbar[1] = r->kbar[2 * (i - 1) + 1];
+    b->vlen = 0.5 * (r->lbar[i - 1] + r->lbar[i]);
+    t->beta = 0.5 * (ma->G * sa->J + mb->G * sb->J);
+    t->taubar = r->taubar[i - 1];
+    t->vlen = b->vlen;
+  }
+  return RN_OK;
+}
+
+/* Marks the fixed full DOFs of a rod with -1 in map (others 0). */
+static void mark_fixed(rn_network *net, const rn_rod *r) {
+  int64_t *m = net->map;
+  for (int v = 0; v < r->nv; ++v) {
+    int fixed = r->pinned[v] || (r->clamped[RN_START] && v <= 1) ||
+                (r->clamped[RN_END] && v >= r->nv - 2);
+    for (int k = 0; k < 3; ++k) m[rn_dof_vertex(r->off, v) + (size_t)k] = fixed ? -1 : 0;
+  }
+  for (int j = 0; j < r->ne; ++j) {
+    int fixed = r->theta_fixed[j] || (r->clamped[RN_START] && j == 0) ||
+                (r->clamped[RN_END] && j == r->ne - 1);
+    m[rn_dof_theta(r->off, j)] = fixed ? -1 : 0;
+  }
+}
+
+static rn_status build_dof_map(rn_network *net) {
+  size_t off = 0, nred = 0;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    net->rods[ir].off = off;
+    off += rn_dof_rod_count(net->rods[ir].nv);
+  }
+  net->nfull = off;
+  net->map = malloc(off * sizeof(int64_t));
+  net->xfull = calloc(off, sizeof(double));
+  if (!net->map || !net->xfull) return RN_ERR_ALLOC;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    mark_fixed(net, r);
+    for (int v = 0; v < r->nv; ++v)
+      memcpy(net->xfull + rn_dof_vertex(r->off, v), r->x0 + 3 * v, 3 * sizeof(double));
+  }
+  for (size_t a = 0; a < off; ++a)
+    if (net->map[a] == 0) net->map[a] = (int64_t)nred++;
+  net->nred = nred;
+  net->red2full = malloc((nred ? nred : 1) * sizeof(int64_t));
+  if (!net->red2full) return RN_ERR_ALLOC;
+  for (size_t a = 0; a < off; ++a)
+    if (net->map[a] >= 0) net->red2full[net->map[a]] = (int64_t)a;
+  return RN_OK;
+}
+
+/* Material frame (t, d1, d2) of each moment's edge at the current state. */
+static rn_status init_moments(rn_network *net) {
+  for (int im = 0; im < net->nmom; ++im) {
+    rn_moment *mo = &net->moments[im];
+    const rn_rod *r = &net->rods[mo->rod];
+    const double *x = net->xfull + rn_dof_edge_stencil(r->off, mo->edge);
+    double e[3];
+    for (int k = 0; k < 3; ++k) e[k] = x[RN_EDGE_LOCAL_X1 + k] - x[RN_EDGE_LOCAL_X0 + k];
+    mo->angle0 = 0.0;
+    if (rnk_material_frame(e, &r->ref[mo->edge], x[RN_EDGE_LOCAL_THETA], mo->f0, mo->f0 + 3,
+                           mo->f0 + 6) != RNK_OK)
+      return rn_fail(net->ctx, RN_ERR_GEOMETRY, where, "rod %d edge %d: degenerate edge under a moment",
+                     mo->rod, mo->edge);
+  }
+  return RN_OK;
+}
+
+static void undo_finalize(rn_network *net) {
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    rn_rod *r = &net->rods[ir];
+    free(r->fvert);
+    free(r->sp);
+    free(r->bp);
+    free(r->tp);
+    r->fvert = NULL;
+    r->sp = NULL;
+    r->bp = NULL;
+    r->tp = NULL;
+  }
+  free(net->map);
+  free(net->red2full);
+  free(net->xfull);
+  free(net->rowptr);
+  free(net->col);
+  net->map = net->red2full = net->rowptr = NULL;
+  net->xfull = NULL;
+  net->col = NULL;
+  net->nfull = net->nred = net->nnz = net->bandwidth = 0;
+}
+
+rn_status rn_network_finalize(rn_network *net) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (net->nrods == 0) return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
+  for (int ir = 0; ir < net->nrods; ++ir)
+    if ((st = validate_rod(net, ir))) return st;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    if (build_params(&net->rods[ir])) {
+      undo_finalize(net);
+      return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+    }
+    rn_rod_lump_forces(net, &net->rods[ir]);
+  }
+  if (build_dof_map(net) || rn_build_hessian_pattern(net)) {
+    undo_finalize(net);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  rn_apply_load_factor(net);
+  if ((st = init_moments(net))) {
+    undo_finalize(net);
+    return st;
+  }
+  net->finalized = 1;
+  return RN_OK;
+}

@@ -1,0 +1,92 @@
+/* loads.c - dead loads: point forces, couples, line loads, gravity, and
+ * their lumping to vertex forces at finalize. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+int rn_moment_edge(int nv, int vertex) { return vertex < nv - 1 ? vertex : nv - 2; }
+
+static rn_status check_load(const rn_network *net, const char *where, int rod, int vertex,
+                            const double *value, int *v) {
+  rn_status st;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  *v = rn_wrap_index(vertex, net->rods[rod].nv);
+  if (*v < 0)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d: vertex %d out of range (%d vertices)",
+                   rod, vertex, net->rods[rod].nv);
+  if (!value) return rn_fail(net->ctx, RN_ERR_ARG, where, "value is NULL");
+  if (!rn_all_finite(3, value))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d vertex %d: load is not finite", rod,
+                   *v);
+  return RN_OK;
+}
+
+rn_status rn_network_add_force(rn_network *net, int rod, int vertex, const double f[3]) {
+  rn_status st;
+  int v;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_load(net, "rn_network_add_force", rod, vertex, f, &v))) return st;
+  for (int k = 0; k < 3; ++k) net->rods[rod].fpoint[3 * v + k] += f[k];
+  return RN_OK;
+}
+
+rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const double m[3]) {
+  static const char *where = "rn_network_add_moment";
+  rn_status st;
+  rn_moment *mo;
+  int v;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_load(net, where, rod, vertex, m, &v))) return st;
+  if (net->nmom == net->cap_mom) {
+    int cap = net->cap_mom ? 2 * net->cap_mom : 8;
+    rn_moment *p = realloc(net->moments, (size_t)cap * sizeof(*p));
+    if (!p) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+    net->moments = p;
+    net->cap_mom = cap;
+  }
+  mo = &net->moments[net->nmom++];
+  memset(mo, 0, sizeof(*mo));
+  mo->rod = rod;
+  mo->vertex = v;
+  mo->edge = rn_moment_edge(net->rods[rod].nv, v);
+  memcpy(mo->M, m, sizeof(mo->M));
+  return RN_OK;
+}
+
+rn_status rn_network_add_line_load(rn_network *net, int rod, const double w[3]) {
+  static const char *where = "rn_network_add_line_load";
+  rn_status st;
+  int v;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_load(net, where, rod, 0, w, &v))) return st;
+  for (int k = 0; k < 3; ++k) net->rods[rod].line_load[k] += w[k];
+  return RN_OK;
+}
+
+rn_status rn_network_add_gravity(rn_network *net, const double g[3]) {
+  static const char *where = "rn_network_add_gravity";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (!g) return rn_fail(net->ctx, RN_ERR_ARG, where, "g is NULL");
+  if (!rn_all_finite(3, g)) return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "g is not finite");
+  for (int k = 0; k < 3; ++k) net->gravity[k] += g[k];
+  return RN_OK;
+}
+
+/* Vertex forces: point forces plus line load and gravity per unit rest
+ * length, each edge giving half of its share to either end (Voronoi
+ * lumping). */
+void rn_rod_lump_forces(const rn_network *net, rn_rod *r) {
+  memcpy(r->fvert, r->fpoint, 3 * (size_t)r->nv * sizeof(double));
+  for (int j = 0; j < r->ne; ++j) {
+    double half = 0.5 * r->lbar[j], rhoA = r->mat[j].density * r->sec[j].A;
+    for (int k = 0; k < 3; ++k) {
+      double f = half * (r->line_load[k] + rhoA * net->gravity[k]);
+      r->fvert[3 * j + k] += f;
+      r->fvert[3 * (j + 1) + k] += f;
+    }
+  }
+}

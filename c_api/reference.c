@@ -1,0 +1,127 @@
+/* reference.c - explicit update of the reference state on an accepted step:
+ * reference twists continued with the old frames, frames moved by
+ * time-parallel transport, moment angles accumulated.  All new values are
+ * computed first and committed only if every stencil succeeded. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+static const char *where = "rn_network_update_reference";
+
+typedef struct ref_update {
+  double *full;        /* new full state [nfull] */
+  rnk_frame *frames;   /* new frames, all rods concatenated */
+  double *twists;      /* new reference twists, all rods concatenated */
+  double *angles;      /* new moment angles [nmom] */
+  double *f0;          /* new moment frames [9 nmom] */
+} ref_update;
+
+static void ref_update_free(ref_update *u) {
+  free(u->full);
+  free(u->frames);
+  free(u->twists);
+  free(u->angles);
+  free(u->f0);
+}
+
+static rn_status ref_update_alloc(const rn_network *net, ref_update *u) {
+  size_t ne = 0, nin = 0, nm = (size_t)net->nmom + 1;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    ne += (size_t)net->rods[ir].ne;
+    nin += (size_t)(net->rods[ir].nv - 2);
+  }
+  u->full = malloc((net->nfull + 1) * sizeof(double));
+  u->frames = malloc((ne + 1) * sizeof(rnk_frame));
+  u->twists = malloc((nin + 1) * sizeof(double));
+  u->angles = malloc(nm * sizeof(double));
+  u->f0 = malloc(9 * nm * sizeof(double));
+  return (u->full && u->frames && u->twists && u->angles && u->f0) ? RN_OK : RN_ERR_ALLOC;
+}
+
+/* New twists and frames of one rod into tw[nv-2] and fr[ne]. */
+static rn_status update_rod(const rn_network *net, int ir, const double *full, double *tw,
+                            rnk_frame *fr) {
+  const rn_rod *r = &net->rods[ir];
+  for (int i = 1; i < r->nv - 1; ++i) {
+    const double *q = full + rn_dof_vertex_stencil(r->off, i);
+    if (rnk_reference_twist(q, &r->ref[i - 1], r->ref_twist[i - 1], &tw[i - 1]) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d vertex %d: degenerate reference twist",
+                     ir, i);
+  }
+  for (int j = 0; j < r->ne; ++j) {
+    const double *q = full + rn_dof_edge_stencil(r->off, j);
+    double e[3];
+    for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
+    fr[j] = r->ref[j];
+    if (rnk_frame_update(e, &fr[j]) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge", ir, j);
+  }
+  return RN_OK;
+}
+
+/* New accumulated angle and frame of every moment (old reference frames). */
+static rn_status update_moments(const rn_network *net, const double *full, ref_update *u) {
+  for (int im = 0; im < net->nmom; ++im) {
+    const rn_moment *mo = &net->moments[im];
+    const rn_rod *r = &net->rods[mo->rod];
+    const double *q = full + rn_dof_edge_stencil(r->off, mo->edge);
+    const rnk_frame *ref = &r->ref[mo->edge];
+    rnk_moment_param p;
+    double alpha = 0.0, e[3], *f0 = u->f0 + 9 * im;
+    memcpy(p.M, mo->M, sizeof(p.M));
+    memcpy(p.f0, mo->f0, sizeof(p.f0));
+    p.angle0 = mo->angle0;
+    for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
+    if ((mo->M[0] != 0.0 || mo->M[1] != 0.0 || mo->M[2] != 0.0) &&
+        rnk_moment_angle(q, ref, &p, &alpha) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d vertex %d: degenerate moment angle",
+                     mo->rod, mo->vertex);
+    u->angles[im] = mo->angle0 + alpha;
+    if (rnk_material_frame(e, ref, q[RN_EDGE_LOCAL_THETA], f0, f0 + 3, f0 + 6) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge", mo->rod,
+                     mo->edge);
+  }
+  return RN_OK;
+}
+
+static void commit(rn_network *net, const ref_update *u) {
+  size_t fo = 0, to = 0;
+  memcpy(net->xfull, u->full, net->nfull * sizeof(double));
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    rn_rod *r = &net->rods[ir];
+    memcpy(r->ref, u->frames + fo, (size_t)r->ne * sizeof(rnk_frame));
+    if (r->nv > 2) memcpy(r->ref_twist, u->twists + to, (size_t)(r->nv - 2) * sizeof(double));
+    fo += (size_t)r->ne;
+    to += (size_t)(r->nv - 2);
+  }
+  for (int im = 0; im < net->nmom; ++im) {
+    net->moments[im].angle0 = u->angles[im];
+    memcpy(net->moments[im].f0, u->f0 + 9 * im, 9 * sizeof(double));
+  }
+}
+
+rn_status rn_network_update_reference(rn_network *net, const double *x) {
+  ref_update u = {NULL, NULL, NULL, NULL, NULL};
+  size_t fo = 0, to = 0;
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!x && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "x is NULL");
+  if (!rn_all_finite(net->nred, x))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  if (ref_update_alloc(net, &u)) {
+    ref_update_free(&u);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  rn_expand_state(net, x, u.full);
+  for (int ir = 0; ir < net->nrods && !st; ++ir) {
+    st = update_rod(net, ir, u.full, u.twists + to, u.frames + fo);
+    fo += (size_t)net->rods[ir].ne;
+    to += (size_t)(net->rods[ir].nv - 2);
+  }
+  if (!st) st = update_moments(net, u.full, &u);
+  if (!st) commit(net, &u);
+  ref_update_free(&u);
+  return st;
+}

@@ -1,0 +1,281 @@
+/* rodnet.h - public C API of rodnet: static equilibria of discrete elastic
+ * rods (DER).
+ *
+ * Conventions (after libCEED / SUNDIALS / PETSc):
+ *  - Every function returns rn_status: 0 ok, < 0 error (object unchanged),
+ *    > 0 recoverable at a trial point (e.g. a degenerate configuration: the
+ *    solver rejects the step).  The context keeps "where: what" of the last
+ *    error, see rn_context_last_error().
+ *  - Opaque handles; rn_X_destroy(&x) accepts NULL and sets *x to NULL.
+ *  - Inputs are copied; outputs go to caller arrays of documented length.
+ *  - Library code never aborts, exits or prints.
+ *  - Nothing here is collective over MPI unless it says so.
+ *
+ * Lifecycle of a network: create -> add rods, set properties, rest shape,
+ * boundary conditions and loads -> rn_network_finalize() (validates, builds
+ * the DOF map; the topology is frozen from then on) -> evaluate / solve ->
+ * read results -> destroy.
+ *
+ * Degrees of freedom.  A rod with n vertices has 4n-1 full DOFs in the order
+ * (x_0[3], theta^0, x_1[3], theta^1, ..., x_{n-1}[3]); rods are concatenated.
+ * Boundary conditions fix DOFs; the *reduced* DOF vector holds the free ones
+ * in the same order.  All evaluation functions work on reduced vectors.
+ */
+#ifndef RODNET_H
+#define RODNET_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define RODNET_VERSION_MAJOR 0
+#define RODNET_VERSION_MINOR 1
+#define RODNET_VERSION_PATCH 0
+#define RODNET_VERSION_STRING "0.1.0"
+
+/* ---- status codes (one list: codes, names and messages) ----------------- */
+#define RN_STATUS_LIST(X)                                                        \
+  X(RN_OK, 0, "ok")                                                              \
+  X(RN_DEGENERATE, 1, "degenerate configuration at a trial point")               \
+  X(RN_ERR_ALLOC, -1, "out of memory")                                           \
+  X(RN_ERR_ARG, -2, "invalid argument")                                          \
+  X(RN_ERR_STATE, -3, "operation not allowed in the object's current state")     \
+  X(RN_ERR_RANGE, -4, "index out of range")                                      \
+  X(RN_ERR_GEOMETRY, -5, "degenerate geometry")                                  \
+  X(RN_ERR_BC, -6, "inconsistent boundary conditions")                           \
+  X(RN_ERR_NOT_FINITE, -7, "value is not finite")                                \
+  X(RN_ERR_LAPACK, -8, "dense/banded factorisation failed")                      \
+  X(RN_ERR_SOLVER, -9, "solver failure")                                         \
+  X(RN_ERR_TRILINOS, -10, "Trilinos error")                                      \
+  X(RN_ERR_IO, -11, "input/output error")                                        \
+  X(RN_ERR_PARSE, -12, "malformed input")                                        \
+  X(RN_ERR_CHECK, -13, "derivative self-test failed")                            \
+  X(RN_ERR_INTERNAL, -14, "internal error")
+
+typedef enum rn_status {
+#define RN_STATUS_ENUM_(name, code, msg) name = code,
+  RN_STATUS_LIST(RN_STATUS_ENUM_)
+#undef RN_STATUS_ENUM_
+} rn_status;
+
+/* Stable name ("RN_ERR_ARG") and message of a status; never NULL. */
+const char *rn_status_name(rn_status s);
+const char *rn_status_message(rn_status s);
+
+/* Run-time version; compile-time version in RODNET_VERSION_*. */
+const char *rn_version_string(void);
+void rn_version(int *major, int *minor, int *patch);
+
+/* ---- context ------------------------------------------------------------ */
+typedef struct rn_context rn_context;
+
+/* Create a context (holds the last error message).  Returns RN_ERR_ALLOC. */
+rn_status rn_context_create(rn_context **ctx);
+/* Destroy a context; accepts NULL and *ctx == NULL; sets *ctx to NULL. */
+void rn_context_destroy(rn_context **ctx);
+/* "where: what" of the last error recorded in ctx ("" if none); borrowed. */
+const char *rn_context_last_error(const rn_context *ctx);
+/* Record an error (used by layers above the library, e.g. readers). */
+rn_status rn_context_set_error(rn_context *ctx, rn_status s, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+void rn_context_clear_error(rn_context *ctx);
+
+/* ---- materials and sections --------------------------------------------- */
+typedef struct rn_material {
+  double E;        /* Young's modulus, > 0 */
+  double G;        /* shear modulus, > 0 */
+  double density;  /* mass per unit volume, >= 0 (gravity only) */
+} rn_material;
+
+/* Material from (E, nu): G = E / (2 (1 + nu)); needs E > 0, -1 < nu < 0.5+.
+ * (nu = 0.5 is allowed: incompressible.)  RN_ERR_ARG otherwise. */
+rn_status rn_material_from_E_nu(double E, double nu, double density,
+                                rn_material *m);
+
+/* Cross-section: area A, second moments in the material frame and torsion
+ * constant J.  The bending stiffness B = E [[I11, I12], [I12, I22]] acts on
+ * the material curvature (kappa1, kappa2) of seed 000 (2.2), where kappa1 is
+ * the component of the curvature normal along d1 (bending in the plane of t
+ * and d1); hence I11 = int (r . d1)^2 dA, I22 = int (r . d2)^2 dA,
+ * I12 = int (r . d1)(r . d2) dA.  Twisting stiffness is G J. */
+typedef struct rn_section {
+  double A, I11, I22, I12, J;
+} rn_section;
+
+/* Solid circle of radius r. */
+rn_status rn_section_circle(double r, rn_section *s);
+/* Hollow circle, outer radius ro > inner radius ri >= 0. */
+rn_status rn_section_hollow_circle(double ro, double ri, rn_section *s);
+/* Ellipse with semi-axis a along d1 and b along d2;
+ * J = pi a^3 b^3 / (a^2 + b^2). */
+rn_status rn_section_ellipse(double a, double b, rn_section *s);
+/* Rectangle of width w along d1 and height h along d2; J from the
+ * Saint-Venant series (not the thin-strip limit). */
+rn_status rn_section_rectangle(double w, double h, rn_section *s);
+/* Checks A > 0, I11 > 0, I22 > 0, I11 I22 - I12^2 > 0, J > 0, all finite. */
+rn_status rn_section_validate(const rn_section *s);
+
+/* ---- networks (rods, BCs, loads) ---------------------------------------- */
+typedef struct rn_network rn_network;
+
+enum { RN_START = 0, RN_END = 1 };
+
+/* Create an empty network bound to ctx (errors are recorded there). */
+rn_status rn_network_create(rn_context *ctx, rn_network **net);
+/* Destroy; accepts NULL; sets *net to NULL. */
+void rn_network_destroy(rn_network **net);
+
+/* Add a rod through nv >= 2 vertices xyz[3*nv] (copied).  d1: initial
+ * material axis of the first edge (3 values, need not be unit or exactly
+ * perpendicular: it is projected; NULL derives one, see docs/model.md); the
+ * other edges get its parallel transport along the polyline.  The rest shape
+ * is the initial shape until rest_* below override it.  name may be NULL.
+ * *rod receives the rod index.  RN_ERR_GEOMETRY for zero-length edges or
+ * opposite consecutive tangents; RN_ERR_NOT_FINITE for NaN/Inf. */
+rn_status rn_network_add_rod(rn_network *net, const char *name, int nv,
+                             const double *xyz, const double *d1, int *rod);
+
+/* Material and section of a rod's edges: edge = -1 for all edges. */
+rn_status rn_network_set_material(rn_network *net, int rod, int edge,
+                                  const rn_material *m);
+rn_status rn_network_set_section(rn_network *net, int rod, int edge,
+                                 const rn_section *s);
+
+/* Rest shape overrides: kappa[2*(nv-2)] integrated material curvature per
+ * interior vertex (seed 000 (2.2)); tau[nv-2] integrated twist per interior
+ * vertex; len[nv-1] rest length per edge (> 0). */
+rn_status rn_network_set_rest_curvature(rn_network *net, int rod,
+                                        const double *kappa);
+rn_status rn_network_set_rest_twist(rn_network *net, int rod, const double *tau);
+rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *len);
+
+/* Boundary conditions.  Vertex and edge indices may be negative (-1 = last).
+ * clamp: fixes the end edge (its two vertices and its material angle).
+ * pin: fixes one vertex position.  fix_theta: fixes one material angle. */
+rn_status rn_network_clamp(rn_network *net, int rod, int end);
+rn_status rn_network_pin(rn_network *net, int rod, int vertex);
+rn_status rn_network_fix_theta(rn_network *net, int rod, int edge);
+/* Prescribed motion of a clamped end: translation disp[3] and rotation
+ * rotvec[3] (rotation vector, about the midpoint of the clamped edge, which
+ * is where the continuum clamp sits).  Either may be NULL.  Scaled by the
+ * load factor.  RN_ERR_BC if that end is not clamped (checked at finalize). */
+rn_status rn_network_displace_end(rn_network *net, int rod, int end,
+                                  const double disp[3], const double rotvec[3]);
+/* Prescribed displacement of a pinned (or clamped) vertex. */
+rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
+                                     const double disp[3]);
+
+/* Loads (dead, scaled by the load factor). */
+rn_status rn_network_add_force(rn_network *net, int rod, int vertex,
+                               const double f[3]);
+/* Couple on the material frame of the edge at a vertex (edge i for vertex i,
+ * the last edge for the last vertex); see rnk_moment_* for the model. */
+rn_status rn_network_add_moment(rn_network *net, int rod, int vertex,
+                                const double m[3]);
+/* Uniform load per unit rest length on a rod, lumped to vertices with their
+ * Voronoi rest lengths. */
+rn_status rn_network_add_line_load(rn_network *net, int rod, const double w[3]);
+/* Gravity acceleration g[3] on every rod with density > 0 (rho A per unit
+ * rest length). */
+rn_status rn_network_add_gravity(rn_network *net, const double g[3]);
+
+/* Validate and freeze: builds rest quantities and the DOF map.  RN_ERR_BC
+ * for inconsistent boundary conditions (e.g. displace on a free end),
+ * RN_ERR_ARG for missing materials/sections. */
+rn_status rn_network_finalize(rn_network *net);
+
+/* Load factor lambda in [0, 1] (continuation): scales loads and prescribed
+ * motions; moves the fixed DOFs accordingly.  Default 1. */
+rn_status rn_network_set_load_factor(rn_network *net, double lambda);
+double rn_network_load_factor(const rn_network *net);
+
+/* ---- sizes and state ----------------------------------------------------- */
+size_t rn_network_num_dofs(const rn_network *net);       /* reduced */
+size_t rn_network_num_full_dofs(const rn_network *net);
+int rn_network_num_rods(const rn_network *net);
+int rn_network_rod_num_vertices(const rn_network *net, int rod);
+const char *rn_network_rod_name(const rn_network *net, int rod); /* borrowed */
+rn_context *rn_network_context(const rn_network *net);
+
+/* Current state (reduced DOFs): copy out / set (x[num_dofs]). */
+rn_status rn_network_get_dofs(const rn_network *net, double *x);
+rn_status rn_network_set_dofs(rn_network *net, const double *x);
+
+/* ---- evaluation on a reduced DOF vector x (pure: no state changes) ------ */
+/* Total energy.  > 0 (RN_DEGENERATE) at a degenerate trial point. */
+rn_status rn_network_energy(const rn_network *net, const double *x, double *E);
+/* Energy (E may be NULL) and gradient g[num_dofs]. */
+rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
+                              double *g);
+/* Hessian-vector product Hv = H(x) v, matrix-free from the stencil blocks. */
+rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v,
+                         double *Hv);
+/* Energy split by term: E[RN_TERM_COUNT]. */
+enum { RN_TERM_STRETCH = 0, RN_TERM_BEND, RN_TERM_TWIST, RN_TERM_LOAD,
+       RN_TERM_COUNT };
+rn_status rn_network_energy_terms(const rn_network *net, const double *x,
+                                  double *E);
+
+/* Sparse Hessian in CSR, both triangles, on the reduced DOFs.  The pattern is
+ * fixed at finalize (borrowed arrays valid until destroy):
+ * rowptr[num_dofs+1], col[nnz] sorted per row. */
+rn_status rn_network_hessian_pattern(const rn_network *net, size_t *nnz,
+                                     const int64_t **rowptr,
+                                     const int32_t **col);
+/* Values vals[nnz] of H(x) in that pattern (same blocks as rn_network_hvp). */
+rn_status rn_network_hessian_values(const rn_network *net, const double *x,
+                                    double *vals);
+/* Half bandwidth of the pattern: max |i - j| over nonzeros. */
+size_t rn_network_hessian_bandwidth(const rn_network *net);
+
+/* Accept x as the new state: x becomes current, reference frames are moved by
+ * time-parallel transport, reference twists and moment angles are continued.
+ * The energy at x is unchanged by the update. */
+rn_status rn_network_update_reference(rn_network *net, const double *x);
+
+/* ---- results ------------------------------------------------------------- */
+/* Current vertex positions xyz[3*nv] and material angles theta[nv-1]
+ * (relative to the reference directors; see rn_network_rod_frames). */
+rn_status rn_network_rod_vertices(const rn_network *net, int rod, double *xyz);
+rn_status rn_network_rod_theta(const rn_network *net, int rod, double *theta);
+/* Initial (input) vertex positions of a rod. */
+rn_status rn_network_rod_initial_vertices(const rn_network *net, int rod,
+                                          double *xyz);
+/* Current material directors d1[3*(nv-1)], d2[3*(nv-1)] (either may be NULL). */
+rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1,
+                                double *d2);
+/* Per-edge stretching strain l/lbar - 1 and per-interior-vertex material
+ * curvature kappa[2*(nv-2)] and twist tau[nv-2] (integrated), current state.
+ * Any pointer may be NULL. */
+rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
+                                 double *kappa, double *tau);
+
+/* ---- derivative self-test ------------------------------------------------ */
+typedef struct rn_check_report {
+  double grad_rel_err;   /* worst relative FD error of the gradient */
+  double hvp_rel_err;    /* worst relative FD error of the HVP */
+  double hess_sym_err;   /* relative asymmetry of the assembled Hessian */
+  double hess_hvp_err;   /* relative mismatch between CSR Hessian and HVP */
+  double grad_order;     /* observed order of the FD error over the h-sweep */
+  double hvp_order;
+  int n_points;          /* points tested */
+} rn_check_report;
+
+/* Check gradient and HVP against central differences at x (NULL = current
+ * state) and at n_random random perturbations of it (seeded, relative size
+ * perturb), over an h-sweep.  Fills rep; returns RN_OK (the caller compares
+ * the errors with its tolerance). */
+rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
+                                       int n_random, double perturb,
+                                       uint64_t seed, rn_check_report *rep);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

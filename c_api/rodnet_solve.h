@@ -1,0 +1,142 @@
+/* rodnet_solve.h - equilibrium solvers (implemented in shim_cxx/ on Trilinos).
+ *
+ * rn_solve minimises the network energy over the reduced DOFs, starting from
+ * the network's current state, and leaves the solution as the current state
+ * (with the reference frames updated).  No C++ exception crosses this API.
+ * Not yet distributed: rn_solve runs on the calling process (MPI_COMM_SELF
+ * semantics) and is safe to call with or without MPI initialised.
+ */
+#ifndef RODNET_SOLVE_H
+#define RODNET_SOLVE_H
+
+#include "rodnet.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rn_solver_kind {
+  /* rodnet's trust region: (H + lambda M) s = -g solved by Belos MINRES with
+   * a banded-Cholesky (LAPACK) preconditioner; negative curvature handled. */
+  RN_SOLVER_TR_MINRES = 0,
+  /* ROL trust region with truncated CG (Steihaug-Toint), preconditioned. */
+  RN_SOLVER_ROL_TR_TCG = 1,
+  /* ROL line-search Newton-Krylov with Belos MINRES as the Krylov solver. */
+  RN_SOLVER_ROL_LS_NEWTON = 2
+} rn_solver_kind;
+
+/* Why a solve stopped. */
+typedef enum rn_solve_stop {
+  RN_STOP_GRADIENT = 0,     /* ||g|| <= gtol_rel * g_scale (or gtol_abs) */
+  RN_STOP_STEP = 1,         /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
+  RN_STOP_ENERGY = 2,       /* |dE| <= energy_tol * (1 + |E|) on an accepted step */
+  RN_STOP_MAX_ITER = 3,     /* iteration limit: not converged */
+  RN_STOP_RADIUS = 4,       /* trust radius collapsed: not converged */
+  RN_STOP_FAILED = 5        /* error (see status / context) */
+} rn_solve_stop;
+
+/* Per-iteration progress (passed to the callback once per Newton iteration). */
+typedef struct rn_iteration_info {
+  int iteration;
+  double energy;
+  double gradient_norm;
+  double radius;            /* trust radius (0 for line search) */
+  int krylov_iterations;    /* this iteration */
+  double seconds;           /* since the start of the solve */
+  double load_factor;
+} rn_iteration_info;
+
+typedef struct rn_solve_options {
+  rn_solver_kind solver;
+  int max_iterations;       /* Newton iterations per load step (default 200) */
+  double gtol_rel;          /* default 1e-9, relative to max(||g_0||, force scale) */
+  double gtol_abs;          /* default 0 (off) */
+  double step_tol;          /* default 1e-12 */
+  double energy_tol;        /* default 1e-15 */
+  int krylov_max_iterations;/* default 500 */
+  double krylov_tol;        /* relative MINRES residual, default 1e-10 */
+  double initial_radius;    /* default 0: automatic */
+  int load_steps;           /* > 0: fixed number of continuation steps;
+                               0 (default): one step, split automatically
+                               when a full step fails */
+  int max_load_cuts;        /* automatic halvings allowed (default 8) */
+  void (*progress)(void *user, const rn_iteration_info *info);
+  void *progress_user;
+} rn_solve_options;
+
+void rn_solve_options_default(rn_solve_options *opt);
+
+typedef struct rn_solve_report {
+  rn_status status;         /* RN_OK if the solver ran (converged or not) */
+  rn_solve_stop stop;       /* which test stopped it */
+  int converged;            /* 1 if stop is GRADIENT, STEP or ENERGY */
+  int iterations;           /* Newton iterations, all load steps */
+  long energy_evals, gradient_evals, hvp_evals, hessian_evals;
+  long krylov_iterations;   /* total MINRES/CG iterations */
+  int load_steps;           /* continuation steps taken */
+  double energy, gradient_norm, initial_gradient_norm;
+  double time_s;
+} rn_solve_report;
+
+/* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
+ * "radius", "failed"); name of a solver kind ("tr-minres", "rol-tr-tcg",
+ * "rol-ls-newton"); parse a solver name (RN_ERR_ARG if unknown). */
+const char *rn_solve_stop_name(rn_solve_stop s);
+const char *rn_solver_name(rn_solver_kind k);
+rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
+
+/* ---- runtime (Tpetra / Kokkos / MPI) --------------------------------------
+ * The solvers run on Tpetra, whose runtime (Kokkos and, if not yet initialised,
+ * MPI) must be initialised once per process.  Programs should call
+ * rn_runtime_initialize(&argc, &argv) at the start of main() and
+ * rn_runtime_finalize() before returning.  If they do not, the first rn_solve
+ * initialises it (MPI too, when it is not yet
+ * initialised) and registers rn_runtime_finalize() with atexit(); a program
+ * that uses MPI itself must then initialise MPI before the first solve.
+ * Idempotent: initialising twice is a no-op.  rn_runtime_finalize() finalises
+ * only what rodnet initialised (never an MPI or Kokkos the caller set up), after
+ * which no solve may run (MPI cannot be re-initialised): RN_ERR_STATE.
+ * argc/argv may be NULL.  Not thread-safe; call from the main thread. */
+rn_status rn_runtime_initialize(int *argc, char ***argv);
+void rn_runtime_finalize(void);
+
+/* Solve for equilibrium of a finalized network.  Fills rep (may be NULL);
+ * opt NULL means rn_solve_options_default().  Returns RN_OK when the solver
+ * ran to a stop (check rep->converged), an error code otherwise (message in
+ * the network's context; RN_ERR_ARG for invalid options).
+ *
+ * Load stepping: the target is the network's load factor at the call (normally
+ * 1).  load_steps = N > 0 solves at target*k/N, k = 1..N, stopping at the first
+ * step that does not converge.  load_steps = 0 tries the target directly; if
+ * that does not converge it goes back to the last converged state (DOFs set
+ * back, reference frames transported to them) and halves the increment, at most
+ * max_load_cuts times, doubling it again after each converged step.  When the
+ * solve does not converge the network is left at the last iterate of the last
+ * attempt, at that attempt's load factor (rn_network_load_factor tells).
+ *
+ * Stopping (per load step; rep->stop says which test fired): gradient when
+ * ||g|| <= gtol_rel * max(||g_0||, f) with g_0 the gradient at the start of the
+ * load step and f = rep->initial_gradient_norm, the norm of the gradient at the
+ * solve's starting state at the target load factor (the out-of-balance force to
+ * remove), or ||g|| <= gtol_abs when gtol_abs > 0; step and energy only after an
+ * accepted step the globalisation did not shorten (full Newton step: interior
+ * trust-region step / unit line-search step).  TR-MINRES applies no convergence
+ * test while the Hessian has significant negative curvature (a saddle is not a
+ * solution).  rep->krylov_iterations counts MINRES iterations (TR-MINRES,
+ * ROL-LS-Newton) or truncated-CG iterations (ROL-TR-TCG, counted as Hessian-
+ * vector products); rep->hvp_evals counts matrix-free and CSR Hessian-vector
+ * products; rep->load_steps counts load steps attempted (including those cut
+ * back). */
+rn_status rn_solve(rn_network *net, const rn_solve_options *opt,
+                   rn_solve_report *rep);
+
+/* Smallest eigenvalue of the reduced Hessian at the current state (LAPACK
+ * dsbevx on the banded Hessian: exact up to round-off; memory n (kd + 1) with
+ * kd = rn_network_hessian_bandwidth); used by stability checks (e.g.
+ * buckling).  Needs no runtime initialisation (pure LAPACK). */
+rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,155 @@
+/* rnk.h - rodnet energy kernels (energy layer).
+ *
+ * Pure math per stencil: energy, gradient, Hessian block and Hessian-vector
+ * product of each energy term of a discrete elastic rod (DER).  No allocation,
+ * no I/O, no globals; libm only.  Every function returns an int status:
+ *   RNK_OK (0)          success;
+ *   RNK_DEGENERATE (1)  the configuration is degenerate at this trial point
+ *                       (zero-length edge, exactly opposite tangents, a kink of
+ *                       180 degrees): recoverable, the caller should reject the
+ *                       step.  Outputs are then unspecified (but finite).
+ *
+ * Local DOF layout of the stencils (the seed 000 ordering):
+ *   edge stencil   q[7]  = (x_j[3], theta^j, x_{j+1}[3])
+ *   vertex stencil q[11] = (x_{i-1}[3], theta^{i-1}, x_i[3], theta^i, x_{i+1}[3])
+ * Hessian blocks are dense, row-major, n x n, symmetric.
+ *
+ * Frames.  Each edge carries a reference frame (t_hat, a1_hat) stored by the
+ * caller (the reference state).  The reference director of the current edge is
+ * the parallel transport of a1_hat from t_hat to the current tangent t, and the
+ * material directors are d1 = cos(theta) a1 + sin(theta) a2, d2 = -sin(theta) a1
+ * + cos(theta) a2 with a2 = t x a1.  The energy is therefore a smooth, pure
+ * function of (DOFs, reference state); all derivatives here are exact
+ * derivatives of that function (not the "frozen frame" approximation), at any
+ * configuration, not only at an up-to-date reference.
+ */
+#ifndef RODNET_RNK_H
+#define RODNET_RNK_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { RNK_OK = 0, RNK_DEGENERATE = 1 };
+
+/* Smallest admissible 1 + t_a . t_b (parallel transport, curvature binormal). */
+#define RNK_OPPOSITE_TOL 1e-12
+
+/* Reference frame of an edge: unit tangent and unit first director, a1 . t = 0. */
+typedef struct rnk_frame {
+  double t[3];
+  double a1[3];
+} rnk_frame;
+
+/* ---- frames -------------------------------------------------------------- */
+
+/* Parallel transport of v from unit tangent ta to unit tangent tb (rotation
+ * about ta x tb taking ta to tb).  Accurate for nearly parallel tangents;
+ * RNK_DEGENERATE if 1 + ta.tb < RNK_OPPOSITE_TOL. */
+int rnk_transport(const double ta[3], const double tb[3], const double v[3],
+                  double out[3]);
+
+/* Material frame of an edge with edge vector e, reference frame ref, angle
+ * theta: unit tangent t, directors d1, d2.  Any output may be NULL. */
+int rnk_material_frame(const double e[3], const rnk_frame *ref, double theta,
+                       double t[3], double d1[3], double d2[3]);
+
+/* Time-parallel update of a reference frame to the current edge vector e:
+ * ref->a1 becomes the transported director (re-orthonormalised), ref->t the
+ * current unit tangent.  The energy does not change. */
+int rnk_frame_update(const double e[3], rnk_frame *ref);
+
+/* Reference twist at a vertex stencil q[11] with edge reference frames
+ * ref[0], ref[1]: the signed angle from the parallel transport of the first
+ * edge's reference director to the second's, continued from ref_twist_prev
+ * (the value stored at the last reference update) so that it does not alias
+ * modulo 2 pi. */
+int rnk_reference_twist(const double q[11], const rnk_frame ref[2],
+                        double ref_twist_prev, double *m);
+
+/* Material curvature (kappa1, kappa2) (integrated, seed 000 (2.2)) and twist
+ * (theta^i - theta^{i-1} + reference twist) at a vertex stencil. */
+int rnk_strains(const double q[11], const rnk_frame ref[2],
+                double ref_twist_prev, double kappa[2], double *twist);
+
+/* ---- stretching: E = 1/2 k (l - lbar)^2 / lbar on an edge stencil q[7] ---- */
+typedef struct rnk_stretch_param {
+  double k;     /* axial stiffness E A */
+  double lbar;  /* rest length */
+} rnk_stretch_param;
+
+int rnk_stretch_energy(const double q[7], const rnk_stretch_param *p, double *E);
+int rnk_stretch_grad(const double q[7], const rnk_stretch_param *p, double *E,
+                     double g[7]);
+int rnk_stretch_hess(const double q[7], const rnk_stretch_param *p, double H[49]);
+int rnk_stretch_hvp(const double q[7], const rnk_stretch_param *p,
+                    const double v[7], double Hv[7]);
+
+/* ---- bending: E = 1/2 (k - kbar)^T B (k - kbar) / vlen on q[11] ---------- */
+typedef struct rnk_bend_param {
+  double B[3];        /* B11, B12, B22: bending stiffness E I in (d1, d2) */
+  double kbar[2];     /* rest material curvature (integrated) */
+  double vlen;        /* Voronoi rest length (lbar^{i-1} + lbar^i) / 2 */
+} rnk_bend_param;
+
+int rnk_bend_energy(const double q[11], const rnk_frame ref[2],
+                    const rnk_bend_param *p, double *E);
+int rnk_bend_grad(const double q[11], const rnk_frame ref[2],
+                  const rnk_bend_param *p, double *E, double g[11]);
+int rnk_bend_hess(const double q[11], const rnk_frame ref[2],
+                  const rnk_bend_param *p, double H[121]);
+int rnk_bend_hvp(const double q[11], const rnk_frame ref[2],
+                 const rnk_bend_param *p, const double v[11], double Hv[11]);
+
+/* ---- twist: E = 1/2 beta (tau - taubar)^2 / vlen on q[11] --------------- */
+typedef struct rnk_twist_param {
+  double beta;        /* twisting stiffness G J */
+  double taubar;      /* rest twist (integrated) */
+  double vlen;        /* Voronoi rest length */
+  double ref_twist;   /* reference twist stored at the last reference update */
+} rnk_twist_param;
+
+int rnk_twist_energy(const double q[11], const rnk_frame ref[2],
+                     const rnk_twist_param *p, double *E);
+int rnk_twist_grad(const double q[11], const rnk_frame ref[2],
+                   const rnk_twist_param *p, double *E, double g[11]);
+int rnk_twist_hess(const double q[11], const rnk_frame ref[2],
+                   const rnk_twist_param *p, double H[121]);
+int rnk_twist_hvp(const double q[11], const rnk_frame ref[2],
+                  const rnk_twist_param *p, const double v[11], double Hv[11]);
+
+/* ---- dead couple on an edge's material frame, edge stencil q[7] ----------
+ * E = -|M| (angle0 + alpha), alpha = rotation of the edge's material frame
+ * about the fixed axis M/|M| since the last reference update (swing-twist
+ * decomposition of the incremental rotation), angle0 the angle accumulated
+ * up to that update.  For rotations about the axis of M this is exactly the
+ * work of a dead couple. */
+typedef struct rnk_moment_param {
+  double M[3];        /* applied moment */
+  double f0[9];       /* material frame (t, d1, d2) at the last update */
+  double angle0;      /* accumulated angle at the last update */
+} rnk_moment_param;
+
+int rnk_moment_energy(const double q[7], const rnk_frame *ref,
+                      const rnk_moment_param *p, double *E);
+int rnk_moment_grad(const double q[7], const rnk_frame *ref,
+                    const rnk_moment_param *p, double *E, double g[7]);
+int rnk_moment_hess(const double q[7], const rnk_frame *ref,
+                    const rnk_moment_param *p, double H[49]);
+int rnk_moment_hvp(const double q[7], const rnk_frame *ref,
+                   const rnk_moment_param *p, const double v[7], double Hv[7]);
+/* Rotation angle alpha of the current frame about M's axis since f0. */
+int rnk_moment_angle(const double q[7], const rnk_frame *ref,
+                     const rnk_moment_param *p, double *alpha);
+
+/* ---- dead force on a vertex: E = -f . x (linear; Hessian zero) ----------- */
+double rnk_force_energy(const double x[3], const double f[3]);
+void rnk_force_grad(const double f[3], double g[3]);
+
+/* Dense helper: y = H v for an n x n row-major block. */
+void rnk_block_mv(int n, const double *H, const double *v, double *y);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,71 @@
+/* atomic_file.c - write to "<path>.tmp.<pid>", then rename. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "atomic_file.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char *temp_name(const char *path) {
+  size_t n = strlen(path) + 48;
+  char *t = malloc(n);
+  if (t) snprintf(t, n, "%s.tmp.%ld", path, (long)getpid());
+  return t;
+}
+
+static rn_status io_error(rn_context *ctx, const char *path, const char *what,
+                          int err) {
+  return rn_context_set_error(ctx, RN_ERR_IO, "%s: %s: %s", path, what, strerror(err));
+}
+
+rn_status rn_file_write_atomic(rn_context *ctx, const char *path,
+                               rn_file_writer write, void *user) {
+  if (!path || !write) return rn_context_set_error(ctx, RN_ERR_ARG, "write: no path");
+  char *tmp = temp_name(path);
+  if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
+  FILE *f = fopen(tmp, "wb");
+  if (!f) {
+    rn_status st = io_error(ctx, path, "cannot create the file", errno);
+    free(tmp);
+    return st;
+  }
+  rn_status st = write(f, user, ctx);
+  int err = 0;
+  if (!st && (fflush(f) != 0 || ferror(f))) {
+    err = errno;
+    st = RN_ERR_IO;
+  }
+  if (fclose(f) != 0 && !st) {
+    err = errno;
+    st = RN_ERR_IO;
+  }
+  if (!st && rename(tmp, path) != 0) {
+    err = errno;
+    st = io_error(ctx, path, "cannot rename the temporary file", err);
+  } else if (st == RN_ERR_IO && err) {
+    st = io_error(ctx, path, "write failed", err);
+  }
+  if (st) remove(tmp);
+  free(tmp);
+  return st;
+}
+
+rn_status rn_file_probe_writable(rn_context *ctx, const char *path) {
+  struct stat sb;
+  if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+    return rn_context_set_error(ctx, RN_ERR_IO, "%s: is a directory", path);
+  char *tmp = temp_name(path);
+  if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
+  FILE *f = fopen(tmp, "wb");
+  rn_status st = RN_OK;
+  if (!f) st = io_error(ctx, path, "cannot create the file", errno);
+  else {
+    fclose(f);
+    remove(tmp);
+  }
+  free(tmp);
+  return st;
+}

@@ -1,0 +1,117 @@
+/* cli.c - `rodnet` dispatch, top-level help and version, option helpers. */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char main_help[] =
+    "\n"
+    "Usage: rodnet COMMAND [options]\n"
+    "\n"
+    "Commands:\n"
+    "  solve SCENE.json -o RESULT.json   compute the equilibrium of a scene and write\n"
+    "                                    the result as JSON (and VTK with --vtk)\n"
+    "  check SCENE.json                  derivative self-test: gradient and Hessian of\n"
+    "                                    the scene's energy against finite differences\n"
+    "\n"
+    "Options:\n"
+    "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's options\n"
+    "  -V, --version    print the version and whether the solver was built in\n"
+    "\n"
+    "Exit status: 0 success, 1 not converged (solve) or test failed (check),\n"
+    "2 usage error, 3 bad scene or unusable input/output path, 4 solver or internal\n"
+    "error.  Scene format: docs/scene-format.md.  Commands: docs/cli.md.\n";
+
+static void print_version(void) {
+  printf("rodnet %s\n", rn_version_string());
+#ifdef RN_HAVE_SOLVER
+  printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton; Trilinos)\n");
+#else
+  printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' works\n");
+#endif
+}
+
+int rn_cli_main(int argc, char **argv) {
+  if (argc < 2) {
+    fprintf(stderr, "rodnet: missing command\nTry 'rodnet --help'.\n");
+    return RN_EXIT_USAGE;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
+    printf("rodnet %s - static equilibria of discrete elastic rods\n", rn_version_string());
+    fputs(main_help, stdout);
+    return RN_EXIT_OK;
+  }
+  if (strcmp(cmd, "-V") == 0 || strcmp(cmd, "--version") == 0) {
+    print_version();
+    return RN_EXIT_OK;
+  }
+  if (strcmp(cmd, "solve") == 0) return rn_cli_solve(argc - 1, argv + 1);
+  if (strcmp(cmd, "check") == 0) return rn_cli_check(argc - 1, argv + 1);
+  fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
+  return RN_EXIT_USAGE;
+}
+
+int rn_cli_usage_error(const char *cmd, const char *fmt, ...) {
+  va_list ap;
+  fprintf(stderr, "rodnet %s: ", cmd);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "\nTry 'rodnet %s --help'.\n", cmd);
+  return RN_EXIT_USAGE;
+}
+
+int rn_cli_parse_int(const char *cmd, const char *opt, const char *s, long lo,
+                     long hi, int *out) {
+  char *end = NULL;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (errno || end == s || *end || v < lo || v > hi) {
+    if (hi >= 2147483647L)
+      return rn_cli_usage_error(cmd, "%s expects an integer >= %ld, got '%s'", opt, lo, s);
+    return rn_cli_usage_error(cmd, "%s expects an integer in [%ld, %ld], got '%s'", opt,
+                              lo, hi, s);
+  }
+  *out = (int)v;
+  return 0;
+}
+
+int rn_cli_parse_double(const char *cmd, const char *opt, const char *s,
+                        double lo_exclusive, double *out) {
+  char *end = NULL;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (errno || end == s || *end || !isfinite(v) || !(v > lo_exclusive))
+    return rn_cli_usage_error(cmd, "%s expects a finite number > %g, got '%s'", opt,
+                              lo_exclusive, s);
+  *out = v;
+  return 0;
+}
+
+int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i,
+                        const char *name, const char *short_name,
+                        const char **value) {
+  const char *a = argv[*i];
+  size_t n = strlen(name);
+  if (strncmp(a, name, n) == 0 && a[n] == '=') {
+    *value = a + n + 1;
+    return 1;
+  }
+  if (strcmp(a, name) != 0 && !(short_name && strcmp(a, short_name) == 0)) return 0;
+  if (*i + 1 >= argc) {
+    rn_cli_usage_error(cmd, "option %s needs a value", a);
+    return -1;
+  }
+  *i += 1;
+  *value = argv[*i];
+  return 1;
+}
+
+int rn_cli_load_exit_code(rn_status st) {
+  return (st == RN_ERR_ALLOC || st == RN_ERR_INTERNAL) ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
+}

@@ -1,0 +1,46 @@
+/* cli.h - the `rodnet` command (docs/cli.md).  The command prints; nothing
+ * below it does. */
+#ifndef RN_CLI_H
+#define RN_CLI_H
+
+#include "rodnet.h"
+
+/* Exit status of the command. */
+enum {
+  RN_EXIT_OK = 0,            /* success */
+  RN_EXIT_NOT_CONVERGED = 1, /* solve stopped without converging; check failed */
+  RN_EXIT_USAGE = 2,         /* bad command line */
+  RN_EXIT_INPUT = 3,         /* bad scene, unreadable input, unwritable output path */
+  RN_EXIT_INTERNAL = 4       /* solver or internal error, failed output write */
+};
+
+/* Entry point: argv[0] is the program name. */
+int rn_cli_main(int argc, char **argv);
+
+/* Subcommands: argv[0] is the subcommand name. */
+int rn_cli_solve(int argc, char **argv);
+int rn_cli_check(int argc, char **argv);
+
+/* ---- helpers shared by the subcommands ---------------------------------- */
+/* Print "rodnet CMD: message" and a hint to stderr; returns RN_EXIT_USAGE. */
+int rn_cli_usage_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Option argument parsing; 0 on success, else prints a usage error. */
+int rn_cli_parse_int(const char *cmd, const char *opt, const char *s, long lo,
+                     long hi, int *out);
+int rn_cli_parse_double(const char *cmd, const char *opt, const char *s,
+                        double lo_exclusive, double *out);
+/* Option matching: argv[*i] is "--name" (value in argv[*i + 1]) or
+ * "--name=value".  Returns 1 and sets *value (advancing *i) on a match, 0 if
+ * argv[*i] is another option, -1 (usage error printed) if the value is
+ * missing.  short_name may be NULL. */
+int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i,
+                        const char *name, const char *short_name,
+                        const char **value);
+/* Exit status for a failed scene load. */
+int rn_cli_load_exit_code(rn_status st);
+
+#endif

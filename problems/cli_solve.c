@@ -1,0 +1,242 @@
+/* cli_solve.c - `rodnet solve SCENE.json -o RESULT.json [options]`. */
+#include <stdio.h>
+#include <string.h>
+
+#include "atomic_file.h"
+#include "cli.h"
+#include "result_json.h"
+#include "rodnet_solve.h"
+#include "scene.h"
+#include "vtk.h"
+
+static const char solve_help[] =
+    "Usage: rodnet solve SCENE.json -o RESULT.json [options]\n"
+    "\n"
+    "Compute the static equilibrium of the scene (format: docs/scene-format.md)\n"
+    "and write the result.  One progress line per Newton iteration goes to\n"
+    "stderr (iteration, energy, gradient norm, trust radius, Krylov iterations,\n"
+    "seconds, load factor); a summary goes to stdout at the end.\n"
+    "\n"
+    "Options:\n"
+    "  -o, --output FILE   result JSON to write (required): status, energy,\n"
+    "                      gradient norm, iterations, time, and per rod its\n"
+    "                      vertices and material angles (docs/cli.md)\n"
+    "      --vtk FILE      also write the solution as a VTK .vtu file (ParaView):\n"
+    "                      displacement, curvature, twist, theta, strain, directors\n"
+    "      --solver NAME   tr-minres: rodnet's trust-region Newton method, Newton\n"
+    "                        systems by MINRES with a banded preconditioner (default)\n"
+    "                      rol-tr-tcg: ROL trust region with truncated CG\n"
+    "                      rol-ls-newton: ROL line-search Newton with MINRES\n"
+    "      --max-iter N    Newton iterations allowed per load step (default 200)\n"
+    "      --gtol X        stop when the gradient norm falls below X times its\n"
+    "                      scale (initial gradient or force scale; default 1e-9)\n"
+    "      --load-steps N  apply the loads in N equal continuation steps (default:\n"
+    "                      one step, split automatically when a full step fails)\n"
+    "  -q, --quiet         no progress lines\n"
+    "  -h, --help          show this help\n"
+    "\n"
+    "Options given here override the scene's \"solver\" block.  Output files are\n"
+    "written completely or not at all.\n"
+    "Exit status: 0 converged, 1 stopped without converging (the result is still\n"
+    "written, with the reason as its status), 2 usage error, 3 bad scene or\n"
+    "unwritable output path, 4 solver error or failed write.\n";
+
+typedef struct solve_args {
+  const char *scene, *output, *vtk, *solver;
+  int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol;
+  double gtol;
+} solve_args;
+
+/* 0 to go on, otherwise an exit status (-1: help shown, exit 0). */
+static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int *rc) {
+  const char *v = NULL;
+  int m;
+  *rc = 0;
+  if ((m = rn_cli_option_value("solve", argc, argv, i, "--output", "-o", &v)) != 0) a->output = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--vtk", NULL, &v)) != 0) a->vtk = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--solver", NULL, &v)) != 0) a->solver = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) != 0) {
+    if (m > 0) *rc = rn_cli_parse_int("solve", "--max-iter", v, 1, 2147483647L, &a->max_iter);
+    a->has_max_iter = 1;
+  } else if ((m = rn_cli_option_value("solve", argc, argv, i, "--gtol", NULL, &v)) != 0) {
+    if (m > 0) *rc = rn_cli_parse_double("solve", "--gtol", v, 0.0, &a->gtol);
+    a->has_gtol = 1;
+  } else if ((m = rn_cli_option_value("solve", argc, argv, i, "--load-steps", NULL, &v)) != 0) {
+    if (m > 0) *rc = rn_cli_parse_int("solve", "--load-steps", v, 1, 2147483647L, &a->load_steps);
+    a->has_load_steps = 1;
+  }
+  if (m < 0) *rc = RN_EXIT_USAGE;
+  return m != 0;
+}
+
+static int parse_solve_args(int argc, char **argv, solve_args *a) {
+  memset(a, 0, sizeof *a);
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i];
+    int rc = 0;
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+      fputs(solve_help, stdout);
+      return -1;
+    }
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) a->quiet = 1;
+    else if (parse_value_option(argc, argv, &i, a, &rc)) {
+      if (rc) return rc;
+    } else if (s[0] == '-' && s[1] != '\0')
+      return rn_cli_usage_error("solve", "unknown option '%s'", s);
+    else if (a->scene)
+      return rn_cli_usage_error("solve", "more than one scene given ('%s' and '%s')",
+                                a->scene, s);
+    else a->scene = s;
+  }
+  if (!a->scene) return rn_cli_usage_error("solve", "missing the scene file");
+  if (!a->output) return rn_cli_usage_error("solve", "missing -o RESULT.json");
+  if (a->vtk && strcmp(a->vtk, a->output) == 0)
+    return rn_cli_usage_error("solve", "--vtk and -o name the same file");
+  return 0;
+}
+
+#ifdef RN_HAVE_SOLVER
+
+typedef struct progress_state {
+  int header_done;
+} progress_state;
+
+static void progress(void *user, const rn_iteration_info *it) {
+  progress_state *p = user;
+  if (!p->header_done) {
+    fprintf(stderr, "%5s  %24s  %10s  %10s  %6s  %9s  %6s\n", "iter", "energy", "|grad|",
+            "radius", "krylov", "time[s]", "load");
+    p->header_done = 1;
+  }
+  fprintf(stderr, "%5d  %24.16e  %10.3e  %10.3e  %6d  %9.3f  %6.4f\n", it->iteration,
+          it->energy, it->gradient_norm, it->radius, it->krylov_iterations, it->seconds,
+          it->load_factor);
+  fflush(stderr);
+}
+
+static int make_options(const solve_args *a, const rn_scene *scene,
+                        rn_solve_options *opt) {
+  rn_solve_options_default(opt);
+  rn_scene_apply_solver(scene, opt);
+  if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
+    return rn_cli_usage_error("solve", "unknown solver '%s' (known: tr-minres, "
+                                       "rol-tr-tcg, rol-ls-newton)", a->solver);
+  if (a->has_max_iter) opt->max_iterations = a->max_iter;
+  if (a->has_gtol) opt->gtol_rel = a->gtol;
+  if (a->has_load_steps) opt->load_steps = a->load_steps;
+  return 0;
+}
+
+static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
+                      rn_result_info *in) {
+  memset(in, 0, sizeof *in);
+  in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
+  in->solver = rn_solver_name(opt->solver);
+  in->stop = rn_solve_stop_name(rep->stop);
+  in->converged = rep->converged;
+  in->iterations = rep->iterations;
+  in->load_steps = rep->load_steps;
+  in->energy_evals = rep->energy_evals;
+  in->gradient_evals = rep->gradient_evals;
+  in->hvp_evals = rep->hvp_evals;
+  in->hessian_evals = rep->hessian_evals;
+  in->krylov_iterations = rep->krylov_iterations;
+  in->energy = rep->energy;
+  in->gradient_norm = rep->gradient_norm;
+  in->initial_gradient_norm = rep->initial_gradient_norm;
+  in->time_s = rep->time_s;
+}
+
+static void print_summary(const solve_args *a, const rn_scene *scene,
+                          const rn_result_info *in) {
+  rn_network *net = rn_scene_network(scene);
+  printf("rodnet solve: %s\n", a->scene);
+  printf("  status       %s (stopped by: %s)\n", in->status, in->stop);
+  printf("  solver       %s\n", in->solver);
+  printf("  size         %d rods, %ld vertices, %zu free DOFs\n", rn_network_num_rods(net),
+         rn_scene_num_vertices(scene), rn_network_num_dofs(net));
+  printf("  iterations   %d Newton, %ld Krylov, %d load steps (load factor %g)\n",
+         in->iterations, in->krylov_iterations, in->load_steps,
+         rn_network_load_factor(net));
+  printf("  evaluations  %ld energy, %ld gradient, %ld HVP, %ld Hessian\n", in->energy_evals,
+         in->gradient_evals, in->hvp_evals, in->hessian_evals);
+  printf("  energy       %.17g\n", in->energy);
+  printf("  |gradient|   %.3e (initial %.3e)\n", in->gradient_norm, in->initial_gradient_norm);
+  printf("  time         %.3f s\n", in->time_s);
+  printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");
+}
+
+static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *scene,
+                         const rn_result_info *in) {
+  rn_status st = rn_result_write_json(ctx, a->output, scene, in);
+  if (!st && a->vtk) st = rn_vtk_write(ctx, a->vtk, scene);
+  if (st) {
+    fprintf(stderr, "rodnet solve: %s\n", rn_context_last_error(ctx));
+    return RN_EXIT_INTERNAL;
+  }
+  return RN_EXIT_OK;
+}
+
+static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
+  rn_solve_options opt;
+  int rc = make_options(a, scene, &opt);
+  if (rc) return rc;
+  progress_state ps = {0};
+  if (!a->quiet) {
+    opt.progress = progress;
+    opt.progress_user = &ps;
+  }
+  rn_solve_report rep;
+  memset(&rep, 0, sizeof rep);
+  rn_status st = rn_solve(rn_scene_network(scene), &opt, &rep);
+  if (st != RN_OK) {
+    fprintf(stderr, "rodnet solve: %s: solver failed (%s): %s\n", a->scene,
+            rn_status_name(st), rn_context_last_error(ctx));
+    return RN_EXIT_INTERNAL;
+  }
+  rn_result_info in;
+  fill_info(&rep, &opt, &in);
+  if ((rc = write_outputs(ctx, a, scene, &in))) return rc;
+  print_summary(a, scene, &in);
+  return rep.converged ? RN_EXIT_OK : RN_EXIT_NOT_CONVERGED;
+}
+
+static int solve_scene(const solve_args *a) {
+  rn_context *ctx = NULL;
+  if (rn_context_create(&ctx) != RN_OK) {
+    fprintf(stderr, "rodnet solve: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  rn_scene *scene = NULL;
+  int rc = RN_EXIT_OK;
+  rn_status st = rn_scene_load(ctx, a->scene, &scene);
+  if (st) {
+    fprintf(stderr, "%s\n", rn_context_last_error(ctx));
+    rc = rn_cli_load_exit_code(st);
+  }
+  if (!rc && ((st = rn_file_probe_writable(ctx, a->output)) ||
+              (a->vtk && (st = rn_file_probe_writable(ctx, a->vtk))))) {
+    fprintf(stderr, "rodnet solve: %s\n", rn_context_last_error(ctx));
+    rc = RN_EXIT_INPUT;
+  }
+  if (!rc) rc = run_solve(ctx, a, scene);
+  rn_scene_destroy(&scene);
+  rn_context_destroy(&ctx);
+  return rc;
+}
+
+#endif /* RN_HAVE_SOLVER */
+
+int rn_cli_solve(int argc, char **argv) {
+  solve_args a;
+  int rc = parse_solve_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+#ifdef RN_HAVE_SOLVER
+  return solve_scene(&a);
+#else
+  fprintf(stderr, "rodnet solve: this rodnet was built without the solver "
+                  "(RN_WITH_TRILINOS=OFF); rebuild with -DRN_WITH_TRILINOS=ON. "
+                  "'rodnet check' works without it.\n");
+  return RN_EXIT_INTERNAL;
+#endif
+}

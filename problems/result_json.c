@@ -1,0 +1,146 @@
+/* result_json.c - result JSON writer (streams the rods; %.17g numbers). */
+#include "result_json.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "atomic_file.h"
+
+typedef struct json_out {
+  FILE *f;
+  int not_finite; /* a NaN/Inf was met: the file is discarded */
+  const rn_scene *scene;
+  const rn_result_info *info;
+} json_out;
+
+static void put_num(json_out *o, double x) {
+  if (isfinite(x)) fprintf(o->f, "%.17g", x);
+  else {
+    o->not_finite = 1;
+    fputs("null", o->f);
+  }
+}
+
+static void put_str(FILE *f, const char *s) {
+  fputc('"', f);
+  for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+    if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
+    else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+    else fputc(*p, f);
+  }
+  fputc('"', f);
+}
+
+static void put_key_num(json_out *o, const char *key, double x) {
+  fprintf(o->f, "  \"%s\": ", key);
+  put_num(o, x);
+  fputs(",\n", o->f);
+}
+
+static rn_status put_terms(json_out *o, rn_network *net) {
+  static const char *const names[RN_TERM_COUNT] = {"stretch", "bend", "twist", "load"};
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc((n ? n : 1) * sizeof *x), E[RN_TERM_COUNT];
+  if (!x) return RN_ERR_ALLOC;
+  rn_status st = rn_network_get_dofs(net, x);
+  if (!st) st = rn_network_energy_terms(net, x, E);
+  free(x);
+  if (st) return st;
+  fputs("  \"energy_terms\": {", o->f);
+  for (int t = 0; t < RN_TERM_COUNT; t++) {
+    fprintf(o->f, "%s\"%s\": ", t ? ", " : "", names[t]);
+    put_num(o, E[t]);
+  }
+  fputs("},\n", o->f);
+  return RN_OK;
+}
+
+static void put_summary(json_out *o, rn_network *net) {
+  const rn_result_info *in = o->info;
+  FILE *f = o->f;
+  fprintf(f, "{\n  \"rodnet_version\": \"%s\",\n  \"scene\": ", rn_version_string());
+  put_str(f, rn_scene_label(o->scene));
+  fputs(",\n  \"status\": ", f);
+  put_str(f, in->status);
+  fprintf(f, ",\n  \"converged\": %s,\n  \"stop_reason\": ", in->converged ? "true" : "false");
+  put_str(f, in->stop);
+  fputs(",\n  \"solver\": ", f);
+  put_str(f, in->solver);
+  fputs(",\n", f);
+  put_key_num(o, "energy", in->energy);
+  put_key_num(o, "gradient_norm", in->gradient_norm);
+  put_key_num(o, "initial_gradient_norm", in->initial_gradient_norm);
+  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n", in->iterations, in->load_steps);
+  put_key_num(o, "load_factor", rn_network_load_factor(net));
+  put_key_num(o, "time_s", in->time_s);
+  fprintf(f, "  \"evaluations\": {\"energy\": %ld, \"gradient\": %ld, \"hvp\": %ld, "
+             "\"hessian\": %ld, \"krylov_iterations\": %ld},\n",
+          in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals,
+          in->krylov_iterations);
+  fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
+          rn_scene_num_vertices(o->scene));
+}
+
+static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
+  int nv = rn_network_rod_num_vertices(net, rod);
+  FILE *f = o->f;
+  rn_status st = rn_network_rod_vertices(net, rod, buf);
+  if (st) return st;
+  fputs("    {\"name\": ", f);
+  put_str(f, rn_network_rod_name(net, rod));
+  fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
+  for (int i = 0; i < nv; i++) {
+    fputs(i ? ",\n       [" : "\n       [", f);
+    for (int k = 0; k < 3; k++) {
+      if (k) fputs(", ", f);
+      put_num(o, buf[3 * i + k]);
+    }
+    fputc(']', f);
+  }
+  fputs("],\n     \"theta\": [", f);
+  if ((st = rn_network_rod_theta(net, rod, buf))) return st;
+  for (int i = 0; i + 1 < nv; i++) {
+    fputs(i ? ", " : "", f);
+    if (i && i % 8 == 0) fputs("\n       ", f);
+    put_num(o, buf[i]);
+  }
+  fputs("]}", f);
+  return RN_OK;
+}
+
+static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
+  json_out *o = user;
+  rn_network *net = rn_scene_network(o->scene);
+  o->f = f;
+  put_summary(o, net);
+  rn_status st = put_terms(o, net);
+  int nrods = rn_network_num_rods(net), maxnv = 2;
+  for (int r = 0; r < nrods; r++)
+    if (rn_network_rod_num_vertices(net, r) > maxnv) maxnv = rn_network_rod_num_vertices(net, r);
+  double *buf = st ? NULL : malloc(3 * (size_t)maxnv * sizeof *buf);
+  if (!st && !buf) st = RN_ERR_ALLOC;
+  fputs("  \"rods\": [\n", f);
+  for (int r = 0; r < nrods && !st; r++) {
+    st = put_rod(o, net, r, buf);
+    fputs(r + 1 < nrods ? ",\n" : "\n", f);
+  }
+  fputs("  ]\n}\n", f);
+  free(buf);
+  if (st) {
+    char msg[512];
+    snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));
+    return rn_context_set_error(ctx, st, "result JSON: %s", *msg ? msg : rn_status_message(st));
+  }
+  if (o->not_finite)
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
+                                "result JSON: the result contains NaN or infinite "
+                                "values; no file written");
+  return RN_OK;
+}
+
+rn_status rn_result_write_json(rn_context *ctx, const char *path,
+                               const rn_scene *scene, const rn_result_info *info) {
+  json_out o = {NULL, 0, scene, info};
+  return rn_file_write_atomic(ctx, path, write_result, &o);
+}

@@ -1,0 +1,483 @@
+/* scene.c - JSON scene reader: file, top level, materials, sections, solver
+ * block (rods in scene_rods.c, constraints and loads in scene_bcs.c). */
+#include "scene.h"
+
+#include <errno.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+static char *dup_string(const char *s) {
+  size_t n = strlen(s) + 1;
+  char *d = malloc(n);
+  if (d) memcpy(d, s, n);
+  return d;
+}
+
+/* ---- file and JSON text ---------------------------------------------------- */
+
+/* Read the whole file into a NUL-terminated buffer. */
+static rn_status read_file(rn_context *ctx, const char *path, char **text,
+                           size_t *len) {
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return rn_context_set_error(ctx, RN_ERR_IO, "%s: cannot open: %s", path,
+                                strerror(errno));
+  size_t cap = 1 << 16, n = 0;
+  char *buf = malloc(cap);
+  rn_status st = buf ? RN_OK : RN_ERR_ALLOC;
+  while (st == RN_OK) {
+    if (n + 1 >= cap) {
+      char *nb = realloc(buf, cap * 2);
+      if (!nb) { st = RN_ERR_ALLOC; break; }
+      buf = nb;
+      cap *= 2;
+    }
+    size_t got = fread(buf + n, 1, cap - 1 - n, f);
+    n += got;
+    if (got == 0) {
+      if (ferror(f)) st = RN_ERR_IO;
+      break;
+    }
+  }
+  int read_errno = errno;
+  fclose(f);
+  if (st) {
+    free(buf);
+    if (st == RN_ERR_ALLOC)
+      return rn_context_set_error(ctx, st, "%s: out of memory reading the file", path);
+    return rn_context_set_error(ctx, st, "%s: cannot read: %s", path, strerror(read_errno));
+  }
+  buf[n] = '\0';
+  *text = buf;
+  *len = n;
+  return RN_OK;
+}
+
+/* "FILE:LINE:COL: reason" for a position in text. */
+static rn_status text_error(rn_context *ctx, const char *label, const char *text,
+                            size_t len, size_t pos, const char *reason) {
+  long line = 1, col = 1;
+  if (pos > len) pos = len;
+  for (size_t i = 0; i < pos; i++) {
+    if (text[i] == '\n') { line++; col = 1; }
+    else col++;
+  }
+  char near[32];
+  size_t j = 0;
+  for (size_t i = pos; i < len && j < 20 && text[i] != '\n'; i++)
+    near[j++] = ((unsigned char)text[i] < 0x20 || text[i] == '\'') ? '?' : text[i];
+  near[j] = '\0';
+  if (j == 0)
+    return rn_context_set_error(ctx, RN_ERR_PARSE, "%s:%ld:%ld: %s%s", label, line,
+                                col, reason, pos >= len ? " (unexpected end of file)" : "");
+  return rn_context_set_error(ctx, RN_ERR_PARSE, "%s:%ld:%ld: %s near '%s'", label,
+                              line, col, reason, near);
+}
+
+static rn_status parse_json(rn_context *ctx, const char *label, const char *text,
+                            size_t len, cJSON **root) {
+  size_t nul = strlen(text);
+  if (nul < len)
+    return text_error(ctx, label, text, len, nul, "NUL byte in the file");
+  size_t first = strspn(text, " \t\r\n");
+  if (first == len)
+    return rn_context_set_error(ctx, RN_ERR_PARSE, "%s: the file is empty (expected a "
+                                "JSON object)", label);
+  const char *end = NULL;
+  /* The length includes the terminating NUL: cJSON checks that nothing but
+   * white space follows the value. */
+  *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1);
+  if (*root) return RN_OK;
+  size_t pos = (end && end >= text) ? (size_t)(end - text) : 0;
+  return text_error(ctx, label, text, len, pos, "malformed JSON");
+}
+
+/* ---- materials and sections ------------------------------------------------ */
+
+int rn_scene_parser_material(const rn_scene_parser *p, const char *name) {
+  for (int i = 0; i < p->nmat; i++)
+    if (strcmp(p->mat_names[i], name) == 0) return i;
+  return -1;
+}
+
+int rn_scene_parser_section(const rn_scene_parser *p, const char *name) {
+  for (int i = 0; i < p->nsec; i++)
+    if (strcmp(p->sec_names[i], name) == 0) return i;
+  return -1;
+}
+
+/* A non-empty object of named entries without duplicate names. */
+static rn_status named_table(rn_jwalk *w, const cJSON *obj, const char *what,
+                             int *count) {
+  rn_status st = rn_jv_object(w, obj);
+  if (st) return st;
+  int n = 0;
+  for (const cJSON *c = obj->child; c; c = c->next, n++) {
+    for (const cJSON *d = obj->child; d != c; d = d->next)
+      if (strcmp(d->string, c->string) == 0) {
+        size_t mark = rn_jwalk_key(w, c->string);
+        st = rn_jwalk_error(w, "duplicate %s name \"%s\"", what, c->string);
+        rn_jwalk_pop(w, mark);
+        return st;
+      }
+  }
+  if (n == 0) return rn_jwalk_error(w, "expected at least one %s", what);
+  *count = n;
+  return RN_OK;
+}
+
+static rn_status read_material(rn_jwalk *w, const cJSON *v, rn_material *m) {
+  static const char *const keys[] = {"E", "nu", "G", "density", NULL};
+  double E = 0, nu = 0, G = 0, rho = 0;
+  int has_nu = 0, has_G = 0;
+  rn_status st = rn_json_check_keys(w, v, keys);
+  if (!st) st = rn_jm_number(w, v, "E", 1, RN_J_POSITIVE, &E, NULL);
+  if (!st) st = rn_jm_number(w, v, "nu", 0, RN_J_ANY, &nu, &has_nu);
+  if (!st) st = rn_jm_number(w, v, "G", 0, RN_J_POSITIVE, &G, &has_G);
+  if (!st) st = rn_jm_number(w, v, "density", 0, RN_J_NONNEG, &rho, NULL);
+  if (st) return st;
+  if (has_nu == has_G)
+    return rn_jwalk_error(w, "give exactly one of \"nu\" (Poisson's ratio) and "
+                             "\"G\" (shear modulus)");
+  if (has_G) {
+    m->E = E;
+    m->G = G;
+    m->density = rho;
+    return RN_OK;
+  }
+  if (!(nu > -1.0 && nu <= 0.5)) {
+    size_t mark = rn_jwalk_key(w, "nu");
+    st = rn_jwalk_error(w, "expected a number in (-1, 0.5], got %.17g", nu);
+    rn_jwalk_pop(w, mark);
+    return st;
+  }
+  st = rn_material_from_E_nu(E, nu, rho, m);
+  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+}
+
+static rn_status read_explicit_section(rn_jwalk *w, const cJSON *v,
+                                       rn_section *s) {
+  static const char *const keys[] = {"shape", "A", "I11", "I22", "I12", "J", NULL};
+  rn_status st = rn_json_check_keys(w, v, keys);
+  s->I12 = 0;
+  if (!st) st = rn_jm_number(w, v, "A", 1, RN_J_POSITIVE, &s->A, NULL);
+  if (!st) st = rn_jm_number(w, v, "I11", 1, RN_J_POSITIVE, &s->I11, NULL);
+  if (!st) st = rn_jm_number(w, v, "I22", 1, RN_J_POSITIVE, &s->I22, NULL);
+  if (!st) st = rn_jm_number(w, v, "I12", 0, RN_J_ANY, &s->I12, NULL);
+  if (!st) st = rn_jm_number(w, v, "J", 1, RN_J_POSITIVE, &s->J, NULL);
+  if (st) return st;
+  if (!(s->I11 * s->I22 - s->I12 * s->I12 > 0)) {
+    size_t mark = rn_jwalk_key(w, "I12");
+    st = rn_jwalk_error(w, "the bending stiffness is not positive definite: "
+                           "need I11 * I22 - I12^2 > 0 (I12 = %.17g)", s->I12);
+    rn_jwalk_pop(w, mark);
+  }
+  return st;
+}
+
+static rn_status read_shaped_section(rn_jwalk *w, const cJSON *v,
+                                     const char *shape, rn_section *s) {
+  static const char *const circle[] = {"shape", "radius", NULL};
+  static const char *const hollow[] = {"shape", "outer_radius", "inner_radius", NULL};
+  static const char *const ellipse[] = {"shape", "a", "b", NULL};
+  static const char *const rect[] = {"shape", "width", "height", NULL};
+  double a = 0, b = 0;
+  rn_status st;
+  if (strcmp(shape, "circle") == 0) {
+    st = rn_json_check_keys(w, v, circle);
+    if (!st) st = rn_jm_number(w, v, "radius", 1, RN_J_POSITIVE, &a, NULL);
+    if (!st) st = rn_section_circle(a, s);
+  } else if (strcmp(shape, "hollow_circle") == 0) {
+    st = rn_json_check_keys(w, v, hollow);
+    if (!st) st = rn_jm_number(w, v, "outer_radius", 1, RN_J_POSITIVE, &a, NULL);
+    if (!st) st = rn_jm_number(w, v, "inner_radius", 1, RN_J_NONNEG, &b, NULL);
+    if (!st && !(b < a)) {
+      size_t mark = rn_jwalk_key(w, "inner_radius");
+      st = rn_jwalk_error(w, "expected a number < outer_radius (%.17g), got %.17g", a, b);
+      rn_jwalk_pop(w, mark);
+      return st;
+    }
+    if (!st) st = rn_section_hollow_circle(a, b, s);
+  } else if (strcmp(shape, "ellipse") == 0) {
+    st = rn_json_check_keys(w, v, ellipse);
+    if (!st) st = rn_jm_number(w, v, "a", 1, RN_J_POSITIVE, &a, NULL);
+    if (!st) st = rn_jm_number(w, v, "b", 1, RN_J_POSITIVE, &b, NULL);
+    if (!st) st = rn_section_ellipse(a, b, s);
+  } else if (strcmp(shape, "rectangle") == 0) {
+    st = rn_json_check_keys(w, v, rect);
+    if (!st) st = rn_jm_number(w, v, "width", 1, RN_J_POSITIVE, &a, NULL);
+    if (!st) st = rn_jm_number(w, v, "height", 1, RN_J_POSITIVE, &b, NULL);
+    if (!st) st = rn_section_rectangle(a, b, s);
+  } else {
+    size_t mark = rn_jwalk_key(w, "shape");
+    st = rn_jwalk_error(w, "unknown shape \"%s\" (known: circle, hollow_circle, "
+                           "ellipse, rectangle, explicit)", shape);
+    rn_jwalk_pop(w, mark);
+    return st;
+  }
+  /* Parse errors carry their path already; a library error gets this one. */
+  return (st && st != RN_ERR_PARSE) ? rn_jwalk_lib_error(w, st) : st;
+}
+
+static rn_status read_section(rn_jwalk *w, const cJSON *v, rn_section *s) {
+  const char *shape = NULL;
+  rn_status st = rn_jv_object(w, v);
+  if (!st) st = rn_jm_string(w, v, "shape", 0, &shape);
+  if (st) return st;
+  if (!shape || strcmp(shape, "explicit") == 0) st = read_explicit_section(w, v, s);
+  else st = read_shaped_section(w, v, shape, s);
+  if (st) return st;
+  st = rn_section_validate(s);
+  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+}
+
+static rn_status read_materials(rn_scene_parser *p, const cJSON *obj) {
+  rn_status st = named_table(&p->w, obj, "material", &p->nmat);
+  if (st) return st;
+  p->mat_names = calloc((size_t)p->nmat, sizeof *p->mat_names);
+  p->mats = calloc((size_t)p->nmat, sizeof *p->mats);
+  if (!p->mat_names || !p->mats) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  int i = 0;
+  for (const cJSON *c = obj->child; c && !st; c = c->next, i++) {
+    size_t mark = rn_jwalk_key(&p->w, c->string);
+    p->mat_names[i] = c->string;
+    st = read_material(&p->w, c, &p->mats[i]);
+    rn_jwalk_pop(&p->w, mark);
+  }
+  return st;
+}
+
+static rn_status read_sections(rn_scene_parser *p, const cJSON *obj) {
+  rn_status st = named_table(&p->w, obj, "section", &p->nsec);
+  if (st) return st;
+  p->sec_names = calloc((size_t)p->nsec, sizeof *p->sec_names);
+  p->secs = calloc((size_t)p->nsec, sizeof *p->secs);
+  if (!p->sec_names || !p->secs) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  int i = 0;
+  for (const cJSON *c = obj->child; c && !st; c = c->next, i++) {
+    size_t mark = rn_jwalk_key(&p->w, c->string);
+    p->sec_names[i] = c->string;
+    st = read_section(&p->w, c, &p->secs[i]);
+    rn_jwalk_pop(&p->w, mark);
+  }
+  return st;
+}
+
+/* ---- solver block ---------------------------------------------------------- */
+
+typedef struct solver_field {
+  const char *key;
+  int is_int;
+  rn_jrange range; /* for doubles */
+  long lo;         /* for ints */
+  size_t offset;
+} solver_field;
+
+static const solver_field solver_fields[] = {
+    {"max_iterations", 1, RN_J_ANY, 1, offsetof(rn_solve_options, max_iterations)},
+    {"gtol", 0, RN_J_POSITIVE, 0, offsetof(rn_solve_options, gtol_rel)},
+    {"gtol_abs", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, gtol_abs)},
+    {"step_tol", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, step_tol)},
+    {"energy_tol", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, energy_tol)},
+    {"krylov_max_iterations", 1, RN_J_ANY, 1,
+     offsetof(rn_solve_options, krylov_max_iterations)},
+    {"krylov_tol", 0, RN_J_POSITIVE, 0, offsetof(rn_solve_options, krylov_tol)},
+    {"initial_radius", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, initial_radius)},
+    {"load_steps", 1, RN_J_ANY, 0, offsetof(rn_solve_options, load_steps)},
+    {"max_load_cuts", 1, RN_J_ANY, 0, offsetof(rn_solve_options, max_load_cuts)},
+};
+enum { N_SOLVER_FIELDS = (int)(sizeof solver_fields / sizeof solver_fields[0]) };
+#define SOLVER_BIT_METHOD (1u << N_SOLVER_FIELDS)
+
+/* Solver names as in rn_solver_name (parsed here so that a scene can be read
+ * by a build without the solver). */
+static int solver_kind_from_name(const char *name, rn_solver_kind *k) {
+  static const struct { const char *name; rn_solver_kind kind; } names[] = {
+      {"tr-minres", RN_SOLVER_TR_MINRES},
+      {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
+      {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON}};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+    if (strcmp(name, names[i].name) == 0) {
+      *k = names[i].kind;
+      return 1;
+    }
+  return 0;
+}
+
+static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"method", "max_iterations", "gtol", "gtol_abs",
+                                     "step_tol", "energy_tol", "krylov_max_iterations",
+                                     "krylov_tol", "initial_radius", "load_steps",
+                                     "max_load_cuts", NULL};
+  rn_scene *s = p->scene;
+  const char *method = NULL;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_jm_string(&p->w, v, "method", 0, &method);
+  if (st) return st;
+  if (method) {
+    if (!solver_kind_from_name(method, &s->solver_opt.solver)) {
+      size_t mark = rn_jwalk_key(&p->w, "method");
+      st = rn_jwalk_error(&p->w, "unknown solver \"%s\" (known: tr-minres, "
+                                 "rol-tr-tcg, rol-ls-newton)", method);
+      rn_jwalk_pop(&p->w, mark);
+      return st;
+    }
+    s->solver_set |= SOLVER_BIT_METHOD;
+  }
+  for (int i = 0; i < N_SOLVER_FIELDS && !st; i++) {
+    const solver_field *f = &solver_fields[i];
+    char *field = (char *)&s->solver_opt + f->offset;
+    int present = 0;
+    if (f->is_int) {
+      int val = 0;
+      st = rn_jm_int(&p->w, v, f->key, 0, f->lo, 2147483647L, &val, &present);
+      if (!st && present) memcpy(field, &val, sizeof val);
+    } else {
+      double val = 0;
+      st = rn_jm_number(&p->w, v, f->key, 0, f->range, &val, &present);
+      if (!st && present) memcpy(field, &val, sizeof val);
+    }
+    if (present) s->solver_set |= 1u << i;
+  }
+  return st;
+}
+
+void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
+  if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = s->solver_opt.solver;
+  for (int i = 0; i < N_SOLVER_FIELDS; i++) {
+    if (!(s->solver_set & (1u << i))) continue;
+    size_t off = solver_fields[i].offset;
+    size_t n = solver_fields[i].is_int ? sizeof(int) : sizeof(double);
+    memcpy((char *)opt + off, (const char *)&s->solver_opt + off, n);
+  }
+}
+
+/* ---- top level ------------------------------------------------------------- */
+
+static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
+  static const char *const keys[] = {"description", "materials", "sections", "rods",
+                                     "constraints", "loads", "solver", NULL};
+  rn_jwalk *w = &p->w;
+  const cJSON *v;
+  const char *desc = NULL;
+  rn_status st = rn_json_check_keys(w, root, keys);
+  if (!st) st = rn_jm_string(w, root, "description", 0, &desc);
+  if (st) return st;
+  if (desc && !(p->scene->description = dup_string(desc)))
+    return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  static const char *const steps[] = {"materials", "sections", "rods",
+                                      "constraints", "loads", "solver"};
+  for (int i = 0; i < 6 && !st; i++) {
+    int required = i < 3;
+    v = rn_jm_get(root, steps[i]);
+    if (!v) {
+      if (required) st = rn_jwalk_error(w, "missing required key \"%s\"", steps[i]);
+      continue;
+    }
+    size_t mark = rn_jwalk_key(w, steps[i]);
+    switch (i) {
+      case 0: st = read_materials(p, v); break;
+      case 1: st = read_sections(p, v); break;
+      case 2: st = rn_scene_read_rods(p, v); break;
+      case 3: st = rn_scene_read_constraints(p, v); break;
+      case 4: st = rn_scene_read_loads(p, v); break;
+      default: st = read_solver(p, v); break;
+    }
+    rn_jwalk_pop(w, mark);
+  }
+  if (st) return st;
+  st = rn_network_finalize(p->scene->net);
+  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+}
+
+static rn_status scene_new(rn_context *ctx, const char *label, rn_scene **out) {
+  rn_scene *s = calloc(1, sizeof *s);
+  if (!s) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", label);
+  s->label = dup_string(label);
+  rn_status st = s->label ? rn_network_create(ctx, &s->net) : RN_ERR_ALLOC;
+  if (st) {
+    rn_scene_destroy(&s);
+    return rn_context_set_error(ctx, st, "%s: cannot create the network", label);
+  }
+  *out = s;
+  return RN_OK;
+}
+
+rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text,
+                         size_t len, rn_scene **out) {
+  if (!out) return RN_ERR_ARG;
+  *out = NULL;
+  if (!ctx || !text) return RN_ERR_ARG;
+  if (!label) label = "<scene>";
+  cJSON *root = NULL;
+  rn_status st = parse_json(ctx, label, text, len, &root);
+  if (st) return st;
+  rn_scene *s = NULL;
+  st = scene_new(ctx, label, &s);
+  if (!st) {
+    rn_scene_parser p;
+    memset(&p, 0, sizeof p);
+    rn_jwalk_init(&p.w, ctx, label);
+    p.scene = s;
+    st = read_scene(&p, root);
+    free(p.mat_names);
+    free(p.mats);
+    free(p.sec_names);
+    free(p.secs);
+  }
+  cJSON_Delete(root);
+  if (st) rn_scene_destroy(&s);
+  else rn_context_clear_error(ctx);
+  *out = s;
+  return st;
+}
+
+rn_status rn_scene_load(rn_context *ctx, const char *path, rn_scene **out) {
+  if (!out) return RN_ERR_ARG;
+  *out = NULL;
+  if (!ctx || !path) return RN_ERR_ARG;
+  char *text = NULL;
+  size_t len = 0;
+  rn_status st = read_file(ctx, path, &text, &len);
+  if (st) return st;
+  st = rn_scene_parse(ctx, path, text, len, out);
+  free(text);
+  return st;
+}
+
+void rn_scene_destroy(rn_scene **sp) {
+  if (!sp || !*sp) return;
+  rn_scene *s = *sp;
+  for (int i = 0; i < s->nrods; i++) {
+    free(s->rods[i].name);
+    free(s->rods[i].pinned);
+  }
+  free(s->rods);
+  rn_network_destroy(&s->net);
+  free(s->label);
+  free(s->description);
+  free(s);
+  *sp = NULL;
+}
+
+rn_network *rn_scene_network(const rn_scene *s) { return s ? s->net : NULL; }
+const char *rn_scene_label(const rn_scene *s) { return s ? s->label : ""; }
+const char *rn_scene_description(const rn_scene *s) {
+  return (s && s->description) ? s->description : "";
+}
+
+int rn_scene_find_rod(const rn_scene *s, const char *name) {
+  for (int i = 0; s && name && i < s->nrods; i++)
+    if (strcmp(s->rods[i].name, name) == 0) return i;
+  return -1;
+}
+
+long rn_scene_num_vertices(const rn_scene *s) {
+  long n = 0;
+  for (int i = 0; s && i < s->nrods; i++) n += s->rods[i].nv;
+  return n;
+}

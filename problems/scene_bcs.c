@@ -1,0 +1,235 @@
+/* scene_bcs.c - the "constraints" and "loads" arrays of a scene. */
+#include <stdio.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+/* obj["type"] as one of names[]; its index in *which. */
+static rn_status read_type(rn_jwalk *w, const cJSON *obj, const char *what,
+                           const char *const *names, int n, int *which) {
+  const char *type = NULL;
+  rn_status st = rn_jm_string(w, obj, "type", 1, &type);
+  if (st) return st;
+  for (int i = 0; i < n; i++)
+    if (strcmp(type, names[i]) == 0) {
+      *which = i;
+      return RN_OK;
+    }
+  char list[256];
+  size_t len = 0;
+  list[0] = '\0';
+  for (int i = 0; i < n; i++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", names[i]);
+  size_t mark = rn_jwalk_key(w, "type");
+  st = rn_jwalk_error(w, "unknown %s type \"%s\" (known: %s)", what, type, list);
+  rn_jwalk_pop(w, mark);
+  return st;
+}
+
+static rn_status read_end(rn_jwalk *w, const cJSON *obj, int *end) {
+  const char *s = NULL;
+  rn_status st = rn_jm_string(w, obj, "end", 1, &s);
+  if (st) return st;
+  if (strcmp(s, "start") == 0) *end = RN_START;
+  else if (strcmp(s, "end") == 0) *end = RN_END;
+  else {
+    size_t mark = rn_jwalk_key(w, "end");
+    st = rn_jwalk_error(w, "expected \"start\" or \"end\", got \"%s\"", s);
+    rn_jwalk_pop(w, mark);
+  }
+  return st;
+}
+
+static rn_status lib(rn_jwalk *w, rn_status st) {
+  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+}
+
+/* ---- constraints ---------------------------------------------------------------- */
+
+enum { C_CLAMP = 0, C_PIN, C_FIX_THETA, C_DISPLACE, C_COUNT };
+static const char *const constraint_names[C_COUNT] = {"clamp", "pin", "fix_theta",
+                                                      "displace"};
+
+static rn_status read_clamp(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "rod", "end", NULL};
+  int rod = -1, end = 0;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rod);
+  if (!st) st = read_end(&p->w, v, &end);
+  if (!st) st = lib(&p->w, rn_network_clamp(p->scene->net, rod, end));
+  if (!st) p->scene->rods[rod].clamped[end] = 1;
+  return st;
+}
+
+static rn_status read_pin(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "rod", "vertex", NULL};
+  int rod = -1, vertex = 0;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rod);
+  if (!st) st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
+  if (!st) st = lib(&p->w, rn_network_pin(p->scene->net, rod, vertex));
+  if (!st) p->scene->rods[rod].pinned[vertex] = 1;
+  return st;
+}
+
+static rn_status read_fix_theta(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "rod", "edge", NULL};
+  int rod = -1, edge = 0;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rod);
+  if (!st) st = rn_scene_index_ref(p, v, "edge", rod, 1, &edge);
+  if (!st) st = lib(&p->w, rn_network_fix_theta(p->scene->net, rod, edge));
+  return st;
+}
+
+static int vertex_is_fixed(const rn_scene_rod *r, int vertex) {
+  return r->pinned[vertex] || (r->clamped[RN_START] && vertex <= 1) ||
+         (r->clamped[RN_END] && vertex >= r->nv - 2);
+}
+
+static rn_status read_displace_end(rn_scene_parser *p, const cJSON *v, int rod) {
+  const rn_scene_rod *r = &p->scene->rods[rod];
+  double d[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
+  int end = 0, has_d = 0, has_rot = 0;
+  rn_status st = read_end(&p->w, v, &end);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 0, 3, RN_J_ANY, d, &has_d);
+  if (!st) st = rn_jm_vec(&p->w, v, "rotation", 0, 3, RN_J_ANY, rot, &has_rot);
+  if (st) return st;
+  if (!has_d && !has_rot)
+    return rn_jwalk_error(&p->w, "give \"value\" (a displacement) and/or \"rotation\" "
+                                 "(a rotation vector)");
+  if (!r->clamped[end])
+    return rn_jwalk_error(&p->w, "the %s of rod \"%s\" is not clamped: add {\"type\": "
+                                 "\"clamp\", \"rod\": \"%s\", \"end\": \"%s\"}",
+                          end == RN_START ? "start" : "end", r->name, r->name,
+                          end == RN_START ? "start" : "end");
+  return lib(&p->w, rn_network_displace_end(p->scene->net, rod, end,
+                                            has_d ? d : NULL, has_rot ? rot : NULL));
+}
+
+static rn_status read_displace_vertex(rn_scene_parser *p, const cJSON *v, int rod) {
+  const rn_scene_rod *r = &p->scene->rods[rod];
+  double d[3];
+  int vertex = 0;
+  if (rn_jm_get(v, "rotation")) {
+    size_t mark = rn_jwalk_key(&p->w, "rotation");
+    rn_status st = rn_jwalk_error(&p->w, "a rotation applies to a clamped end; give "
+                                         "\"end\" instead of \"vertex\"");
+    rn_jwalk_pop(&p->w, mark);
+    return st;
+  }
+  rn_status st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, d, NULL);
+  if (st) return st;
+  if (!vertex_is_fixed(r, vertex))
+    return rn_jwalk_error(&p->w, "vertex %d of rod \"%s\" is free: pin it (or clamp "
+                                 "its end) to prescribe its displacement",
+                          vertex, r->name);
+  return lib(&p->w, rn_network_displace_vertex(p->scene->net, rod, vertex, d));
+}
+
+static rn_status read_displace(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "rod", "end", "vertex", "value",
+                                     "rotation", NULL};
+  int rod = -1;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rod);
+  if (st) return st;
+  int has_end = rn_jm_get(v, "end") != NULL, has_vertex = rn_jm_get(v, "vertex") != NULL;
+  if (has_end == has_vertex)
+    return rn_jwalk_error(&p->w, "give exactly one of \"end\" (a clamped end) and "
+                                 "\"vertex\" (a pinned vertex)");
+  return has_end ? read_displace_end(p, v, rod) : read_displace_vertex(p, v, rod);
+}
+
+/* Pass 0: clamp, pin, fix_theta; pass 1: displace (which needs them). */
+rn_status rn_scene_read_constraints(rn_scene_parser *p, const cJSON *list) {
+  int n = 0;
+  rn_status st = rn_jv_array(&p->w, list, &n);
+  for (int pass = 0; pass < 2 && !st; pass++) {
+    int i = 0;
+    for (const cJSON *v = list->child; v && !st; v = v->next, i++) {
+      size_t mark = rn_jwalk_index(&p->w, i);
+      int type = 0;
+      st = rn_jv_object(&p->w, v);
+      if (!st) st = read_type(&p->w, v, "constraint", constraint_names, C_COUNT, &type);
+      if (!st && (type == C_DISPLACE) == (pass == 1)) {
+        switch (type) {
+          case C_CLAMP: st = read_clamp(p, v); break;
+          case C_PIN: st = read_pin(p, v); break;
+          case C_FIX_THETA: st = read_fix_theta(p, v); break;
+          default: st = read_displace(p, v); break;
+        }
+      }
+      rn_jwalk_pop(&p->w, mark);
+    }
+  }
+  return st;
+}
+
+/* ---- loads ------------------------------------------------------------------------ */
+
+enum { L_FORCE = 0, L_MOMENT, L_LINE_LOAD, L_GRAVITY, L_COUNT };
+static const char *const load_names[L_COUNT] = {"force", "moment", "line_load",
+                                                "gravity"};
+
+static rn_status read_point_load(rn_scene_parser *p, const cJSON *v, int moment) {
+  static const char *const keys[] = {"type", "rod", "vertex", "value", NULL};
+  int rod = -1, vertex = 0;
+  double f[3];
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rod);
+  if (!st) st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, f, NULL);
+  if (st) return st;
+  rn_network *net = p->scene->net;
+  return lib(&p->w, moment ? rn_network_add_moment(net, rod, vertex, f)
+                           : rn_network_add_force(net, rod, vertex, f));
+}
+
+static rn_status read_line_load(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "rod", "value", NULL};
+  int rod = -1;
+  double w[3];
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rod);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, w, NULL);
+  if (!st) st = lib(&p->w, rn_network_add_line_load(p->scene->net, rod, w));
+  return st;
+}
+
+static rn_status read_gravity(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "value", NULL};
+  double g[3];
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, g, NULL);
+  if (st) return st;
+  int any = 0;
+  for (int i = 0; i < p->scene->nrods; i++) any |= p->scene->rods[i].max_density > 0;
+  if (!any)
+    return rn_jwalk_error(&p->w, "gravity acts through the material density, but no "
+                                 "rod's material has a \"density\" > 0");
+  return lib(&p->w, rn_network_add_gravity(p->scene->net, g));
+}
+
+rn_status rn_scene_read_loads(rn_scene_parser *p, const cJSON *list) {
+  int n = 0;
+  rn_status st = rn_jv_array(&p->w, list, &n);
+  int i = 0;
+  for (const cJSON *v = st ? NULL : list->child; v && !st; v = v->next, i++) {
+    size_t mark = rn_jwalk_index(&p->w, i);
+    int type = 0;
+    st = rn_jv_object(&p->w, v);
+    if (!st) st = read_type(&p->w, v, "load", load_names, L_COUNT, &type);
+    if (!st) {
+      switch (type) {
+        case L_FORCE: st = read_point_load(p, v, 0); break;
+        case L_MOMENT: st = read_point_load(p, v, 1); break;
+        case L_LINE_LOAD: st = read_line_load(p, v); break;
+        default: st = read_gravity(p, v); break;
+      }
+    }
+    rn_jwalk_pop(&p->w, mark);
+  }
+  return st;
+}

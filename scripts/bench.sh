@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# bench.sh: build (scripts/setup.sh), run the benchmarks at full size and plot them.
+# Writes benchmarks/results/{kernels,solve}.{csv,png}.
+#
+#   bash scripts/bench.sh            # full: kernels 1e2..1e5 vertices, solve 101/401/3201
+#   RN_BENCH_QUICK=1 bash scripts/bench.sh   # a quick pass with fewer repeats
+set -euo pipefail
+cd "$(dirname "$0")/.."
+# Reconfigure so that the commit recorded in the CSV is the current one.
+bash scripts/setup.sh
+# matplotlib comes with Debian's python3 (scripts/setup.sh).
+py=/usr/bin/python3
+[ -x "$py" ] || py=python3
+out=benchmarks/results
+mkdir -p "$out"
+if [ "${RN_BENCH_QUICK:-0}" = 1 ]; then
+  kargs=(--repeats 5 --min-time 0.05); sargs=(--repeats 1)
+else
+  kargs=(--repeats 11 --min-time 0.3); sargs=(--repeats 3)
+fi
+./build/benchmarks/bench_kernels --sizes 100,1000,10000,100000 "${kargs[@]}" \
+  --out "$out/kernels.csv"
+"$py" benchmarks/plot.py "$out/kernels.csv" -o "$out/kernels.png"
+if [ -x ./build/benchmarks/bench_solve ]; then
+  ./build/benchmarks/bench_solve --sizes 101,401,3201 "${sargs[@]}" --out "$out/solve.csv"
+  "$py" benchmarks/plot.py "$out/solve.csv" -o "$out/solve.png"
+fi
+echo "bench.sh: results in $out/"

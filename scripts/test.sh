@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# test.sh: set up and build (scripts/setup.sh), then run the whole test suite:
+#   1. a sanitizer build (build-asan, -DRN_SANITIZE=address,undefined) running the
+#      unit and validation tests;
+#   2. the main build's ctest: every label but fuzz and bench (bench-smoke is in),
+#      which includes the layering, install/consumer and clang-format checks.
+# Exits non-zero if any stage fails; ctest's own summary lines come last.
+#
+#   bash scripts/test.sh
+# Environment: RN_JOBS (2), RN_SKIP_ASAN=1 to skip the sanitizer stage.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${RN_JOBS:-2}
+start=$(date +%s)
+stamp() { echo "test.sh: [$(($(date +%s) - start)) s] $*"; }
+
+bash scripts/setup.sh
+stamp "main build done"
+
+# Open MPI as root and with more ranks than cores (CI runs as root on 2 cores).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+
+failed=()
+if [ "${RN_SKIP_ASAN:-0}" != 1 ]; then
+  stamp "sanitizer build (build-asan)"
+  if cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRN_WERROR=ON \
+       -DRN_SANITIZE=address,undefined -DRN_BUILD_BENCHMARKS=OFF </dev/null &&
+     cmake --build build-asan -j"$jobs" </dev/null; then
+    stamp "sanitizer tests (unit|validation)"
+    if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1 \
+         UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+         ctest --test-dir build-asan --output-on-failure -j"$jobs" -L "unit|validation" \
+           </dev/null; then
+      failed+=("sanitizer tests")
+    fi
+  else
+    failed+=("sanitizer build")
+  fi
+fi
+
+stamp "main tests (all labels but fuzz and bench)"
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "test.sh: FAILED so far: ${failed[*]} (the main tests run anyway)"
+fi
+rc=0
+ctest --test-dir build --output-on-failure -j"$jobs" -LE '^(fuzz|bench)$' </dev/null || rc=$?
+if [ ${#failed[@]} -gt 0 ] && [ $rc -eq 0 ]; then
+  rc=1
+fi
+exit $rc

@@ -1,0 +1,64 @@
+// monitor.cpp - stopping tests and progress (see monitor.hpp).
+#include "monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rodnet {
+
+Monitor::Monitor(const rn_solve_options &opt, double force_scale, double load_factor,
+                 Clock::time_point start, int iteration_offset)
+    : opt_(opt), force_scale_(force_scale), load_factor_(load_factor), start_(start),
+      offset_(iteration_offset) {}
+
+double Monitor::seconds() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+bool Monitor::converged() const {
+  return reason_ == RN_STOP_GRADIENT || reason_ == RN_STOP_STEP ||
+         reason_ == RN_STOP_ENERGY;
+}
+
+bool Monitor::check(const IterationView &it) {
+  if (!started_) {
+    g_scale_ = std::max(it.gnorm, force_scale_);
+    started_ = true;
+  }
+  last_ = it;
+  krylov_total_ += it.krylov;
+  if (opt_.progress) {
+    rn_iteration_info info;
+    info.iteration = offset_ + it.iteration;
+    info.energy = it.energy;
+    info.gradient_norm = it.gnorm;
+    info.radius = it.radius;
+    info.krylov_iterations = it.krylov;
+    info.seconds = seconds();
+    info.load_factor = load_factor_;
+    opt_.progress(opt_.progress_user, &info);
+  }
+  const bool small_gradient = it.gnorm <= opt_.gtol_rel * g_scale_ ||
+                              (opt_.gtol_abs > 0.0 && it.gnorm <= opt_.gtol_abs);
+  const bool newton_step = it.iteration > 0 && it.accepted && it.unconstrained;
+  if (!std::isfinite(it.energy) || !std::isfinite(it.gnorm)) {
+    reason_ = RN_STOP_FAILED;
+  } else if (small_gradient && !it.negative_curvature) {
+    reason_ = RN_STOP_GRADIENT;
+  } else if (newton_step && !it.negative_curvature &&
+             it.step_norm <= opt_.step_tol * (1.0 + it.x_norm)) {
+    reason_ = RN_STOP_STEP;
+  } else if (newton_step && !it.negative_curvature &&
+             std::fabs(it.energy_change) <= opt_.energy_tol * (1.0 + std::fabs(it.energy))) {
+    reason_ = RN_STOP_ENERGY;
+  } else if (it.iteration >= opt_.max_iterations) {
+    reason_ = RN_STOP_MAX_ITER;
+  } else if (it.radius_collapsed) {
+    reason_ = RN_STOP_RADIUS;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+} // namespace rodnet

@@ -1,0 +1,73 @@
+// monitor.hpp - stopping tests and progress reporting shared by every solver kind.
+//
+// Each solver calls Monitor::check() once per Newton iteration (and once for the
+// starting point, iteration 0) with what it knows about the current iterate; the
+// monitor calls the user's progress callback and decides whether to stop:
+//  - gradient: ||g|| <= gtol_rel * g_scale, g_scale = max(||g_0||, force_scale), where
+//    g_0 is the gradient at the start of this load step and force_scale the norm of
+//    the gradient at the solve's starting state at the target load factor (the
+//    out-of-balance force the solve has to remove); or ||g|| <= gtol_abs if > 0.
+//    Only when the solver reports no significant negative curvature (a saddle with a
+//    small gradient is not a minimum).
+//  - step: after an accepted step that the globalisation did not shorten,
+//    ||s|| <= step_tol (1 + ||x||).
+//  - energy: after such a step, |dE| <= energy_tol (1 + |E|).
+//  - max_iterations (per load step) and a collapsed trust radius: not converged.
+#ifndef RODNET_SHIM_MONITOR_HPP
+#define RODNET_SHIM_MONITOR_HPP
+
+#include <chrono>
+
+#include "rodnet_solve.h"
+
+namespace rodnet {
+
+using Clock = std::chrono::steady_clock;
+
+struct IterationView {
+  int iteration = 0;        // iterations done in this load step
+  double energy = 0.0;      // at the current (accepted) iterate
+  double gnorm = 0.0;       // Euclidean norm of the gradient there
+  double radius = 0.0;      // trust radius (0 for line search)
+  int krylov = 0;           // Krylov iterations of the last iteration
+  bool accepted = false;    // the last iteration moved the iterate
+  bool unconstrained = false; // ... by a step the globalisation did not shorten
+  double step_norm = 0.0;   // Euclidean norm of that step
+  double x_norm = 0.0;      // Euclidean norm of the iterate
+  double energy_change = 0.0;
+  bool negative_curvature = false; // significant negative curvature seen at x
+  bool radius_collapsed = false;
+};
+
+class Monitor {
+public:
+  Monitor(const rn_solve_options &opt, double force_scale, double load_factor,
+          Clock::time_point start, int iteration_offset);
+
+  // Reports progress; returns true when a stopping test fires (see reason()).
+  bool check(const IterationView &it);
+
+  rn_solve_stop reason() const { return reason_; }
+  bool converged() const;
+  int iterations() const { return last_.iteration; }
+  double energy() const { return last_.energy; }
+  double gradient_norm() const { return last_.gnorm; }
+  double g_scale() const { return g_scale_; }
+  // Krylov iterations reported so far (sum of IterationView::krylov).
+  long krylov_total() const { return krylov_total_; }
+  double seconds() const;
+
+private:
+  const rn_solve_options &opt_;
+  double force_scale_, g_scale_ = 0.0, load_factor_;
+  Clock::time_point start_;
+  int offset_;
+  bool started_ = false;
+  long krylov_total_ = 0;
+  IterationView last_;
+  rn_solve_stop reason_ = RN_STOP_FAILED;
+};
+
+} // namespace rodnet
+
+#endif

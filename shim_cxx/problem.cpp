@@ -1,0 +1,68 @@
+// problem.cpp - evaluation wrapper of a finalized rn_network (see problem.hpp).
+#include "problem.hpp"
+
+#include <algorithm>
+
+#include "shim_error.hpp"
+
+namespace rodnet {
+
+Problem::Problem(rn_network *net) : net_(net) {
+  if (!net) throw Error(RN_ERR_ARG, "rn_solve: network is NULL");
+  check_status(rn_network_hessian_pattern(net, &nnz_, &rowptr_, &col_),
+               "rn_network_hessian_pattern");
+  n_ = rn_network_num_dofs(net);
+  kd_ = rn_network_hessian_bandwidth(net);
+  vals_.assign(nnz_, 0.0);
+}
+
+rn_status Problem::energy(const double *x, double *E) {
+  ++counters.energy;
+  return check_status(rn_network_energy(net_, x, E), "rn_network_energy");
+}
+
+rn_status Problem::gradient(const double *x, double *E, double *g) {
+  ++counters.gradient;
+  return check_status(rn_network_gradient(net_, x, E, g), "rn_network_gradient");
+}
+
+void Problem::hvp(const double *x, const double *v, double *Hv) {
+  ++counters.hvp;
+  if (check_status(rn_network_hvp(net_, x, v, Hv), "rn_network_hvp") != RN_OK)
+    throw Error(RN_ERR_SOLVER, "rn_solve: Hessian-vector product at a degenerate state");
+}
+
+void Problem::assemble_hessian(const double *x) {
+  ++counters.hessian;
+  if (check_status(rn_network_hessian_values(net_, x, vals_.data()),
+                   "rn_network_hessian_values") != RN_OK)
+    throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
+}
+
+void Problem::hessian_apply(const double *v, double *y, double shift,
+                            const double *d) const {
+  for (size_t i = 0; i < n_; ++i) {
+    double s = 0.0;
+    for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += vals_[k] * v[col_[k]];
+    y[i] = d ? s + shift * d[i] * v[i] : s;
+  }
+}
+
+void Problem::accept(const double *x) {
+  check_status(rn_network_update_reference(net_, x), "rn_network_update_reference");
+}
+
+std::vector<double> hessian_metric(const Problem &p, double floor_rel) {
+  const size_t n = p.size();
+  std::vector<double> d(n, 0.0);
+  for (size_t i = 0; i < n; ++i)
+    for (int64_t k = p.rowptr()[i]; k < p.rowptr()[i + 1]; ++k)
+      if (static_cast<size_t>(p.col()[k]) == i) d[i] = std::fabs(p.values()[k]);
+  double dmax = 0.0;
+  for (double v : d) dmax = std::max(dmax, v);
+  if (!(dmax > 0.0) || !std::isfinite(dmax)) return std::vector<double>(n, 1.0);
+  for (double &v : d) v = std::max(v, floor_rel * dmax);
+  return d;
+}
+
+} // namespace rodnet

@@ -1,0 +1,80 @@
+// problem.hpp - the solver's view of a finalized rn_network (no Trilinos here).
+//
+// Problem wraps the pure evaluation functions of rodnet.h (energy, gradient, HVP,
+// CSR Hessian), counts every evaluation for rn_solve_report, keeps the assembled
+// Hessian values of one state and applies (H + shift D) from them.  Reduced DOF
+// vectors are plain host arrays of length size().
+#ifndef RODNET_SHIM_PROBLEM_HPP
+#define RODNET_SHIM_PROBLEM_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "rodnet.h"
+
+namespace rodnet {
+
+struct Counters {
+  long energy = 0, gradient = 0, hvp = 0, hessian = 0, krylov = 0;
+};
+
+class Problem {
+public:
+  explicit Problem(rn_network *net); // throws Error if the network is not finalized
+
+  rn_network *network() const { return net_; }
+  size_t size() const { return n_; }
+  size_t bandwidth() const { return kd_; }
+
+  // Pure evaluations.  Return RN_OK or RN_DEGENERATE (trial point to reject);
+  // throw Error on any error status.  E may be NULL for gradient().
+  rn_status energy(const double *x, double *E);
+  rn_status gradient(const double *x, double *E, double *g);
+  void hvp(const double *x, const double *v, double *Hv);
+
+  // Assemble the CSR Hessian values at x (kept until the next assembly).
+  void assemble_hessian(const double *x);
+  // y = (H + shift diag(d)) v with the assembled values (d may be NULL: shift ignored).
+  void hessian_apply(const double *v, double *y, double shift = 0.0,
+                     const double *d = nullptr) const;
+  // Entry (i, j) of the assembled Hessian in CSR form.
+  const int64_t *rowptr() const { return rowptr_; }
+  const int32_t *col() const { return col_; }
+  const double *values() const { return vals_.data(); }
+
+  // Accept x as the new state (explicit reference update).
+  void accept(const double *x);
+
+  Counters counters;
+
+private:
+  rn_network *net_;
+  size_t n_ = 0, nnz_ = 0, kd_ = 0;
+  const int64_t *rowptr_ = nullptr;
+  const int32_t *col_ = nullptr;
+  std::vector<double> vals_;
+};
+
+// Small dense vector helpers on host arrays of length n.
+inline double dot(size_t n, const double *a, const double *b) {
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i) s += a[i] * b[i];
+  return s;
+}
+inline double norm2(size_t n, const double *a) { return std::sqrt(dot(n, a, a)); }
+// sqrt(sum d_i a_i^2): the norm of the metric diag(d).
+inline double wnorm(size_t n, const double *d, const double *a) {
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i) s += d[i] * a[i] * a[i];
+  return std::sqrt(s);
+}
+
+// Metric D = |diag H| of the assembled Hessian, floored at floor_rel * max |H_ii|
+// (1 everywhere if the diagonal vanishes).
+std::vector<double> hessian_metric(const Problem &p, double floor_rel = 1e-8);
+
+} // namespace rodnet
+
+#endif

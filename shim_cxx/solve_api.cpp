@@ -1,0 +1,311 @@
+// solve_api.cpp - extern "C" entry points of rodnet_solve.h: options, names,
+// runtime (Tpetra/Kokkos/MPI), rn_solve with load stepping, Hessian eigenvalue.
+// Every entry catches all exceptions; none crosses into C.
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <vector>
+
+#include <Tpetra_Core.hpp>
+
+#include "banded.hpp"
+#include "monitor.hpp"
+#include "problem.hpp"
+#include "rodnet_solve.h"
+#include "shim_error.hpp"
+#include "solvers.hpp"
+
+namespace rodnet {
+namespace {
+
+bool g_initialized_here = false; // Tpetra::initialize was called by rodnet
+bool g_atexit_registered = false;
+
+void finalize_at_exit() { rn_runtime_finalize(); }
+
+// Initialise on first use (rn_solve called without rn_runtime_initialize): the
+// runtime is then finalised at program exit.
+void ensure_runtime() {
+  if (Tpetra::isInitialized()) return;
+  const rn_status s = rn_runtime_initialize(nullptr, nullptr);
+  if (s != RN_OK) throw Error(s, "rn_solve: cannot initialise the Tpetra/Kokkos/MPI runtime");
+  if (!g_atexit_registered && std::atexit(finalize_at_exit) == 0) g_atexit_registered = true;
+}
+
+rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
+  const char *bad = nullptr;
+  if (o.solver != RN_SOLVER_TR_MINRES && o.solver != RN_SOLVER_ROL_TR_TCG &&
+      o.solver != RN_SOLVER_ROL_LS_NEWTON)
+    bad = "unknown solver kind";
+  else if (o.max_iterations < 1) bad = "max_iterations must be >= 1";
+  else if (!(o.gtol_rel >= 0.0) || !std::isfinite(o.gtol_rel)) bad = "gtol_rel must be >= 0";
+  else if (!(o.gtol_abs >= 0.0) || !std::isfinite(o.gtol_abs)) bad = "gtol_abs must be >= 0";
+  else if (!(o.step_tol >= 0.0) || !std::isfinite(o.step_tol)) bad = "step_tol must be >= 0";
+  else if (!(o.energy_tol >= 0.0) || !std::isfinite(o.energy_tol))
+    bad = "energy_tol must be >= 0";
+  else if (o.krylov_max_iterations < 1) bad = "krylov_max_iterations must be >= 1";
+  else if (!(o.krylov_tol > 0.0 && o.krylov_tol < 1.0)) bad = "krylov_tol must be in (0, 1)";
+  else if (!(o.initial_radius >= 0.0) || !std::isfinite(o.initial_radius))
+    bad = "initial_radius must be >= 0 (0: automatic)";
+  else if (o.load_steps < 0) bad = "load_steps must be >= 0";
+  else if (o.max_load_cuts < 0 || o.max_load_cuts > 60) bad = "max_load_cuts must be in [0, 60]";
+  if (!bad) return RN_OK;
+  return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
+}
+
+// Totals over the load steps of one rn_solve.
+struct SolveTotals {
+  int iterations = 0, load_steps = 0;
+  long krylov = 0;
+  rn_solve_stop stop = RN_STOP_FAILED;
+  double energy = 0.0, gnorm = 0.0;
+};
+
+// One minimisation at load factor t from the current state.
+bool solve_load_step(Problem &p, const rn_solve_options &opt, double t, double force_scale,
+                     Clock::time_point start, SolveTotals &tot) {
+  check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
+  Monitor mon(opt, force_scale, t, start, tot.iterations);
+  switch (opt.solver) {
+  case RN_SOLVER_TR_MINRES: run_tr_minres(p, mon, opt); break;
+  case RN_SOLVER_ROL_TR_TCG: run_rol_tr_tcg(p, mon, opt); break;
+  case RN_SOLVER_ROL_LS_NEWTON: run_rol_ls_newton(p, mon, opt); break;
+  }
+  tot.iterations += mon.iterations();
+  tot.krylov += mon.krylov_total();
+  tot.load_steps += 1;
+  tot.stop = mon.reason();
+  tot.energy = mon.energy();
+  tot.gnorm = mon.gradient_norm();
+  return mon.converged();
+}
+
+// Back to a converged state: its DOFs, with the reference frames transported to it.
+void restore_state(Problem &p, const std::vector<double> &x, double t) {
+  check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
+  p.accept(x.data());
+}
+
+// Fixed continuation: load_steps equal increments up to the target.
+void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
+                    double force_scale, Clock::time_point start, SolveTotals &tot) {
+  for (int k = 1; k <= opt.load_steps; ++k) {
+    const double t = target * static_cast<double>(k) / static_cast<double>(opt.load_steps);
+    if (!solve_load_step(p, opt, t, force_scale, start, tot)) return;
+  }
+}
+
+// Automatic continuation: the full step first; on failure back to the last converged
+// state with half the increment (at most max_load_cuts times), doubling it again
+// after each success.
+void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
+                        double force_scale, Clock::time_point start, SolveTotals &tot) {
+  std::vector<double> x_done(p.size());
+  check_status(rn_network_get_dofs(p.network(), x_done.data()), "rn_network_get_dofs");
+  double t_done = 0.0, inc = target;
+  int cuts = 0;
+  for (;;) {
+    const double t = (target - t_done <= inc) ? target : t_done + inc;
+    if (solve_load_step(p, opt, t, force_scale, start, tot)) {
+      if (t >= target) return;
+      t_done = t;
+      check_status(rn_network_get_dofs(p.network(), x_done.data()), "rn_network_get_dofs");
+      inc *= 2.0;
+    } else {
+      if (cuts >= opt.max_load_cuts || target <= 0.0) return;
+      ++cuts;
+      inc *= 0.5;
+      restore_state(p, x_done, t_done);
+    }
+  }
+}
+
+void fill_report(const Problem &p, const SolveTotals &tot, double g0, double seconds,
+                 rn_solve_report *rep) {
+  rep->status = RN_OK;
+  rep->stop = tot.stop;
+  rep->converged = (tot.stop == RN_STOP_GRADIENT || tot.stop == RN_STOP_STEP ||
+                    tot.stop == RN_STOP_ENERGY);
+  rep->iterations = tot.iterations;
+  rep->energy_evals = p.counters.energy;
+  rep->gradient_evals = p.counters.gradient;
+  rep->hvp_evals = p.counters.hvp;
+  rep->hessian_evals = p.counters.hessian;
+  rep->krylov_iterations = tot.krylov;
+  rep->load_steps = tot.load_steps;
+  rep->energy = tot.energy;
+  rep->gradient_norm = tot.gnorm;
+  rep->initial_gradient_norm = g0;
+  rep->time_s = seconds;
+}
+
+void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
+  const Clock::time_point start = Clock::now();
+  ensure_runtime();
+  Problem p(net);
+  const double target = rn_network_load_factor(net);
+  std::vector<double> x(p.size()), g(p.size());
+  check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
+  if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
+    throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
+  const double force_scale = norm2(p.size(), g.data());
+  SolveTotals tot;
+  if (opt.load_steps > 0) fixed_stepping(p, opt, target, force_scale, start, tot);
+  else automatic_stepping(p, opt, target, force_scale, start, tot);
+  if (rep)
+    fill_report(p, tot, force_scale,
+                std::chrono::duration<double>(Clock::now() - start).count(), rep);
+}
+
+// Runs f; converts any exception to a status with the message in the context.
+template <class F>
+rn_status guarded(rn_network *net, const char *where, F &&f) {
+  rn_context *ctx = net ? rn_network_context(net) : nullptr;
+  try {
+    f();
+    return RN_OK;
+  } catch (const Error &e) {
+    if (e.recorded()) return e.status();
+    return ctx ? rn_context_set_error(ctx, e.status(), "%s", e.what()) : e.status();
+  } catch (const std::bad_alloc &) {
+    return ctx ? rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", where)
+               : RN_ERR_ALLOC;
+  } catch (const std::exception &e) {
+    return ctx ? rn_context_set_error(ctx, RN_ERR_TRILINOS, "%s: %s", where, e.what())
+               : RN_ERR_TRILINOS;
+  } catch (...) {
+    return ctx ? rn_context_set_error(ctx, RN_ERR_SOLVER, "%s: unknown exception", where)
+               : RN_ERR_SOLVER;
+  }
+}
+
+} // namespace
+} // namespace rodnet
+
+using rodnet::guarded;
+
+extern "C" {
+
+void rn_solve_options_default(rn_solve_options *opt) {
+  if (!opt) return;
+  std::memset(opt, 0, sizeof *opt);
+  opt->solver = RN_SOLVER_TR_MINRES;
+  opt->max_iterations = 200;
+  opt->gtol_rel = 1e-9;
+  opt->gtol_abs = 0.0;
+  opt->step_tol = 1e-12;
+  opt->energy_tol = 1e-15;
+  opt->krylov_max_iterations = 500;
+  opt->krylov_tol = 1e-10;
+  opt->initial_radius = 0.0;
+  opt->load_steps = 0;
+  opt->max_load_cuts = 8;
+  opt->progress = nullptr;
+  opt->progress_user = nullptr;
+}
+
+const char *rn_solve_stop_name(rn_solve_stop s) {
+  switch (s) {
+  case RN_STOP_GRADIENT: return "gradient";
+  case RN_STOP_STEP: return "step";
+  case RN_STOP_ENERGY: return "energy";
+  case RN_STOP_MAX_ITER: return "max_iterations";
+  case RN_STOP_RADIUS: return "radius";
+  case RN_STOP_FAILED: return "failed";
+  }
+  return "unknown";
+}
+
+const char *rn_solver_name(rn_solver_kind k) {
+  switch (k) {
+  case RN_SOLVER_TR_MINRES: return "tr-minres";
+  case RN_SOLVER_ROL_TR_TCG: return "rol-tr-tcg";
+  case RN_SOLVER_ROL_LS_NEWTON: return "rol-ls-newton";
+  }
+  return "unknown";
+}
+
+rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
+  if (!name || !k) return RN_ERR_ARG;
+  const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
+                                  RN_SOLVER_ROL_LS_NEWTON};
+  for (rn_solver_kind kind : kinds) {
+    if (std::strcmp(name, rn_solver_name(kind)) == 0) {
+      *k = kind;
+      return RN_OK;
+    }
+  }
+  return RN_ERR_ARG;
+}
+
+rn_status rn_runtime_initialize(int *argc, char ***argv) {
+  try {
+    if (Tpetra::isInitialized()) return RN_OK;
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (finalized) return RN_ERR_STATE;
+    int argc0 = 0;
+    char *argv0[] = {nullptr};
+    char **argvp = argv0;
+    if (!argc || !argv) {
+      argc = &argc0;
+      argv = &argvp;
+    }
+    Tpetra::initialize(argc, argv);
+    rodnet::g_initialized_here = true;
+    return RN_OK;
+  } catch (...) {
+    return RN_ERR_TRILINOS;
+  }
+}
+
+void rn_runtime_finalize(void) {
+  try {
+    if (rodnet::g_initialized_here && Tpetra::isInitialized()) Tpetra::finalize();
+    rodnet::g_initialized_here = false;
+  } catch (...) {
+    rodnet::g_initialized_here = false;
+  }
+}
+
+rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep) {
+  if (rep) {
+    std::memset(rep, 0, sizeof *rep);
+    rep->stop = RN_STOP_FAILED;
+  }
+  if (!net) {
+    if (rep) rep->status = RN_ERR_ARG;
+    return RN_ERR_ARG;
+  }
+  rn_solve_options defaults;
+  rn_solve_options_default(&defaults);
+  const rn_solve_options &o = opt ? *opt : defaults;
+  rn_status s = rodnet::validate_options(o, rn_network_context(net));
+  if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, o, rep); });
+  if (rep && s != RN_OK) {
+    rep->status = s;
+    rep->stop = RN_STOP_FAILED;
+    rep->converged = 0;
+  }
+  return s;
+}
+
+rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min) {
+  if (!net) return RN_ERR_ARG;
+  if (!lambda_min)
+    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
+                                "rn_hessian_min_eigenvalue: lambda_min is NULL");
+  return guarded(net, "rn_hessian_min_eigenvalue", [&] {
+    rodnet::Problem p(net);
+    std::vector<double> x(p.size());
+    rodnet::check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
+    p.assemble_hessian(x.data());
+    *lambda_min = rodnet::banded_min_eigenvalue(p);
+  });
+}
+
+} // extern "C"

@@ -1,0 +1,372 @@
+// tr_minres.cpp - rodnet's trust-region Newton-MINRES (RN_SOLVER_TR_MINRES).
+//
+// A ROL::TypeU::Algorithm over ROL::TpetraMultiVector.  Iteration k at the accepted
+// state x (reference frames of x):
+//  1. gradient g and CSR Hessian H at x; metric D = |diag H| of the first iteration
+//     (floored), fixed for the load step; trust-region norm ||s||_D = sqrt(s' D s).
+//  2. Factor H (banded Cholesky).  If it fails, the smallest sigma that factors
+//     H + sigma D is found and inverse iteration with that factorisation gives the
+//     lowest eigenpair (mu, v) of the pencil (H, D).
+//  3. Multiplier lambda >= max(0, -mu): lambda = 0 if H is positive definite and the
+//     Newton step fits the radius; otherwise a More-Sorensen iteration on lambda
+//     (Newton on 1/||s(lambda)||_D - 1/radius, safeguarded, with factorisations of
+//     H + lambda D) until ||s||_D is within 5 % of the radius.  Hard case (H
+//     indefinite, step too short even at lambda ~ -mu, e.g. at a symmetric saddle
+//     where g is orthogonal to v): s(lambda) + tau v on the boundary, with the sign of
+//     tau that lowers the model, so the iteration leaves saddles.
+//  4. The step solves (H + lambda D) s = -g by Belos MINRES preconditioned with the
+//     banded Cholesky of H + (lambda + sigma) D, sigma >= 0 the smallest shift that
+//     factors (exact preconditioner when sigma = 0).
+//  5. Ratio test rho = (E(x) - E(x+s)) / (-(g's + s'Hs/2)) (with the usual 10 eps |E|
+//     safeguard), accept if rho > 1e-4, radius /4 if rho < 1/4, x2 if rho > 3/4 on
+//     the boundary.  A degenerate trial point (rn_network_energy > 0) is rejected and
+//     the radius shrinks.  Accepted steps call update(x, Accept), i.e.
+//     rn_network_update_reference.
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+#include <ROL_TypeU_Algorithm.hpp>
+#include <Teuchos_oblackholestream.hpp>
+
+#include "banded.hpp"
+#include "minres.hpp"
+#include "monitor.hpp"
+#include "problem.hpp"
+#include "rol_objective.hpp"
+#include "shim_error.hpp"
+#include "solvers.hpp"
+
+namespace rodnet {
+
+namespace {
+
+constexpr double kAccept = 1e-4;          // accept a step if rho > kAccept
+constexpr double kCurvTol = 1e3 * DBL_EPSILON; // significant negative pencil eigenvalue
+constexpr double kBoundaryTol = 0.05;     // |  ||s||_D - radius | <= kBoundaryTol radius
+constexpr int kMaxMultiplierIts = 60;
+
+// y = (H + shift D) x with the assembled Hessian.
+class ShiftedHessian : public VectorOperator {
+public:
+  ShiftedHessian(const Problem &p, const double *d, double shift)
+      : p_(p), d_(d), shift_(shift) {}
+  void apply(const MV &x, MV &y) const override {
+    p_.hessian_apply(host_data(x), host_data(y), shift_, d_);
+  }
+
+private:
+  const Problem &p_;
+  const double *d_;
+  double shift_;
+};
+
+// y = A^{-1} x with a banded Cholesky factorisation.
+class BandedPreconditioner : public VectorOperator {
+public:
+  explicit BandedPreconditioner(const BandedSpd &f) : f_(f) {}
+  void apply(const MV &x, MV &y) const override {
+    const double *in = host_data(x);
+    double *out = host_data(y);
+    std::copy(in, in + x.getLocalLength(), out);
+    f_.solve(out);
+  }
+
+private:
+  const BandedSpd &f_;
+};
+
+struct Step {
+  std::vector<double> s;
+  double lambda = 0.0;
+  bool boundary = false;
+  int krylov = 0;
+};
+
+class TrustRegionMinres : public ROL::TypeU::Algorithm<double> {
+public:
+  TrustRegionMinres(Problem &p, Monitor &mon, const rn_solve_options &opt,
+                    const Teuchos::RCP<const Map> &map)
+      : p_(p), mon_(mon), opt_(opt), n_(p.size()), f0_(n_, p.bandwidth()),
+        fl_(n_, p.bandwidth()), minres_(map, opt.krylov_tol, opt.krylov_max_iterations),
+        rhs_(map, 1), sol_(map, 1), w_(n_), q_(n_), hs_(n_) {}
+
+  using ROL::TypeU::Algorithm<double>::run;
+  void run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
+           std::ostream &out) override;
+
+private:
+  void analyse_hessian(const double *x);
+  void lowest_eigenpair(double sigma);
+  Step solve_subproblem(const double *g, double radius);
+  double upper_multiplier(const double *g, double radius) const;
+  double gradient_radius(const double *g) const;
+  bool trial_step(const double *g, double lambda, double *ns);
+  void minres_step(const double *g, double lambda, Step &st);
+  void add_curvature_direction(const double *g, double radius, Step &st);
+  double model(const double *g, const double *s);
+
+  Problem &p_;
+  Monitor &mon_;
+  const rn_solve_options &opt_;
+  size_t n_;
+  std::vector<double> d_;   // metric
+  BandedSpd f0_, fl_;       // factorisations at lambda = 0 (+ sigma0) and lambda
+  double sigma0_ = 0.0;
+  bool negcurv_ = false;
+  double mu_ = 0.0;         // lowest pencil eigenvalue estimate (if H not SPD)
+  std::vector<double> v_;   // its eigenvector, ||v||_D = 1
+  MinresSolver minres_;
+  MV rhs_, sol_;
+  std::vector<double> w_, q_, hs_;
+};
+
+// Gradient, Hessian analysis at the accepted x: metric, SPD test, eigenpair.
+void TrustRegionMinres::analyse_hessian(const double *x) {
+  p_.assemble_hessian(x);
+  if (d_.empty()) d_ = hessian_metric(p_);
+  sigma0_ = factor_shifted(f0_, p_, 0.0, d_.data());
+  negcurv_ = false;
+  mu_ = 0.0;
+  if (sigma0_ > 0.0) {
+    lowest_eigenpair(sigma0_);
+    negcurv_ = mu_ < -kCurvTol;
+  }
+}
+
+// Inverse iteration with the factorisation of H + sigma D (in f0_): converges to the
+// lowest eigenpair of the pencil (H, D); mu_ is the Rayleigh quotient.
+void TrustRegionMinres::lowest_eigenpair(double sigma) {
+  v_.assign(n_, 0.0);
+  for (size_t i = 0; i < n_; ++i)
+    v_[i] = (1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 0.3)) / std::sqrt(d_[i]);
+  double nv = wnorm(n_, d_.data(), v_.data()), mu_old = std::numeric_limits<double>::max();
+  for (double &e : v_) e /= nv;
+  for (int k = 0; k < 100; ++k) {
+    for (size_t i = 0; i < n_; ++i) w_[i] = d_[i] * v_[i];
+    f0_.solve(w_.data());
+    nv = wnorm(n_, d_.data(), w_.data());
+    for (size_t i = 0; i < n_; ++i) v_[i] = w_[i] / nv;
+    p_.hessian_apply(v_.data(), hs_.data());
+    mu_ = dot(n_, v_.data(), hs_.data());
+    if (std::fabs(mu_ - mu_old) <= 1e-13 * (std::fabs(mu_) + sigma)) break;
+    mu_old = mu_;
+  }
+}
+
+// Upper bound of the multiplier: ||g||_{D^-1} / radius + ||D^-1/2 H D^-1/2||_inf.
+double TrustRegionMinres::upper_multiplier(const double *g, double radius) const {
+  double hn = 0.0;
+  for (size_t i = 0; i < n_; ++i) {
+    double row = 0.0;
+    for (int64_t k = p_.rowptr()[i]; k < p_.rowptr()[i + 1]; ++k)
+      row += std::fabs(p_.values()[k]) / std::sqrt(d_[i] * d_[p_.col()[k]]);
+    hn = std::max(hn, row);
+  }
+  return gradient_radius(g) / radius + hn;
+}
+
+// ||D^-1 g||_D = sqrt(g' D^-1 g): the length of a diagonally scaled gradient step.
+double TrustRegionMinres::gradient_radius(const double *g) const {
+  double gn = 0.0;
+  for (size_t i = 0; i < n_; ++i) gn += g[i] * g[i] / d_[i];
+  return std::sqrt(gn);
+}
+
+// Factor H + lambda D into fl_ and put s(lambda) = -(H + lambda D)^{-1} g in w_;
+// false if H + lambda D is not positive definite.
+bool TrustRegionMinres::trial_step(const double *g, double lambda, double *ns) {
+  fl_.load(p_, lambda, d_.data());
+  if (!fl_.factor()) return false;
+  for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
+  fl_.solve(w_.data());
+  *ns = wnorm(n_, d_.data(), w_.data());
+  return true;
+}
+
+double TrustRegionMinres::model(const double *g, const double *s) {
+  p_.hessian_apply(s, hs_.data());
+  return dot(n_, g, s) + 0.5 * dot(n_, s, hs_.data());
+}
+
+// Solve (H + lambda D) s = -g with Belos MINRES, preconditioned by the banded
+// Cholesky of H + (lambda + sigma) D.
+void TrustRegionMinres::minres_step(const double *g, double lambda, Step &st) {
+  const BandedSpd *prec = &f0_;
+  if (lambda > 0.0 || sigma0_ > 0.0) {
+    factor_shifted(fl_, p_, lambda, d_.data());
+    prec = &fl_;
+  }
+  double *b = host_data(rhs_);
+  for (size_t i = 0; i < n_; ++i) b[i] = -g[i];
+  const ShiftedHessian A(p_, d_.data(), lambda);
+  const BandedPreconditioner P(*prec);
+  const MinresResult r = minres_.solve(A, P, rhs_, sol_);
+  const double *s = host_data(sol_);
+  st.s.assign(s, s + n_);
+  st.lambda = lambda;
+  st.krylov = r.iterations;
+}
+
+// Hard case: move along the lowest eigenvector v to the boundary, choosing the root
+// tau of ||s + tau v||_D = radius with the lower model value.
+void TrustRegionMinres::add_curvature_direction(const double *g, double radius, Step &st) {
+  double sv = 0.0, ss = 0.0;
+  for (size_t i = 0; i < n_; ++i) {
+    sv += st.s[i] * d_[i] * v_[i];
+    ss += st.s[i] * d_[i] * st.s[i];
+  }
+  const double disc = std::sqrt(std::max(0.0, sv * sv - (ss - radius * radius)));
+  const double taus[2] = {-sv + disc, -sv - disc};
+  double best = std::numeric_limits<double>::max(), tau_best = 0.0;
+  std::vector<double> trial(n_);
+  for (double tau : taus) {
+    for (size_t i = 0; i < n_; ++i) trial[i] = st.s[i] + tau * v_[i];
+    const double m = model(g, trial.data());
+    if (m < best) {
+      best = m;
+      tau_best = tau;
+    }
+  }
+  for (size_t i = 0; i < n_; ++i) st.s[i] += tau_best * v_[i];
+  st.boundary = true;
+}
+
+Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
+  Step st;
+  double lo = 0.0, lambda = 0.0, ns = 0.0;
+  if (sigma0_ == 0.0) { // H positive definite: try the Newton step
+    for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
+    f0_.solve(w_.data());
+    if (wnorm(n_, d_.data(), w_.data()) <= radius) {
+      minres_step(g, 0.0, st);
+      return st;
+    }
+  } else {
+    lo = std::max(0.0, -mu_);
+    lambda = lo * (1.0 + 1e-6) + 1e-14;
+  }
+  double hi = upper_multiplier(g, radius) + lo;
+  bool hard = false, ok = (sigma0_ == 0.0);
+  if (ok) ns = wnorm(n_, d_.data(), w_.data()); // s(0) is in w_
+  for (int it = 0; it < kMaxMultiplierIts; ++it) {
+    if (it > 0 || !ok) {
+      if (!(lambda > lo && lambda < hi)) lambda = std::max(std::sqrt(lo * hi), lo + 1e-2 * (hi - lo));
+      ok = trial_step(g, lambda, &ns);
+      if (!ok) { // below the lowest eigenvalue: raise the lower bound
+        lo = lambda;
+        lambda = lo + std::max(10.0 * (lambda - lo), 1e-6 * lo + 1e-14);
+        continue;
+      }
+    }
+    if (std::fabs(ns - radius) <= kBoundaryTol * radius) break;
+    if (ns < radius) {
+      hi = lambda;
+      if (sigma0_ > 0.0 && lambda - lo <= 1e-3 * lo + 1e-12) { // hard case
+        hard = negcurv_;
+        break;
+      }
+    } else {
+      lo = lambda;
+    }
+    // Newton step on 1/||s(lambda)||_D - 1/radius: q = (H + lambda D)^{-1} D s.
+    for (size_t i = 0; i < n_; ++i) q_[i] = d_[i] * w_[i];
+    (lambda == 0.0 && sigma0_ == 0.0 ? f0_ : fl_).solve(q_.data());
+    double sDq = 0.0;
+    for (size_t i = 0; i < n_; ++i) sDq += w_[i] * d_[i] * q_[i];
+    lambda += (ns / radius - 1.0) * ns * ns / sDq;
+  }
+  minres_step(g, lambda, st);
+  st.boundary = !(hard || (sigma0_ > 0.0 && !negcurv_ && ns < radius));
+  if (hard) add_curvature_direction(g, radius, st);
+  const double sn = wnorm(n_, d_.data(), st.s.data());
+  if (sn > (1.0 + kBoundaryTol) * radius)
+    for (double &e : st.s) e *= radius / sn;
+  return st;
+}
+
+void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
+                            std::ostream & /*out*/) {
+  double tol = std::sqrt(ROL_EPSILON<double>());
+  initialize(x, g);
+  ROL::Ptr<RolVector> xtrial = x.clone(), gvec = state_->gradientVec;
+  obj.update(x, ROL::UpdateType::Initial, 0);
+  state_->value = obj.value(x, tol);
+  obj.gradient(*gvec, x, tol);
+  state_->nfval++;
+  state_->ngrad++;
+  state_->gnorm = gvec->norm();
+  double radius = opt_.initial_radius;
+  IterationView it;
+  bool fresh = true;
+  for (;;) {
+    const double *xp = host_data(x);
+    if (fresh) analyse_hessian(xp);
+    fresh = false;
+    it.iteration = state_->iter;
+    it.energy = state_->value;
+    it.gnorm = state_->gnorm;
+    it.radius = radius;
+    it.negative_curvature = negcurv_;
+    it.x_norm = norm2(n_, xp);
+    it.radius_collapsed = radius > 0.0 && radius <= 1e-14 * (1.0 + wnorm(n_, d_.data(), xp));
+    if (mon_.check(it)) break;
+    const double *gp = host_data(*gvec);
+    if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
+      radius = sigma0_ == 0.0 ? std::numeric_limits<double>::max()
+                              : std::max(gradient_radius(gp), 1e-8);
+    Step st = solve_subproblem(gp, radius);
+    const double snorm = wnorm(n_, d_.data(), st.s.data());
+    if (radius == std::numeric_limits<double>::max()) radius = std::max(snorm, 1e-300);
+    const double pred = -model(gp, st.s.data());
+    double *sp = host_data(*state_->stepVec);
+    std::copy(st.s.begin(), st.s.end(), sp);
+    xtrial->set(x);
+    xtrial->plus(*state_->stepVec);
+    obj.update(*xtrial, ROL::UpdateType::Trial, state_->iter);
+    const double ftrial = obj.value(*xtrial, tol);
+    state_->nfval++;
+    const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(state_->value));
+    const double rho = std::isfinite(ftrial)
+                           ? (state_->value - ftrial + safe) / (pred + safe)
+                           : -std::numeric_limits<double>::infinity();
+    state_->iter++;
+    state_->snorm = norm2(n_, st.s.data());
+    it.krylov = st.krylov;
+    it.accepted = rho > kAccept;
+    it.unconstrained = !st.boundary;
+    it.step_norm = state_->snorm;
+    it.energy_change = it.accepted ? ftrial - state_->value : 0.0;
+    if (it.accepted) {
+      x.set(*xtrial);
+      obj.update(x, ROL::UpdateType::Accept, state_->iter);
+      state_->value = ftrial;
+      obj.gradient(*gvec, x, tol);
+      state_->ngrad++;
+      state_->gnorm = gvec->norm();
+      state_->iterateVec->set(x);
+      fresh = true;
+    } else {
+      obj.update(x, ROL::UpdateType::Revert, state_->iter);
+    }
+    if (rho < 0.25) radius = 0.25 * std::min(radius, snorm);
+    else if (rho > 0.75 && st.boundary) radius *= 2.0;
+    state_->searchSize = radius;
+  }
+}
+
+} // namespace
+
+void run_tr_minres(Problem &p, Monitor &mon, const rn_solve_options &opt) {
+  auto map = make_local_map(p.size());
+  auto xmv = Teuchos::rcp(new MV(map, 1));
+  check_status(rn_network_get_dofs(p.network(), host_data(*xmv)), "rn_network_get_dofs");
+  TpetraVector x(xmv), g(Teuchos::rcp(new MV(map, 1)));
+  RodObjective obj(p);
+  TrustRegionMinres alg(p, mon, opt, map);
+  Teuchos::oblackholestream out;
+  alg.run(x, g, obj, out);
+}
+
+} // namespace rodnet

@@ -1,0 +1,41 @@
+# Build-infrastructure tests (label unit): layering of the folders, install + outside
+# consumer, and the clang-format check.  They test the tree and the build itself, so
+# they are registered only in plain (non-sanitizer) builds: a sanitized kernels archive
+# needs __asan_* symbols and a sanitized library cannot be linked by a plain consumer.
+if(RN_SANITIZE)
+  return()
+endif()
+
+find_program(RN_BASH bash REQUIRED)
+set(RN_BUILD_TEST_DIR ${CMAKE_CURRENT_SOURCE_DIR}/build)
+
+# (a) layering: include lines per folder and `nm -u` of the kernels archive.
+add_test(NAME layering
+  COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_layering.sh ${PROJECT_SOURCE_DIR}
+          $<TARGET_FILE:rodnet_kernels_static> ${CMAKE_NM})
+set_tests_properties(layering PROPERTIES LABELS "unit" TIMEOUT 120
+  ENVIRONMENT "CC=${CMAKE_C_COMPILER}")
+
+# (b) install into a temporary prefix, then build and run tests/build/consumer/
+# against it with find_package(rodnet) and with pkg-config.
+if(TARGET rodnet_cli)
+  set(RN_HAVE_CLI 1)
+else()
+  set(RN_HAVE_CLI 0)
+endif()
+add_test(NAME install_consumer
+  COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_install.sh ${PROJECT_BINARY_DIR}
+          ${PROJECT_SOURCE_DIR} ${CMAKE_C_COMPILER} ${RN_HAVE_CLI})
+set_tests_properties(install_consumer PROPERTIES LABELS "unit" TIMEOUT 300)
+
+# (c) every C/C++ source follows .clang-format.
+find_program(RN_CLANG_FORMAT NAMES clang-format clang-format-14)
+if(RN_CLANG_FORMAT)
+  add_test(NAME format_check
+    COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_format.sh ${PROJECT_SOURCE_DIR}
+            ${RN_CLANG_FORMAT})
+  set_tests_properties(format_check PROPERTIES LABELS "unit" TIMEOUT 120)
+else()
+  message(WARNING "clang-format not found: the format_check test is not registered "
+                  "(scripts/setup.sh installs it)")
+endif()
