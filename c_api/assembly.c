@@ -11,8 +11,8 @@ typedef enum { OP_ENERGY, OP_GRAD, OP_HVP, OP_HESS } eval_op;
 
 typedef struct eval_args {
   eval_op op;
-  const double *x;   /* reduced state */
-  const double *v;   /* direction (OP_HVP) */
+  const double *x; /* reduced state */
+  const double *v; /* direction (OP_HVP) */
   double E[RN_TERM_COUNT];
   double *g;         /* OP_GRAD output, accumulated */
   double *Hv;        /* OP_HVP output, accumulated */
@@ -20,8 +20,8 @@ typedef struct eval_args {
   const char *where; /* public entry point, for messages */
 } eval_args;
 
-static rn_status degenerate(const rn_network *net, const eval_args *a, const char *term, int rod,
-                            const char *what, int idx) {
+static rn_status degenerate(const rn_network *net, const eval_args *a, const char *term,
+                            int rod, const char *what, int idx) {
   return rn_fail(net->ctx, RN_DEGENERATE, a->where,
                  "%s of rod %d ('%s') is degenerate at %s %d (zero-length edge or "
                  "opposite tangents)",
@@ -29,7 +29,8 @@ static rn_status degenerate(const rn_network *net, const eval_args *a, const cha
 }
 
 /* Accumulates a local gradient / HVP / Hessian block of a stencil. */
-static void accumulate(const rn_network *net, eval_args *a, size_t s, int n, const double *loc) {
+static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
+                       const double *loc) {
   if (a->op == OP_GRAD) rn_scatter_add(net, loc, s, n, a->g);
   if (a->op == OP_HVP) rn_scatter_add(net, loc, s, n, a->Hv);
   if (a->op == OP_HESS) rn_csr_add_block(net, s, n, loc, a->vals);
@@ -43,13 +44,19 @@ static int stretch_eval(const rn_network *net, const rn_rod *r, int j, eval_args
   int rc = RNK_OK;
   rn_gather(net, a->x, s, N, q);
   switch (a->op) {
-    case OP_ENERGY: rc = rnk_stretch_energy(q, p, &E); break;
-    case OP_GRAD: rc = rnk_stretch_grad(q, p, &E, loc); break;
-    case OP_HVP:
-      rn_gather_dir(net, a->v, s, N, vl);
-      rc = rnk_stretch_hvp(q, p, vl, loc);
-      break;
-    case OP_HESS: rc = rnk_stretch_hess(q, p, loc); break;
+  case OP_ENERGY:
+    rc = rnk_stretch_energy(q, p, &E);
+    break;
+  case OP_GRAD:
+    rc = rnk_stretch_grad(q, p, &E, loc);
+    break;
+  case OP_HVP:
+    rn_gather_dir(net, a->v, s, N, vl);
+    rc = rnk_stretch_hvp(q, p, vl, loc);
+    break;
+  case OP_HESS:
+    rc = rnk_stretch_hess(q, p, loc);
+    break;
   }
   if (rc != RNK_OK) return rc;
   a->E[RN_TERM_STRETCH] += E;
@@ -57,49 +64,36 @@ static int stretch_eval(const rn_network *net, const rn_rod *r, int j, eval_args
   return RNK_OK;
 }
 
-static int bend_eval(const rn_network *net, const rn_rod *r, int i, eval_args *a) {
+/* Bending and twisting at interior vertex i share the edge frames: one
+ * combined kernel (same values as rnk_bend_* + rnk_twist_*). */
+static int bendtwist_eval(const rn_network *net, const rn_rod *r, int i, eval_args *a) {
   enum { N = RN_VERTEX_STENCIL };
   size_t s = rn_dof_vertex_stencil(r->off, i);
-  const rnk_bend_param *p = &r->bp[i - 1];
+  const rnk_bend_param *bp = &r->bp[i - 1];
+  rnk_twist_param tp = r->tp[i - 1];
   const rnk_frame *ref = &r->ref[i - 1];
-  double q[N], vl[N], loc[N * N], E = 0.0;
+  double q[N], vl[N], loc[N * N], Eb = 0.0, Et = 0.0;
   int rc = RNK_OK;
+  tp.ref_twist = r->ref_twist[i - 1];
   rn_gather(net, a->x, s, N, q);
   switch (a->op) {
-    case OP_ENERGY: rc = rnk_bend_energy(q, ref, p, &E); break;
-    case OP_GRAD: rc = rnk_bend_grad(q, ref, p, &E, loc); break;
-    case OP_HVP:
-      rn_gather_dir(net, a->v, s, N, vl);
-      rc = rnk_bend_hvp(q, ref, p, vl, loc);
-      break;
-    case OP_HESS: rc = rnk_bend_hess(q, ref, p, loc); break;
+  case OP_ENERGY:
+    rc = rnk_bendtwist_energy(q, ref, bp, &tp, &Eb, &Et);
+    break;
+  case OP_GRAD:
+    rc = rnk_bendtwist_grad(q, ref, bp, &tp, &Eb, loc);
+    break; /* sum */
+  case OP_HVP:
+    rn_gather_dir(net, a->v, s, N, vl);
+    rc = rnk_bendtwist_hvp(q, ref, bp, &tp, vl, loc);
+    break;
+  case OP_HESS:
+    rc = rnk_bendtwist_hess(q, ref, bp, &tp, loc);
+    break;
   }
   if (rc != RNK_OK) return rc;
-  a->E[RN_TERM_BEND] += E;
-  accumulate(net, a, s, N, loc);
-  return RNK_OK;
-}
-
-static int twist_eval(const rn_network *net, const rn_rod *r, int i, eval_args *a) {
-  enum { N = RN_VERTEX_STENCIL };
-  size_t s = rn_dof_vertex_stencil(r->off, i);
-  rnk_twist_param p = r->tp[i - 1];
-  const rnk_frame *ref = &r->ref[i - 1];
-  double q[N], vl[N], loc[N * N], E = 0.0;
-  int rc = RNK_OK;
-  p.ref_twist = r->ref_twist[i - 1];
-  rn_gather(net, a->x, s, N, q);
-  switch (a->op) {
-    case OP_ENERGY: rc = rnk_twist_energy(q, ref, &p, &E); break;
-    case OP_GRAD: rc = rnk_twist_grad(q, ref, &p, &E, loc); break;
-    case OP_HVP:
-      rn_gather_dir(net, a->v, s, N, vl);
-      rc = rnk_twist_hvp(q, ref, &p, vl, loc);
-      break;
-    case OP_HESS: rc = rnk_twist_hess(q, ref, &p, loc); break;
-  }
-  if (rc != RNK_OK) return rc;
-  a->E[RN_TERM_TWIST] += E;
+  a->E[RN_TERM_BEND] += Eb;
+  a->E[RN_TERM_TWIST] += Et;
   accumulate(net, a, s, N, loc);
   return RNK_OK;
 }
@@ -118,13 +112,19 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
   p.angle0 = mo->angle0;
   rn_gather(net, a->x, s, N, q);
   switch (a->op) {
-    case OP_ENERGY: rc = rnk_moment_energy(q, ref, &p, &E); break;
-    case OP_GRAD: rc = rnk_moment_grad(q, ref, &p, &E, loc); break;
-    case OP_HVP:
-      rn_gather_dir(net, a->v, s, N, vl);
-      rc = rnk_moment_hvp(q, ref, &p, vl, loc);
-      break;
-    case OP_HESS: rc = rnk_moment_hess(q, ref, &p, loc); break;
+  case OP_ENERGY:
+    rc = rnk_moment_energy(q, ref, &p, &E);
+    break;
+  case OP_GRAD:
+    rc = rnk_moment_grad(q, ref, &p, &E, loc);
+    break;
+  case OP_HVP:
+    rn_gather_dir(net, a->v, s, N, vl);
+    rc = rnk_moment_hvp(q, ref, &p, vl, loc);
+    break;
+  case OP_HESS:
+    rc = rnk_moment_hess(q, ref, &p, loc);
+    break;
   }
   if (rc != RNK_OK) return rc;
   a->E[RN_TERM_LOAD] += E;
@@ -151,11 +151,11 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
 static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
   const rn_rod *r = &net->rods[ir];
   for (int j = 0; j < r->ne; ++j)
-    if (stretch_eval(net, r, j, a) != RNK_OK) return degenerate(net, a, "stretching", ir, "edge", j);
-  for (int i = 1; i < r->nv - 1; ++i) {
-    if (bend_eval(net, r, i, a) != RNK_OK) return degenerate(net, a, "bending", ir, "vertex", i);
-    if (twist_eval(net, r, i, a) != RNK_OK) return degenerate(net, a, "twist", ir, "vertex", i);
-  }
+    if (stretch_eval(net, r, j, a) != RNK_OK)
+      return degenerate(net, a, "stretching", ir, "edge", j);
+  for (int i = 1; i < r->nv - 1; ++i)
+    if (bendtwist_eval(net, r, i, a) != RNK_OK)
+      return degenerate(net, a, "bending/twist", ir, "vertex", i);
   forces_eval(net, r, a);
   return RN_OK;
 }
@@ -167,7 +167,8 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
     if ((st = eval_rod(net, ir, a))) return st;
   for (int im = 0; im < net->nmom; ++im)
     if (moment_eval(net, &net->moments[im], a) != RNK_OK)
-      return degenerate(net, a, "moment", net->moments[im].rod, "vertex", net->moments[im].vertex);
+      return degenerate(net, a, "moment", net->moments[im].rod, "vertex",
+                        net->moments[im].vertex);
   return RN_OK;
 }
 
@@ -181,7 +182,8 @@ static rn_status check_eval(const rn_network *net, const char *where, const doub
                             const void *out) {
   rn_status st;
   if ((st = rn_net_check_final(net, where))) return st;
-  if ((!x || !out) && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
+  if ((!x || !out) && net->nred)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
   if (!rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
   return RN_OK;
@@ -212,7 +214,8 @@ rn_status rn_network_energy(const rn_network *net, const double *x, double *E) {
   return RN_OK;
 }
 
-rn_status rn_network_gradient(const rn_network *net, const double *x, double *E, double *g) {
+rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
+                              double *g) {
   eval_args a;
   rn_status st;
   if (!net) return RN_ERR_ARG;
@@ -228,7 +231,8 @@ rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
   return RN_OK;
 }
 
-rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v, double *Hv) {
+rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v,
+                         double *Hv) {
   static const char *where = "rn_network_hvp";
   eval_args a;
   rn_status st;
@@ -247,7 +251,8 @@ rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v
   return eval_all(net, &a);
 }
 
-rn_status rn_network_hessian_values(const rn_network *net, const double *x, double *vals) {
+rn_status rn_network_hessian_values(const rn_network *net, const double *x,
+                                    double *vals) {
   eval_args a;
   rn_status st;
   if (!net) return RN_ERR_ARG;

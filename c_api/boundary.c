@@ -10,8 +10,8 @@ static rn_status check_end(const rn_network *net, const char *where, int rod, in
   if ((st = rn_net_check_building(net, where))) return st;
   if ((st = rn_net_check_rod(net, where, rod))) return st;
   if (end != RN_START && end != RN_END)
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d: end must be RN_START or RN_END, got %d",
-                   rod, end);
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "rod %d: end must be RN_START or RN_END, got %d", rod, end);
   return RN_OK;
 }
 
@@ -23,8 +23,9 @@ static rn_status resolve_vertex(const rn_network *net, const char *where, int ro
   if ((st = rn_net_check_rod(net, where, rod))) return st;
   *v = rn_wrap_index(vertex, net->rods[rod].nv);
   if (*v < 0)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d: vertex %d out of range (%d vertices)",
-                   rod, vertex, net->rods[rod].nv);
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "rod %d: vertex %d out of range (%d vertices)", rod, vertex,
+                   net->rods[rod].nv);
   return RN_OK;
 }
 
@@ -54,8 +55,9 @@ rn_status rn_network_fix_theta(rn_network *net, int rod, int edge) {
   if ((st = rn_net_check_rod(net, where, rod))) return st;
   j = rn_wrap_index(edge, net->rods[rod].ne);
   if (j < 0)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d: edge %d out of range (%d edges)", rod,
-                   edge, net->rods[rod].ne);
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "rod %d: edge %d out of range (%d edges)", rod, edge,
+                   net->rods[rod].ne);
   net->rods[rod].theta_fixed[j] = 1;
   return RN_OK;
 }
@@ -68,7 +70,8 @@ rn_status rn_network_displace_end(rn_network *net, int rod, int end, const doubl
   if (!net) return RN_ERR_ARG;
   if ((st = check_end(net, where, rod, end))) return st;
   if ((disp && !rn_all_finite(3, disp)) || (rotvec && !rn_all_finite(3, rotvec)))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: motion is not finite", rod);
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: motion is not finite",
+                   rod);
   r = &net->rods[rod];
   r->has_end_motion[end] = 1;
   for (int k = 0; k < 3; ++k) {
@@ -87,8 +90,8 @@ rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
   if ((st = resolve_vertex(net, where, rod, vertex, &v))) return st;
   if (!disp) return rn_fail(net->ctx, RN_ERR_ARG, where, "disp is NULL");
   if (!rn_all_finite(3, disp))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d vertex %d: displacement is not finite",
-                   rod, v);
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
+                   "rod %d vertex %d: displacement is not finite", rod, v);
   net->rods[rod].has_vdisp[v] = 1;
   memcpy(net->rods[rod].vdisp + 3 * v, disp, 3 * sizeof(double));
   return RN_OK;
@@ -96,13 +99,16 @@ rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
 
 /* ---- load factor -------------------------------------------------------------- */
 /* The clamped edge and its first vertex at an end. */
-static int clamp_edge(const rn_rod *r, int end) { return end == RN_START ? 0 : r->ne - 1; }
+static int clamp_edge(const rn_rod *r, int end) {
+  return end == RN_START ? 0 : r->ne - 1;
+}
 
 static void place_pins(rn_network *net, rn_rod *r) {
   for (int v = 0; v < r->nv; ++v) {
     double *x = net->xfull + rn_dof_vertex(r->off, v);
     if (!r->pinned[v]) continue;
-    for (int k = 0; k < 3; ++k) x[k] = r->x0[3 * v + k] + net->lambda * r->vdisp[3 * v + k];
+    for (int k = 0; k < 3; ++k)
+      x[k] = r->x0[3 * v + k] + net->lambda * r->vdisp[3 * v + k];
   }
 }
 
@@ -162,7 +168,8 @@ rn_status rn_network_set_load_factor(rn_network *net, double lambda) {
   if (!isfinite(lambda))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "load factor is not finite");
   if (lambda < 0.0 || lambda > 1.0)
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "load factor %g is outside [0, 1]", lambda);
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "load factor %g is outside [0, 1]",
+                   lambda);
   net->lambda = lambda;
   return net->finalized ? rn_apply_load_factor(net) : RN_OK;
 }

@@ -11,9 +11,12 @@
  * (absolute when the denominator is 0).  The error of a case is its minimum
  * over h (the best h); the report holds the worst case.  The observed order
  * is the least-squares slope of log e against log h over the leading part of
- * the sweep where e still decreases (by at least a factor 2 per half decade:
- * there truncation, not round-off, dominates); the report holds the smallest
- * order over the cases, NaN if no case had two such points. */
+ * the sweep where e still decreases (by at least a factor 2 per half decade)
+ * and stays above 100 eps M / (h den), M the size of the energy terms (of
+ * the gradient entries for the HVP): there truncation, not round-off,
+ * dominates.  The report holds the smallest order over the cases, NaN if no
+ * case had two such points (e.g. an energy quadratic along every d). */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +31,8 @@ typedef struct check_work {
   size_t n;
   double *scale, *x, *xp, *xm, *d, *g, *gp, *gm, *hv, *y, *vals;
   uint64_t rng;
+  double eabs; /* sum of |energy terms| at the point */
+  double gabs; /* |g| + |H d| L: size of the gradient entries near it */
 } check_work;
 
 static double uniform(uint64_t *state) { /* splitmix64, [-1, 1) */
@@ -74,23 +79,28 @@ static void random_scaled(check_work *w, double *v) {
   for (size_t i = 0; i < w->n; ++i) v[i] = w->scale[i] * uniform(&w->rng);
 }
 
-/* Least-squares slope of log e against log h over the leading decreasing
- * run of the sweep; NaN with fewer than two points. */
-static double sweep_order(const double *h, const double *e) {
+/* Least-squares slope of log e against log h over the leading run of the
+ * sweep where e decreases and stays above the round-off level rnd[k]; NaN
+ * with fewer than two points. */
+static double sweep_order(const double *h, const double *e, const double *rnd) {
   int m = 1;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  if (!(e[0] > 0.0) || !isfinite(e[0])) return NAN;
-  while (m < N_SWEEP && e[m] > 0.0 && isfinite(e[m]) && e[m] < 0.5 * e[m - 1]) m++;
+  if (!(e[0] > rnd[0]) || !isfinite(e[0])) return NAN;
+  while (m < N_SWEEP && e[m] > rnd[m] && isfinite(e[m]) && e[m] < 0.5 * e[m - 1]) m++;
   if (m < 2) return NAN;
   for (int i = 0; i < m; ++i) {
     double lx = log(h[i]), ly = log(e[i]);
-    sx += lx; sy += ly; sxx += lx * lx; sxy += lx * ly;
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
   }
   return ((double)m * sxy - sx * sy) / ((double)m * sxx - sx * sx);
 }
 
-static void record(const double *h, const double *e, double *worst, double *order) {
-  double best = INFINITY, p = sweep_order(h, e);
+static void record(const double *h, const double *e, const double *rnd, double *worst,
+                   double *order) {
+  double best = INFINITY, p = sweep_order(h, e, rnd);
   for (int k = 0; k < N_SWEEP; ++k)
     if (e[k] < best) best = e[k];
   if (isfinite(best) && best > *worst) *worst = best;
@@ -106,9 +116,10 @@ static void shifted(const check_work *w, double h, double *xp, double *xm) {
 
 /* One direction: gradient and HVP sweeps.  Trial points where the energy is
  * degenerate count as infinite error at that h. */
-static rn_status check_direction(const rn_network *net, check_work *w, rn_check_report *rep) {
+static rn_status check_direction(const rn_network *net, check_work *w,
+                                 rn_check_report *rep) {
   size_t n = w->n;
-  double h[N_SWEEP], eg[N_SWEEP], eh[N_SWEEP];
+  double h[N_SWEEP], eg[N_SWEEP], eh[N_SWEEP], rg[N_SWEEP], rh[N_SWEEP];
   double gd = dot(n, w->g, w->d), hvn = norm2(n, w->hv);
   double den_g = fmax(fabs(gd), norm2(n, w->g) * norm2(n, w->d) / sqrt((double)n));
   if (!(den_g > 0.0)) den_g = 1.0;
@@ -117,19 +128,24 @@ static rn_status check_direction(const rn_network *net, check_work *w, rn_check_
     double Ep, Em, diff = 0.0;
     h[k] = pow(10.0, -2.0 - 0.5 * k);
     eg[k] = eh[k] = INFINITY;
+    rg[k] = rh[k] = 0.0;
     shifted(w, h[k], w->xp, w->xm);
     if (rn_network_gradient(net, w->xp, &Ep, w->gp) != RN_OK ||
         rn_network_gradient(net, w->xm, &Em, w->gm) != RN_OK)
       continue;
     eg[k] = fabs((Ep - Em) / (2.0 * h[k]) - gd) / den_g;
+    /* round-off level: 100 eps times the size of the energy terms (of the
+     * gradient entries) over h; below it the sweep no longer shows order */
+    rg[k] = 100.0 * DBL_EPSILON * w->eabs / (h[k] * den_g);
+    rh[k] = 100.0 * DBL_EPSILON * w->gabs / (h[k] * hvn);
     for (size_t i = 0; i < n; ++i) {
       double r = (w->gp[i] - w->gm[i]) / (2.0 * h[k]) - w->hv[i];
       diff += r * r;
     }
     eh[k] = sqrt(diff) / hvn;
   }
-  record(h, eg, &rep->grad_rel_err, &rep->grad_order);
-  record(h, eh, &rep->hvp_rel_err, &rep->hvp_order);
+  record(h, eg, rg, &rep->grad_rel_err, &rep->grad_order);
+  record(h, eh, rh, &rep->hvp_rel_err, &rep->hvp_order);
   return RN_OK;
 }
 
@@ -154,7 +170,8 @@ static rn_status check_csr(const rn_network *net, check_work *w, rn_check_report
   if ((st = rn_network_hessian_values(net, w->x, w->vals))) return st;
   for (size_t r = 0; r < w->n; ++r) {
     double s = 0.0;
-    for (int64_t p = net->rowptr[r]; p < net->rowptr[r + 1]; ++p) s += w->vals[p] * w->d[net->col[p]];
+    for (int64_t p = net->rowptr[r]; p < net->rowptr[r + 1]; ++p)
+      s += w->vals[p] * w->d[net->col[p]];
     w->y[r] = s;
     diff += (s - w->hv[r]) * (s - w->hv[r]);
   }
@@ -165,11 +182,18 @@ static rn_status check_csr(const rn_network *net, check_work *w, rn_check_report
 }
 
 static rn_status check_point(const rn_network *net, check_work *w, rn_check_report *rep) {
+  double terms[RN_TERM_COUNT];
   rn_status st;
+  if ((st = rn_network_energy_terms(net, w->x, terms))) return st;
+  w->eabs = 0.0;
+  for (int t = 0; t < RN_TERM_COUNT; ++t) w->eabs += fabs(terms[t]);
   if ((st = rn_network_gradient(net, w->x, NULL, w->g))) return st;
   for (int dir = 0; dir < N_DIRECTIONS; ++dir) {
     random_scaled(w, w->d);
     if ((st = rn_network_hvp(net, w->x, w->d, w->hv))) return st;
+    /* force ~ sqrt(2 energy stiffness), stiffness ~ |H d| / |d| */
+    w->gabs = norm2(w->n, w->g) +
+              sqrt(2.0 * w->eabs * norm2(w->n, w->hv) / fmax(norm2(w->n, w->d), DBL_MIN));
     if (dir == 0 && (st = check_csr(net, w, rep))) return st;
     if ((st = check_direction(net, w, rep))) return st;
   }
@@ -179,8 +203,8 @@ static rn_status check_point(const rn_network *net, check_work *w, rn_check_repo
 
 static rn_status work_alloc(const rn_network *net, check_work *w) {
   size_t n = net->nred + 1;
-  double **arrays[] = {&w->scale, &w->x, &w->xp, &w->xm, &w->d,
-                       &w->g, &w->gp, &w->gm, &w->hv, &w->y};
+  double **arrays[] = {&w->scale, &w->x,  &w->xp, &w->xm, &w->d,
+                       &w->g,     &w->gp, &w->gm, &w->hv, &w->y};
   memset(w, 0, sizeof(*w));
   w->n = net->nred;
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); ++i)
@@ -190,33 +214,48 @@ static rn_status work_alloc(const rn_network *net, check_work *w) {
 }
 
 static void work_free(check_work *w) {
-  free(w->scale); free(w->x); free(w->xp); free(w->xm); free(w->d);
-  free(w->g); free(w->gp); free(w->gm); free(w->hv); free(w->y); free(w->vals);
+  free(w->scale);
+  free(w->x);
+  free(w->xp);
+  free(w->xm);
+  free(w->d);
+  free(w->g);
+  free(w->gp);
+  free(w->gm);
+  free(w->hv);
+  free(w->y);
+  free(w->vals);
 }
 
-static rn_status run_points(const rn_network *net, const double *x, int n_random, double perturb,
-                            check_work *w, rn_check_report *rep) {
+static rn_status run_points(const rn_network *net, const double *x, int n_random,
+                            double perturb, check_work *w, rn_check_report *rep) {
   rn_status st;
   dof_scales(net, w->scale);
   for (int p = 0; p <= n_random; ++p) {
-    if (x) memcpy(w->x, x, w->n * sizeof(double));
-    else rn_network_get_dofs(net, w->x);
-    for (size_t i = 0; p > 0 && i < w->n; ++i) w->x[i] += perturb * w->scale[i] * uniform(&w->rng);
+    if (x)
+      memcpy(w->x, x, w->n * sizeof(double));
+    else
+      rn_network_get_dofs(net, w->x);
+    for (size_t i = 0; p > 0 && i < w->n; ++i)
+      w->x[i] += perturb * w->scale[i] * uniform(&w->rng);
     st = check_point(net, w, rep);
-    if (st < 0 || (st > 0 && p == 0)) return st; /* degenerate perturbed points are skipped */
+    if (st < 0 || (st > 0 && p == 0))
+      return st; /* degenerate perturbed points are skipped */
   }
   return RN_OK;
 }
 
-rn_status rn_network_check_derivatives(const rn_network *net, const double *x, int n_random,
-                                       double perturb, uint64_t seed, rn_check_report *rep) {
+rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
+                                       int n_random, double perturb, uint64_t seed,
+                                       rn_check_report *rep) {
   check_work w;
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_final(net, where))) return st;
   if (!rep) return rn_fail(net->ctx, RN_ERR_ARG, where, "rep is NULL");
   if (n_random < 0 || !isfinite(perturb) || perturb < 0.0)
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "need n_random >= 0 and finite perturb >= 0");
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "need n_random >= 0 and finite perturb >= 0");
   if (x && !rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
   memset(rep, 0, sizeof(*rep));

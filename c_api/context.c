@@ -59,8 +59,8 @@ const char *rn_context_last_error(const rn_context *ctx) {
   return ctx ? ctx->message : "";
 }
 
-static void context_vset(rn_context *ctx, rn_status s, const char *where,
-                         const char *fmt, va_list ap) {
+static void context_vset(rn_context *ctx, rn_status s, const char *where, const char *fmt,
+                         va_list ap) {
   int used = 0;
   ctx->last = s;
   if (where) {
@@ -89,8 +89,7 @@ void rn_context_clear_error(rn_context *ctx) {
   ctx->message[0] = '\0';
 }
 
-rn_status rn_fail(rn_context *ctx, rn_status s, const char *where,
-                  const char *fmt, ...) {
+rn_status rn_fail(rn_context *ctx, rn_status s, const char *where, const char *fmt, ...) {
   va_list ap;
   if (!ctx) return s;
   va_start(ap, fmt);

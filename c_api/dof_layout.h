@@ -13,12 +13,12 @@
 #include <stddef.h>
 
 enum {
-  RN_DOFS_PER_VERTEX = 3,   /* position */
-  RN_EDGE_STENCIL = 7,      /* q[7] of rnk.h */
-  RN_VERTEX_STENCIL = 11,   /* q[11] of rnk.h */
-  RN_EDGE_LOCAL_X0 = 0,     /* x_j in an edge stencil */
-  RN_EDGE_LOCAL_THETA = 3,  /* theta^j in an edge stencil */
-  RN_EDGE_LOCAL_X1 = 4      /* x_{j+1} in an edge stencil */
+  RN_DOFS_PER_VERTEX = 3,  /* position */
+  RN_EDGE_STENCIL = 7,     /* q[7] of rnk.h */
+  RN_VERTEX_STENCIL = 11,  /* q[11] of rnk.h */
+  RN_EDGE_LOCAL_X0 = 0,    /* x_j in an edge stencil */
+  RN_EDGE_LOCAL_THETA = 3, /* theta^j in an edge stencil */
+  RN_EDGE_LOCAL_X1 = 4     /* x_{j+1} in an edge stencil */
 };
 
 /* Number of full DOFs of a rod with nv vertices. */
@@ -31,7 +31,9 @@ static inline size_t rn_dof_vertex(size_t off, int i) { return off + 4 * (size_t
 static inline size_t rn_dof_theta(size_t off, int j) { return off + 4 * (size_t)j + 3; }
 
 /* First full index of the edge stencil of edge j (7 DOFs). */
-static inline size_t rn_dof_edge_stencil(size_t off, int j) { return off + 4 * (size_t)j; }
+static inline size_t rn_dof_edge_stencil(size_t off, int j) {
+  return off + 4 * (size_t)j;
+}
 
 /* First full index of the vertex stencil of interior vertex i (11 DOFs). */
 static inline size_t rn_dof_vertex_stencil(size_t off, int i) {

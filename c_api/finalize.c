@@ -1,4 +1,5 @@
 /* finalize.c - validation, DOF map, per-stencil parameters, initial state. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,24 +11,27 @@ static rn_status validate_rod(const rn_network *net, int ir) {
   const rn_rod *r = &net->rods[ir];
   for (int j = 0; j < r->ne; ++j) {
     if (!r->has_mat[j])
-      return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no material", ir,
-                     rn_network_rod_name(net, ir), j);
+      return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no material",
+                     ir, rn_network_rod_name(net, ir), j);
     if (!r->has_sec[j])
-      return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no section", ir,
-                     rn_network_rod_name(net, ir), j);
+      return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no section",
+                     ir, rn_network_rod_name(net, ir), j);
   }
   for (int end = RN_START; end <= RN_END; ++end)
     if (r->has_end_motion[end] && !r->clamped[end])
-      return rn_fail(net->ctx, RN_ERR_BC, where,
-                     "rod %d ('%s'): prescribed motion of the %s end, which is not clamped", ir,
-                     rn_network_rod_name(net, ir), end == RN_START ? "start" : "end");
+      return rn_fail(
+          net->ctx, RN_ERR_BC, where,
+          "rod %d ('%s'): prescribed motion of the %s end, which is not clamped", ir,
+          rn_network_rod_name(net, ir), end == RN_START ? "start" : "end");
   for (int v = 0; v < r->nv; ++v) {
-    int in_clamp = (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
+    int in_clamp =
+        (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
     if (r->has_vdisp[v] && !r->pinned[v] && !in_clamp)
-      return rn_fail(net->ctx, RN_ERR_BC, where,
-                     "rod %d ('%s') vertex %d: prescribed displacement of a vertex that is "
-                     "neither pinned nor clamped",
-                     ir, rn_network_rod_name(net, ir), v);
+      return rn_fail(
+          net->ctx, RN_ERR_BC, where,
+          "rod %d ('%s') vertex %d: prescribed displacement of a vertex that is "
+          "neither pinned nor clamped",
+          ir, rn_network_rod_name(net, ir), v);
   }
   return RN_OK;
 }
@@ -111,10 +115,10 @@ static rn_status init_moments(rn_network *net) {
     double e[3];
     for (int k = 0; k < 3; ++k) e[k] = x[RN_EDGE_LOCAL_X1 + k] - x[RN_EDGE_LOCAL_X0 + k];
     mo->angle0 = 0.0;
-    if (rnk_material_frame(e, &r->ref[mo->edge], x[RN_EDGE_LOCAL_THETA], mo->f0, mo->f0 + 3,
-                           mo->f0 + 6) != RNK_OK)
-      return rn_fail(net->ctx, RN_ERR_GEOMETRY, where, "rod %d edge %d: degenerate edge under a moment",
-                     mo->rod, mo->edge);
+    if (rnk_material_frame(e, &r->ref[mo->edge], x[RN_EDGE_LOCAL_THETA], mo->f0,
+                           mo->f0 + 3, mo->f0 + 6) != RNK_OK)
+      return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
+                     "rod %d edge %d: degenerate edge under a moment", mo->rod, mo->edge);
   }
   return RN_OK;
 }
@@ -146,7 +150,8 @@ rn_status rn_network_finalize(rn_network *net) {
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
-  if (net->nrods == 0) return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
+  if (net->nrods == 0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
   for (int ir = 0; ir < net->nrods; ++ir)
     if ((st = validate_rod(net, ir))) return st;
   for (int ir = 0; ir < net->nrods; ++ir) {
@@ -156,7 +161,17 @@ rn_status rn_network_finalize(rn_network *net) {
     }
     rn_rod_lump_forces(net, &net->rods[ir]);
   }
-  if (build_dof_map(net) || rn_build_hessian_pattern(net)) {
+  if (build_dof_map(net)) {
+    undo_finalize(net);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  if (net->nred > (size_t)INT32_MAX) { /* CSR columns are int32 */
+    size_t nred = net->nred;
+    undo_finalize(net);
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "%zu free DOFs exceed the int32 CSR limit", nred);
+  }
+  if (rn_build_hessian_pattern(net)) {
     undo_finalize(net);
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }

@@ -12,7 +12,8 @@ static double dot3(const double a[3], const double b[3]) {
 static double norm3(const double a[3]) { return sqrt(dot3(a, a)); }
 
 void rn_mat_vec3(const double R[9], const double v[3], double out[3]) {
-  for (int i = 0; i < 3; ++i) out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
+  for (int i = 0; i < 3; ++i)
+    out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
 }
 
 void rn_rotation_matrix(const double w[3], double R[9]) {
@@ -61,7 +62,8 @@ static rn_status first_director(rn_context *ctx, int rod, const double t[3],
     d[kmin] = 1.0;
   }
   dn = norm3(d);
-  if (!(dn > 0.0)) return rn_fail(ctx, RN_ERR_ARG, where, "rod %d: d1 is the zero vector", rod);
+  if (!(dn > 0.0))
+    return rn_fail(ctx, RN_ERR_ARG, where, "rod %d: d1 is the zero vector", rod);
   for (int k = 0; k < 3; ++k) a1[k] = d[k] - dot3(d, t) * t[k];
   an = norm3(a1);
   if (an < 1e-8 * dn)
@@ -79,7 +81,8 @@ static rn_status edge_frames(rn_context *ctx, rn_rod *r, int rod, const double *
     double scale = norm3(r->x0 + 3 * j) + norm3(r->x0 + 3 * (j + 1));
     rnk_frame *f = &r->ref_base[j];
     if (!(l > 1e-14 * scale) || l == 0.0)
-      return rn_fail(ctx, RN_ERR_GEOMETRY, where, "rod %d edge %d: zero-length edge", rod, j);
+      return rn_fail(ctx, RN_ERR_GEOMETRY, where, "rod %d edge %d: zero-length edge", rod,
+                     j);
     for (int k = 0; k < 3; ++k) f->t[k] = e[k] / l;
     r->lbar[j] = l;
     if (j == 0) {
@@ -109,7 +112,8 @@ rn_status rn_rod_init_frames(rn_context *ctx, rn_rod *r, int rod, const double *
     if (rnk_reference_twist(q, &r->ref[i - 1], 0.0, &r->ref_twist[i - 1]) != RNK_OK ||
         rnk_strains(q, &r->ref[i - 1], r->ref_twist[i - 1], &r->kbar[2 * (i - 1)],
                     &r->taubar[i - 1]) != RNK_OK)
-      return rn_fail(ctx, RN_ERR_GEOMETRY, where, "rod %d vertex %d: degenerate kink", rod, i);
+      return rn_fail(ctx, RN_ERR_GEOMETRY, where, "rod %d vertex %d: degenerate kink",
+                     rod, i);
   }
   return RN_OK;
 }

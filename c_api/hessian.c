@@ -23,7 +23,8 @@ static void stencil_ranges(const rn_network *net, size_t *lo, size_t *hi) {
   }
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];
-    for (int j = 0; j < r->ne; ++j) cover(lo, hi, rn_dof_edge_stencil(r->off, j), RN_EDGE_STENCIL);
+    for (int j = 0; j < r->ne; ++j)
+      cover(lo, hi, rn_dof_edge_stencil(r->off, j), RN_EDGE_STENCIL);
     for (int i = 1; i < r->nv - 1; ++i)
       cover(lo, hi, rn_dof_vertex_stencil(r->off, i), RN_VERTEX_STENCIL);
   }
@@ -37,7 +38,8 @@ static size_t fill_rows(rn_network *net, const size_t *lo, const size_t *hi, int
     for (size_t b = lo[a]; b <= hi[a]; ++b) {
       if (net->map[b] < 0) continue;
       if (fill) {
-        size_t d = row > (size_t)net->map[b] ? row - (size_t)net->map[b] : (size_t)net->map[b] - row;
+        size_t d = row > (size_t)net->map[b] ? row - (size_t)net->map[b]
+                                             : (size_t)net->map[b] - row;
         net->col[nnz] = (int32_t)net->map[b];
         if (d > net->bandwidth) net->bandwidth = d;
       }
@@ -73,13 +75,16 @@ static int64_t csr_find(const rn_network *net, int64_t r, int64_t c) {
   while (lo <= hi) {
     int64_t mid = lo + (hi - lo) / 2;
     if (net->col[mid] == c) return mid;
-    if (net->col[mid] < c) lo = mid + 1;
-    else hi = mid - 1;
+    if (net->col[mid] < c)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
   }
   return -1;
 }
 
-void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H, double *vals) {
+void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
+                      double *vals) {
   for (int k = 0; k < n; ++k) {
     int64_t r = net->map[s + (size_t)k];
     if (r < 0) continue;
@@ -92,8 +97,8 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H, d
   }
 }
 
-rn_status rn_network_hessian_pattern(const rn_network *net, size_t *nnz, const int64_t **rowptr,
-                                     const int32_t **col) {
+rn_status rn_network_hessian_pattern(const rn_network *net, size_t *nnz,
+                                     const int64_t **rowptr, const int32_t **col) {
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_final(net, "rn_network_hessian_pattern"))) return st;

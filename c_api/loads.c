@@ -14,12 +14,13 @@ static rn_status check_load(const rn_network *net, const char *where, int rod, i
   if ((st = rn_net_check_rod(net, where, rod))) return st;
   *v = rn_wrap_index(vertex, net->rods[rod].nv);
   if (*v < 0)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d: vertex %d out of range (%d vertices)",
-                   rod, vertex, net->rods[rod].nv);
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "rod %d: vertex %d out of range (%d vertices)", rod, vertex,
+                   net->rods[rod].nv);
   if (!value) return rn_fail(net->ctx, RN_ERR_ARG, where, "value is NULL");
   if (!rn_all_finite(3, value))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d vertex %d: load is not finite", rod,
-                   *v);
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
+                   "rod %d vertex %d: load is not finite", rod, *v);
   return RN_OK;
 }
 
@@ -71,7 +72,8 @@ rn_status rn_network_add_gravity(rn_network *net, const double g[3]) {
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
   if (!g) return rn_fail(net->ctx, RN_ERR_ARG, where, "g is NULL");
-  if (!rn_all_finite(3, g)) return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "g is not finite");
+  if (!rn_all_finite(3, g))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "g is not finite");
   for (int k = 0; k < 3; ++k) net->gravity[k] += g[k];
   return RN_OK;
 }

@@ -20,8 +20,8 @@ int rn_wrap_index(int i, int n) {
 
 rn_status rn_net_check_rod(const rn_network *net, const char *where, int rod) {
   if (rod < 0 || rod >= net->nrods)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d does not exist (%d rods)",
-                   rod, net->nrods);
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d does not exist (%d rods)", rod,
+                   net->nrods);
   return RN_OK;
 }
 
@@ -115,10 +115,9 @@ static rn_status rod_alloc(rn_rod *r, int nv, const char *name) {
   r->vdisp = calloc(3 * v, sizeof(double));
   r->theta_fixed = calloc(e, 1);
   r->fpoint = calloc(3 * v, sizeof(double));
-  if ((name && !r->name) || !r->x0 || !r->mat || !r->sec || !r->has_mat ||
-      !r->has_sec || !r->lbar || !r->kbar || !r->taubar || !r->ref_base ||
-      !r->ref || !r->ref_twist || !r->pinned || !r->has_vdisp || !r->vdisp ||
-      !r->theta_fixed || !r->fpoint)
+  if ((name && !r->name) || !r->x0 || !r->mat || !r->sec || !r->has_mat || !r->has_sec ||
+      !r->lbar || !r->kbar || !r->taubar || !r->ref_base || !r->ref || !r->ref_twist ||
+      !r->pinned || !r->has_vdisp || !r->vdisp || !r->theta_fixed || !r->fpoint)
     return RN_ERR_ALLOC;
   return RN_OK;
 }
@@ -135,8 +134,8 @@ static rn_status grow_rods(rn_network *net) {
   return RN_OK;
 }
 
-rn_status rn_network_add_rod(rn_network *net, const char *name, int nv,
-                             const double *xyz, const double *d1, int *rod) {
+rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const double *xyz,
+                             const double *d1, int *rod) {
   static const char *where = "rn_network_add_rod";
   rn_rod r;
   rn_status st;
@@ -144,8 +143,8 @@ rn_status rn_network_add_rod(rn_network *net, const char *name, int nv,
   if ((st = rn_net_check_building(net, where))) return st;
   if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
   if (nv < 2)
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "rod '%s' needs at least 2 vertices, got %d",
-                   name ? name : "", nv);
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "rod '%s' needs at least 2 vertices, got %d", name ? name : "", nv);
   if (!rn_all_finite(3 * (size_t)nv, xyz))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
                    "rod '%s': a vertex coordinate is NaN or infinite", name ? name : "");
@@ -191,11 +190,13 @@ rn_status rn_network_set_material(rn_network *net, int rod, int edge,
   if ((st = check_edge_arg(net, where, rod, edge))) return st;
   if (!m) return rn_fail(net->ctx, RN_ERR_ARG, where, "material is NULL");
   if (!isfinite(m->E) || !isfinite(m->G) || !isfinite(m->density))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: material is not finite", rod);
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: material is not finite",
+                   rod);
   if (!(m->E > 0.0) || !(m->G > 0.0) || !(m->density >= 0.0))
-    return rn_fail(net->ctx, RN_ERR_ARG, where,
-                   "rod %d: need E > 0, G > 0, density >= 0 (E = %g, G = %g, density = %g)",
-                   rod, m->E, m->G, m->density);
+    return rn_fail(
+        net->ctx, RN_ERR_ARG, where,
+        "rod %d: need E > 0, G > 0, density >= 0 (E = %g, G = %g, density = %g)", rod,
+        m->E, m->G, m->density);
   r = &net->rods[rod];
   for (int j = 0; j < r->ne; ++j) {
     if (edge != -1 && j != edge) continue;
@@ -215,10 +216,11 @@ rn_status rn_network_set_section(rn_network *net, int rod, int edge,
   if (!s) return rn_fail(net->ctx, RN_ERR_ARG, where, "section is NULL");
   st = rn_section_validate(s);
   if (st)
-    return rn_fail(net->ctx, st, where,
-                   "rod %d: invalid section (need finite A, I11, I22, J > 0 and "
-                   "I11 I22 - I12^2 > 0; got A = %g, I11 = %g, I22 = %g, I12 = %g, J = %g)",
-                   rod, s->A, s->I11, s->I22, s->I12, s->J);
+    return rn_fail(
+        net->ctx, st, where,
+        "rod %d: invalid section (need finite A, I11, I22, J > 0 and "
+        "I11 I22 - I12^2 > 0; got A = %g, I11 = %g, I22 = %g, I12 = %g, J = %g)",
+        rod, s->A, s->I11, s->I22, s->I12, s->J);
   r = &net->rods[rod];
   for (int j = 0; j < r->ne; ++j) {
     if (edge != -1 && j != edge) continue;
@@ -246,7 +248,8 @@ rn_status rn_network_set_rest_curvature(rn_network *net, int rod, const double *
   if ((st = check_rest_arg(net, where, rod, kappa))) return st;
   n = 2 * (size_t)(net->rods[rod].nv - 2);
   if (!rn_all_finite(n, kappa))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: curvature is not finite", rod);
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: curvature is not finite",
+                   rod);
   if (n) memcpy(net->rods[rod].kbar, kappa, n * sizeof(double));
   return RN_OK;
 }
@@ -259,7 +262,8 @@ rn_status rn_network_set_rest_twist(rn_network *net, int rod, const double *tau)
   if ((st = check_rest_arg(net, where, rod, tau))) return st;
   n = (size_t)(net->rods[rod].nv - 2);
   if (!rn_all_finite(n, tau))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: twist is not finite", rod);
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: twist is not finite",
+                   rod);
   if (n) memcpy(net->rods[rod].taubar, tau, n * sizeof(double));
   return RN_OK;
 }
@@ -273,8 +277,8 @@ rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *le
   r = &net->rods[rod];
   for (int j = 0; j < r->ne; ++j) {
     if (!isfinite(len[j]))
-      return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d edge %d: rest length is not finite",
-                     rod, j);
+      return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
+                     "rod %d edge %d: rest length is not finite", rod, j);
     if (!(len[j] > 0.0))
       return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
                      "rod %d edge %d: rest length must be > 0, got %g", rod, j, len[j]);

@@ -15,43 +15,43 @@
 typedef struct rn_rod {
   char *name;
   int nv, ne;
-  size_t off;               /* first full DOF (set at finalize) */
-  double *x0;               /* initial vertices [3 nv] */
-  rn_material *mat;         /* per edge [ne] */
-  rn_section *sec;          /* per edge [ne] */
-  unsigned char *has_mat;   /* [ne] */
-  unsigned char *has_sec;   /* [ne] */
-  double *lbar;             /* rest lengths [ne] */
-  double *kbar;             /* rest material curvature [2 (nv-2)] */
-  double *taubar;           /* rest twist [nv-2] */
-  rnk_frame *ref_base;      /* reference frames of the input shape [ne] */
-  rnk_frame *ref;           /* current reference frames [ne] */
-  double *ref_twist;        /* reference twist at the last update [nv-2] */
+  size_t off;             /* first full DOF (set at finalize) */
+  double *x0;             /* initial vertices [3 nv] */
+  rn_material *mat;       /* per edge [ne] */
+  rn_section *sec;        /* per edge [ne] */
+  unsigned char *has_mat; /* [ne] */
+  unsigned char *has_sec; /* [ne] */
+  double *lbar;           /* rest lengths [ne] */
+  double *kbar;           /* rest material curvature [2 (nv-2)] */
+  double *taubar;         /* rest twist [nv-2] */
+  rnk_frame *ref_base;    /* reference frames of the input shape [ne] */
+  rnk_frame *ref;         /* current reference frames [ne] */
+  double *ref_twist;      /* reference twist at the last update [nv-2] */
   /* boundary conditions */
-  unsigned char *pinned;    /* [nv] */
-  unsigned char *has_vdisp; /* [nv] */
-  double *vdisp;            /* prescribed vertex displacements [3 nv] */
+  unsigned char *pinned;      /* [nv] */
+  unsigned char *has_vdisp;   /* [nv] */
+  double *vdisp;              /* prescribed vertex displacements [3 nv] */
   unsigned char *theta_fixed; /* [ne] */
-  int clamped[2];           /* RN_START, RN_END */
+  int clamped[2];             /* RN_START, RN_END */
   int has_end_motion[2];
   double end_disp[2][3];
   double end_rot[2][3];
   /* loads (unscaled) */
-  double *fpoint;           /* point forces [3 nv] */
+  double *fpoint; /* point forces [3 nv] */
   double line_load[3];
   /* built at finalize */
-  double *fvert;            /* lumped dead forces [3 nv] */
-  rnk_stretch_param *sp;    /* [ne] */
-  rnk_bend_param *bp;       /* [nv-2] */
-  rnk_twist_param *tp;      /* [nv-2], ref_twist taken from ref_twist[] */
+  double *fvert;         /* lumped dead forces [3 nv] */
+  rnk_stretch_param *sp; /* [ne] */
+  rnk_bend_param *bp;    /* [nv-2] */
+  rnk_twist_param *tp;   /* [nv-2], ref_twist taken from ref_twist[] */
 } rn_rod;
 
 /* A dead couple on the material frame of one edge. */
 typedef struct rn_moment {
   int rod, vertex, edge;
   double M[3];
-  double f0[9];             /* (t, d1, d2) at the last reference update */
-  double angle0;            /* accumulated angle up to that update */
+  double f0[9];  /* (t, d1, d2) at the last reference update */
+  double angle0; /* accumulated angle up to that update */
 } rn_moment;
 
 struct rn_network {
@@ -62,21 +62,20 @@ struct rn_network {
   int nmom, cap_mom;
   double gravity[3];
   int finalized;
-  double lambda;            /* load factor */
+  double lambda; /* load factor */
   size_t nfull, nred;
-  int64_t *map;             /* full -> reduced index, -1 if fixed [nfull] */
-  int64_t *red2full;        /* reduced -> full [nred] */
-  double *xfull;            /* current state; fixed entries at lambda [nfull] */
-  int64_t *rowptr;          /* Hessian pattern [nred + 1] */
-  int32_t *col;             /* [nnz] */
+  int64_t *map;      /* full -> reduced index, -1 if fixed [nfull] */
+  int64_t *red2full; /* reduced -> full [nred] */
+  double *xfull;     /* current state; fixed entries at lambda [nfull] */
+  int64_t *rowptr;   /* Hessian pattern [nred + 1] */
+  int32_t *col;      /* [nnz] */
   size_t nnz;
   size_t bandwidth;
 };
 
 /* ---- errors -------------------------------------------------------------- */
 /* Record "where: what" in ctx (ctx may be NULL) and return s. */
-rn_status rn_fail(rn_context *ctx, rn_status s, const char *where,
-                  const char *fmt, ...)
+rn_status rn_fail(rn_context *ctx, rn_status s, const char *where, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
 #endif
@@ -94,22 +93,18 @@ int rn_wrap_index(int i, int n);
 /* ---- state and stencils --------------------------------------------------- */
 /* Local stencil of n DOFs starting at full index s: q[k] = x[map] if free,
  * else the fixed value in net->xfull. */
-void rn_gather(const rn_network *net, const double *x, size_t s, int n,
-               double *q);
+void rn_gather(const rn_network *net, const double *x, size_t s, int n, double *q);
 /* Local direction: v[map] if free, else 0. */
-void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n,
-                   double *q);
+void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, double *q);
 /* g[map[s+k]] += gl[k] for free DOFs. */
-void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n,
-                    double *g);
+void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, double *g);
 /* Full state from a reduced vector: free entries from x, fixed from xfull. */
 void rn_expand_state(const rn_network *net, const double *x, double *full);
 
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference
  * twists (prev 0) and rest quantities at the input shape (theta = 0). */
-rn_status rn_rod_init_frames(rn_context *ctx, rn_rod *r, int rod_index,
-                             const double *d1);
+rn_status rn_rod_init_frames(rn_context *ctx, rn_rod *r, int rod_index, const double *d1);
 /* Rotation matrix of the rotation vector w (Rodrigues). */
 void rn_rotation_matrix(const double w[3], double R[9]);
 void rn_mat_vec3(const double R[9], const double v[3], double out[3]);
@@ -122,7 +117,8 @@ rn_status rn_apply_load_factor(rn_network *net);
 rn_status rn_build_hessian_pattern(rn_network *net);
 /* Adds the free-free entries of a dense n x n stencil block at full index s
  * into CSR values (hessian.c). */
-void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H, double *vals);
+void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
+                      double *vals);
 
 /* ---- rods ---------------------------------------------------------------- */
 void rn_rod_free(rn_rod *r);

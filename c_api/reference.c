@@ -10,11 +10,11 @@
 static const char *where = "rn_network_update_reference";
 
 typedef struct ref_update {
-  double *full;        /* new full state [nfull] */
-  rnk_frame *frames;   /* new frames, all rods concatenated */
-  double *twists;      /* new reference twists, all rods concatenated */
-  double *angles;      /* new moment angles [nmom] */
-  double *f0;          /* new moment frames [9 nmom] */
+  double *full;      /* new full state [nfull] */
+  rnk_frame *frames; /* new frames, all rods concatenated */
+  double *twists;    /* new reference twists, all rods concatenated */
+  double *angles;    /* new moment angles [nmom] */
+  double *f0;        /* new moment frames [9 nmom] */
 } ref_update;
 
 static void ref_update_free(ref_update *u) {
@@ -46,8 +46,8 @@ static rn_status update_rod(const rn_network *net, int ir, const double *full, d
   for (int i = 1; i < r->nv - 1; ++i) {
     const double *q = full + rn_dof_vertex_stencil(r->off, i);
     if (rnk_reference_twist(q, &r->ref[i - 1], r->ref_twist[i - 1], &tw[i - 1]) != RNK_OK)
-      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d vertex %d: degenerate reference twist",
-                     ir, i);
+      return rn_fail(net->ctx, RN_DEGENERATE, where,
+                     "rod %d vertex %d: degenerate reference twist", ir, i);
   }
   for (int j = 0; j < r->ne; ++j) {
     const double *q = full + rn_dof_edge_stencil(r->off, j);
@@ -55,13 +55,15 @@ static rn_status update_rod(const rn_network *net, int ir, const double *full, d
     for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
     fr[j] = r->ref[j];
     if (rnk_frame_update(e, &fr[j]) != RNK_OK)
-      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge", ir, j);
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
+                     ir, j);
   }
   return RN_OK;
 }
 
 /* New accumulated angle and frame of every moment (old reference frames). */
-static rn_status update_moments(const rn_network *net, const double *full, ref_update *u) {
+static rn_status update_moments(const rn_network *net, const double *full,
+                                ref_update *u) {
   for (int im = 0; im < net->nmom; ++im) {
     const rn_moment *mo = &net->moments[im];
     const rn_rod *r = &net->rods[mo->rod];
@@ -75,12 +77,12 @@ static rn_status update_moments(const rn_network *net, const double *full, ref_u
     for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
     if ((mo->M[0] != 0.0 || mo->M[1] != 0.0 || mo->M[2] != 0.0) &&
         rnk_moment_angle(q, ref, &p, &alpha) != RNK_OK)
-      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d vertex %d: degenerate moment angle",
-                     mo->rod, mo->vertex);
+      return rn_fail(net->ctx, RN_DEGENERATE, where,
+                     "rod %d vertex %d: degenerate moment angle", mo->rod, mo->vertex);
     u->angles[im] = mo->angle0 + alpha;
     if (rnk_material_frame(e, ref, q[RN_EDGE_LOCAL_THETA], f0, f0 + 3, f0 + 6) != RNK_OK)
-      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge", mo->rod,
-                     mo->edge);
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
+                     mo->rod, mo->edge);
   }
   return RN_OK;
 }
@@ -91,7 +93,8 @@ static void commit(rn_network *net, const ref_update *u) {
   for (int ir = 0; ir < net->nrods; ++ir) {
     rn_rod *r = &net->rods[ir];
     memcpy(r->ref, u->frames + fo, (size_t)r->ne * sizeof(rnk_frame));
-    if (r->nv > 2) memcpy(r->ref_twist, u->twists + to, (size_t)(r->nv - 2) * sizeof(double));
+    if (r->nv > 2)
+      memcpy(r->ref_twist, u->twists + to, (size_t)(r->nv - 2) * sizeof(double));
     fo += (size_t)r->ne;
     to += (size_t)(r->nv - 2);
   }

@@ -57,15 +57,16 @@ rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1, doub
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
     double e[3];
     for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
-    if (rnk_material_frame(e, &r->ref[j], q[RN_EDGE_LOCAL_THETA], NULL, d1 ? d1 + 3 * j : NULL,
-                           d2 ? d2 + 3 * j : NULL) != RNK_OK)
-      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge", rod, j);
+    if (rnk_material_frame(e, &r->ref[j], q[RN_EDGE_LOCAL_THETA], NULL,
+                           d1 ? d1 + 3 * j : NULL, d2 ? d2 + 3 * j : NULL) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
+                     rod, j);
   }
   return RN_OK;
 }
 
-rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain, double *kappa,
-                                 double *tau) {
+rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
+                                 double *kappa, double *tau) {
   static const char *where = "rn_network_rod_strains";
   const rn_rod *r;
   rn_status st;
@@ -85,7 +86,8 @@ rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
     const double *q = net->xfull + rn_dof_vertex_stencil(r->off, i);
     double k2[2], t;
     if (rnk_strains(q, &r->ref[i - 1], r->ref_twist[i - 1], k2, &t) != RNK_OK)
-      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d vertex %d: degenerate stencil", rod, i);
+      return rn_fail(net->ctx, RN_DEGENERATE, where,
+                     "rod %d vertex %d: degenerate stencil", rod, i);
     if (kappa) {
       kappa[2 * (i - 1)] = k2[0];
       kappa[2 * (i - 1) + 1] = k2[1];

@@ -65,11 +65,11 @@ rn_status rn_section_rectangle(double w, double h, rn_section *s) {
 
 rn_status rn_section_validate(const rn_section *s) {
   if (!s) return RN_ERR_ARG;
-  if (!isfinite(s->A) || !isfinite(s->I11) || !isfinite(s->I22) ||
-      !isfinite(s->I12) || !isfinite(s->J))
+  if (!isfinite(s->A) || !isfinite(s->I11) || !isfinite(s->I22) || !isfinite(s->I12) ||
+      !isfinite(s->J))
     return RN_ERR_NOT_FINITE;
-  if (!positive_finite(s->A) || !positive_finite(s->I11) ||
-      !positive_finite(s->I22) || !positive_finite(s->J))
+  if (!positive_finite(s->A) || !positive_finite(s->I11) || !positive_finite(s->I22) ||
+      !positive_finite(s->J))
     return RN_ERR_ARG;
   if (!(s->I11 * s->I22 - s->I12 * s->I12 > 0.0)) return RN_ERR_ARG;
   return RN_OK;

@@ -9,22 +9,9 @@
 static int bend_eval(const double q[11], const rnk_frame ref[2], const rnk_bend_param *p,
                      int ord, jet *E) {
   rnk_edge_jet f[2];
-  jet k[2];
   int st = rnk_vertex_frames(q, ref, ord, f);
   if (st) return st;
-  st = rnk_curvature_jet(f, k);
-  if (st) return st;
-  jet_add_const(&k[0], &k[0], -p->kbar[0]);
-  jet_add_const(&k[1], &k[1], -p->kbar[1]);
-  /* E = (B11 k1^2 + 2 B12 k1 k2 + B22 k2^2) / (2 vlen) */
-  jet a, b, c;
-  jet_mul(&a, &k[0], &k[0]);
-  jet_mul(&b, &k[0], &k[1]);
-  jet_mul(&c, &k[1], &k[1]);
-  double s = 0.5 / p->vlen;
-  jet_lin(E, s * p->B[0], &a, 2.0 * s * p->B[1], &b);
-  jet_lin(E, 1.0, E, s * p->B[2], &c);
-  return RNK_OK;
+  return rnk_bend_from_frames(f, p, E);
 }
 
 int rnk_bend_energy(const double q[11], const rnk_frame ref[2], const rnk_bend_param *p,

@@ -10,11 +10,7 @@ static int twist_eval(const double q[11], const rnk_frame ref[2], const rnk_twis
   rnk_edge_jet f[2];
   int st = rnk_vertex_frames(q, ref, ord, f);
   if (st) return st;
-  jet tau;
-  rnk_twist_jet(f, q, p->ref_twist, &tau);
-  jet_add_const(&tau, &tau, -p->taubar);
-  jet_mul(E, &tau, &tau);
-  jet_scale(E, 0.5 * p->beta / p->vlen, E);
+  rnk_twist_from_frames(f, q, p, E);
   return RNK_OK;
 }
 

@@ -219,9 +219,18 @@ static int solve_scene(const solve_args *a) {
     fprintf(stderr, "rodnet solve: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
   }
-  if (!rc) rc = run_solve(ctx, a, scene);
+  if (!rc) {
+    /* The solver's runtime (Kokkos, MPI) is needed only here. */
+    st = rn_runtime_initialize(NULL, NULL);
+    if (st) {
+      fprintf(stderr, "rodnet solve: cannot start the solver runtime (%s)\n",
+              rn_status_name(st));
+      rc = RN_EXIT_INTERNAL;
+    } else rc = run_solve(ctx, a, scene);
+  }
   rn_scene_destroy(&scene);
   rn_context_destroy(&ctx);
+  rn_runtime_finalize();
   return rc;
 }
 

@@ -39,8 +39,8 @@ void Problem::assemble_hessian(const double *x) {
     throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
 }
 
-void Problem::hessian_apply(const double *v, double *y, double shift,
-                            const double *d) const {
+void Problem::hessian_apply(const double *v, double *y, double shift, const double *d) {
+  ++counters.hvp;
   for (size_t i = 0; i < n_; ++i) {
     double s = 0.0;
     for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += vals_[k] * v[col_[k]];

@@ -36,9 +36,10 @@ public:
 
   // Assemble the CSR Hessian values at x (kept until the next assembly).
   void assemble_hessian(const double *x);
-  // y = (H + shift diag(d)) v with the assembled values (d may be NULL: shift ignored).
+  // y = (H + shift diag(d)) v with the assembled values (d may be NULL: shift
+  // ignored).  Counted as a Hessian-vector product.
   void hessian_apply(const double *v, double *y, double shift = 0.0,
-                     const double *d = nullptr) const;
+                     const double *d = nullptr);
   // Entry (i, j) of the assembled Hessian in CSR form.
   const int64_t *rowptr() const { return rowptr_; }
   const int32_t *col() const { return col_; }

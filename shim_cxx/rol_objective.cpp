@@ -5,6 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include <ROL_TypeU_Algorithm.hpp>
+
 #include "shim_error.hpp"
 
 namespace rodnet {
@@ -46,7 +48,6 @@ void RodObjective::hessVec(RolVector &hv, const RolVector &v, const RolVector &x
   const double *xp = host_data(x);
   if (at_accepted(xp)) {
     ensure_hessian();
-    ++p_.counters.hvp;
     p_.hessian_apply(host_data(v), host_data(hv));
   } else {
     p_.hvp(xp, host_data(v), host_data(hv));
@@ -108,7 +109,10 @@ void RodObjective::ensure_factor() {
 RodStatusTest::RodStatusTest(Monitor &monitor, RodObjective &obj, bool line_search)
     : mon_(monitor), obj_(obj), line_search_(line_search) {}
 
-bool RodStatusTest::check(ROL::AlgorithmState<double> &state) {
+bool RodStatusTest::check(ROL::AlgorithmState<double> &base) {
+  // Only the TypeU algorithms use this test: their state carries the radius / step
+  // length (searchSize).
+  auto &state = static_cast<ROL::TypeU::AlgorithmState<double> &>(base);
   IterationView it;
   it.iteration = state.iter;
   it.energy = state.value;

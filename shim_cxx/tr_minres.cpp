@@ -50,14 +50,14 @@ constexpr int kMaxMultiplierIts = 60;
 // y = (H + shift D) x with the assembled Hessian.
 class ShiftedHessian : public VectorOperator {
 public:
-  ShiftedHessian(const Problem &p, const double *d, double shift)
+  ShiftedHessian(Problem &p, const double *d, double shift)
       : p_(p), d_(d), shift_(shift) {}
   void apply(const MV &x, MV &y) const override {
     p_.hessian_apply(host_data(x), host_data(y), shift_, d_);
   }
 
 private:
-  const Problem &p_;
+  Problem &p_;
   const double *d_;
   double shift_;
 };
@@ -288,7 +288,7 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
 
 void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
                             std::ostream & /*out*/) {
-  double tol = std::sqrt(ROL_EPSILON<double>());
+  double tol = std::sqrt(ROL::ROL_EPSILON<double>());
   initialize(x, g);
   ROL::Ptr<RolVector> xtrial = x.clone(), gvec = state_->gradientVec;
   obj.update(x, ROL::UpdateType::Initial, 0);

@@ -1,3 +1,158 @@
-# Tests of problems/: scene reader, writers, the `rodnet` command.
+# Tests of problems/: scene reader, writers, the `rodnet` command (label unit).
+set(RN_SCENES ${PROJECT_SOURCE_DIR}/problems/scenes)
+set(RN_BAD ${CMAKE_CURRENT_SOURCE_DIR}/data/bad)
+set(RN_CLI_OUT ${CMAKE_CURRENT_BINARY_DIR}/problems_cli)
+file(MAKE_DIRECTORY ${RN_CLI_OUT})
+set(RN_CLI ${CMAKE_BINARY_DIR}/rodnet)
+
+# A Python 3 whose VTK reader works (Debian's python3-vtk9 lives in the system
+# interpreter, which may not be the first python3 on PATH).
+if(NOT RN_VTK_PYTHON)
+  foreach(candidate /usr/bin/python3 python3)
+    find_program(rn_py_${candidate} NAMES ${candidate})
+    set(py ${rn_py_${candidate}})
+    if(py)
+      execute_process(COMMAND ${py} -c "from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader"
+                      RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+      if(rc EQUAL 0)
+        set(RN_VTK_PYTHON ${py} CACHE FILEPATH "Python 3 with VTK (python3-vtk9)")
+        break()
+      endif()
+    endif()
+  endforeach()
+endif()
+if(NOT RN_VTK_PYTHON)
+  message(WARNING "No python3 with VTK found: the .vtu reader tests will fail "
+                  "(install python3-vtk9)")
+  set(RN_VTK_PYTHON /usr/bin/python3)
+endif()
+
+# ---- C tests ------------------------------------------------------------------------
 rn_add_test(problems_scene_errors SOURCES unit/problems_scene_errors_test.c
             LIBS rodnet_problems LABELS unit)
+file(GLOB RN_EXAMPLE_SCENES ${RN_SCENES}/*.json)
+rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
+            LIBS rodnet_problems LABELS unit ARGS ${RN_EXAMPLE_SCENES})
+rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
+            LIBS rodnet_problems LABELS unit ARGS ${RN_CLI_OUT}/atomic_scratch)
+rn_add_test(problems_writers SOURCES unit/problems_writers_test.c
+            LIBS rodnet_problems LABELS unit
+            ARGS ${RN_SCENES}/cantilever.json ${RN_CLI_OUT}/writers.json
+                 ${RN_CLI_OUT}/writers.vtu)
+set_tests_properties(problems_writers PROPERTIES FIXTURES_SETUP problems_writers_out)
+add_test(NAME problems_writers_vtu
+         COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_vtu.py
+                 ${RN_CLI_OUT}/writers.vtu --result ${RN_CLI_OUT}/writers.json --clamped-start)
+set_tests_properties(problems_writers_vtu PROPERTIES LABELS unit
+                     FIXTURES_REQUIRED problems_writers_out)
+
+# ---- the command ----------------------------------------------------------------------
+# rn_cli_test(NAME EXIT_STATUS REGEX [STDERR_LINES n] [ABSENT path] [REMOVE path]
+#             [FIXTURE_SETUP f] ARGS a...)
+function(rn_cli_test name rc regex)
+  cmake_parse_arguments(C "" "STDERR_LINES;ABSENT;REMOVE;FIXTURE_SETUP;TIMEOUT" "ARGS" ${ARGN})
+  string(REPLACE ";" "@@" args "${C_ARGS}")
+  set(defs -DCMD=${RN_CLI} -DARGS=${args} -DEXPECT_RC=${rc})
+  if(NOT regex STREQUAL "")
+    list(APPEND defs "-DEXPECT_REGEX=${regex}")
+  endif()
+  foreach(opt STDERR_LINES ABSENT REMOVE)
+    if(DEFINED C_${opt})
+      set(key ${opt})
+      if(opt STREQUAL "ABSENT")
+        set(key EXPECT_ABSENT)
+      endif()
+      list(APPEND defs -D${key}=${C_${opt}})
+    endif()
+  endforeach()
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} ${defs}
+           -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+  set_tests_properties(${name} PROPERTIES LABELS unit)
+  if(C_FIXTURE_SETUP)
+    set_tests_properties(${name} PROPERTIES FIXTURES_SETUP ${C_FIXTURE_SETUP})
+  endif()
+  if(C_TIMEOUT)
+    set_tests_properties(${name} PROPERTIES TIMEOUT ${C_TIMEOUT})
+  endif()
+endfunction()
+
+set(cant ${RN_SCENES}/cantilever.json)
+rn_cli_test(problems_cli_help 0 "Usage: rodnet COMMAND.*solve SCENE.json.*check SCENE.json"
+            ARGS --help)
+rn_cli_test(problems_cli_version 0 "^rodnet [0-9]+\\.[0-9]+\\.[0-9]+\n" ARGS --version)
+rn_cli_test(problems_cli_solve_help 0
+            "Usage: rodnet solve.*--output FILE.*--vtk FILE.*--solver NAME.*--max-iter N.*--gtol X.*--load-steps N.*--quiet"
+            ARGS solve --help)
+rn_cli_test(problems_cli_check_help 0 "Usage: rodnet check.*--random N.*--tol X"
+            ARGS check --help)
+rn_cli_test(problems_cli_no_command 2 "missing command" STDERR_LINES 2)
+rn_cli_test(problems_cli_unknown_command 2 "unknown command 'frobnicate'" ARGS frobnicate)
+rn_cli_test(problems_cli_unknown_option 2 "unknown option '--bogus'"
+            ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --bogus)
+rn_cli_test(problems_cli_missing_output 2 "missing -o RESULT.json" ARGS solve ${cant})
+rn_cli_test(problems_cli_missing_value 2 "option -o needs a value" ARGS solve ${cant} -o)
+rn_cli_test(problems_cli_bad_number 2 "--max-iter expects an integer >= 1, got 'abc'"
+            ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --max-iter abc)
+rn_cli_test(problems_cli_bad_tol 2 "--tol expects a finite number > 0, got '-1'"
+            ARGS check ${cant} --tol -1)
+rn_cli_test(problems_cli_bad_scene 3
+            "unknown_key.json: .\\.rods\\[0\\]\\.colour: unknown key \"colour\""
+            STDERR_LINES 1 ARGS check ${RN_BAD}/unknown_key.json)
+rn_cli_test(problems_cli_clamp_missing_rod 3
+            "clamp_missing_rod.json: .\\.constraints\\[0\\]\\.rod: no rod named \"bean\""
+            STDERR_LINES 1 ARGS check ${RN_BAD}/clamp_missing_rod.json)
+rn_cli_test(problems_cli_malformed_scene 3 "malformed.json:4:3: malformed JSON"
+            STDERR_LINES 1 ARGS check ${RN_BAD}/malformed.json)
+rn_cli_test(problems_cli_missing_scene 3 "no_such_scene.json: cannot open"
+            STDERR_LINES 1 ARGS check ${RN_CLI_OUT}/no_such_scene.json)
+rn_cli_test(problems_cli_check_cantilever 0 "gradient vs central differences.*PASS"
+            ARGS check ${cant} --random 2)
+# The finite-difference error can never be below 1e-14: the check must fail.
+rn_cli_test(problems_cli_check_fails 1 "FAILED.*FAIL: worst relative error above"
+            ARGS check ${cant} --random 0 --tol 1e-14)
+
+if(RN_WITH_TRILINOS)
+  set(res ${RN_CLI_OUT}/cantilever_result.json)
+  set(vtu ${RN_CLI_OUT}/cantilever.vtu)
+  rn_cli_test(problems_cli_solve_cantilever 0
+              "iter +energy +.grad. +radius +krylov.*status +converged"
+              REMOVE ${res} FIXTURE_SETUP problems_cantilever_result
+              ARGS solve ${cant} -o ${res} --vtk ${vtu})
+  add_test(NAME problems_cli_result_fields
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_result.py ${res}
+                   --status converged --vertices 101 --clamped-start 0 0.01
+                   --edge-length 0.01 --elastica 0.39 0.07853981633974483 1.0)
+  add_test(NAME problems_cli_result_vtu
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_vtu.py ${vtu}
+                   --result ${res} --clamped-start)
+  set_tests_properties(problems_cli_result_fields problems_cli_result_vtu PROPERTIES
+                       LABELS unit FIXTURES_REQUIRED problems_cantilever_result)
+  rn_cli_test(problems_cli_quiet 0 "status +converged" STDERR_LINES 0
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/quiet.json --quiet)
+  rn_cli_test(problems_cli_solve_bad_scene 3 "unknown_key.json: .\\.rods\\[0\\]\\.colour"
+              STDERR_LINES 1 REMOVE ${RN_CLI_OUT}/bad.json ABSENT ${RN_CLI_OUT}/bad.json
+              ARGS solve ${RN_BAD}/unknown_key.json -o ${RN_CLI_OUT}/bad.json)
+  rn_cli_test(problems_cli_unwritable_output 3 "no/such/dir/r.json: cannot create the file"
+              ABSENT ${RN_CLI_OUT}/no/such/dir/r.json
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/no/such/dir/r.json --quiet)
+  rn_cli_test(problems_cli_not_converged 1 "status +max_iterations"
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/not_converged.json --max-iter 1
+                   --load-steps 1 --quiet)
+  rn_cli_test(problems_cli_unknown_solver 2 "unknown solver 'newton'"
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --solver newton)
+  foreach(solver tr-minres rol-tr-tcg rol-ls-newton)
+    rn_cli_test(problems_cli_solver_${solver} 0 "status +converged.*solver +${solver}"
+                ARGS solve ${cant} -o ${RN_CLI_OUT}/solver_${solver}.json --solver ${solver}
+                     --quiet)
+  endforeach()
+  # Every example scene solves.
+  foreach(scene ${RN_EXAMPLE_SCENES})
+    get_filename_component(stem ${scene} NAME_WE)
+    rn_cli_test(problems_example_${stem} 0 "status +converged" TIMEOUT 900
+                ARGS solve ${scene} -o ${RN_CLI_OUT}/example_${stem}.json
+                     --vtk ${RN_CLI_OUT}/example_${stem}.vtu --quiet)
+  endforeach()
+else()
+  rn_cli_test(problems_cli_solve_without_solver 4 "built without the solver"
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json)
+endif()

@@ -43,7 +43,9 @@ static rn_network *simple(rn_context *ctx, int nv) {
   return net;
 }
 
-static int contains(const char *hay, const char *needle) { return strstr(hay, needle) != NULL; }
+static int contains(const char *hay, const char *needle) {
+  return strstr(hay, needle) != NULL;
+}
 
 static void test_status_and_version(void) {
   int a = -1, b = -1, c = -1;
@@ -54,7 +56,8 @@ static void test_status_and_version(void) {
   CHECK(rn_status_message((rn_status)-99) != NULL);
   CHECK(strcmp(rn_version_string(), RODNET_VERSION_STRING) == 0);
   rn_version(&a, &b, &c);
-  CHECK(a == RODNET_VERSION_MAJOR && b == RODNET_VERSION_MINOR && c == RODNET_VERSION_PATCH);
+  CHECK(a == RODNET_VERSION_MAJOR && b == RODNET_VERSION_MINOR &&
+        c == RODNET_VERSION_PATCH);
   rn_version(NULL, NULL, NULL);
 }
 
@@ -140,7 +143,8 @@ static void test_add_rod_errors(rn_context *ctx) {
   straight(4, 0.5, xyz);
   CHECK_STATUS(rn_network_add_rod(net, "a", 1, xyz, NULL, NULL), RN_ERR_ARG);
   CHECK_STATUS(rn_network_add_rod(net, "a", 4, NULL, NULL, NULL), RN_ERR_ARG);
-  CHECK_STATUS(rn_network_add_rod(net, "a", 4, xyz, d1, NULL), RN_ERR_GEOMETRY); /* d1 || t */
+  CHECK_STATUS(rn_network_add_rod(net, "a", 4, xyz, d1, NULL),
+               RN_ERR_GEOMETRY); /* d1 || t */
   CHECK(contains(rn_context_last_error(ctx), "parallel"));
   CHECK_STATUS(rn_network_add_rod(net, "a", 4, xyz, zero, NULL), RN_ERR_ARG);
   CHECK_STATUS(rn_network_add_rod(net, "a", 4, xyz, nan3, NULL), RN_ERR_NOT_FINITE);
@@ -153,7 +157,7 @@ static void test_add_rod_errors(rn_context *ctx) {
   CHECK(contains(rn_context_last_error(ctx), "edge 1"));
   CHECK(contains(rn_context_last_error(ctx), "zero-length"));
   straight(4, 0.5, xyz);
-  xyz[6] = 0.0; /* vertex 2 back at the origin: edges 0 and 1... */
+  xyz[6] = 0.0;   /* vertex 2 back at the origin: edges 0 and 1... */
   xyz[6] = -0.25; /* edge 1 points back along edge 0 */
   CHECK_STATUS(rn_network_add_rod(net, "a", 4, xyz, NULL, NULL), RN_ERR_GEOMETRY);
   CHECK(contains(rn_context_last_error(ctx), "opposite"));
@@ -404,9 +408,9 @@ static void test_sizes_and_pattern(rn_context *ctx) {
   CHECK(rn_network_context(net) == ctx);
   CHECK(rn_network_num_full_dofs(net) == 23);
   CHECK_STATUS(rn_network_clamp(net, 0, RN_START), RN_OK); /* 7 DOFs */
-  CHECK_STATUS(rn_network_pin(net, 0, -1), RN_OK);          /* 3 DOFs */
-  CHECK_STATUS(rn_network_fix_theta(net, 0, -2), RN_OK);    /* theta^3 */
-  CHECK_STATUS(rn_network_fix_theta(net, 0, 0), RN_OK);     /* already clamped */
+  CHECK_STATUS(rn_network_pin(net, 0, -1), RN_OK);         /* 3 DOFs */
+  CHECK_STATUS(rn_network_fix_theta(net, 0, -2), RN_OK);   /* theta^3 */
+  CHECK_STATUS(rn_network_fix_theta(net, 0, 0), RN_OK);    /* already clamped */
   CHECK_STATUS(rn_network_finalize(net), RN_OK);
   n = rn_network_num_dofs(net);
   CHECK(n == 23 - 7 - 3 - 1);

@@ -37,9 +37,9 @@ static void test_ellipse(void) {
   rn_section s, c;
   CHECK_STATUS(rn_section_ellipse(2.0, 1.0, &s), RN_OK);
   CHECK_REL(s.A, 2.0 * pi, 1e-15);
-  CHECK_REL(s.I11, 2.0 * pi, 1e-15);      /* pi a^3 b / 4, a along d1 */
-  CHECK_REL(s.I22, pi / 2.0, 1e-15);      /* pi a b^3 / 4 */
-  CHECK_REL(s.J, 8.0 * pi / 5.0, 1e-15);  /* pi a^3 b^3 / (a^2 + b^2) */
+  CHECK_REL(s.I11, 2.0 * pi, 1e-15);     /* pi a^3 b / 4, a along d1 */
+  CHECK_REL(s.I22, pi / 2.0, 1e-15);     /* pi a b^3 / 4 */
+  CHECK_REL(s.J, 8.0 * pi / 5.0, 1e-15); /* pi a^3 b^3 / (a^2 + b^2) */
   /* J < I11 + I22 (the polar moment) for a != b; equal for a circle */
   CHECK(s.J < s.I11 + s.I22);
   CHECK_STATUS(rn_section_ellipse(0.3, 0.3, &s), RN_OK);
@@ -64,7 +64,8 @@ static void test_rectangle(void) {
    * 192/pi^5 sum_{n odd} n^-5 = 192/pi^5 * (31/32) zeta(5). */
   CHECK_STATUS(rn_section_rectangle(100.0, 1.0, &s), RN_OK);
   CHECK_REL(s.J / 100.0,
-            (1.0 - 192.0 / pow(pi, 5) * (31.0 / 32.0) * 1.0369277551433699 / 100.0) / 3.0, 1e-12);
+            (1.0 - 192.0 / pow(pi, 5) * (31.0 / 32.0) * 1.0369277551433699 / 100.0) / 3.0,
+            1e-12);
   CHECK_STATUS(rn_section_rectangle(1e4, 1.0, &s), RN_OK);
   CHECK_NEAR(s.J / 1e4, 1.0 / 3.0, 3e-5);
   /* moments, width along d1 */

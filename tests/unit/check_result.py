@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""Check a result JSON written by `rodnet solve`.
+
+    check_result.py RESULT.json [--status converged] [--vertices N]
+                    [--clamped-start X0 X1] [--edge-length L]
+                    [--elastica P EI LENGTH]
+
+Always: the required fields exist with the right types and finite values;
+energy equals the sum of energy_terms; a converged result has a gradient
+norm far below the initial one and load factor 1; every rod has
+len(theta) == len(vertices) - 1.  Options add: the status; the vertex count
+of the first rod; a clamped start (first two vertices unmoved, given as
+x of vertex 0 and 1 on the x axis); inextensibility (every edge within 1e-3
+of L); the tip position of a cantilever elastica under a dead tip load P
+(-z), computed here by shooting (relative tolerance 2e-3: the discretisation
+error at 100 edges is far below that)."""
+import argparse
+import json
+import math
+import sys
+
+
+def fail(msg):
+    print("check_result: FAILED: " + msg)
+    sys.exit(1)
+
+
+def finite(x, what):
+    if not isinstance(x, (int, float)) or isinstance(x, bool) or not math.isfinite(x):
+        fail("%s is not a finite number: %r" % (what, x))
+    return x
+
+
+def elastica_tip(P, EI, L, n=4000):
+    """Tip (x, z) of a clamped-free elastica, tip load P downwards:
+    EI theta'' = -P cos(theta), theta(0) = 0, theta'(L) = 0."""
+    def shoot(k0):
+        h = L / n
+        th, k, x, z = 0.0, k0, 0.0, 0.0
+        def f(state):
+            th_, k_, _, _ = state
+            return (k_, -P / EI * math.cos(th_), math.cos(th_), -math.sin(th_))
+        s = (th, k, x, z)
+        for _ in range(n):
+            a = f(s)
+            b = f(tuple(si + 0.5 * h * ai for si, ai in zip(s, a)))
+            c = f(tuple(si + 0.5 * h * bi for si, bi in zip(s, b)))
+            d = f(tuple(si + h * ci for si, ci in zip(s, c)))
+            s = tuple(si + h / 6 * (ai + 2 * bi + 2 * ci + di)
+                      for si, ai, bi, ci, di in zip(s, a, b, c, d))
+        return s
+    lo, hi = 0.0, P * L / EI
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if shoot(mid)[1] > 0:
+            hi = mid
+        else:
+            lo = mid
+    s = shoot(0.5 * (lo + hi))
+    return s[2], s[3]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("result")
+    ap.add_argument("--status")
+    ap.add_argument("--vertices", type=int)
+    ap.add_argument("--clamped-start", type=float, nargs=2)
+    ap.add_argument("--edge-length", type=float)
+    ap.add_argument("--elastica", type=float, nargs=3)
+    a = ap.parse_args()
+    with open(a.result) as f:
+        r = json.load(f)
+    for key in ("status", "energy", "gradient_norm", "iterations", "time_s", "rods",
+                "solver", "stop_reason", "converged", "energy_terms", "load_factor",
+                "initial_gradient_norm", "evaluations", "num_dofs"):
+        if key not in r:
+            fail("missing field '%s'" % key)
+    if not isinstance(r["status"], str) or not isinstance(r["iterations"], int):
+        fail("status must be a string and iterations an integer")
+    for key in ("energy", "gradient_norm", "time_s", "load_factor", "initial_gradient_norm"):
+        finite(r[key], key)
+    if r["time_s"] < 0 or r["gradient_norm"] < 0 or r["iterations"] < 0:
+        fail("negative time, gradient norm or iteration count")
+    if a.status and r["status"] != a.status:
+        fail("status %r, expected %r" % (r["status"], a.status))
+    if r["converged"] != (r["status"] == "converged"):
+        fail("converged flag %r inconsistent with status %r" % (r["converged"], r["status"]))
+    terms = sum(finite(v, "energy_terms." + k) for k, v in r["energy_terms"].items())
+    if abs(terms - r["energy"]) > 1e-9 * max(1e-300, sum(abs(v) for v in r["energy_terms"].values())):
+        fail("energy %r differs from the sum of its terms %r" % (r["energy"], terms))
+    if r["converged"]:
+        if r["iterations"] < 1:
+            fail("converged in %d iterations" % r["iterations"])
+        if not r["gradient_norm"] <= 1e-6 * r["initial_gradient_norm"]:
+            fail("gradient norm %g not below 1e-6 x initial %g" % (
+                r["gradient_norm"], r["initial_gradient_norm"]))
+        if r["load_factor"] != 1:
+            fail("converged at load factor %r" % r["load_factor"])
+    if not r["rods"]:
+        fail("no rods")
+    for rod in r["rods"]:
+        v, th = rod["vertices"], rod["theta"]
+        if not isinstance(rod.get("name"), str) or len(v) < 2 or len(th) != len(v) - 1:
+            fail("rod %r: %d vertices, %d angles" % (rod.get("name"), len(v), len(th)))
+        for p in v:
+            if len(p) != 3:
+                fail("vertex %r is not a point" % p)
+            for x in p:
+                finite(x, "vertex coordinate")
+        for t in th:
+            finite(t, "theta")
+    v = r["rods"][0]["vertices"]
+    if a.vertices is not None and len(v) != a.vertices:
+        fail("%d vertices, expected %d" % (len(v), a.vertices))
+    if a.clamped_start:
+        for i, x0 in enumerate(a.clamped_start):
+            if max(abs(v[i][0] - x0), abs(v[i][1]), abs(v[i][2])) > 1e-14:
+                fail("clamped vertex %d moved to %r" % (i, v[i]))
+    if a.edge_length:
+        for i in range(len(v) - 1):
+            l = math.dist(v[i], v[i + 1])
+            if abs(l / a.edge_length - 1) > 1e-3:
+                fail("edge %d has length %r, expected %r" % (i, l, a.edge_length))
+    if a.elastica:
+        P, EI, L = a.elastica
+        xt, zt = elastica_tip(P, EI, L)
+        tip = v[-1]
+        err = math.hypot(tip[0] - xt, tip[2] - zt) / L
+        print("check_result: tip (%.6f, %.6f), elastica (%.6f, %.6f), |diff| / L = %.2e" % (
+            tip[0], tip[2], xt, zt, err))
+        if err > 2e-3 or abs(tip[1]) > 1e-9:
+            fail("tip off the elastica")
+    print("check_result: ok: %s (status %s, %d iterations)" % (a.result, r["status"], r["iterations"]))
+
+
+if __name__ == "__main__":
+    main()
