@@ -37,22 +37,22 @@ extern "C" {
 #define RODNET_VERSION_STRING "0.1.0"
 
 /* ---- status codes (one list: codes, names and messages) ----------------- */
-#define RN_STATUS_LIST(X)                                                        \
-  X(RN_OK, 0, "ok")                                                              \
-  X(RN_DEGENERATE, 1, "degenerate configuration at a trial point")               \
-  X(RN_ERR_ALLOC, -1, "out of memory")                                           \
-  X(RN_ERR_ARG, -2, "invalid argument")                                          \
-  X(RN_ERR_STATE, -3, "operation not allowed in the object's current state")     \
-  X(RN_ERR_RANGE, -4, "index out of range")                                      \
-  X(RN_ERR_GEOMETRY, -5, "degenerate geometry")                                  \
-  X(RN_ERR_BC, -6, "inconsistent boundary conditions")                           \
-  X(RN_ERR_NOT_FINITE, -7, "value is not finite")                                \
-  X(RN_ERR_LAPACK, -8, "dense/banded factorisation failed")                      \
-  X(RN_ERR_SOLVER, -9, "solver failure")                                         \
-  X(RN_ERR_TRILINOS, -10, "Trilinos error")                                      \
-  X(RN_ERR_IO, -11, "input/output error")                                        \
-  X(RN_ERR_PARSE, -12, "malformed input")                                        \
-  X(RN_ERR_CHECK, -13, "derivative self-test failed")                            \
+#define RN_STATUS_LIST(X)                                                    \
+  X(RN_OK, 0, "ok")                                                          \
+  X(RN_DEGENERATE, 1, "degenerate configuration at a trial point")           \
+  X(RN_ERR_ALLOC, -1, "out of memory")                                       \
+  X(RN_ERR_ARG, -2, "invalid argument")                                      \
+  X(RN_ERR_STATE, -3, "operation not allowed in the object's current state") \
+  X(RN_ERR_RANGE, -4, "index out of range")                                  \
+  X(RN_ERR_GEOMETRY, -5, "degenerate geometry")                              \
+  X(RN_ERR_BC, -6, "inconsistent boundary conditions")                       \
+  X(RN_ERR_NOT_FINITE, -7, "value is not finite")                            \
+  X(RN_ERR_LAPACK, -8, "dense/banded factorisation failed")                  \
+  X(RN_ERR_SOLVER, -9, "solver failure")                                     \
+  X(RN_ERR_TRILINOS, -10, "Trilinos error")                                  \
+  X(RN_ERR_IO, -11, "input/output error")                                    \
+  X(RN_ERR_PARSE, -12, "malformed input")                                    \
+  X(RN_ERR_CHECK, -13, "derivative self-test failed")                        \
   X(RN_ERR_INTERNAL, -14, "internal error")
 
 typedef enum rn_status {
@@ -88,15 +88,14 @@ void rn_context_clear_error(rn_context *ctx);
 
 /* ---- materials and sections --------------------------------------------- */
 typedef struct rn_material {
-  double E;        /* Young's modulus, > 0 */
-  double G;        /* shear modulus, > 0 */
-  double density;  /* mass per unit volume, >= 0 (gravity only) */
+  double E;       /* Young's modulus, > 0 */
+  double G;       /* shear modulus, > 0 */
+  double density; /* mass per unit volume, >= 0 (gravity only) */
 } rn_material;
 
 /* Material from (E, nu): G = E / (2 (1 + nu)); needs E > 0, -1 < nu < 0.5+.
  * (nu = 0.5 is allowed: incompressible.)  RN_ERR_ARG otherwise. */
-rn_status rn_material_from_E_nu(double E, double nu, double density,
-                                rn_material *m);
+rn_status rn_material_from_E_nu(double E, double nu, double density, rn_material *m);
 
 /* Cross-section: area A, second moments in the material frame and torsion
  * constant J.  The bending stiffness B = E [[I11, I12], [I12, I22]] acts on
@@ -138,20 +137,18 @@ void rn_network_destroy(rn_network **net);
  * is the initial shape until rest_* below override it.  name may be NULL.
  * *rod receives the rod index.  RN_ERR_GEOMETRY for zero-length edges or
  * opposite consecutive tangents; RN_ERR_NOT_FINITE for NaN/Inf. */
-rn_status rn_network_add_rod(rn_network *net, const char *name, int nv,
-                             const double *xyz, const double *d1, int *rod);
+rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const double *xyz,
+                             const double *d1, int *rod);
 
 /* Material and section of a rod's edges: edge = -1 for all edges. */
 rn_status rn_network_set_material(rn_network *net, int rod, int edge,
                                   const rn_material *m);
-rn_status rn_network_set_section(rn_network *net, int rod, int edge,
-                                 const rn_section *s);
+rn_status rn_network_set_section(rn_network *net, int rod, int edge, const rn_section *s);
 
 /* Rest shape overrides: kappa[2*(nv-2)] integrated material curvature per
  * interior vertex (seed 000 (2.2)); tau[nv-2] integrated twist per interior
  * vertex; len[nv-1] rest length per edge (> 0). */
-rn_status rn_network_set_rest_curvature(rn_network *net, int rod,
-                                        const double *kappa);
+rn_status rn_network_set_rest_curvature(rn_network *net, int rod, const double *kappa);
 rn_status rn_network_set_rest_twist(rn_network *net, int rod, const double *tau);
 rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *len);
 
@@ -165,19 +162,17 @@ rn_status rn_network_fix_theta(rn_network *net, int rod, int edge);
  * rotvec[3] (rotation vector, about the midpoint of the clamped edge, which
  * is where the continuum clamp sits).  Either may be NULL.  Scaled by the
  * load factor.  RN_ERR_BC if that end is not clamped (checked at finalize). */
-rn_status rn_network_displace_end(rn_network *net, int rod, int end,
-                                  const double disp[3], const double rotvec[3]);
+rn_status rn_network_displace_end(rn_network *net, int rod, int end, const double disp[3],
+                                  const double rotvec[3]);
 /* Prescribed displacement of a pinned (or clamped) vertex. */
 rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
                                      const double disp[3]);
 
 /* Loads (dead, scaled by the load factor). */
-rn_status rn_network_add_force(rn_network *net, int rod, int vertex,
-                               const double f[3]);
+rn_status rn_network_add_force(rn_network *net, int rod, int vertex, const double f[3]);
 /* Couple on the material frame of the edge at a vertex (edge i for vertex i,
  * the last edge for the last vertex); see rnk_moment_* for the model. */
-rn_status rn_network_add_moment(rn_network *net, int rod, int vertex,
-                                const double m[3]);
+rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const double m[3]);
 /* Uniform load per unit rest length on a rod, lumped to vertices with their
  * Voronoi rest lengths. */
 rn_status rn_network_add_line_load(rn_network *net, int rod, const double w[3]);
@@ -196,7 +191,7 @@ rn_status rn_network_set_load_factor(rn_network *net, double lambda);
 double rn_network_load_factor(const rn_network *net);
 
 /* ---- sizes and state ----------------------------------------------------- */
-size_t rn_network_num_dofs(const rn_network *net);       /* reduced */
+size_t rn_network_num_dofs(const rn_network *net); /* reduced */
 size_t rn_network_num_full_dofs(const rn_network *net);
 int rn_network_num_rods(const rn_network *net);
 int rn_network_rod_num_vertices(const rn_network *net, int rod);
@@ -217,20 +212,16 @@ rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
 rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v,
                          double *Hv);
 /* Energy split by term: E[RN_TERM_COUNT]. */
-enum { RN_TERM_STRETCH = 0, RN_TERM_BEND, RN_TERM_TWIST, RN_TERM_LOAD,
-       RN_TERM_COUNT };
-rn_status rn_network_energy_terms(const rn_network *net, const double *x,
-                                  double *E);
+enum { RN_TERM_STRETCH = 0, RN_TERM_BEND, RN_TERM_TWIST, RN_TERM_LOAD, RN_TERM_COUNT };
+rn_status rn_network_energy_terms(const rn_network *net, const double *x, double *E);
 
 /* Sparse Hessian in CSR, both triangles, on the reduced DOFs.  The pattern is
  * fixed at finalize (borrowed arrays valid until destroy):
  * rowptr[num_dofs+1], col[nnz] sorted per row. */
 rn_status rn_network_hessian_pattern(const rn_network *net, size_t *nnz,
-                                     const int64_t **rowptr,
-                                     const int32_t **col);
+                                     const int64_t **rowptr, const int32_t **col);
 /* Values vals[nnz] of H(x) in that pattern (same blocks as rn_network_hvp). */
-rn_status rn_network_hessian_values(const rn_network *net, const double *x,
-                                    double *vals);
+rn_status rn_network_hessian_values(const rn_network *net, const double *x, double *vals);
 /* Half bandwidth of the pattern: max |i - j| over nonzeros. */
 size_t rn_network_hessian_bandwidth(const rn_network *net);
 
@@ -245,11 +236,9 @@ rn_status rn_network_update_reference(rn_network *net, const double *x);
 rn_status rn_network_rod_vertices(const rn_network *net, int rod, double *xyz);
 rn_status rn_network_rod_theta(const rn_network *net, int rod, double *theta);
 /* Initial (input) vertex positions of a rod. */
-rn_status rn_network_rod_initial_vertices(const rn_network *net, int rod,
-                                          double *xyz);
+rn_status rn_network_rod_initial_vertices(const rn_network *net, int rod, double *xyz);
 /* Current material directors d1[3*(nv-1)], d2[3*(nv-1)] (either may be NULL). */
-rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1,
-                                double *d2);
+rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1, double *d2);
 /* Per-edge stretching strain l/lbar - 1 and per-interior-vertex material
  * curvature kappa[2*(nv-2)] and twist tau[nv-2] (integrated), current state.
  * Any pointer may be NULL. */
@@ -258,13 +247,13 @@ rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
 
 /* ---- derivative self-test ------------------------------------------------ */
 typedef struct rn_check_report {
-  double grad_rel_err;   /* worst relative FD error of the gradient */
-  double hvp_rel_err;    /* worst relative FD error of the HVP */
-  double hess_sym_err;   /* relative asymmetry of the assembled Hessian */
-  double hess_hvp_err;   /* relative mismatch between CSR Hessian and HVP */
-  double grad_order;     /* observed order of the FD error over the h-sweep */
+  double grad_rel_err; /* worst relative FD error of the gradient */
+  double hvp_rel_err;  /* worst relative FD error of the HVP */
+  double hess_sym_err; /* relative asymmetry of the assembled Hessian */
+  double hess_hvp_err; /* relative mismatch between CSR Hessian and HVP */
+  double grad_order;   /* observed order of the FD error over the h-sweep */
   double hvp_order;
-  int n_points;          /* points tested */
+  int n_points; /* points tested */
 } rn_check_report;
 
 /* Check gradient and HVP against central differences at x (NULL = current
@@ -272,8 +261,8 @@ typedef struct rn_check_report {
  * perturb), over an h-sweep.  Fills rep; returns RN_OK (the caller compares
  * the errors with its tolerance). */
 rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
-                                       int n_random, double perturb,
-                                       uint64_t seed, rn_check_report *rep);
+                                       int n_random, double perturb, uint64_t seed,
+                                       rn_check_report *rep);
 
 #ifdef __cplusplus
 }

@@ -27,12 +27,12 @@ typedef enum rn_solver_kind {
 
 /* Why a solve stopped. */
 typedef enum rn_solve_stop {
-  RN_STOP_GRADIENT = 0,     /* ||g|| <= gtol_rel * g_scale (or gtol_abs) */
-  RN_STOP_STEP = 1,         /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
-  RN_STOP_ENERGY = 2,       /* |dE| <= energy_tol * (1 + |E|) on an accepted step */
-  RN_STOP_MAX_ITER = 3,     /* iteration limit: not converged */
-  RN_STOP_RADIUS = 4,       /* trust radius collapsed: not converged */
-  RN_STOP_FAILED = 5        /* error (see status / context) */
+  RN_STOP_GRADIENT = 0, /* ||g|| <= gtol_rel * g_scale (or gtol_abs) */
+  RN_STOP_STEP = 1,     /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
+  RN_STOP_ENERGY = 2,   /* |dE| <= energy_tol * (1 + |E|) on an accepted step */
+  RN_STOP_MAX_ITER = 3, /* iteration limit: not converged */
+  RN_STOP_RADIUS = 4,   /* trust radius collapsed: not converged */
+  RN_STOP_FAILED = 5    /* error (see status / context) */
 } rn_solve_stop;
 
 /* Per-iteration progress (passed to the callback once per Newton iteration). */
@@ -40,26 +40,26 @@ typedef struct rn_iteration_info {
   int iteration;
   double energy;
   double gradient_norm;
-  double radius;            /* trust radius (0 for line search) */
-  int krylov_iterations;    /* this iteration */
-  double seconds;           /* since the start of the solve */
+  double radius;         /* trust radius (0 for line search) */
+  int krylov_iterations; /* this iteration */
+  double seconds;        /* since the start of the solve */
   double load_factor;
 } rn_iteration_info;
 
 typedef struct rn_solve_options {
   rn_solver_kind solver;
-  int max_iterations;       /* Newton iterations per load step (default 200) */
-  double gtol_rel;          /* default 1e-9, relative to max(||g_0||, force scale) */
-  double gtol_abs;          /* default 0 (off) */
-  double step_tol;          /* default 1e-12 */
-  double energy_tol;        /* default 1e-15 */
-  int krylov_max_iterations;/* default 500 */
-  double krylov_tol;        /* relative MINRES residual, default 1e-10 */
-  double initial_radius;    /* default 0: automatic */
-  int load_steps;           /* > 0: fixed number of continuation steps;
-                               0 (default): one step, split automatically
-                               when a full step fails */
-  int max_load_cuts;        /* automatic halvings allowed (default 8) */
+  int max_iterations;        /* Newton iterations per load step (default 200) */
+  double gtol_rel;           /* default 1e-9, relative to max(||g_0||, force scale) */
+  double gtol_abs;           /* default 0 (off) */
+  double step_tol;           /* default 1e-12 */
+  double energy_tol;         /* default 1e-15 */
+  int krylov_max_iterations; /* default 500 */
+  double krylov_tol;         /* relative MINRES residual, default 1e-10 */
+  double initial_radius;     /* default 0: automatic */
+  int load_steps;            /* > 0: fixed number of continuation steps;
+                                0 (default): one step, split automatically
+                                when a full step fails */
+  int max_load_cuts;         /* automatic halvings allowed (default 8) */
   void (*progress)(void *user, const rn_iteration_info *info);
   void *progress_user;
 } rn_solve_options;
@@ -67,13 +67,13 @@ typedef struct rn_solve_options {
 void rn_solve_options_default(rn_solve_options *opt);
 
 typedef struct rn_solve_report {
-  rn_status status;         /* RN_OK if the solver ran (converged or not) */
-  rn_solve_stop stop;       /* which test stopped it */
-  int converged;            /* 1 if stop is GRADIENT, STEP or ENERGY */
-  int iterations;           /* Newton iterations, all load steps */
+  rn_status status;   /* RN_OK if the solver ran (converged or not) */
+  rn_solve_stop stop; /* which test stopped it */
+  int converged;      /* 1 if stop is GRADIENT, STEP or ENERGY */
+  int iterations;     /* Newton iterations, all load steps */
   long energy_evals, gradient_evals, hvp_evals, hessian_evals;
-  long krylov_iterations;   /* total MINRES/CG iterations */
-  int load_steps;           /* continuation steps taken */
+  long krylov_iterations; /* total MINRES/CG iterations */
+  int load_steps;         /* continuation steps taken */
   double energy, gradient_norm, initial_gradient_norm;
   double time_s;
 } rn_solve_report;
@@ -127,8 +127,7 @@ void rn_runtime_finalize(void);
  * vector products); rep->hvp_evals counts matrix-free and CSR Hessian-vector
  * products; rep->load_steps counts load steps attempted (including those cut
  * back). */
-rn_status rn_solve(rn_network *net, const rn_solve_options *opt,
-                   rn_solve_report *rep);
+rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep);
 
 /* Smallest eigenvalue of the reduced Hessian at the current state (LAPACK
  * dsbevx on the banded Hessian: exact up to round-off; memory n (kd + 1) with

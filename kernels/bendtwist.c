@@ -33,8 +33,9 @@ void rnk_twist_from_frames(const rnk_edge_jet f[2], const double q[11],
   jet_scale(E, 0.5 * p->beta / p->vlen, E);
 }
 
-static int bendtwist_eval(const double q[11], const rnk_frame ref[2], const rnk_bend_param *bp,
-                          const rnk_twist_param *tp, int ord, jet *Eb, jet *Et) {
+static int bendtwist_eval(const double q[11], const rnk_frame ref[2],
+                          const rnk_bend_param *bp, const rnk_twist_param *tp, int ord,
+                          jet *Eb, jet *Et) {
   rnk_edge_jet f[2];
   int st = rnk_vertex_frames(q, ref, ord, f);
   if (st) return st;
@@ -44,8 +45,9 @@ static int bendtwist_eval(const double q[11], const rnk_frame ref[2], const rnk_
   return RNK_OK;
 }
 
-int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2], const rnk_bend_param *bp,
-                         const rnk_twist_param *tp, double *Eb, double *Et) {
+int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2],
+                         const rnk_bend_param *bp, const rnk_twist_param *tp, double *Eb,
+                         double *Et) {
   jet eb, et;
   int st = bendtwist_eval(q, ref, bp, tp, 0, &eb, &et);
   if (st) return st;
@@ -54,8 +56,9 @@ int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2], const rnk_b
   return RNK_OK;
 }
 
-int rnk_bendtwist_grad(const double q[11], const rnk_frame ref[2], const rnk_bend_param *bp,
-                       const rnk_twist_param *tp, double *E, double g[11]) {
+int rnk_bendtwist_grad(const double q[11], const rnk_frame ref[2],
+                       const rnk_bend_param *bp, const rnk_twist_param *tp, double *E,
+                       double g[11]) {
   jet eb, et;
   int st = bendtwist_eval(q, ref, bp, tp, 1, &eb, &et);
   if (st) return st;
@@ -65,8 +68,9 @@ int rnk_bendtwist_grad(const double q[11], const rnk_frame ref[2], const rnk_ben
   return RNK_OK;
 }
 
-int rnk_bendtwist_hess(const double q[11], const rnk_frame ref[2], const rnk_bend_param *bp,
-                       const rnk_twist_param *tp, double H[121]) {
+int rnk_bendtwist_hess(const double q[11], const rnk_frame ref[2],
+                       const rnk_bend_param *bp, const rnk_twist_param *tp,
+                       double H[121]) {
   jet eb, et;
   int st = bendtwist_eval(q, ref, bp, tp, 2, &eb, &et);
   if (st) return st;
@@ -75,8 +79,9 @@ int rnk_bendtwist_hess(const double q[11], const rnk_frame ref[2], const rnk_ben
   return RNK_OK;
 }
 
-int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2], const rnk_bend_param *bp,
-                      const rnk_twist_param *tp, const double v[11], double Hv[11]) {
+int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
+                      const rnk_bend_param *bp, const rnk_twist_param *tp,
+                      const double v[11], double Hv[11]) {
   double H[121];
   int st = rnk_bendtwist_hess(q, ref, bp, tp, H);
   if (st) return st;

@@ -17,7 +17,8 @@ static void cross3(const double a[3], const double b[3], double r[3]) {
   r[2] = t[2];
 }
 
-int rnk_transport(const double ta[3], const double tb[3], const double v[3], double out[3]) {
+int rnk_transport(const double ta[3], const double tb[3], const double v[3],
+                  double out[3]) {
   /* R v = c v + n x v + n (n . v) / (1 + c), n = ta x tb, c = ta . tb:
    * no division by sin(angle), exact identity for ta == tb. */
   double c = dot3(ta, tb), n[3], nv[3];
@@ -91,7 +92,8 @@ typedef struct {
   double c[2];
 } rnk_dmap;
 
-static void scatter(int nj, const rnk_dmap *m, int nq, const jet *E, double *g, double *H) {
+static void scatter(int nj, const rnk_dmap *m, int nq, const jet *E, double *g,
+                    double *H) {
   if (g) {
     for (int i = 0; i < nq; ++i) g[i] = 0.0;
     for (int a = 0; a < nj; ++a)
@@ -111,16 +113,18 @@ static void scatter(int nj, const rnk_dmap *m, int nq, const jet *E, double *g, 
 }
 
 void rnk_scatter_vertex(const jet *E, double *g, double *H) {
-  static const rnk_dmap m[8] = {
-      {2, {4, 0}, {1, -1}}, {2, {5, 1}, {1, -1}},  {2, {6, 2}, {1, -1}},
-      {1, {3, 0}, {1, 0}},  {2, {8, 4}, {1, -1}},  {2, {9, 5}, {1, -1}},
-      {2, {10, 6}, {1, -1}}, {1, {7, 0}, {1, 0}}};
+  static const rnk_dmap m[8] = {{2, {4, 0}, {1, -1}},  {2, {5, 1}, {1, -1}},
+                                {2, {6, 2}, {1, -1}},  {1, {3, 0}, {1, 0}},
+                                {2, {8, 4}, {1, -1}},  {2, {9, 5}, {1, -1}},
+                                {2, {10, 6}, {1, -1}}, {1, {7, 0}, {1, 0}}};
   scatter(8, m, 11, E, g, H);
 }
 
 void rnk_scatter_edge(const jet *E, double *g, double *H) {
-  static const rnk_dmap m[4] = {
-      {2, {4, 0}, {1, -1}}, {2, {5, 1}, {1, -1}}, {2, {6, 2}, {1, -1}}, {1, {3, 0}, {1, 0}}};
+  static const rnk_dmap m[4] = {{2, {4, 0}, {1, -1}},
+                                {2, {5, 1}, {1, -1}},
+                                {2, {6, 2}, {1, -1}},
+                                {1, {3, 0}, {1, 0}}};
   scatter(4, m, 7, E, g, H);
 }
 

@@ -71,8 +71,12 @@ static inline void jet_lin(jet *r, double sa, const jet *a, double sb, const jet
       for (int j = i; j < n; ++j) r->h[i][j] = sa * a->h[i][j] + sb * b->h[i][j];
 }
 
-static inline void jet_add(jet *r, const jet *a, const jet *b) { jet_lin(r, 1.0, a, 1.0, b); }
-static inline void jet_sub(jet *r, const jet *a, const jet *b) { jet_lin(r, 1.0, a, -1.0, b); }
+static inline void jet_add(jet *r, const jet *a, const jet *b) {
+  jet_lin(r, 1.0, a, 1.0, b);
+}
+static inline void jet_sub(jet *r, const jet *a, const jet *b) {
+  jet_lin(r, 1.0, a, -1.0, b);
+}
 
 static inline void jet_scale(jet *r, double s, const jet *a) {
   int n = a->n, ord = a->ord;
@@ -103,8 +107,8 @@ static inline void jet_mul(jet *r, const jet *a, const jet *b) {
   if (ord >= 2)
     for (int i = 0; i < n; ++i)
       for (int j = i; j < n; ++j)
-        t.h[i][j] = a->h[i][j] * b->v + a->v * b->h[i][j] + a->g[i] * b->g[j] +
-                    b->g[i] * a->g[j];
+        t.h[i][j] =
+            a->h[i][j] * b->v + a->v * b->h[i][j] + a->g[i] * b->g[j] + b->g[i] * a->g[j];
   jet_copy(r, &t);
 }
 
@@ -172,7 +176,8 @@ static inline void jet_atan2(jet *r, const jet *y, const jet *x) {
     for (int i = 0; i < n; ++i)
       for (int j = i; j < n; ++j)
         t.h[i][j] = fx * x->h[i][j] + fy * y->h[i][j] + fxx * x->g[i] * x->g[j] +
-                    fyy * y->g[i] * y->g[j] + fxy * (x->g[i] * y->g[j] + y->g[i] * x->g[j]);
+                    fyy * y->g[i] * y->g[j] +
+                    fxy * (x->g[i] * y->g[j] + y->g[i] * x->g[j]);
   jet_copy(r, &t);
 }
 

@@ -51,8 +51,8 @@ int rnk_transport(const double ta[3], const double tb[3], const double v[3],
 
 /* Material frame of an edge with edge vector e, reference frame ref, angle
  * theta: unit tangent t, directors d1, d2.  Any output may be NULL. */
-int rnk_material_frame(const double e[3], const rnk_frame *ref, double theta,
-                       double t[3], double d1[3], double d2[3]);
+int rnk_material_frame(const double e[3], const rnk_frame *ref, double theta, double t[3],
+                       double d1[3], double d2[3]);
 
 /* Time-parallel update of a reference frame to the current edge vector e:
  * ref->a1 becomes the transported director (re-orthonormalised), ref->t the
@@ -64,66 +64,66 @@ int rnk_frame_update(const double e[3], rnk_frame *ref);
  * edge's reference director to the second's, continued from ref_twist_prev
  * (the value stored at the last reference update) so that it does not alias
  * modulo 2 pi. */
-int rnk_reference_twist(const double q[11], const rnk_frame ref[2],
-                        double ref_twist_prev, double *m);
+int rnk_reference_twist(const double q[11], const rnk_frame ref[2], double ref_twist_prev,
+                        double *m);
 
 /* Material curvature (kappa1, kappa2) (integrated, seed 000 (2.2)) and twist
  * (theta^i - theta^{i-1} + reference twist) at a vertex stencil. */
-int rnk_strains(const double q[11], const rnk_frame ref[2],
-                double ref_twist_prev, double kappa[2], double *twist);
+int rnk_strains(const double q[11], const rnk_frame ref[2], double ref_twist_prev,
+                double kappa[2], double *twist);
 
 /* ---- stretching: E = 1/2 k (l - lbar)^2 / lbar on an edge stencil q[7] ---- */
 typedef struct rnk_stretch_param {
-  double k;     /* axial stiffness E A */
-  double lbar;  /* rest length */
+  double k;    /* axial stiffness E A */
+  double lbar; /* rest length */
 } rnk_stretch_param;
 
 int rnk_stretch_energy(const double q[7], const rnk_stretch_param *p, double *E);
 int rnk_stretch_grad(const double q[7], const rnk_stretch_param *p, double *E,
                      double g[7]);
 int rnk_stretch_hess(const double q[7], const rnk_stretch_param *p, double H[49]);
-int rnk_stretch_hvp(const double q[7], const rnk_stretch_param *p,
-                    const double v[7], double Hv[7]);
+int rnk_stretch_hvp(const double q[7], const rnk_stretch_param *p, const double v[7],
+                    double Hv[7]);
 
 /* ---- bending: E = 1/2 (k - kbar)^T B (k - kbar) / vlen on q[11] ---------- */
 typedef struct rnk_bend_param {
-  double B[3];        /* B11, B12, B22: bending stiffness E I in (d1, d2) */
-  double kbar[2];     /* rest material curvature (integrated) */
-  double vlen;        /* Voronoi rest length (lbar^{i-1} + lbar^i) / 2 */
+  double B[3];    /* B11, B12, B22: bending stiffness E I in (d1, d2) */
+  double kbar[2]; /* rest material curvature (integrated) */
+  double vlen;    /* Voronoi rest length (lbar^{i-1} + lbar^i) / 2 */
 } rnk_bend_param;
 
-int rnk_bend_energy(const double q[11], const rnk_frame ref[2],
-                    const rnk_bend_param *p, double *E);
-int rnk_bend_grad(const double q[11], const rnk_frame ref[2],
-                  const rnk_bend_param *p, double *E, double g[11]);
-int rnk_bend_hess(const double q[11], const rnk_frame ref[2],
-                  const rnk_bend_param *p, double H[121]);
-int rnk_bend_hvp(const double q[11], const rnk_frame ref[2],
-                 const rnk_bend_param *p, const double v[11], double Hv[11]);
+int rnk_bend_energy(const double q[11], const rnk_frame ref[2], const rnk_bend_param *p,
+                    double *E);
+int rnk_bend_grad(const double q[11], const rnk_frame ref[2], const rnk_bend_param *p,
+                  double *E, double g[11]);
+int rnk_bend_hess(const double q[11], const rnk_frame ref[2], const rnk_bend_param *p,
+                  double H[121]);
+int rnk_bend_hvp(const double q[11], const rnk_frame ref[2], const rnk_bend_param *p,
+                 const double v[11], double Hv[11]);
 
 /* ---- twist: E = 1/2 beta (tau - taubar)^2 / vlen on q[11] --------------- */
 typedef struct rnk_twist_param {
-  double beta;        /* twisting stiffness G J */
-  double taubar;      /* rest twist (integrated) */
-  double vlen;        /* Voronoi rest length */
-  double ref_twist;   /* reference twist stored at the last reference update */
+  double beta;      /* twisting stiffness G J */
+  double taubar;    /* rest twist (integrated) */
+  double vlen;      /* Voronoi rest length */
+  double ref_twist; /* reference twist stored at the last reference update */
 } rnk_twist_param;
 
-int rnk_twist_energy(const double q[11], const rnk_frame ref[2],
-                     const rnk_twist_param *p, double *E);
-int rnk_twist_grad(const double q[11], const rnk_frame ref[2],
-                   const rnk_twist_param *p, double *E, double g[11]);
-int rnk_twist_hess(const double q[11], const rnk_frame ref[2],
-                   const rnk_twist_param *p, double H[121]);
-int rnk_twist_hvp(const double q[11], const rnk_frame ref[2],
-                  const rnk_twist_param *p, const double v[11], double Hv[11]);
+int rnk_twist_energy(const double q[11], const rnk_frame ref[2], const rnk_twist_param *p,
+                     double *E);
+int rnk_twist_grad(const double q[11], const rnk_frame ref[2], const rnk_twist_param *p,
+                   double *E, double g[11]);
+int rnk_twist_hess(const double q[11], const rnk_frame ref[2], const rnk_twist_param *p,
+                   double H[121]);
+int rnk_twist_hvp(const double q[11], const rnk_frame ref[2], const rnk_twist_param *p,
+                  const double v[11], double Hv[11]);
 
 /* ---- bending + twisting at one vertex, sharing the edge frames ----------
  * Same values as rnk_bend_* + rnk_twist_* (E, g and H are the sums), at about
  * half the cost; what the assembly uses. */
 int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2],
-                         const rnk_bend_param *bp, const rnk_twist_param *tp,
-                         double *Eb, double *Et);
+                         const rnk_bend_param *bp, const rnk_twist_param *tp, double *Eb,
+                         double *Et);
 int rnk_bendtwist_grad(const double q[11], const rnk_frame ref[2],
                        const rnk_bend_param *bp, const rnk_twist_param *tp, double *E,
                        double g[11]);
@@ -141,22 +141,22 @@ int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
  * up to that update.  For rotations about the axis of M this is exactly the
  * work of a dead couple. */
 typedef struct rnk_moment_param {
-  double M[3];        /* applied moment */
-  double f0[9];       /* material frame (t, d1, d2) at the last update */
-  double angle0;      /* accumulated angle at the last update */
+  double M[3];   /* applied moment */
+  double f0[9];  /* material frame (t, d1, d2) at the last update */
+  double angle0; /* accumulated angle at the last update */
 } rnk_moment_param;
 
-int rnk_moment_energy(const double q[7], const rnk_frame *ref,
-                      const rnk_moment_param *p, double *E);
-int rnk_moment_grad(const double q[7], const rnk_frame *ref,
-                    const rnk_moment_param *p, double *E, double g[7]);
-int rnk_moment_hess(const double q[7], const rnk_frame *ref,
-                    const rnk_moment_param *p, double H[49]);
-int rnk_moment_hvp(const double q[7], const rnk_frame *ref,
-                   const rnk_moment_param *p, const double v[7], double Hv[7]);
+int rnk_moment_energy(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
+                      double *E);
+int rnk_moment_grad(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
+                    double *E, double g[7]);
+int rnk_moment_hess(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
+                    double H[49]);
+int rnk_moment_hvp(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
+                   const double v[7], double Hv[7]);
 /* Rotation angle alpha of the current frame about M's axis since f0. */
-int rnk_moment_angle(const double q[7], const rnk_frame *ref,
-                     const rnk_moment_param *p, double *alpha);
+int rnk_moment_angle(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
+                     double *alpha);
 
 /* ---- dead force on a vertex: E = -f . x (linear; Hessian zero) ----------- */
 double rnk_force_energy(const double x[3], const double f[3]);

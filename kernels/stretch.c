@@ -21,7 +21,8 @@ int rnk_stretch_energy(const double q[7], const rnk_stretch_param *p, double *E)
   return RNK_OK;
 }
 
-int rnk_stretch_grad(const double q[7], const rnk_stretch_param *p, double *E, double g[7]) {
+int rnk_stretch_grad(const double q[7], const rnk_stretch_param *p, double *E,
+                     double g[7]) {
   double e[3], l;
   int st = edge_geometry(q, e, &l);
   if (st) return st;

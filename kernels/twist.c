@@ -5,8 +5,8 @@
 #include "rnk.h"
 #include "stencil.h"
 
-static int twist_eval(const double q[11], const rnk_frame ref[2], const rnk_twist_param *p,
-                      int ord, jet *E) {
+static int twist_eval(const double q[11], const rnk_frame ref[2],
+                      const rnk_twist_param *p, int ord, jet *E) {
   rnk_edge_jet f[2];
   int st = rnk_vertex_frames(q, ref, ord, f);
   if (st) return st;

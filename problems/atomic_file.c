@@ -16,13 +16,12 @@ static char *temp_name(const char *path) {
   return t;
 }
 
-static rn_status io_error(rn_context *ctx, const char *path, const char *what,
-                          int err) {
+static rn_status io_error(rn_context *ctx, const char *path, const char *what, int err) {
   return rn_context_set_error(ctx, RN_ERR_IO, "%s: %s: %s", path, what, strerror(err));
 }
 
-rn_status rn_file_write_atomic(rn_context *ctx, const char *path,
-                               rn_file_writer write, void *user) {
+rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer write,
+                               void *user) {
   if (!path || !write) return rn_context_set_error(ctx, RN_ERR_ARG, "write: no path");
   char *tmp = temp_name(path);
   if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
@@ -61,7 +60,8 @@ rn_status rn_file_probe_writable(rn_context *ctx, const char *path) {
   if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
   FILE *f = fopen(tmp, "wb");
   rn_status st = RN_OK;
-  if (!f) st = io_error(ctx, path, "cannot create the file", errno);
+  if (!f)
+    st = io_error(ctx, path, "cannot create the file", errno);
   else {
     fclose(f);
     remove(tmp);

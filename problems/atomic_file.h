@@ -17,8 +17,8 @@ typedef rn_status (*rn_file_writer)(FILE *f, void *user, rn_context *ctx);
 /* Run write(f, user, ctx) on a temporary file and rename it to path.
  * RN_ERR_IO (message "path: reason") if the file cannot be created, written,
  * flushed or renamed; the writer's status if it fails. */
-rn_status rn_file_write_atomic(rn_context *ctx, const char *path,
-                               rn_file_writer write, void *user);
+rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer write,
+                               void *user);
 
 /* Check early that path can be written (creates and removes the temporary
  * file); RN_ERR_IO with a message otherwise. */

@@ -19,7 +19,8 @@ static const char main_help[] =
     "                                    the scene's energy against finite differences\n"
     "\n"
     "Options:\n"
-    "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's options\n"
+    "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
+    "options\n"
     "  -V, --version    print the version and whether the solver was built in\n"
     "\n"
     "Exit status: 0 success, 1 not converged (solve) or test failed (check),\n"
@@ -42,7 +43,8 @@ int rn_cli_main(int argc, char **argv) {
   }
   const char *cmd = argv[1];
   if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
-    printf("rodnet %s - static equilibria of discrete elastic rods\n", rn_version_string());
+    printf("rodnet %s - static equilibria of discrete elastic rods\n",
+           rn_version_string());
     fputs(main_help, stdout);
     return RN_EXIT_OK;
   }
@@ -66,14 +68,15 @@ int rn_cli_usage_error(const char *cmd, const char *fmt, ...) {
   return RN_EXIT_USAGE;
 }
 
-int rn_cli_parse_int(const char *cmd, const char *opt, const char *s, long lo,
-                     long hi, int *out) {
+int rn_cli_parse_int(const char *cmd, const char *opt, const char *s, long lo, long hi,
+                     int *out) {
   char *end = NULL;
   errno = 0;
   long v = strtol(s, &end, 10);
   if (errno || end == s || *end || v < lo || v > hi) {
     if (hi >= 2147483647L)
-      return rn_cli_usage_error(cmd, "%s expects an integer >= %ld, got '%s'", opt, lo, s);
+      return rn_cli_usage_error(cmd, "%s expects an integer >= %ld, got '%s'", opt, lo,
+                                s);
     return rn_cli_usage_error(cmd, "%s expects an integer in [%ld, %ld], got '%s'", opt,
                               lo, hi, s);
   }
@@ -93,9 +96,8 @@ int rn_cli_parse_double(const char *cmd, const char *opt, const char *s,
   return 0;
 }
 
-int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i,
-                        const char *name, const char *short_name,
-                        const char **value) {
+int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i, const char *name,
+                        const char *short_name, const char **value) {
   const char *a = argv[*i];
   size_t n = strlen(name);
   if (strncmp(a, name, n) == 0 && a[n] == '=') {

@@ -29,17 +29,16 @@ int rn_cli_usage_error(const char *cmd, const char *fmt, ...)
 #endif
     ;
 /* Option argument parsing; 0 on success, else prints a usage error. */
-int rn_cli_parse_int(const char *cmd, const char *opt, const char *s, long lo,
-                     long hi, int *out);
+int rn_cli_parse_int(const char *cmd, const char *opt, const char *s, long lo, long hi,
+                     int *out);
 int rn_cli_parse_double(const char *cmd, const char *opt, const char *s,
                         double lo_exclusive, double *out);
 /* Option matching: argv[*i] is "--name" (value in argv[*i + 1]) or
  * "--name=value".  Returns 1 and sets *value (advancing *i) on a match, 0 if
  * argv[*i] is another option, -1 (usage error printed) if the value is
  * missing.  short_name may be NULL. */
-int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i,
-                        const char *name, const char *short_name,
-                        const char **value);
+int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i, const char *name,
+                        const char *short_name, const char **value);
 /* Exit status for a failed scene load. */
 int rn_cli_load_exit_code(rn_status st);
 

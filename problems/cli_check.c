@@ -42,9 +42,11 @@ static int parse_value_option(int argc, char **argv, int *i, check_args *a, int 
   *rc = 0;
   if ((m = rn_cli_option_value("check", argc, argv, i, "--random", NULL, &v)) > 0)
     *rc = rn_cli_parse_int("check", "--random", v, 0, 1000000L, &a->random);
-  else if (!m && (m = rn_cli_option_value("check", argc, argv, i, "--seed", NULL, &v)) > 0)
+  else if (!m &&
+           (m = rn_cli_option_value("check", argc, argv, i, "--seed", NULL, &v)) > 0)
     *rc = rn_cli_parse_int("check", "--seed", v, 0, 2147483647L, &a->seed);
-  else if (!m && (m = rn_cli_option_value("check", argc, argv, i, "--perturb", NULL, &v)) > 0)
+  else if (!m &&
+           (m = rn_cli_option_value("check", argc, argv, i, "--perturb", NULL, &v)) > 0)
     *rc = rn_cli_parse_double("check", "--perturb", v, 0.0, &a->perturb);
   else if (!m && (m = rn_cli_option_value("check", argc, argv, i, "--tol", NULL, &v)) > 0)
     *rc = rn_cli_parse_double("check", "--tol", v, 0.0, &a->tol);
@@ -73,25 +75,31 @@ static int parse_check_args(int argc, char **argv, check_args *a) {
     else if (a->scene)
       return rn_cli_usage_error("check", "more than one scene given ('%s' and '%s')",
                                 a->scene, s);
-    else a->scene = s;
+    else
+      a->scene = s;
   }
   if (!a->scene) return rn_cli_usage_error("check", "missing the scene file");
   return 0;
 }
 
 static int report(const check_args *a, const rn_check_report *r) {
-  struct { const char *what; double err, order; int has_order; } rows[] = {
-      {"gradient vs central differences", r->grad_rel_err, r->grad_order, 1},
-      {"HVP vs central differences", r->hvp_rel_err, r->hvp_order, 1},
-      {"Hessian symmetry", r->hess_sym_err, 0, 0},
-      {"assembled Hessian vs HVP", r->hess_hvp_err, 0, 0}};
+  struct {
+    const char *what;
+    double err, order;
+    int has_order;
+  } rows[] = {{"gradient vs central differences", r->grad_rel_err, r->grad_order, 1},
+              {"HVP vs central differences", r->hvp_rel_err, r->hvp_order, 1},
+              {"Hessian symmetry", r->hess_sym_err, 0, 0},
+              {"assembled Hessian vs HVP", r->hess_hvp_err, 0, 0}};
   int ok = 1;
   for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
     int pass = rows[i].err <= a->tol; /* NaN fails */
     ok &= pass;
     printf("  %-33s rel. error %10.3e", rows[i].what, rows[i].err);
-    if (rows[i].has_order) printf("   order %5.2f", rows[i].order);
-    else printf("              ");
+    if (rows[i].has_order)
+      printf("   order %5.2f", rows[i].order);
+    else
+      printf("              ");
     printf("   %s\n", pass ? "ok" : "FAILED");
   }
   printf("%s: worst relative error %s the tolerance %g\n", ok ? "PASS" : "FAIL",
@@ -117,14 +125,15 @@ int rn_cli_check(int argc, char **argv) {
     rn_network *net = rn_scene_network(scene);
     rn_check_report r;
     memset(&r, 0, sizeof r);
-    st = rn_network_check_derivatives(net, NULL, a.random, a.perturb, (uint64_t)a.seed, &r);
+    st = rn_network_check_derivatives(net, NULL, a.random, a.perturb, (uint64_t)a.seed,
+                                      &r);
     if (st) {
       fprintf(stderr, "rodnet check: %s: %s\n", a.scene, rn_context_last_error(ctx));
       rc = RN_EXIT_INTERNAL;
     } else {
-      printf("rodnet check: %s (%d rods, %ld vertices, %zu free DOFs, %d states)\n", a.scene,
-             rn_network_num_rods(net), rn_scene_num_vertices(scene), rn_network_num_dofs(net),
-             r.n_points);
+      printf("rodnet check: %s (%d rods, %ld vertices, %zu free DOFs, %d states)\n",
+             a.scene, rn_network_num_rods(net), rn_scene_num_vertices(scene),
+             rn_network_num_dofs(net), r.n_points);
       rc = report(&a, &r);
     }
   }

@@ -52,17 +52,24 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   const char *v = NULL;
   int m;
   *rc = 0;
-  if ((m = rn_cli_option_value("solve", argc, argv, i, "--output", "-o", &v)) != 0) a->output = v;
-  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--vtk", NULL, &v)) != 0) a->vtk = v;
-  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--solver", NULL, &v)) != 0) a->solver = v;
-  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) != 0) {
-    if (m > 0) *rc = rn_cli_parse_int("solve", "--max-iter", v, 1, 2147483647L, &a->max_iter);
+  if ((m = rn_cli_option_value("solve", argc, argv, i, "--output", "-o", &v)) != 0)
+    a->output = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--vtk", NULL, &v)) != 0)
+    a->vtk = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--solver", NULL, &v)) != 0)
+    a->solver = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) !=
+           0) {
+    if (m > 0)
+      *rc = rn_cli_parse_int("solve", "--max-iter", v, 1, 2147483647L, &a->max_iter);
     a->has_max_iter = 1;
   } else if ((m = rn_cli_option_value("solve", argc, argv, i, "--gtol", NULL, &v)) != 0) {
     if (m > 0) *rc = rn_cli_parse_double("solve", "--gtol", v, 0.0, &a->gtol);
     a->has_gtol = 1;
-  } else if ((m = rn_cli_option_value("solve", argc, argv, i, "--load-steps", NULL, &v)) != 0) {
-    if (m > 0) *rc = rn_cli_parse_int("solve", "--load-steps", v, 1, 2147483647L, &a->load_steps);
+  } else if ((m = rn_cli_option_value("solve", argc, argv, i, "--load-steps", NULL,
+                                      &v)) != 0) {
+    if (m > 0)
+      *rc = rn_cli_parse_int("solve", "--load-steps", v, 1, 2147483647L, &a->load_steps);
     a->has_load_steps = 1;
   }
   if (m < 0) *rc = RN_EXIT_USAGE;
@@ -78,7 +85,8 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
       fputs(solve_help, stdout);
       return -1;
     }
-    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) a->quiet = 1;
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
+      a->quiet = 1;
     else if (parse_value_option(argc, argv, &i, a, &rc)) {
       if (rc) return rc;
     } else if (s[0] == '-' && s[1] != '\0')
@@ -86,7 +94,8 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
     else if (a->scene)
       return rn_cli_usage_error("solve", "more than one scene given ('%s' and '%s')",
                                 a->scene, s);
-    else a->scene = s;
+    else
+      a->scene = s;
   }
   if (!a->scene) return rn_cli_usage_error("solve", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("solve", "missing -o RESULT.json");
@@ -119,8 +128,10 @@ static int make_options(const solve_args *a, const rn_scene *scene,
   rn_solve_options_default(opt);
   rn_scene_apply_solver(scene, opt);
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
-    return rn_cli_usage_error("solve", "unknown solver '%s' (known: tr-minres, "
-                                       "rol-tr-tcg, rol-ls-newton)", a->solver);
+    return rn_cli_usage_error("solve",
+                              "unknown solver '%s' (known: tr-minres, "
+                              "rol-tr-tcg, rol-ls-newton)",
+                              a->solver);
   if (a->has_max_iter) opt->max_iterations = a->max_iter;
   if (a->has_gtol) opt->gtol_rel = a->gtol;
   if (a->has_load_steps) opt->load_steps = a->load_steps;
@@ -153,15 +164,17 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   printf("rodnet solve: %s\n", a->scene);
   printf("  status       %s (stopped by: %s)\n", in->status, in->stop);
   printf("  solver       %s\n", in->solver);
-  printf("  size         %d rods, %ld vertices, %zu free DOFs\n", rn_network_num_rods(net),
-         rn_scene_num_vertices(scene), rn_network_num_dofs(net));
+  printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
+         rn_network_num_rods(net), rn_scene_num_vertices(scene),
+         rn_network_num_dofs(net));
   printf("  iterations   %d Newton, %ld Krylov, %d load steps (load factor %g)\n",
          in->iterations, in->krylov_iterations, in->load_steps,
          rn_network_load_factor(net));
-  printf("  evaluations  %ld energy, %ld gradient, %ld HVP, %ld Hessian\n", in->energy_evals,
-         in->gradient_evals, in->hvp_evals, in->hessian_evals);
+  printf("  evaluations  %ld energy, %ld gradient, %ld HVP, %ld Hessian\n",
+         in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals);
   printf("  energy       %.17g\n", in->energy);
-  printf("  |gradient|   %.3e (initial %.3e)\n", in->gradient_norm, in->initial_gradient_norm);
+  printf("  |gradient|   %.3e (initial %.3e)\n", in->gradient_norm,
+         in->initial_gradient_norm);
   printf("  time         %.3f s\n", in->time_s);
   printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");
 }
@@ -226,7 +239,8 @@ static int solve_scene(const solve_args *a) {
       fprintf(stderr, "rodnet solve: cannot start the solver runtime (%s)\n",
               rn_status_name(st));
       rc = RN_EXIT_INTERNAL;
-    } else rc = run_solve(ctx, a, scene);
+    } else
+      rc = run_solve(ctx, a, scene);
   }
   rn_scene_destroy(&scene);
   rn_context_destroy(&ctx);

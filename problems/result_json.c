@@ -15,7 +15,8 @@ typedef struct json_out {
 } json_out;
 
 static void put_num(json_out *o, double x) {
-  if (isfinite(x)) fprintf(o->f, "%.17g", x);
+  if (isfinite(x))
+    fprintf(o->f, "%.17g", x);
   else {
     o->not_finite = 1;
     fputs("null", o->f);
@@ -25,9 +26,12 @@ static void put_num(json_out *o, double x) {
 static void put_str(FILE *f, const char *s) {
   fputc('"', f);
   for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-    if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-    else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-    else fputc(*p, f);
+    if (*p == '"' || *p == '\\')
+      fprintf(f, "\\%c", *p);
+    else if (*p < 0x20)
+      fprintf(f, "\\u%04x", *p);
+    else
+      fputc(*p, f);
   }
   fputc('"', f);
 }
@@ -63,7 +67,8 @@ static void put_summary(json_out *o, rn_network *net) {
   put_str(f, rn_scene_label(o->scene));
   fputs(",\n  \"status\": ", f);
   put_str(f, in->status);
-  fprintf(f, ",\n  \"converged\": %s,\n  \"stop_reason\": ", in->converged ? "true" : "false");
+  fprintf(f, ",\n  \"converged\": %s,\n  \"stop_reason\": ",
+          in->converged ? "true" : "false");
   put_str(f, in->stop);
   fputs(",\n  \"solver\": ", f);
   put_str(f, in->solver);
@@ -71,11 +76,13 @@ static void put_summary(json_out *o, rn_network *net) {
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);
   put_key_num(o, "initial_gradient_norm", in->initial_gradient_norm);
-  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n", in->iterations, in->load_steps);
+  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n", in->iterations,
+          in->load_steps);
   put_key_num(o, "load_factor", rn_network_load_factor(net));
   put_key_num(o, "time_s", in->time_s);
-  fprintf(f, "  \"evaluations\": {\"energy\": %ld, \"gradient\": %ld, \"hvp\": %ld, "
-             "\"hessian\": %ld, \"krylov_iterations\": %ld},\n",
+  fprintf(f,
+          "  \"evaluations\": {\"energy\": %ld, \"gradient\": %ld, \"hvp\": %ld, "
+          "\"hessian\": %ld, \"krylov_iterations\": %ld},\n",
           in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals,
           in->krylov_iterations);
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
@@ -117,7 +124,8 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   rn_status st = put_terms(o, net);
   int nrods = rn_network_num_rods(net), maxnv = 2;
   for (int r = 0; r < nrods; r++)
-    if (rn_network_rod_num_vertices(net, r) > maxnv) maxnv = rn_network_rod_num_vertices(net, r);
+    if (rn_network_rod_num_vertices(net, r) > maxnv)
+      maxnv = rn_network_rod_num_vertices(net, r);
   double *buf = st ? NULL : malloc(3 * (size_t)maxnv * sizeof *buf);
   if (!st && !buf) st = RN_ERR_ALLOC;
   fputs("  \"rods\": [\n", f);
@@ -130,7 +138,8 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   if (st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));
-    return rn_context_set_error(ctx, st, "result JSON: %s", *msg ? msg : rn_status_message(st));
+    return rn_context_set_error(ctx, st, "result JSON: %s",
+                                *msg ? msg : rn_status_message(st));
   }
   if (o->not_finite)
     return rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
@@ -139,8 +148,8 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   return RN_OK;
 }
 
-rn_status rn_result_write_json(rn_context *ctx, const char *path,
-                               const rn_scene *scene, const rn_result_info *info) {
+rn_status rn_result_write_json(rn_context *ctx, const char *path, const rn_scene *scene,
+                               const rn_result_info *info) {
   json_out o = {NULL, 0, scene, info};
   return rn_file_write_atomic(ctx, path, write_result, &o);
 }

@@ -7,9 +7,9 @@
 
 /* What the solve reports (filled by the caller from rn_solve_report). */
 typedef struct rn_result_info {
-  const char *status;   /* "converged" or the reason it stopped */
-  const char *solver;   /* solver name ("tr-minres", ...) */
-  const char *stop;     /* stop test ("gradient", "max_iterations", ...) */
+  const char *status; /* "converged" or the reason it stopped */
+  const char *solver; /* solver name ("tr-minres", ...) */
+  const char *stop;   /* stop test ("gradient", "max_iterations", ...) */
   int converged;
   int iterations, load_steps;
   long energy_evals, gradient_evals, hvp_evals, hessian_evals, krylov_iterations;
@@ -21,7 +21,7 @@ typedef struct rn_result_info {
  * vertices [[x, y, z], ...] and material angles theta.  Numbers are printed
  * with %.17g; the file is written atomically (atomic_file.h).
  * RN_ERR_NOT_FINITE (and no file) if any value is NaN or infinite. */
-rn_status rn_result_write_json(rn_context *ctx, const char *path,
-                               const rn_scene *scene, const rn_result_info *info);
+rn_status rn_result_write_json(rn_context *ctx, const char *path, const rn_scene *scene,
+                               const rn_result_info *info);
 
 #endif

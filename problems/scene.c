@@ -3,7 +3,6 @@
 #include "scene.h"
 
 #include <errno.h>
-#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +19,7 @@ static char *dup_string(const char *s) {
 /* ---- file and JSON text ---------------------------------------------------- */
 
 /* Read the whole file into a NUL-terminated buffer. */
-static rn_status read_file(rn_context *ctx, const char *path, char **text,
-                           size_t *len) {
+static rn_status read_file(rn_context *ctx, const char *path, char **text, size_t *len) {
   FILE *f = fopen(path, "rb");
   if (!f)
     return rn_context_set_error(ctx, RN_ERR_IO, "%s: cannot open: %s", path,
@@ -32,7 +30,10 @@ static rn_status read_file(rn_context *ctx, const char *path, char **text,
   while (st == RN_OK) {
     if (n + 1 >= cap) {
       char *nb = realloc(buf, cap * 2);
-      if (!nb) { st = RN_ERR_ALLOC; break; }
+      if (!nb) {
+        st = RN_ERR_ALLOC;
+        break;
+      }
       buf = nb;
       cap *= 2;
     }
@@ -49,7 +50,8 @@ static rn_status read_file(rn_context *ctx, const char *path, char **text,
     free(buf);
     if (st == RN_ERR_ALLOC)
       return rn_context_set_error(ctx, st, "%s: out of memory reading the file", path);
-    return rn_context_set_error(ctx, st, "%s: cannot read: %s", path, strerror(read_errno));
+    return rn_context_set_error(ctx, st, "%s: cannot read: %s", path,
+                                strerror(read_errno));
   }
   buf[n] = '\0';
   *text = buf;
@@ -63,8 +65,11 @@ static rn_status text_error(rn_context *ctx, const char *label, const char *text
   long line = 1, col = 1;
   if (pos > len) pos = len;
   for (size_t i = 0; i < pos; i++) {
-    if (text[i] == '\n') { line++; col = 1; }
-    else col++;
+    if (text[i] == '\n') {
+      line++;
+      col = 1;
+    } else
+      col++;
   }
   char near[32];
   size_t j = 0;
@@ -72,21 +77,22 @@ static rn_status text_error(rn_context *ctx, const char *label, const char *text
     near[j++] = ((unsigned char)text[i] < 0x20 || text[i] == '\'') ? '?' : text[i];
   near[j] = '\0';
   if (j == 0)
-    return rn_context_set_error(ctx, RN_ERR_PARSE, "%s:%ld:%ld: %s%s", label, line,
-                                col, reason, pos >= len ? " (unexpected end of file)" : "");
-  return rn_context_set_error(ctx, RN_ERR_PARSE, "%s:%ld:%ld: %s near '%s'", label,
-                              line, col, reason, near);
+    return rn_context_set_error(ctx, RN_ERR_PARSE, "%s:%ld:%ld: %s%s", label, line, col,
+                                reason, pos >= len ? " (unexpected end of file)" : "");
+  return rn_context_set_error(ctx, RN_ERR_PARSE, "%s:%ld:%ld: %s near '%s'", label, line,
+                              col, reason, near);
 }
 
 static rn_status parse_json(rn_context *ctx, const char *label, const char *text,
                             size_t len, cJSON **root) {
   size_t nul = strlen(text);
-  if (nul < len)
-    return text_error(ctx, label, text, len, nul, "NUL byte in the file");
+  if (nul < len) return text_error(ctx, label, text, len, nul, "NUL byte in the file");
   size_t first = strspn(text, " \t\r\n");
   if (first == len)
-    return rn_context_set_error(ctx, RN_ERR_PARSE, "%s: the file is empty (expected a "
-                                "JSON object)", label);
+    return rn_context_set_error(ctx, RN_ERR_PARSE,
+                                "%s: the file is empty (expected a "
+                                "JSON object)",
+                                label);
   const char *end = NULL;
   /* The length includes the terminating NUL: cJSON checks that nothing but
    * white space follows the value. */
@@ -159,8 +165,7 @@ static rn_status read_material(rn_jwalk *w, const cJSON *v, rn_material *m) {
   return st ? rn_jwalk_lib_error(w, st) : RN_OK;
 }
 
-static rn_status read_explicit_section(rn_jwalk *w, const cJSON *v,
-                                       rn_section *s) {
+static rn_status read_explicit_section(rn_jwalk *w, const cJSON *v, rn_section *s) {
   static const char *const keys[] = {"shape", "A", "I11", "I22", "I12", "J", NULL};
   rn_status st = rn_json_check_keys(w, v, keys);
   s->I12 = 0;
@@ -172,15 +177,17 @@ static rn_status read_explicit_section(rn_jwalk *w, const cJSON *v,
   if (st) return st;
   if (!(s->I11 * s->I22 - s->I12 * s->I12 > 0)) {
     size_t mark = rn_jwalk_key(w, "I12");
-    st = rn_jwalk_error(w, "the bending stiffness is not positive definite: "
-                           "need I11 * I22 - I12^2 > 0 (I12 = %.17g)", s->I12);
+    st = rn_jwalk_error(w,
+                        "the bending stiffness is not positive definite: "
+                        "need I11 * I22 - I12^2 > 0 (I12 = %.17g)",
+                        s->I12);
     rn_jwalk_pop(w, mark);
   }
   return st;
 }
 
-static rn_status read_shaped_section(rn_jwalk *w, const cJSON *v,
-                                     const char *shape, rn_section *s) {
+static rn_status read_shaped_section(rn_jwalk *w, const cJSON *v, const char *shape,
+                                     rn_section *s) {
   static const char *const circle[] = {"shape", "radius", NULL};
   static const char *const hollow[] = {"shape", "outer_radius", "inner_radius", NULL};
   static const char *const ellipse[] = {"shape", "a", "b", NULL};
@@ -214,8 +221,10 @@ static rn_status read_shaped_section(rn_jwalk *w, const cJSON *v,
     if (!st) st = rn_section_rectangle(a, b, s);
   } else {
     size_t mark = rn_jwalk_key(w, "shape");
-    st = rn_jwalk_error(w, "unknown shape \"%s\" (known: circle, hollow_circle, "
-                           "ellipse, rectangle, explicit)", shape);
+    st = rn_jwalk_error(w,
+                        "unknown shape \"%s\" (known: circle, hollow_circle, "
+                        "ellipse, rectangle, explicit)",
+                        shape);
     rn_jwalk_pop(w, mark);
     return st;
   }
@@ -228,8 +237,10 @@ static rn_status read_section(rn_jwalk *w, const cJSON *v, rn_section *s) {
   rn_status st = rn_jv_object(w, v);
   if (!st) st = rn_jm_string(w, v, "shape", 0, &shape);
   if (st) return st;
-  if (!shape || strcmp(shape, "explicit") == 0) st = read_explicit_section(w, v, s);
-  else st = read_shaped_section(w, v, shape, s);
+  if (!shape || strcmp(shape, "explicit") == 0)
+    st = read_explicit_section(w, v, s);
+  else
+    st = read_shaped_section(w, v, shape, s);
   if (st) return st;
   st = rn_section_validate(s);
   return st ? rn_jwalk_lib_error(w, st) : RN_OK;
@@ -240,7 +251,8 @@ static rn_status read_materials(rn_scene_parser *p, const cJSON *obj) {
   if (st) return st;
   p->mat_names = calloc((size_t)p->nmat, sizeof *p->mat_names);
   p->mats = calloc((size_t)p->nmat, sizeof *p->mats);
-  if (!p->mat_names || !p->mats) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  if (!p->mat_names || !p->mats)
+    return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   int i = 0;
   for (const cJSON *c = obj->child; c && !st; c = c->next, i++) {
     size_t mark = rn_jwalk_key(&p->w, c->string);
@@ -256,7 +268,8 @@ static rn_status read_sections(rn_scene_parser *p, const cJSON *obj) {
   if (st) return st;
   p->sec_names = calloc((size_t)p->nsec, sizeof *p->sec_names);
   p->secs = calloc((size_t)p->nsec, sizeof *p->secs);
-  if (!p->sec_names || !p->secs) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  if (!p->sec_names || !p->secs)
+    return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   int i = 0;
   for (const cJSON *c = obj->child; c && !st; c = c->next, i++) {
     size_t mark = rn_jwalk_key(&p->w, c->string);
@@ -271,35 +284,68 @@ static rn_status read_sections(rn_scene_parser *p, const cJSON *obj) {
 
 typedef struct solver_field {
   const char *key;
-  int is_int;
-  rn_jrange range; /* for doubles */
-  long lo;         /* for ints */
-  size_t offset;
+  rn_jrange range; /* for numbers */
+  long lo;         /* for integers */
 } solver_field;
 
+/* Keys of the "solver" block in the order of solver_field_ptr. */
 static const solver_field solver_fields[] = {
-    {"max_iterations", 1, RN_J_ANY, 1, offsetof(rn_solve_options, max_iterations)},
-    {"gtol", 0, RN_J_POSITIVE, 0, offsetof(rn_solve_options, gtol_rel)},
-    {"gtol_abs", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, gtol_abs)},
-    {"step_tol", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, step_tol)},
-    {"energy_tol", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, energy_tol)},
-    {"krylov_max_iterations", 1, RN_J_ANY, 1,
-     offsetof(rn_solve_options, krylov_max_iterations)},
-    {"krylov_tol", 0, RN_J_POSITIVE, 0, offsetof(rn_solve_options, krylov_tol)},
-    {"initial_radius", 0, RN_J_NONNEG, 0, offsetof(rn_solve_options, initial_radius)},
-    {"load_steps", 1, RN_J_ANY, 0, offsetof(rn_solve_options, load_steps)},
-    {"max_load_cuts", 1, RN_J_ANY, 0, offsetof(rn_solve_options, max_load_cuts)},
+    {"max_iterations", RN_J_ANY, 1},  {"gtol", RN_J_POSITIVE, 0},
+    {"gtol_abs", RN_J_NONNEG, 0},     {"step_tol", RN_J_NONNEG, 0},
+    {"energy_tol", RN_J_NONNEG, 0},   {"krylov_max_iterations", RN_J_ANY, 1},
+    {"krylov_tol", RN_J_POSITIVE, 0}, {"initial_radius", RN_J_NONNEG, 0},
+    {"load_steps", RN_J_ANY, 0},      {"max_load_cuts", RN_J_ANY, 0},
 };
 enum { N_SOLVER_FIELDS = (int)(sizeof solver_fields / sizeof solver_fields[0]) };
 #define SOLVER_BIT_METHOD (1u << N_SOLVER_FIELDS)
 
+/* The option field of solver_fields[i]: *ip for integers, *dp for numbers. */
+static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) {
+  *ip = NULL;
+  *dp = NULL;
+  switch (i) {
+  case 0:
+    *ip = &o->max_iterations;
+    break;
+  case 1:
+    *dp = &o->gtol_rel;
+    break;
+  case 2:
+    *dp = &o->gtol_abs;
+    break;
+  case 3:
+    *dp = &o->step_tol;
+    break;
+  case 4:
+    *dp = &o->energy_tol;
+    break;
+  case 5:
+    *ip = &o->krylov_max_iterations;
+    break;
+  case 6:
+    *dp = &o->krylov_tol;
+    break;
+  case 7:
+    *dp = &o->initial_radius;
+    break;
+  case 8:
+    *ip = &o->load_steps;
+    break;
+  default:
+    *ip = &o->max_load_cuts;
+    break;
+  }
+}
+
 /* Solver names as in rn_solver_name (parsed here so that a scene can be read
  * by a build without the solver). */
 static int solver_kind_from_name(const char *name, rn_solver_kind *k) {
-  static const struct { const char *name; rn_solver_kind kind; } names[] = {
-      {"tr-minres", RN_SOLVER_TR_MINRES},
-      {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
-      {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON}};
+  static const struct {
+    const char *name;
+    rn_solver_kind kind;
+  } names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
+               {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
+               {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON}};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
     if (strcmp(name, names[i].name) == 0) {
       *k = names[i].kind;
@@ -309,10 +355,18 @@ static int solver_kind_from_name(const char *name, rn_solver_kind *k) {
 }
 
 static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"method", "max_iterations", "gtol", "gtol_abs",
-                                     "step_tol", "energy_tol", "krylov_max_iterations",
-                                     "krylov_tol", "initial_radius", "load_steps",
-                                     "max_load_cuts", NULL};
+  static const char *const keys[] = {"method",
+                                     "max_iterations",
+                                     "gtol",
+                                     "gtol_abs",
+                                     "step_tol",
+                                     "energy_tol",
+                                     "krylov_max_iterations",
+                                     "krylov_tol",
+                                     "initial_radius",
+                                     "load_steps",
+                                     "max_load_cuts",
+                                     NULL};
   rn_scene *s = p->scene;
   const char *method = NULL;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
@@ -321,8 +375,10 @@ static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
   if (method) {
     if (!solver_kind_from_name(method, &s->solver_opt.solver)) {
       size_t mark = rn_jwalk_key(&p->w, "method");
-      st = rn_jwalk_error(&p->w, "unknown solver \"%s\" (known: tr-minres, "
-                                 "rol-tr-tcg, rol-ls-newton)", method);
+      st = rn_jwalk_error(&p->w,
+                          "unknown solver \"%s\" (known: tr-minres, "
+                          "rol-tr-tcg, rol-ls-newton)",
+                          method);
       rn_jwalk_pop(&p->w, mark);
       return st;
     }
@@ -330,29 +386,31 @@ static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
   }
   for (int i = 0; i < N_SOLVER_FIELDS && !st; i++) {
     const solver_field *f = &solver_fields[i];
-    char *field = (char *)&s->solver_opt + f->offset;
-    int present = 0;
-    if (f->is_int) {
-      int val = 0;
-      st = rn_jm_int(&p->w, v, f->key, 0, f->lo, 2147483647L, &val, &present);
-      if (!st && present) memcpy(field, &val, sizeof val);
-    } else {
-      double val = 0;
-      st = rn_jm_number(&p->w, v, f->key, 0, f->range, &val, &present);
-      if (!st && present) memcpy(field, &val, sizeof val);
-    }
+    int *ip, present = 0;
+    double *dp;
+    solver_field_ptr(&s->solver_opt, i, &ip, &dp);
+    if (ip)
+      st = rn_jm_int(&p->w, v, f->key, 0, f->lo, 2147483647L, ip, &present);
+    else
+      st = rn_jm_number(&p->w, v, f->key, 0, f->range, dp, &present);
     if (present) s->solver_set |= 1u << i;
   }
   return st;
 }
 
 void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
-  if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = s->solver_opt.solver;
+  rn_solve_options src = s->solver_opt;
+  if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = src.solver;
   for (int i = 0; i < N_SOLVER_FIELDS; i++) {
     if (!(s->solver_set & (1u << i))) continue;
-    size_t off = solver_fields[i].offset;
-    size_t n = solver_fields[i].is_int ? sizeof(int) : sizeof(double);
-    memcpy((char *)opt + off, (const char *)&s->solver_opt + off, n);
+    int *ip_src, *ip_dst;
+    double *dp_src, *dp_dst;
+    solver_field_ptr(&src, i, &ip_src, &dp_src);
+    solver_field_ptr(opt, i, &ip_dst, &dp_dst);
+    if (ip_src)
+      *ip_dst = *ip_src;
+    else
+      *dp_dst = *dp_src;
   }
 }
 
@@ -360,7 +418,7 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
 
 static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   static const char *const keys[] = {"description", "materials", "sections", "rods",
-                                     "constraints", "loads", "solver", NULL};
+                                     "constraints", "loads",     "solver",   NULL};
   rn_jwalk *w = &p->w;
   const cJSON *v;
   const char *desc = NULL;
@@ -369,8 +427,8 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
-  static const char *const steps[] = {"materials", "sections", "rods",
-                                      "constraints", "loads", "solver"};
+  static const char *const steps[] = {"materials",   "sections", "rods",
+                                      "constraints", "loads",    "solver"};
   for (int i = 0; i < 6 && !st; i++) {
     int required = i < 3;
     v = rn_jm_get(root, steps[i]);
@@ -380,12 +438,24 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
     }
     size_t mark = rn_jwalk_key(w, steps[i]);
     switch (i) {
-      case 0: st = read_materials(p, v); break;
-      case 1: st = read_sections(p, v); break;
-      case 2: st = rn_scene_read_rods(p, v); break;
-      case 3: st = rn_scene_read_constraints(p, v); break;
-      case 4: st = rn_scene_read_loads(p, v); break;
-      default: st = read_solver(p, v); break;
+    case 0:
+      st = read_materials(p, v);
+      break;
+    case 1:
+      st = read_sections(p, v);
+      break;
+    case 2:
+      st = rn_scene_read_rods(p, v);
+      break;
+    case 3:
+      st = rn_scene_read_constraints(p, v);
+      break;
+    case 4:
+      st = rn_scene_read_loads(p, v);
+      break;
+    default:
+      st = read_solver(p, v);
+      break;
     }
     rn_jwalk_pop(w, mark);
   }
@@ -407,8 +477,8 @@ static rn_status scene_new(rn_context *ctx, const char *label, rn_scene **out) {
   return RN_OK;
 }
 
-rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text,
-                         size_t len, rn_scene **out) {
+rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, size_t len,
+                         rn_scene **out) {
   if (!out) return RN_ERR_ARG;
   *out = NULL;
   if (!ctx || !text) return RN_ERR_ARG;
@@ -430,8 +500,10 @@ rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text,
     free(p.secs);
   }
   cJSON_Delete(root);
-  if (st) rn_scene_destroy(&s);
-  else rn_context_clear_error(ctx);
+  if (st)
+    rn_scene_destroy(&s);
+  else
+    rn_context_clear_error(ctx);
   *out = s;
   return st;
 }

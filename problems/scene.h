@@ -24,8 +24,8 @@ typedef struct rn_scene rn_scene;
 rn_status rn_scene_load(rn_context *ctx, const char *path, rn_scene **out);
 
 /* Same from text[len] in memory; label names it in messages. */
-rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text,
-                         size_t len, rn_scene **out);
+rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, size_t len,
+                         rn_scene **out);
 
 /* Destroy the scene and its network; accepts NULL; sets *s to NULL. */
 void rn_scene_destroy(rn_scene **s);

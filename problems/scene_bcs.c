@@ -19,7 +19,8 @@ static rn_status read_type(rn_jwalk *w, const cJSON *obj, const char *what,
   size_t len = 0;
   list[0] = '\0';
   for (int i = 0; i < n; i++)
-    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", names[i]);
+    len +=
+        (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", names[i]);
   size_t mark = rn_jwalk_key(w, "type");
   st = rn_jwalk_error(w, "unknown %s type \"%s\" (known: %s)", what, type, list);
   rn_jwalk_pop(w, mark);
@@ -30,8 +31,10 @@ static rn_status read_end(rn_jwalk *w, const cJSON *obj, int *end) {
   const char *s = NULL;
   rn_status st = rn_jm_string(w, obj, "end", 1, &s);
   if (st) return st;
-  if (strcmp(s, "start") == 0) *end = RN_START;
-  else if (strcmp(s, "end") == 0) *end = RN_END;
+  if (strcmp(s, "start") == 0)
+    *end = RN_START;
+  else if (strcmp(s, "end") == 0)
+    *end = RN_END;
   else {
     size_t mark = rn_jwalk_key(w, "end");
     st = rn_jwalk_error(w, "expected \"start\" or \"end\", got \"%s\"", s);
@@ -99,12 +102,13 @@ static rn_status read_displace_end(rn_scene_parser *p, const cJSON *v, int rod) 
     return rn_jwalk_error(&p->w, "give \"value\" (a displacement) and/or \"rotation\" "
                                  "(a rotation vector)");
   if (!r->clamped[end])
-    return rn_jwalk_error(&p->w, "the %s of rod \"%s\" is not clamped: add {\"type\": "
-                                 "\"clamp\", \"rod\": \"%s\", \"end\": \"%s\"}",
+    return rn_jwalk_error(&p->w,
+                          "the %s of rod \"%s\" is not clamped: add {\"type\": "
+                          "\"clamp\", \"rod\": \"%s\", \"end\": \"%s\"}",
                           end == RN_START ? "start" : "end", r->name, r->name,
                           end == RN_START ? "start" : "end");
-  return lib(&p->w, rn_network_displace_end(p->scene->net, rod, end,
-                                            has_d ? d : NULL, has_rot ? rot : NULL));
+  return lib(&p->w, rn_network_displace_end(p->scene->net, rod, end, has_d ? d : NULL,
+                                            has_rot ? rot : NULL));
 }
 
 static rn_status read_displace_vertex(rn_scene_parser *p, const cJSON *v, int rod) {
@@ -122,15 +126,16 @@ static rn_status read_displace_vertex(rn_scene_parser *p, const cJSON *v, int ro
   if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, d, NULL);
   if (st) return st;
   if (!vertex_is_fixed(r, vertex))
-    return rn_jwalk_error(&p->w, "vertex %d of rod \"%s\" is free: pin it (or clamp "
-                                 "its end) to prescribe its displacement",
+    return rn_jwalk_error(&p->w,
+                          "vertex %d of rod \"%s\" is free: pin it (or clamp "
+                          "its end) to prescribe its displacement",
                           vertex, r->name);
   return lib(&p->w, rn_network_displace_vertex(p->scene->net, rod, vertex, d));
 }
 
 static rn_status read_displace(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"type", "rod", "end", "vertex", "value",
-                                     "rotation", NULL};
+  static const char *const keys[] = {"type",  "rod",      "end", "vertex",
+                                     "value", "rotation", NULL};
   int rod = -1;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
@@ -155,10 +160,18 @@ rn_status rn_scene_read_constraints(rn_scene_parser *p, const cJSON *list) {
       if (!st) st = read_type(&p->w, v, "constraint", constraint_names, C_COUNT, &type);
       if (!st && (type == C_DISPLACE) == (pass == 1)) {
         switch (type) {
-          case C_CLAMP: st = read_clamp(p, v); break;
-          case C_PIN: st = read_pin(p, v); break;
-          case C_FIX_THETA: st = read_fix_theta(p, v); break;
-          default: st = read_displace(p, v); break;
+        case C_CLAMP:
+          st = read_clamp(p, v);
+          break;
+        case C_PIN:
+          st = read_pin(p, v);
+          break;
+        case C_FIX_THETA:
+          st = read_fix_theta(p, v);
+          break;
+        default:
+          st = read_displace(p, v);
+          break;
         }
       }
       rn_jwalk_pop(&p->w, mark);
@@ -223,10 +236,18 @@ rn_status rn_scene_read_loads(rn_scene_parser *p, const cJSON *list) {
     if (!st) st = read_type(&p->w, v, "load", load_names, L_COUNT, &type);
     if (!st) {
       switch (type) {
-        case L_FORCE: st = read_point_load(p, v, 0); break;
-        case L_MOMENT: st = read_point_load(p, v, 1); break;
-        case L_LINE_LOAD: st = read_line_load(p, v); break;
-        default: st = read_gravity(p, v); break;
+      case L_FORCE:
+        st = read_point_load(p, v, 0);
+        break;
+      case L_MOMENT:
+        st = read_point_load(p, v, 1);
+        break;
+      case L_LINE_LOAD:
+        st = read_line_load(p, v);
+        break;
+      default:
+        st = read_gravity(p, v);
+        break;
       }
     }
     rn_jwalk_pop(&p->w, mark);

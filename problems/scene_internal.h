@@ -11,9 +11,9 @@
 typedef struct rn_scene_rod {
   char *name;
   int nv;
-  int clamped[2];         /* RN_START, RN_END */
-  unsigned char *pinned;  /* nv flags */
-  double max_density;     /* over its edges (gravity check) */
+  int clamped[2];        /* RN_START, RN_END */
+  unsigned char *pinned; /* nv flags */
+  double max_density;    /* over its edges (gravity check) */
 } rn_scene_rod;
 
 struct rn_scene {
@@ -22,7 +22,7 @@ struct rn_scene {
   rn_network *net;
   int nrods;
   rn_scene_rod *rods;
-  unsigned solver_set;    /* bits: which fields of solver_opt the scene sets */
+  unsigned solver_set; /* bits: which fields of solver_opt the scene sets */
   rn_solve_options solver_opt;
 };
 
@@ -50,11 +50,11 @@ rn_status rn_scene_read_loads(rn_scene_parser *p, const cJSON *list);
 
 /* obj["rod"] names a rod of the scene: its index in *rod. */
 rn_status rn_scene_rod_ref(rn_scene_parser *p, const cJSON *obj, int *rod);
-/* v (at the walker's path) / obj[key] is a vertex (edge when edges != 0) index of rod, negative counting
- * from the end; the resolved index in *out. */
-rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod,
-                               int edges, int *out);
-rn_status rn_scene_index_ref(rn_scene_parser *p, const cJSON *obj,
-                             const char *key, int rod, int edges, int *out);
+/* v (at the walker's path) / obj[key] is a vertex (edge when edges != 0) index of rod,
+ * negative counting from the end; the resolved index in *out. */
+rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod, int edges,
+                               int *out);
+rn_status rn_scene_index_ref(rn_scene_parser *p, const cJSON *obj, const char *key,
+                             int rod, int edges, int *out);
 
 #endif

@@ -63,8 +63,11 @@ void rn_jwalk_pop(rn_jwalk *w, size_t mark) {
   }
 }
 
-static rn_status jwalk_vfail(rn_jwalk *w, rn_status s, const char *fmt,
-                             va_list ap) {
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 0)))
+#endif
+static rn_status
+jwalk_vfail(rn_jwalk *w, rn_status s, const char *fmt, va_list ap) {
   char reason[1024];
   vsnprintf(reason, sizeof reason, fmt, ap);
   for (char *p = reason; *p; p++) /* one line, always */
@@ -96,10 +99,13 @@ rn_status rn_jwalk_lib_error(rn_jwalk *w, rn_status s) {
 }
 
 void rn_json_describe(const cJSON *v, char *buf, size_t n) {
-  if (!v) snprintf(buf, n, "nothing");
+  if (!v)
+    snprintf(buf, n, "nothing");
   else if (cJSON_IsNumber(v)) {
-    if (isfinite(v->valuedouble)) snprintf(buf, n, "%.17g", v->valuedouble);
-    else snprintf(buf, n, "a number out of range (overflows to infinity)");
+    if (isfinite(v->valuedouble))
+      snprintf(buf, n, "%.17g", v->valuedouble);
+    else
+      snprintf(buf, n, "a number out of range (overflows to infinity)");
   } else if (cJSON_IsString(v)) {
     char s[48];
     size_t j = 0;
@@ -108,11 +114,16 @@ void rn_json_describe(const cJSON *v, char *buf, size_t n) {
     s[j] = '\0';
     snprintf(buf, n, "the string \"%s%s\"", s,
              (v->valuestring && strlen(v->valuestring) >= sizeof s - 1) ? "..." : "");
-  } else if (cJSON_IsBool(v)) snprintf(buf, n, "%s", cJSON_IsTrue(v) ? "true" : "false");
-  else if (cJSON_IsNull(v)) snprintf(buf, n, "null");
-  else if (cJSON_IsArray(v)) snprintf(buf, n, "an array of %d", cJSON_GetArraySize(v));
-  else if (cJSON_IsObject(v)) snprintf(buf, n, "an object");
-  else snprintf(buf, n, "an invalid value");
+  } else if (cJSON_IsBool(v))
+    snprintf(buf, n, "%s", cJSON_IsTrue(v) ? "true" : "false");
+  else if (cJSON_IsNull(v))
+    snprintf(buf, n, "null");
+  else if (cJSON_IsArray(v))
+    snprintf(buf, n, "an array of %d", cJSON_GetArraySize(v));
+  else if (cJSON_IsObject(v))
+    snprintf(buf, n, "an object");
+  else
+    snprintf(buf, n, "an invalid value");
 }
 
 static rn_status expected(rn_jwalk *w, const char *what, const cJSON *v) {
@@ -137,8 +148,7 @@ static void join_keys(const char *const *allowed, char *buf, size_t n) {
   }
 }
 
-rn_status rn_json_check_keys(rn_jwalk *w, const cJSON *obj,
-                             const char *const *allowed) {
+rn_status rn_json_check_keys(rn_jwalk *w, const cJSON *obj, const char *const *allowed) {
   rn_status st = rn_jv_object(w, obj);
   if (st) return st;
   for (const cJSON *c = obj->child; c; c = c->next) {
@@ -172,10 +182,8 @@ rn_status rn_jv_array(rn_jwalk *w, const cJSON *v, int *count) {
 }
 
 rn_status rn_jv_number(rn_jwalk *w, const cJSON *v, rn_jrange r, double *out) {
-  static const char *const what[] = {"a finite number", "a number > 0",
-                                     "a number >= 0"};
-  if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble))
-    return expected(w, what[r], v);
+  static const char *const what[] = {"a finite number", "a number > 0", "a number >= 0"};
+  if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) return expected(w, what[r], v);
   double x = v->valuedouble;
   if ((r == RN_J_POSITIVE && !(x > 0)) || (r == RN_J_NONNEG && !(x >= 0)))
     return expected(w, what[r], v);
@@ -202,8 +210,7 @@ rn_status rn_jv_string(rn_jwalk *w, const cJSON *v, const char **out) {
   return RN_OK;
 }
 
-rn_status rn_jv_vec(rn_jwalk *w, const cJSON *v, int n, rn_jrange r,
-                    double *out) {
+rn_status rn_jv_vec(rn_jwalk *w, const cJSON *v, int n, rn_jrange r, double *out) {
   char what[64];
   snprintf(what, sizeof what, "an array of %d numbers", n);
   if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) return expected(w, what, v);
@@ -229,16 +236,16 @@ rn_status rn_jm_require(rn_jwalk *w, const cJSON *obj, const char *key,
 }
 
 /* Locate obj[key]: *v NULL when absent and optional. */
-static rn_status member(rn_jwalk *w, const cJSON *obj, const char *key,
-                        int required, const cJSON **v, int *present) {
+static rn_status member(rn_jwalk *w, const cJSON *obj, const char *key, int required,
+                        const cJSON **v, int *present) {
   *v = rn_jm_get(obj, key);
   if (present) *present = *v != NULL;
   if (!*v && required) return rn_jwalk_error(w, "missing required key \"%s\"", key);
   return RN_OK;
 }
 
-rn_status rn_jm_number(rn_jwalk *w, const cJSON *obj, const char *key,
-                       int required, rn_jrange r, double *out, int *present) {
+rn_status rn_jm_number(rn_jwalk *w, const cJSON *obj, const char *key, int required,
+                       rn_jrange r, double *out, int *present) {
   const cJSON *v;
   rn_status st = member(w, obj, key, required, &v, present);
   if (st || !v) return st;
@@ -248,8 +255,8 @@ rn_status rn_jm_number(rn_jwalk *w, const cJSON *obj, const char *key,
   return st;
 }
 
-rn_status rn_jm_int(rn_jwalk *w, const cJSON *obj, const char *key,
-                    int required, long lo, long hi, int *out, int *present) {
+rn_status rn_jm_int(rn_jwalk *w, const cJSON *obj, const char *key, int required, long lo,
+                    long hi, int *out, int *present) {
   const cJSON *v;
   rn_status st = member(w, obj, key, required, &v, present);
   if (st || !v) return st;
@@ -259,8 +266,8 @@ rn_status rn_jm_int(rn_jwalk *w, const cJSON *obj, const char *key,
   return st;
 }
 
-rn_status rn_jm_string(rn_jwalk *w, const cJSON *obj, const char *key,
-                       int required, const char **out) {
+rn_status rn_jm_string(rn_jwalk *w, const cJSON *obj, const char *key, int required,
+                       const char **out) {
   const cJSON *v;
   rn_status st = member(w, obj, key, required, &v, NULL);
   if (st || !v) return st;
@@ -270,9 +277,8 @@ rn_status rn_jm_string(rn_jwalk *w, const cJSON *obj, const char *key,
   return st;
 }
 
-rn_status rn_jm_vec(rn_jwalk *w, const cJSON *obj, const char *key,
-                    int required, int n, rn_jrange r, double *out,
-                    int *present) {
+rn_status rn_jm_vec(rn_jwalk *w, const cJSON *obj, const char *key, int required, int n,
+                    rn_jrange r, double *out, int *present) {
   const cJSON *v;
   rn_status st = member(w, obj, key, required, &v, present);
   if (st || !v) return st;

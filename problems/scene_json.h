@@ -50,8 +50,7 @@ void rn_json_describe(const cJSON *v, char *buf, size_t n);
 
 /* The value at the current path must be an object whose keys are all in
  * allowed (NULL-terminated), each at most once. */
-rn_status rn_json_check_keys(rn_jwalk *w, const cJSON *obj,
-                             const char *const *allowed);
+rn_status rn_json_check_keys(rn_jwalk *w, const cJSON *obj, const char *const *allowed);
 
 /* ---- values at the current path ------------------------------------------ */
 rn_status rn_jv_object(rn_jwalk *w, const cJSON *v);
@@ -62,8 +61,7 @@ rn_status rn_jv_number(rn_jwalk *w, const cJSON *v, rn_jrange r, double *out);
 rn_status rn_jv_int(rn_jwalk *w, const cJSON *v, long lo, long hi, int *out);
 rn_status rn_jv_string(rn_jwalk *w, const cJSON *v, const char **out);
 /* An array of exactly n numbers. */
-rn_status rn_jv_vec(rn_jwalk *w, const cJSON *v, int n, rn_jrange r,
-                    double *out);
+rn_status rn_jv_vec(rn_jwalk *w, const cJSON *v, int n, rn_jrange r, double *out);
 
 /* ---- members of the object at the current path --------------------------- */
 /* The member, or NULL if absent (error if required). */
@@ -72,14 +70,13 @@ rn_status rn_jm_require(rn_jwalk *w, const cJSON *obj, const char *key,
                         const cJSON **out);
 /* Typed members: *present (may be NULL) says whether the key was there;
  * a missing required key is an error, a missing optional one leaves *out. */
-rn_status rn_jm_number(rn_jwalk *w, const cJSON *obj, const char *key,
-                       int required, rn_jrange r, double *out, int *present);
-rn_status rn_jm_int(rn_jwalk *w, const cJSON *obj, const char *key,
-                    int required, long lo, long hi, int *out, int *present);
-rn_status rn_jm_string(rn_jwalk *w, const cJSON *obj, const char *key,
-                       int required, const char **out);
-rn_status rn_jm_vec(rn_jwalk *w, const cJSON *obj, const char *key,
-                    int required, int n, rn_jrange r, double *out,
-                    int *present);
+rn_status rn_jm_number(rn_jwalk *w, const cJSON *obj, const char *key, int required,
+                       rn_jrange r, double *out, int *present);
+rn_status rn_jm_int(rn_jwalk *w, const cJSON *obj, const char *key, int required, long lo,
+                    long hi, int *out, int *present);
+rn_status rn_jm_string(rn_jwalk *w, const cJSON *obj, const char *key, int required,
+                       const char **out);
+rn_status rn_jm_vec(rn_jwalk *w, const cJSON *obj, const char *key, int required, int n,
+                    rn_jrange r, double *out, int *present);
 
 #endif

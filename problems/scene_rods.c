@@ -56,23 +56,24 @@ rn_status rn_scene_rod_ref(rn_scene_parser *p, const cJSON *obj, int *rod) {
   return st;
 }
 
-rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod,
-                               int edges, int *out) {
+rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod, int edges,
+                               int *out) {
   const rn_scene_rod *r = &p->scene->rods[rod];
   int n = edges ? r->nv - 1 : r->nv, idx = 0;
   rn_status st = rn_jv_int(&p->w, v, -2147483647L, 2147483646L, &idx);
   if (st) return st;
   if (idx >= n || idx < -n)
-    return rn_jwalk_error(&p->w, "%s index %d is out of range for rod \"%s\" with %d "
-                                 "%s (valid: 0 .. %d, or -%d .. -1 from the end)",
+    return rn_jwalk_error(&p->w,
+                          "%s index %d is out of range for rod \"%s\" with %d "
+                          "%s (valid: 0 .. %d, or -%d .. -1 from the end)",
                           edges ? "edge" : "vertex", idx, r->name, n,
                           edges ? "edges" : "vertices", n - 1, n);
   *out = idx < 0 ? idx + n : idx;
   return RN_OK;
 }
 
-rn_status rn_scene_index_ref(rn_scene_parser *p, const cJSON *obj,
-                             const char *key, int rod, int edges, int *out) {
+rn_status rn_scene_index_ref(rn_scene_parser *p, const cJSON *obj, const char *key,
+                             int rod, int edges, int *out) {
   const cJSON *v;
   rn_status st = rn_jm_require(&p->w, obj, key, &v);
   if (st) return st;
@@ -114,8 +115,7 @@ static rn_status read_line(rn_jwalk *w, const cJSON *v, double **xyz, int *nv) {
   return RN_OK;
 }
 
-static rn_status read_vertex_list(rn_jwalk *w, const cJSON *v, double **xyz,
-                                  int *nv) {
+static rn_status read_vertex_list(rn_jwalk *w, const cJSON *v, double **xyz, int *nv) {
   int n = 0;
   rn_status st = rn_jv_array(w, v, &n);
   if (st) return st;
@@ -142,8 +142,7 @@ static rn_status read_vertex_list(rn_jwalk *w, const cJSON *v, double **xyz,
 
 /* Zero-length edges and fold-backs.  explicit_list: the walker is at the
  * "vertices" list, so errors name the offending vertex. */
-static rn_status check_polyline(rn_jwalk *w, const double *x, int nv,
-                                int explicit_list) {
+static rn_status check_polyline(rn_jwalk *w, const double *x, int nv, int explicit_list) {
   double lmax = 0;
   for (int i = 0; i + 1 < nv; i++) {
     double e[3] = {x[3 * i + 3] - x[3 * i], x[3 * i + 4] - x[3 * i + 1],
@@ -159,15 +158,16 @@ static rn_status check_polyline(rn_jwalk *w, const double *x, int nv,
     rn_status st = RN_OK;
     size_t mark = explicit_list ? rn_jwalk_index(w, i + 1) : w->len;
     if (!(l > 1e-12 * lmax))
-      st = rn_jwalk_error(w, "edge %d has zero length (vertices %d and %d coincide)",
-                          i, i, i + 1);
+      st = rn_jwalk_error(w, "edge %d has zero length (vertices %d and %d coincide)", i,
+                          i, i + 1);
     else if (i > 0) {
       const double *z = &x[3 * i - 3];
       double f[3] = {a[0] - z[0], a[1] - z[1], a[2] - z[2]};
       double c = dot3(e, f) / (l * sqrt(dot3(f, f)));
       if (c <= -1 + 1e-12)
-        st = rn_jwalk_error(w, "edges %d and %d point in opposite directions (the "
-                               "polyline folds back on itself at vertex %d)",
+        st = rn_jwalk_error(w,
+                            "edges %d and %d point in opposite directions (the "
+                            "polyline folds back on itself at vertex %d)",
                             i - 1, i, i);
     }
     rn_jwalk_pop(w, mark);
@@ -176,8 +176,7 @@ static rn_status check_polyline(rn_jwalk *w, const double *x, int nv,
   return RN_OK;
 }
 
-static rn_status read_geometry(rn_jwalk *w, const cJSON *rod, double **xyz,
-                               int *nv) {
+static rn_status read_geometry(rn_jwalk *w, const cJSON *rod, double **xyz, int *nv) {
   const cJSON *line = rn_jm_get(rod, "line"), *verts = rn_jm_get(rod, "vertices");
   if ((line != NULL) == (verts != NULL))
     return rn_jwalk_error(w, "give exactly one of \"line\" ({from, to, vertices}) "
@@ -195,8 +194,8 @@ static rn_status read_geometry(rn_jwalk *w, const cJSON *rod, double **xyz,
   return st;
 }
 
-static rn_status read_d1(rn_jwalk *w, const cJSON *rod, const double *xyz,
-                         double d1[3], int *present) {
+static rn_status read_d1(rn_jwalk *w, const cJSON *rod, const double *xyz, double d1[3],
+                         int *present) {
   rn_status st = rn_jm_vec(w, rod, "d1", 0, 3, RN_J_ANY, d1, present);
   if (st || !*present) return st;
   double t[3] = {xyz[3] - xyz[0], xyz[4] - xyz[1], xyz[5] - xyz[2]};
@@ -242,8 +241,8 @@ static rn_status lookup_section(rn_scene_parser *p, const cJSON *obj, int *s) {
 }
 
 /* Set material m / section s (either may be -1) on edges [first, last]. */
-static rn_status set_properties(rn_scene_parser *p, int rod, int first, int last,
-                                int m, int s) {
+static rn_status set_properties(rn_scene_parser *p, int rod, int first, int last, int m,
+                                int s) {
   rn_network *net = p->scene->net;
   int all = first == 0 && last == p->scene->rods[rod].nv - 2;
   rn_status st = RN_OK;
@@ -258,8 +257,8 @@ static rn_status set_properties(rn_scene_parser *p, int rod, int first, int last
 }
 
 /* "edges": [first, last] or "edge": k of an edge_properties entry. */
-static rn_status edge_range(rn_scene_parser *p, const cJSON *v, int rod,
-                            int *first, int *last) {
+static rn_status edge_range(rn_scene_parser *p, const cJSON *v, int rod, int *first,
+                            int *last) {
   const cJSON *one = rn_jm_get(v, "edge"), *range = rn_jm_get(v, "edges");
   if ((one != NULL) == (range != NULL))
     return rn_jwalk_error(&p->w, "give exactly one of \"edge\" (an index) and "
@@ -273,8 +272,10 @@ static rn_status edge_range(rn_scene_parser *p, const cJSON *v, int rod,
   int n = 0;
   rn_status st = rn_jv_array(&p->w, range, &n);
   if (!st && n != 2)
-    st = rn_jwalk_error(&p->w, "expected [first, last] (2 edge indices), got an "
-                               "array of %d", n);
+    st = rn_jwalk_error(&p->w,
+                        "expected [first, last] (2 edge indices), got an "
+                        "array of %d",
+                        n);
   int *ends[2] = {first, last};
   int k = 0;
   for (const cJSON *c = range->child; c && !st; c = c->next, k++) {
@@ -288,8 +289,7 @@ static rn_status edge_range(rn_scene_parser *p, const cJSON *v, int rod,
   return st;
 }
 
-static rn_status read_edge_properties(rn_scene_parser *p, const cJSON *list,
-                                      int rod) {
+static rn_status read_edge_properties(rn_scene_parser *p, const cJSON *list, int rod) {
   static const char *const keys[] = {"edge", "edges", "material", "section", NULL};
   int n = 0;
   rn_status st = rn_jv_array(&p->w, list, &n);
@@ -313,8 +313,8 @@ static rn_status read_edge_properties(rn_scene_parser *p, const cJSON *list,
 
 /* value at the walker's path: an array of rows entries, each a number
  * (cols == 0) or an array of cols numbers. */
-static rn_status read_table(rn_jwalk *w, const cJSON *v, int rows, int cols,
-                            rn_jrange r, const char *per, double *out) {
+static rn_status read_table(rn_jwalk *w, const cJSON *v, int rows, int cols, rn_jrange r,
+                            const char *per, double *out) {
   int n = 0;
   rn_status st = rn_jv_array(w, v, &n);
   if (st) return st;
@@ -323,8 +323,10 @@ static rn_status read_table(rn_jwalk *w, const cJSON *v, int rows, int cols,
   int i = 0;
   for (const cJSON *c = v->child; c && !st; c = c->next, i++) {
     size_t mark = rn_jwalk_index(w, i);
-    if (cols == 0) st = rn_jv_number(w, c, r, &out[i]);
-    else st = rn_jv_vec(w, c, cols, r, &out[cols * i]);
+    if (cols == 0)
+      st = rn_jv_number(w, c, r, &out[i]);
+    else
+      st = rn_jv_vec(w, c, cols, r, &out[cols * i]);
     rn_jwalk_pop(w, mark);
   }
   return st;
@@ -344,9 +346,12 @@ static rn_status read_rest_item(rn_scene_parser *p, const cJSON *rest, int rod,
                             which == 2 ? "edge" : "interior vertex", buf);
   if (!st) {
     rn_network *net = p->scene->net;
-    if (which == 0) st = rn_network_set_rest_curvature(net, rod, buf);
-    else if (which == 1) st = rn_network_set_rest_twist(net, rod, buf);
-    else st = rn_network_set_rest_lengths(net, rod, buf);
+    if (which == 0)
+      st = rn_network_set_rest_curvature(net, rod, buf);
+    else if (which == 1)
+      st = rn_network_set_rest_twist(net, rod, buf);
+    else
+      st = rn_network_set_rest_lengths(net, rod, buf);
     if (st) st = rn_jwalk_lib_error(&p->w, st);
   }
   rn_jwalk_pop(&p->w, mark);
@@ -357,19 +362,20 @@ static rn_status read_rest_item(rn_scene_parser *p, const cJSON *rest, int rod,
 static rn_status read_rest(rn_scene_parser *p, const cJSON *rest, int rod) {
   static const char *const keys[] = {"curvature", "twist", "lengths", NULL};
   rn_status st = rn_json_check_keys(&p->w, rest, keys);
-  for (int which = 0; which < 3 && !st; which++)
-    st = read_rest_item(p, rest, rod, which);
+  for (int which = 0; which < 3 && !st; which++) st = read_rest_item(p, rest, rod, which);
   return st;
 }
 
-/* ---- one rod ------------------------------------------------------------------------ */
+/* ---- one rod ------------------------------------------------------------------------
+ */
 
 static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, int i) {
   const char *name = NULL;
   rn_status st = rn_jm_string(&p->w, v, "name", 1, &name);
   if (st) return st;
   size_t mark = rn_jwalk_key(&p->w, "name");
-  if (!*name) st = rn_jwalk_error(&p->w, "expected a non-empty name");
+  if (!*name)
+    st = rn_jwalk_error(&p->w, "expected a non-empty name");
   else if (rn_scene_find_rod(p->scene, name) >= 0)
     st = rn_jwalk_error(&p->w, "duplicate rod name \"%s\"", name);
   else if (!(p->scene->rods[i].name = dup_string(name)))
@@ -379,8 +385,9 @@ static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, int i) {
 }
 
 static rn_status read_rod(rn_scene_parser *p, const cJSON *v, int i) {
-  static const char *const keys[] = {"name", "material", "section", "line", "vertices",
-                                     "d1", "edge_properties", "rest", NULL};
+  static const char *const keys[] = {"name",     "material", "section",         "line",
+                                     "vertices", "d1",       "edge_properties", "rest",
+                                     NULL};
   rn_scene *s = p->scene;
   double *xyz = NULL, d1[3];
   int nv = 0, has_d1 = 0, m = -1, sec = -1, rod = -1;
@@ -392,7 +399,8 @@ static rn_status read_rod(rn_scene_parser *p, const cJSON *v, int i) {
   if (!st) st = read_d1(&p->w, v, xyz, d1, &has_d1);
   if (!st) {
     st = rn_network_add_rod(s->net, s->rods[i].name, nv, xyz, has_d1 ? d1 : NULL, &rod);
-    if (st) st = rn_jwalk_lib_error(&p->w, st);
+    if (st)
+      st = rn_jwalk_lib_error(&p->w, st);
     else if (rod != i)
       st = rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "rod index %d, expected %d", rod, i);
   }

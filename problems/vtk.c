@@ -11,15 +11,23 @@ enum { VTK_LINE = 3 };
 
 /* Per-rod quantities written as one data array over all rods. */
 typedef enum vtk_field {
-  F_POINTS, F_DISPLACEMENT, F_CURVATURE, F_TWIST_RATE,     /* per vertex */
-  F_ROD, F_EDGE, F_THETA, F_STRETCH, F_D1, F_D2            /* per edge */
+  F_POINTS,
+  F_DISPLACEMENT,
+  F_CURVATURE,
+  F_TWIST_RATE, /* per vertex */
+  F_ROD,
+  F_EDGE,
+  F_THETA,
+  F_STRETCH,
+  F_D1,
+  F_D2 /* per edge */
 } vtk_field;
 
 typedef struct vtk_out {
   FILE *f;
   rn_network *net;
   int not_finite;
-  double *a, *b;   /* scratch, 3 * max vertices each */
+  double *a, *b; /* scratch, 3 * max vertices each */
 } vtk_out;
 
 static void put_num(vtk_out *o, double x) {
@@ -59,22 +67,24 @@ static rn_status vertex_rows(vtk_out *o, int rod, vtk_field fld) {
     int interior = i > 0 && i + 1 < nv;
     double vor = interior ? 0.5 * (dist3(p - 3, p) + dist3(p, p + 3)) : 1;
     switch (fld) {
-      case F_POINTS: put_row(o, p, 3); break;
-      case F_DISPLACEMENT:
-        for (int k = 0; k < 3; k++) row[k] = p[k] - y[3 * i + k];
-        put_row(o, row, 3);
-        break;
-      case F_CURVATURE:
-        if (interior) {
-          row[0] = y[2 * (i - 1)] / vor;
-          row[1] = y[2 * (i - 1) + 1] / vor;
-        }
-        put_row(o, row, 2);
-        break;
-      default:
-        if (interior) row[0] = y[i - 1] / vor;
-        put_row(o, row, 1);
-        break;
+    case F_POINTS:
+      put_row(o, p, 3);
+      break;
+    case F_DISPLACEMENT:
+      for (int k = 0; k < 3; k++) row[k] = p[k] - y[3 * i + k];
+      put_row(o, row, 3);
+      break;
+    case F_CURVATURE:
+      if (interior) {
+        row[0] = y[2 * (i - 1)] / vor;
+        row[1] = y[2 * (i - 1) + 1] / vor;
+      }
+      put_row(o, row, 2);
+      break;
+    default:
+      if (interior) row[0] = y[i - 1] / vor;
+      put_row(o, row, 1);
+      break;
     }
   }
   return RN_OK;
@@ -85,24 +95,32 @@ static rn_status edge_rows(vtk_out *o, int rod, vtk_field fld) {
   int ne = rn_network_rod_num_vertices(o->net, rod) - 1;
   double *y = o->a;
   rn_status st = RN_OK;
-  if (fld == F_THETA) st = rn_network_rod_theta(o->net, rod, y);
-  else if (fld == F_STRETCH) st = rn_network_rod_strains(o->net, rod, y, NULL, NULL);
-  else if (fld == F_D1) st = rn_network_rod_frames(o->net, rod, y, NULL);
-  else if (fld == F_D2) st = rn_network_rod_frames(o->net, rod, NULL, y);
+  if (fld == F_THETA)
+    st = rn_network_rod_theta(o->net, rod, y);
+  else if (fld == F_STRETCH)
+    st = rn_network_rod_strains(o->net, rod, y, NULL, NULL);
+  else if (fld == F_D1)
+    st = rn_network_rod_frames(o->net, rod, y, NULL);
+  else if (fld == F_D2)
+    st = rn_network_rod_frames(o->net, rod, NULL, y);
   if (st) return st;
   for (int e = 0; e < ne; e++) {
-    if (fld == F_ROD || fld == F_EDGE) fprintf(o->f, "          %d\n", fld == F_ROD ? rod : e);
-    else if (fld == F_D1 || fld == F_D2) put_row(o, &y[3 * e], 3);
-    else put_row(o, &y[e], 1);
+    if (fld == F_ROD || fld == F_EDGE)
+      fprintf(o->f, "          %d\n", fld == F_ROD ? rod : e);
+    else if (fld == F_D1 || fld == F_D2)
+      put_row(o, &y[3 * e], 3);
+    else
+      put_row(o, &y[e], 1);
   }
   return RN_OK;
 }
 
-static rn_status data_array(vtk_out *o, vtk_field fld, const char *name,
-                            const char *type, int ncomp) {
-  fprintf(o->f, "        <DataArray type=\"%s\"%s%s%s NumberOfComponents=\"%d\" "
-                "format=\"ascii\">\n", type, name ? " Name=\"" : "", name ? name : "",
-          name ? "\"" : "", ncomp);
+static rn_status data_array(vtk_out *o, vtk_field fld, const char *name, const char *type,
+                            int ncomp) {
+  fprintf(o->f,
+          "        <DataArray type=\"%s\"%s%s%s NumberOfComponents=\"%d\" "
+          "format=\"ascii\">\n",
+          type, name ? " Name=\"" : "", name ? name : "", name ? "\"" : "", ncomp);
   rn_status st = RN_OK;
   int nrods = rn_network_num_rods(o->net);
   for (int r = 0; r < nrods && !st; r++)
@@ -118,15 +136,18 @@ static void cell_arrays(vtk_out *o) {
   fputs("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n", f);
   for (int r = 0; r < nrods; r++) {
     int nv = rn_network_rod_num_vertices(o->net, r);
-    for (int e = 0; e + 1 < nv; e++) fprintf(f, "          %ld %ld\n", base + e, base + e + 1);
+    for (int e = 0; e + 1 < nv; e++)
+      fprintf(f, "          %ld %ld\n", base + e, base + e + 1);
     base += nv;
     cells += nv - 1;
   }
   fputs("        </DataArray>\n"
-        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n", f);
+        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
+        f);
   for (long c = 1; c <= cells; c++) fprintf(f, "          %ld\n", 2 * c);
   fputs("        </DataArray>\n"
-        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n", f);
+        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
+        f);
   for (long c = 0; c < cells; c++) fprintf(f, "          %d\n", VTK_LINE);
   fputs("        </DataArray>\n", f);
 }
@@ -134,12 +155,14 @@ static void cell_arrays(vtk_out *o) {
 static rn_status write_body(vtk_out *o, long npoints, long ncells) {
   FILE *f = o->f;
   rn_status st;
-  fprintf(f, "<?xml version=\"1.0\"?>\n"
-             "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
-             "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-             "  <UnstructuredGrid>\n"
-             "    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n"
-             "      <PointData Vectors=\"displacement\">\n", npoints, ncells);
+  fprintf(f,
+          "<?xml version=\"1.0\"?>\n"
+          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          "  <UnstructuredGrid>\n"
+          "    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n"
+          "      <PointData Vectors=\"displacement\">\n",
+          npoints, ncells);
   if ((st = data_array(o, F_DISPLACEMENT, "displacement", "Float64", 3))) return st;
   if ((st = data_array(o, F_CURVATURE, "curvature", "Float64", 2))) return st;
   if ((st = data_array(o, F_TWIST_RATE, "twist_rate", "Float64", 1))) return st;
@@ -177,10 +200,12 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
   if (st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));
-    return rn_context_set_error(ctx, st, "VTK output: %s", *msg ? msg : rn_status_message(st));
+    return rn_context_set_error(ctx, st, "VTK output: %s",
+                                *msg ? msg : rn_status_message(st));
   }
   if (o->not_finite)
-    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "VTK output: the result contains "
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
+                                "VTK output: the result contains "
                                 "NaN or infinite values; no file written");
   return RN_OK;
 }

@@ -29,7 +29,8 @@ namespace {
 
 int lapack_int(size_t v, const char *what) {
   if (v > static_cast<size_t>(INT_MAX))
-    throw Error(RN_ERR_LAPACK, std::string("rn_solve: ") + what + " exceeds LAPACK's int");
+    throw Error(RN_ERR_LAPACK,
+                std::string("rn_solve: ") + what + " exceeds LAPACK's int");
   return static_cast<int>(v);
 }
 

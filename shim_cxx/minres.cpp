@@ -1,10 +1,16 @@
 // minres.cpp - Tpetra operator adapter and Belos MINRES (see minres.hpp).
 #include "minres.hpp"
 
+#include <cmath>
+#include <vector>
+
 #include <mpi.h>
 
 #include <BelosLinearProblem.hpp>
-#include <BelosMinresSolMgr.hpp>
+#include <BelosMinresIter.hpp>
+#include <BelosStatusTestCombo.hpp>
+#include <BelosStatusTestGenResNorm.hpp>
+#include <BelosStatusTestMaxIters.hpp>
 #include <BelosTpetraAdapter.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_oblackholestream.hpp>
@@ -21,7 +27,8 @@ using OP = Tpetra::Operator<>;
 // Tpetra::Operator applying a VectorOperator, honouring alpha and beta.
 class AdaptedOperator : public OP {
 public:
-  explicit AdaptedOperator(const Teuchos::RCP<const Map> &map) : map_(map), tmp_(map, 1) {}
+  explicit AdaptedOperator(const Teuchos::RCP<const Map> &map)
+      : map_(map), tmp_(map, 1) {}
   void set(const VectorOperator *op) { op_ = op; }
   Teuchos::RCP<const Map> getDomainMap() const override { return map_; }
   Teuchos::RCP<const Map> getRangeMap() const override { return map_; }
@@ -61,7 +68,9 @@ const double *host_data(const MV &v) {
 
 struct MinresSolver::Impl {
   Teuchos::RCP<AdaptedOperator> A, P;
-  Belos::MinresSolMgr<double, MV, OP> solver;
+  Teuchos::RCP<MV> work;
+  double tol = 0.0;
+  int max_iterations = 0;
 };
 
 MinresSolver::MinresSolver(const Teuchos::RCP<const Map> &map, double rel_tol,
@@ -69,25 +78,29 @@ MinresSolver::MinresSolver(const Teuchos::RCP<const Map> &map, double rel_tol,
     : impl_(new Impl) {
   impl_->A = Teuchos::rcp(new AdaptedOperator(map));
   impl_->P = Teuchos::rcp(new AdaptedOperator(map));
-  auto params = Teuchos::parameterList();
-  params->set("Convergence Tolerance", rel_tol);
-  params->set("Maximum Iterations", max_iterations);
-  params->set("Block Size", 1);
-  params->set("Verbosity", static_cast<int>(Belos::Errors));
-  params->set("Output Stream",
-              Teuchos::RCP<std::ostream>(Teuchos::rcp(new Teuchos::oblackholestream)));
-  impl_->solver.setParameters(params);
+  impl_->work = Teuchos::rcp(new MV(map, 1));
+  impl_->tol = rel_tol;
+  impl_->max_iterations = max_iterations;
 }
 
 MinresSolver::~MinresSolver() = default;
 
+// Belos::MinresIter driven directly (not MinresSolMgr): MinresSolMgr also requires
+// the explicit, unpreconditioned residual to drop by the tolerance, which round-off
+// forbids for the ill-conditioned rod Hessians (cond ~ n^4 EA / EI), so it would
+// iterate to the limit.  Here the test is MINRES's own residual norm in the
+// preconditioner's inverse norm, ||r||_{P^-1} <= tol ||b||_{P^-1}.
 MinresResult MinresSolver::solve(const VectorOperator &A, const VectorOperator &prec,
                                  const MV &b, MV &x) {
+  using ResNorm = Belos::StatusTestGenResNorm<double, MV, OP>;
   MinresResult res;
   x.putScalar(0.0);
-  Teuchos::Array<double> bnorm(1);
-  b.norm2(bnorm());
-  if (bnorm[0] == 0.0) {
+  prec.apply(b, *impl_->work);
+  Teuchos::Array<double> bPb(1);
+  impl_->work->dot(b, bPb());
+  if (!(bPb[0] > 0.0)) { // b = 0 (or a preconditioner that is not SPD)
+    if (bPb[0] < 0.0 || !std::isfinite(bPb[0]))
+      throw Error(RN_ERR_SOLVER, "rn_solve: MINRES preconditioner is not positive definite");
     res.converged = true;
     return res;
   }
@@ -98,11 +111,29 @@ MinresResult MinresSolver::solve(const VectorOperator &A, const VectorOperator &
   problem->setLeftPrec(impl_->P);
   if (!problem->setProblem())
     throw Error(RN_ERR_SOLVER, "rn_solve: Belos rejected the MINRES problem");
-  impl_->solver.setProblem(problem);
-  const Belos::ReturnType ret = impl_->solver.solve();
-  res.iterations = impl_->solver.getNumIters();
-  res.converged = (ret == Belos::Converged);
-  res.achieved_tol = impl_->solver.achievedTol();
+  std::vector<int> index(1, 0);
+  problem->setLSIndex(index);
+
+  auto conv = Teuchos::rcp(new ResNorm(impl_->tol));
+  conv->defineResForm(ResNorm::Implicit, Belos::TwoNorm);
+  conv->defineScaleForm(Belos::None, Belos::TwoNorm, std::sqrt(bPb[0]));
+  auto maxit = Teuchos::rcp(
+      new Belos::StatusTestMaxIters<double, MV, OP>(impl_->max_iterations));
+  auto test = Teuchos::rcp(new Belos::StatusTestCombo<double, MV, OP>(
+      Belos::StatusTestCombo<double, MV, OP>::OR, maxit, conv));
+  auto printer = Teuchos::rcp(new Belos::OutputManager<double>(
+      Belos::Errors, Teuchos::rcp(new Teuchos::oblackholestream)));
+  Teuchos::ParameterList params;
+  Belos::MinresIter<double, MV, OP> iter(problem, printer, test, params);
+  Belos::MinresIterationState<double, MV> state;
+  state.Y = Teuchos::rcp_const_cast<MV>(problem->getInitResVec());
+  iter.initializeMinres(state);
+  iter.iterate();
+  problem->setCurrLS();
+  res.iterations = iter.getNumIters();
+  res.converged = (conv->getStatus() == Belos::Passed);
+  const std::vector<double> *value = conv->getTestValue();
+  res.achieved_tol = (value && !value->empty()) ? (*value)[0] : 0.0;
   return res;
 }
 

@@ -49,7 +49,8 @@ bool Monitor::check(const IterationView &it) {
              it.step_norm <= opt_.step_tol * (1.0 + it.x_norm)) {
     reason_ = RN_STOP_STEP;
   } else if (newton_step && !it.negative_curvature &&
-             std::fabs(it.energy_change) <= opt_.energy_tol * (1.0 + std::fabs(it.energy))) {
+             std::fabs(it.energy_change) <=
+                 opt_.energy_tol * (1.0 + std::fabs(it.energy))) {
     reason_ = RN_STOP_ENERGY;
   } else if (it.iteration >= opt_.max_iterations) {
     reason_ = RN_STOP_MAX_ITER;

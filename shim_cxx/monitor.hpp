@@ -25,15 +25,15 @@ namespace rodnet {
 using Clock = std::chrono::steady_clock;
 
 struct IterationView {
-  int iteration = 0;        // iterations done in this load step
-  double energy = 0.0;      // at the current (accepted) iterate
-  double gnorm = 0.0;       // Euclidean norm of the gradient there
-  double radius = 0.0;      // trust radius (0 for line search)
-  int krylov = 0;           // Krylov iterations of the last iteration
-  bool accepted = false;    // the last iteration moved the iterate
+  int iteration = 0;          // iterations done in this load step
+  double energy = 0.0;        // at the current (accepted) iterate
+  double gnorm = 0.0;         // Euclidean norm of the gradient there
+  double radius = 0.0;        // trust radius (0 for line search)
+  int krylov = 0;             // Krylov iterations of the last iteration
+  bool accepted = false;      // the last iteration moved the iterate
   bool unconstrained = false; // ... by a step the globalisation did not shorten
-  double step_norm = 0.0;   // Euclidean norm of that step
-  double x_norm = 0.0;      // Euclidean norm of the iterate
+  double step_norm = 0.0;     // Euclidean norm of that step
+  double x_norm = 0.0;        // Euclidean norm of the iterate
   double energy_change = 0.0;
   bool negative_curvature = false; // significant negative curvature seen at x
   bool radius_collapsed = false;

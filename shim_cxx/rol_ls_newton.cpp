@@ -27,13 +27,16 @@ namespace {
 // A ROL linear operator (or its inverse) as a VectorOperator on Tpetra vectors.
 class RolOperator : public VectorOperator {
 public:
-  RolOperator(ROL::LinearOperator<double> &op, bool inverse) : op_(op), inverse_(inverse) {}
+  RolOperator(ROL::LinearOperator<double> &op, bool inverse)
+      : op_(op), inverse_(inverse) {}
   void apply(const MV &x, MV &y) const override {
     const TpetraVector xv(Teuchos::rcpFromRef(const_cast<MV &>(x)));
     TpetraVector yv(Teuchos::rcpFromRef(y));
     double tol = std::sqrt(ROL::ROL_EPSILON<double>());
-    if (inverse_) op_.applyInverse(yv, xv, tol);
-    else op_.apply(yv, xv, tol);
+    if (inverse_)
+      op_.applyInverse(yv, xv, tol);
+    else
+      op_.apply(yv, xv, tol);
   }
 
 private:
@@ -45,8 +48,10 @@ class MinresKrylov : public ROL::Krylov<double> {
 public:
   MinresKrylov(const Teuchos::RCP<const Map> &map, const rn_solve_options &opt,
                long *iterations)
-      : ROL::Krylov<double>(0.0, opt.krylov_tol, static_cast<unsigned>(opt.krylov_max_iterations)),
-        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), iterations_(iterations) {}
+      : ROL::Krylov<double>(0.0, opt.krylov_tol,
+                            static_cast<unsigned>(opt.krylov_max_iterations)),
+        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), iterations_(iterations) {
+  }
 
   // Solves A x = b (b is the gradient; ROL steps along -x).
   double run(RolVector &x, ROL::LinearOperator<double> &A, const RolVector &b,

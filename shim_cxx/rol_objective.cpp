@@ -121,10 +121,10 @@ bool RodStatusTest::check(ROL::AlgorithmState<double> &base) {
   it.accepted = obj_.take_accepted(&it.step_norm, &it.energy_change);
   const std::vector<double> &x = obj_.accepted_state();
   it.x_norm = norm2(x.size(), x.data());
-  it.unconstrained = line_search_ ? (state.searchSize == 1.0)
-                                  : (state.snorm < 0.9 * radius_prev_);
-  it.radius_collapsed = !line_search_ && state.iter > 0 &&
-                        state.searchSize <= 1e-14 * (1.0 + it.x_norm);
+  it.unconstrained =
+      line_search_ ? (state.searchSize == 1.0) : (state.snorm < 0.9 * radius_prev_);
+  it.radius_collapsed =
+      !line_search_ && state.iter > 0 && state.searchSize <= 1e-14 * (1.0 + it.x_norm);
   radius_prev_ = state.searchSize;
   if (krylov_counter_) {
     it.krylov = static_cast<int>(*krylov_counter_ - krylov_seen_);

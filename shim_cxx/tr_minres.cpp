@@ -42,9 +42,9 @@ namespace rodnet {
 
 namespace {
 
-constexpr double kAccept = 1e-4;          // accept a step if rho > kAccept
+constexpr double kAccept = 1e-4;               // accept a step if rho > kAccept
 constexpr double kCurvTol = 1e3 * DBL_EPSILON; // significant negative pencil eigenvalue
-constexpr double kBoundaryTol = 0.05;     // |  ||s||_D - radius | <= kBoundaryTol radius
+constexpr double kBoundaryTol = 0.05; // |  ||s||_D - radius | <= kBoundaryTol radius
 constexpr int kMaxMultiplierIts = 60;
 
 // y = (H + shift D) x with the assembled Hessian.
@@ -111,12 +111,12 @@ private:
   Monitor &mon_;
   const rn_solve_options &opt_;
   size_t n_;
-  std::vector<double> d_;   // metric
-  BandedSpd f0_, fl_;       // factorisations at lambda = 0 (+ sigma0) and lambda
+  std::vector<double> d_; // metric
+  BandedSpd f0_, fl_;     // factorisations at lambda = 0 (+ sigma0) and lambda
   double sigma0_ = 0.0;
   bool negcurv_ = false;
-  double mu_ = 0.0;         // lowest pencil eigenvalue estimate (if H not SPD)
-  std::vector<double> v_;   // its eigenvector, ||v||_D = 1
+  double mu_ = 0.0;       // lowest pencil eigenvalue estimate (if H not SPD)
+  std::vector<double> v_; // its eigenvector, ||v||_D = 1
   MinresSolver minres_;
   MV rhs_, sol_;
   std::vector<double> w_, q_, hs_;
@@ -141,7 +141,8 @@ void TrustRegionMinres::lowest_eigenpair(double sigma) {
   v_.assign(n_, 0.0);
   for (size_t i = 0; i < n_; ++i)
     v_[i] = (1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 0.3)) / std::sqrt(d_[i]);
-  double nv = wnorm(n_, d_.data(), v_.data()), mu_old = std::numeric_limits<double>::max();
+  double nv = wnorm(n_, d_.data(), v_.data()),
+         mu_old = std::numeric_limits<double>::max();
   for (double &e : v_) e /= nv;
   for (int k = 0; k < 100; ++k) {
     for (size_t i = 0; i < n_; ++i) w_[i] = d_[i] * v_[i];
@@ -211,7 +212,8 @@ void TrustRegionMinres::minres_step(const double *g, double lambda, Step &st) {
 
 // Hard case: move along the lowest eigenvector v to the boundary, choosing the root
 // tau of ||s + tau v||_D = radius with the lower model value.
-void TrustRegionMinres::add_curvature_direction(const double *g, double radius, Step &st) {
+void TrustRegionMinres::add_curvature_direction(const double *g, double radius,
+                                                Step &st) {
   double sv = 0.0, ss = 0.0;
   for (size_t i = 0; i < n_; ++i) {
     sv += st.s[i] * d_[i] * v_[i];
@@ -252,7 +254,8 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
   if (ok) ns = wnorm(n_, d_.data(), w_.data()); // s(0) is in w_
   for (int it = 0; it < kMaxMultiplierIts; ++it) {
     if (it > 0 || !ok) {
-      if (!(lambda > lo && lambda < hi)) lambda = std::max(std::sqrt(lo * hi), lo + 1e-2 * (hi - lo));
+      if (!(lambda > lo && lambda < hi))
+        lambda = std::max(std::sqrt(lo * hi), lo + 1e-2 * (hi - lo));
       ok = trial_step(g, lambda, &ns);
       if (!ok) { // below the lowest eigenvalue: raise the lower bound
         lo = lambda;
@@ -310,7 +313,8 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     it.radius = radius;
     it.negative_curvature = negcurv_;
     it.x_norm = norm2(n_, xp);
-    it.radius_collapsed = radius > 0.0 && radius <= 1e-14 * (1.0 + wnorm(n_, d_.data(), xp));
+    it.radius_collapsed =
+        radius > 0.0 && radius <= 1e-14 * (1.0 + wnorm(n_, d_.data(), xp));
     if (mon_.check(it)) break;
     const double *gp = host_data(*gvec);
     if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
@@ -350,8 +354,10 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     } else {
       obj.update(x, ROL::UpdateType::Revert, state_->iter);
     }
-    if (rho < 0.25) radius = 0.25 * std::min(radius, snorm);
-    else if (rho > 0.75 && st.boundary) radius *= 2.0;
+    if (rho < 0.25)
+      radius = 0.25 * std::min(radius, snorm);
+    else if (rho > 0.75 && st.boundary)
+      radius *= 2.0;
     state_->searchSize = radius;
   }
 }

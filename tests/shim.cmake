@@ -5,3 +5,13 @@ if(NOT RN_WITH_TRILINOS)
 endif()
 rn_add_test(shim_solve SOURCES unit/shim_solve.c
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
+rn_add_test(shim_buckling SOURCES unit/shim_buckling.c LIBS rodnet LABELS unit)
+rn_add_test(shim_load_stepping SOURCES unit/shim_load_stepping.c LIBS rodnet LABELS unit)
+# No rn_runtime_initialize: the first solve initialises the runtime; also under mpirun.
+rn_add_test(shim_lazy_runtime SOURCES unit/shim_lazy_runtime.c LIBS rodnet LABELS unit)
+if(MPIEXEC_EXECUTABLE)
+  add_test(NAME shim_lazy_runtime_mpirun
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 1 $<TARGET_FILE:shim_lazy_runtime>)
+  set_tests_properties(shim_lazy_runtime_mpirun PROPERTIES LABELS "unit;mpi" TIMEOUT 120
+    PROCESSORS 1 ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
+endif()

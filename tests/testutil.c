@@ -36,7 +36,10 @@ double rn_test_loglog_slope(int n, const double *h, const double *err) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (int i = 0; i < n; ++i) {
     double x = log(h[i]), y = log(err[i] > 0 ? err[i] : 1e-300);
-    sx += x; sy += y; sxx += x * x; sxy += x * y;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }

@@ -16,38 +16,39 @@ void rn_test_fail(const char *file, int line, const char *fmt, ...)
 /* Prints "N passed, M failed" and returns 0 if no check failed. */
 int rn_test_finish(const char *name);
 
-#define CHECK(cond)                                                         \
-  do {                                                                      \
-    rn_test_checks++;                                                       \
-    if (!(cond)) rn_test_fail(__FILE__, __LINE__, "CHECK(%s)", #cond);      \
+#define CHECK(cond)                                                    \
+  do {                                                                 \
+    rn_test_checks++;                                                  \
+    if (!(cond)) rn_test_fail(__FILE__, __LINE__, "CHECK(%s)", #cond); \
   } while (0)
 
 /* |a - b| <= tol (absolute). */
-#define CHECK_NEAR(a, b, tol)                                               \
-  do {                                                                      \
-    double a_ = (a), b_ = (b), t_ = (tol);                                  \
-    rn_test_checks++;                                                       \
-    if (!(fabs(a_ - b_) <= t_))                                             \
+#define CHECK_NEAR(a, b, tol)                                                            \
+  do {                                                                                   \
+    double a_ = (a), b_ = (b), t_ = (tol);                                               \
+    rn_test_checks++;                                                                    \
+    if (!(fabs(a_ - b_) <= t_))                                                          \
       rn_test_fail(__FILE__, __LINE__, "%s = %.17g vs %s = %.17g, |diff| = %.3g > %.3g", \
-                   #a, a_, #b, b_, fabs(a_ - b_), t_);                      \
+                   #a, a_, #b, b_, fabs(a_ - b_), t_);                                   \
   } while (0)
 
 /* |a - b| <= rtol * |b| (relative to the reference b). */
-#define CHECK_REL(a, b, rtol)                                               \
-  do {                                                                      \
-    double a_ = (a), b_ = (b), t_ = (rtol);                                 \
-    rn_test_checks++;                                                       \
-    if (!(fabs(a_ - b_) <= t_ * fabs(b_)))                                  \
+#define CHECK_REL(a, b, rtol)                                                         \
+  do {                                                                                \
+    double a_ = (a), b_ = (b), t_ = (rtol);                                           \
+    rn_test_checks++;                                                                 \
+    if (!(fabs(a_ - b_) <= t_ * fabs(b_)))                                            \
       rn_test_fail(__FILE__, __LINE__, "%s = %.17g vs %s = %.17g, rel = %.3g > %.3g", \
-                   #a, a_, #b, b_, fabs(a_ - b_) / fabs(b_), t_);           \
+                   #a, a_, #b, b_, fabs(a_ - b_) / fabs(b_), t_);                     \
   } while (0)
 
-#define CHECK_STATUS(expr, expected)                                        \
-  do {                                                                      \
-    int s_ = (int)(expr);                                                   \
-    rn_test_checks++;                                                       \
-    if (s_ != (int)(expected))                                              \
-      rn_test_fail(__FILE__, __LINE__, "%s returned %d, expected %d", #expr, s_, (int)(expected)); \
+#define CHECK_STATUS(expr, expected)                                             \
+  do {                                                                           \
+    int s_ = (int)(expr);                                                        \
+    rn_test_checks++;                                                            \
+    if (s_ != (int)(expected))                                                   \
+      rn_test_fail(__FILE__, __LINE__, "%s returned %d, expected %d", #expr, s_, \
+                   (int)(expected));                                             \
   } while (0)
 
 /* Deterministic uniform random numbers in [-1, 1). */

@@ -31,22 +31,54 @@ typedef struct term {
 } term;
 
 /* adapters */
-static int st_e(const term *t, const double *q, double *E) { return rnk_stretch_energy(q, &t->sp, E); }
-static int st_g(const term *t, const double *q, double *E, double *g) { return rnk_stretch_grad(q, &t->sp, E, g); }
-static int st_h(const term *t, const double *q, double *H) { return rnk_stretch_hess(q, &t->sp, H); }
-static int st_v(const term *t, const double *q, const double *v, double *Hv) { return rnk_stretch_hvp(q, &t->sp, v, Hv); }
-static int be_e(const term *t, const double *q, double *E) { return rnk_bend_energy(q, t->ref, &t->bp, E); }
-static int be_g(const term *t, const double *q, double *E, double *g) { return rnk_bend_grad(q, t->ref, &t->bp, E, g); }
-static int be_h(const term *t, const double *q, double *H) { return rnk_bend_hess(q, t->ref, &t->bp, H); }
-static int be_v(const term *t, const double *q, const double *v, double *Hv) { return rnk_bend_hvp(q, t->ref, &t->bp, v, Hv); }
-static int tw_e(const term *t, const double *q, double *E) { return rnk_twist_energy(q, t->ref, &t->tp, E); }
-static int tw_g(const term *t, const double *q, double *E, double *g) { return rnk_twist_grad(q, t->ref, &t->tp, E, g); }
-static int tw_h(const term *t, const double *q, double *H) { return rnk_twist_hess(q, t->ref, &t->tp, H); }
-static int tw_v(const term *t, const double *q, const double *v, double *Hv) { return rnk_twist_hvp(q, t->ref, &t->tp, v, Hv); }
-static int mo_e(const term *t, const double *q, double *E) { return rnk_moment_energy(q, t->ref, &t->mp, E); }
-static int mo_g(const term *t, const double *q, double *E, double *g) { return rnk_moment_grad(q, t->ref, &t->mp, E, g); }
-static int mo_h(const term *t, const double *q, double *H) { return rnk_moment_hess(q, t->ref, &t->mp, H); }
-static int mo_v(const term *t, const double *q, const double *v, double *Hv) { return rnk_moment_hvp(q, t->ref, &t->mp, v, Hv); }
+static int st_e(const term *t, const double *q, double *E) {
+  return rnk_stretch_energy(q, &t->sp, E);
+}
+static int st_g(const term *t, const double *q, double *E, double *g) {
+  return rnk_stretch_grad(q, &t->sp, E, g);
+}
+static int st_h(const term *t, const double *q, double *H) {
+  return rnk_stretch_hess(q, &t->sp, H);
+}
+static int st_v(const term *t, const double *q, const double *v, double *Hv) {
+  return rnk_stretch_hvp(q, &t->sp, v, Hv);
+}
+static int be_e(const term *t, const double *q, double *E) {
+  return rnk_bend_energy(q, t->ref, &t->bp, E);
+}
+static int be_g(const term *t, const double *q, double *E, double *g) {
+  return rnk_bend_grad(q, t->ref, &t->bp, E, g);
+}
+static int be_h(const term *t, const double *q, double *H) {
+  return rnk_bend_hess(q, t->ref, &t->bp, H);
+}
+static int be_v(const term *t, const double *q, const double *v, double *Hv) {
+  return rnk_bend_hvp(q, t->ref, &t->bp, v, Hv);
+}
+static int tw_e(const term *t, const double *q, double *E) {
+  return rnk_twist_energy(q, t->ref, &t->tp, E);
+}
+static int tw_g(const term *t, const double *q, double *E, double *g) {
+  return rnk_twist_grad(q, t->ref, &t->tp, E, g);
+}
+static int tw_h(const term *t, const double *q, double *H) {
+  return rnk_twist_hess(q, t->ref, &t->tp, H);
+}
+static int tw_v(const term *t, const double *q, const double *v, double *Hv) {
+  return rnk_twist_hvp(q, t->ref, &t->tp, v, Hv);
+}
+static int mo_e(const term *t, const double *q, double *E) {
+  return rnk_moment_energy(q, t->ref, &t->mp, E);
+}
+static int mo_g(const term *t, const double *q, double *E, double *g) {
+  return rnk_moment_grad(q, t->ref, &t->mp, E, g);
+}
+static int mo_h(const term *t, const double *q, double *H) {
+  return rnk_moment_hess(q, t->ref, &t->mp, H);
+}
+static int mo_v(const term *t, const double *q, const double *v, double *Hv) {
+  return rnk_moment_hvp(q, t->ref, &t->mp, v, Hv);
+}
 
 static int bt_e(const term *t, const double *q, double *E) {
   double eb, et;
@@ -54,9 +86,15 @@ static int bt_e(const term *t, const double *q, double *E) {
   *E = eb + et;
   return st;
 }
-static int bt_g(const term *t, const double *q, double *E, double *g) { return rnk_bendtwist_grad(q, t->ref, &t->bp, &t->tp, E, g); }
-static int bt_h(const term *t, const double *q, double *H) { return rnk_bendtwist_hess(q, t->ref, &t->bp, &t->tp, H); }
-static int bt_v(const term *t, const double *q, const double *v, double *Hv) { return rnk_bendtwist_hvp(q, t->ref, &t->bp, &t->tp, v, Hv); }
+static int bt_g(const term *t, const double *q, double *E, double *g) {
+  return rnk_bendtwist_grad(q, t->ref, &t->bp, &t->tp, E, g);
+}
+static int bt_h(const term *t, const double *q, double *H) {
+  return rnk_bendtwist_hess(q, t->ref, &t->bp, &t->tp, H);
+}
+static int bt_v(const term *t, const double *q, const double *v, double *Hv) {
+  return rnk_bendtwist_hvp(q, t->ref, &t->bp, &t->tp, v, Hv);
+}
 
 static uint64_t rng = 12345;
 static double rnd(void) { return rn_test_rand(&rng); }
@@ -74,7 +112,8 @@ static void cross(const double a[3], const double b[3], double r[3]) {
 /* A reference frame near (not at) the tangent of edge vector e. */
 static void near_frame(const double e[3], double spread, rnk_frame *f) {
   double t[3], a[3];
-  for (int k = 0; k < 3; ++k) t[k] = e[k] + spread * rnd() * sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+  for (int k = 0; k < 3; ++k)
+    t[k] = e[k] + spread * rnd() * sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
   normalize(t);
   for (int k = 0; k < 3; ++k) a[k] = rnd();
   double d = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
@@ -158,13 +197,19 @@ static void check_derivatives(const term *t, const double *q) {
     /* Second order, unless already at round-off over the whole sweep. */
     if (eg[0] > 1e-9) {
       if (!(sg > 1.8 && sg < 2.3))
-        rn_test_fail(__FILE__, __LINE__, "%s gradient FD order %.3f (errors %.3g .. %.3g)", t->name, sg, eg[0], eg[4]);
+        rn_test_fail(__FILE__, __LINE__,
+                     "%s gradient FD order %.3f (errors %.3g .. %.3g)", t->name, sg,
+                     eg[0], eg[4]);
       rn_test_checks++;
     }
-    if (!(eg[4] < 1e-5)) rn_test_fail(__FILE__, __LINE__, "%s gradient FD error %.3g (scale %.3g) errs %.3g %.3g %.3g", t->name, eg[4], scale_g, eg[0], eg[1], eg[2]);
+    if (!(eg[4] < 1e-5))
+      rn_test_fail(__FILE__, __LINE__,
+                   "%s gradient FD error %.3g (scale %.3g) errs %.3g %.3g %.3g", t->name,
+                   eg[4], scale_g, eg[0], eg[1], eg[2]);
     if (eh[0] > 1e-9) {
       if (!(sh > 1.8 && sh < 2.3))
-        rn_test_fail(__FILE__, __LINE__, "%s HVP FD order %.3f (errors %.3g .. %.3g)", t->name, sh, eh[0], eh[4]);
+        rn_test_fail(__FILE__, __LINE__, "%s HVP FD order %.3f (errors %.3g .. %.3g)",
+                     t->name, sh, eh[0], eh[4]);
       rn_test_checks++;
     }
     CHECK(eh[4] < 1e-5);
@@ -172,8 +217,8 @@ static void check_derivatives(const term *t, const double *q) {
 }
 
 /* rotate points and frames of a stencil by rotation matrix R, translate by c */
-static void rigid(const term *t, const double *q, const double R[9], const double c[3], term *t2,
-                  double *q2) {
+static void rigid(const term *t, const double *q, const double R[9], const double c[3],
+                  term *t2, double *q2) {
   *t2 = *t;
   memcpy(q2, q, sizeof(double) * (size_t)t->n);
   int nv = t->n == 11 ? 3 : 2;
@@ -212,15 +257,24 @@ static void random_rotation(double R[9]) {
 #define NTERMS 5
 static void make_terms(term *T) {
   memset(T, 0, NTERMS * sizeof *T);
-  T[0] = (term){.name = "stretch", .n = 7, .energy = st_e, .grad = st_g, .hess = st_h, .hvp = st_v};
+  T[0] = (term){
+      .name = "stretch", .n = 7, .energy = st_e, .grad = st_g, .hess = st_h, .hvp = st_v};
   T[0].sp = (rnk_stretch_param){.k = 3.0, .lbar = 0.8};
-  T[1] = (term){.name = "bend", .n = 11, .energy = be_e, .grad = be_g, .hess = be_h, .hvp = be_v};
+  T[1] = (term){
+      .name = "bend", .n = 11, .energy = be_e, .grad = be_g, .hess = be_h, .hvp = be_v};
   T[1].bp = (rnk_bend_param){.B = {2.0, 0.3, 0.7}, .kbar = {0.2, -0.15}, .vlen = 0.9};
-  T[2] = (term){.name = "twist", .n = 11, .energy = tw_e, .grad = tw_g, .hess = tw_h, .hvp = tw_v};
+  T[2] = (term){
+      .name = "twist", .n = 11, .energy = tw_e, .grad = tw_g, .hess = tw_h, .hvp = tw_v};
   T[2].tp = (rnk_twist_param){.beta = 1.3, .taubar = 0.1, .vlen = 0.9, .ref_twist = 0.4};
-  T[3] = (term){.name = "moment", .n = 7, .energy = mo_e, .grad = mo_g, .hess = mo_h, .hvp = mo_v};
+  T[3] = (term){
+      .name = "moment", .n = 7, .energy = mo_e, .grad = mo_g, .hess = mo_h, .hvp = mo_v};
   T[3].mp = (rnk_moment_param){.M = {0.3, -0.5, 0.8}, .angle0 = 0.25};
-  T[4] = (term){.name = "bendtwist", .n = 11, .energy = bt_e, .grad = bt_g, .hess = bt_h, .hvp = bt_v};
+  T[4] = (term){.name = "bendtwist",
+                .n = 11,
+                .energy = bt_e,
+                .grad = bt_g,
+                .hess = bt_h,
+                .hvp = bt_v};
   T[4].bp = T[1].bp;
   T[4].tp = T[2].tp;
 }
@@ -242,8 +296,10 @@ static void test_bendtwist_sum(void) {
     T[1].hess(&T[1], q, H1);
     T[2].hess(&T[2], q, H2);
     T[4].hess(&T[4], q, H3);
-    for (int i = 0; i < 11; ++i) CHECK_NEAR(g3[i], g1[i] + g2[i], 1e-13 * (fabs(g1[i]) + fabs(g2[i]) + 1e-12));
-    for (int i = 0; i < 121; ++i) CHECK_NEAR(H3[i], H1[i] + H2[i], 1e-13 * (fabs(H1[i]) + fabs(H2[i]) + 1e-12));
+    for (int i = 0; i < 11; ++i)
+      CHECK_NEAR(g3[i], g1[i] + g2[i], 1e-13 * (fabs(g1[i]) + fabs(g2[i]) + 1e-12));
+    for (int i = 0; i < 121; ++i)
+      CHECK_NEAR(H3[i], H1[i] + H2[i], 1e-13 * (fabs(H1[i]) + fabs(H2[i]) + 1e-12));
   }
 }
 
@@ -372,7 +428,8 @@ static void test_update_and_twist_continuation(void) {
     CHECK_STATUS(t.energy(&t, q, &E1), RNK_OK);
     CHECK_STATUS(b.energy(&b, q, &Eb1), RNK_OK);
     CHECK_STATUS(rnk_reference_twist(q, t.ref, t.tp.ref_twist, &m), RNK_OK);
-    double e0[3] = {q[4] - q[0], q[5] - q[1], q[6] - q[2]}, e1[3] = {q[8] - q[4], q[9] - q[5], q[10] - q[6]};
+    double e0[3] = {q[4] - q[0], q[5] - q[1], q[6] - q[2]},
+           e1[3] = {q[8] - q[4], q[9] - q[5], q[10] - q[6]};
     CHECK_STATUS(rnk_frame_update(e0, &t.ref[0]), RNK_OK);
     CHECK_STATUS(rnk_frame_update(e1, &t.ref[1]), RNK_OK);
     t.tp.ref_twist = m;

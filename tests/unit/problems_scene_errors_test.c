@@ -9,19 +9,21 @@
 #include "scene.h"
 #include "testutil.h"
 
-#define MS                                                                    \
-  "'materials': {'steel': {'E': 1e7, 'nu': 0.5}}, "                          \
+#define MS                                          \
+  "'materials': {'steel': {'E': 1e7, 'nu': 0.5}}, " \
   "'sections': {'wire': {'shape': 'circle', 'radius': 0.01}}"
-#define ROD_BODY                                                              \
-  "'material': 'steel', 'section': 'wire', "                                  \
+#define ROD_BODY                             \
+  "'material': 'steel', 'section': 'wire', " \
   "'line': {'from': [0, 0, 0], 'to': [1, 0, 0], 'vertices': 11}"
 #define ROD "{'name': 'beam', " ROD_BODY "}"
 #define SCENE(extra) "{" MS ", 'rods': [" ROD "]" extra "}"
 #define WITH_ROD(rod) "{" MS ", 'rods': [" rod "]}"
-#define WITH_MAT(mat) "{'materials': {'steel': " mat "}, 'sections': {'wire': {'shape': " \
-                      "'circle', 'radius': 0.01}}, 'rods': [" ROD "]}"
-#define WITH_SEC(sec) "{'materials': {'steel': {'E': 1e7, 'nu': 0.5}}, 'sections': " \
-                      "{'wire': " sec "}, 'rods': [" ROD "]}"
+#define WITH_MAT(mat)                                                 \
+  "{'materials': {'steel': " mat "}, 'sections': {'wire': {'shape': " \
+  "'circle', 'radius': 0.01}}, 'rods': [" ROD "]}"
+#define WITH_SEC(sec)                                            \
+  "{'materials': {'steel': {'E': 1e7, 'nu': 0.5}}, 'sections': " \
+  "{'wire': " sec "}, 'rods': [" ROD "]}"
 
 typedef struct bad_case {
   const char *what;
@@ -40,31 +42,35 @@ static const bad_case cases[] = {
     {"NaN literal", "{'a': NaN}", ":1:", "malformed JSON"},
     /* structure */
     {"root not an object", "[1]", ": $: ", "expected an object, got an array of 1"},
-    {"unknown top-level key", SCENE(", 'rodz': []"), ": $.rodz: ", "unknown key \"rodz\""},
+    {"unknown top-level key", SCENE(", 'rodz': []"),
+     ": $.rodz: ", "unknown key \"rodz\""},
     {"case-sensitive keys", "{" MS ", 'Rods': []}", ": $.Rods: ", "unknown key"},
     {"missing rods", "{" MS "}", ": $: ", "missing required key \"rods\""},
     {"missing materials", "{'rods': []}", ": $: ", "missing required key \"materials\""},
-    {"duplicate key", "{" MS ", 'rods': [" ROD "], 'rods': [" ROD "]}", ": $.rods: ",
-     "duplicate key \"rods\""},
+    {"duplicate key", "{" MS ", 'rods': [" ROD "], 'rods': [" ROD "]}",
+     ": $.rods: ", "duplicate key \"rods\""},
     {"empty rods", "{" MS ", 'rods': []}", ": $.rods: ", "expected at least one rod"},
-    {"rods not an array", "{" MS ", 'rods': {}}", ": $.rods: ", "expected an array, got an object"},
-    {"rod not an object", "{" MS ", 'rods': [3]}", ": $.rods[0]: ", "expected an object, got 3"},
-    {"constraints not an array", SCENE(", 'constraints': 1"), ": $.constraints: ",
-     "expected an array, got 1"},
+    {"rods not an array", "{" MS ", 'rods': {}}",
+     ": $.rods: ", "expected an array, got an object"},
+    {"rod not an object", "{" MS ", 'rods': [3]}",
+     ": $.rods[0]: ", "expected an object, got 3"},
+    {"constraints not an array", SCENE(", 'constraints': 1"),
+     ": $.constraints: ", "expected an array, got 1"},
     /* materials */
-    {"no materials", "{'materials': {}, 'sections': {}, 'rods': []}", ": $.materials: ",
-     "expected at least one material"},
-    {"negative E", WITH_MAT("{'E': -1e7, 'nu': 0.3}"), ": $.materials.steel.E: ",
-     "expected a number > 0, got -10000000"},
-    {"zero G", WITH_MAT("{'E': 1e7, 'G': 0}"), ": $.materials.steel.G: ",
-     "expected a number > 0, got 0"},
-    {"E as a string", WITH_MAT("{'E': 'big', 'nu': 0.3}"), ": $.materials.steel.E: ",
-     "got the string \"big\""},
-    {"infinite E", WITH_MAT("{'E': 1e999, 'nu': 0.3}"), ": $.materials.steel.E: ",
-     "out of range"},
-    {"nu and G", WITH_MAT("{'E': 1e7, 'nu': 0.3, 'G': 1e6}"), ": $.materials.steel: ",
-     "exactly one of \"nu\""},
-    {"neither nu nor G", WITH_MAT("{'E': 1e7}"), ": $.materials.steel: ", "exactly one of"},
+    {"no materials", "{'materials': {}, 'sections': {}, 'rods': []}",
+     ": $.materials: ", "expected at least one material"},
+    {"negative E", WITH_MAT("{'E': -1e7, 'nu': 0.3}"),
+     ": $.materials.steel.E: ", "expected a number > 0, got -10000000"},
+    {"zero G", WITH_MAT("{'E': 1e7, 'G': 0}"),
+     ": $.materials.steel.G: ", "expected a number > 0, got 0"},
+    {"E as a string", WITH_MAT("{'E': 'big', 'nu': 0.3}"),
+     ": $.materials.steel.E: ", "got the string \"big\""},
+    {"infinite E", WITH_MAT("{'E': 1e999, 'nu': 0.3}"),
+     ": $.materials.steel.E: ", "out of range"},
+    {"nu and G", WITH_MAT("{'E': 1e7, 'nu': 0.3, 'G': 1e6}"),
+     ": $.materials.steel: ", "exactly one of \"nu\""},
+    {"neither nu nor G", WITH_MAT("{'E': 1e7}"),
+     ": $.materials.steel: ", "exactly one of"},
     {"nu too large", WITH_MAT("{'E': 1e7, 'nu': 0.7}"), ": $.materials.steel.nu: ",
      "expected a number in (-1, 0.5], got 0.69999999999999996"},
     {"negative density", WITH_MAT("{'E': 1e7, 'nu': 0.3, 'density': -1}"),
@@ -72,87 +78,105 @@ static const bad_case cases[] = {
     {"unknown material key", WITH_MAT("{'E': 1e7, 'nu': 0.3, 'rho': 1}"),
      ": $.materials.steel.rho: ", "unknown key \"rho\""},
     /* sections */
-    {"unknown shape", WITH_SEC("{'shape': 'square', 'side': 1}"), ": $.sections.wire.shape: ",
-     "unknown shape \"square\""},
+    {"unknown shape", WITH_SEC("{'shape': 'square', 'side': 1}"),
+     ": $.sections.wire.shape: ", "unknown shape \"square\""},
     {"negative radius", WITH_SEC("{'shape': 'circle', 'radius': -0.01}"),
      ": $.sections.wire.radius: ", "expected a number > 0, got -0.01"},
     {"hollow inner >= outer",
      WITH_SEC("{'shape': 'hollow_circle', 'outer_radius': 0.01, 'inner_radius': 0.02}"),
      ": $.sections.wire.inner_radius: ", "expected a number < outer_radius"},
-    {"ellipse missing b", WITH_SEC("{'shape': 'ellipse', 'a': 0.01}"), ": $.sections.wire: ",
-     "missing required key \"b\""},
-    {"rectangle with radius", WITH_SEC("{'shape': 'rectangle', 'width': 1, 'height': 1, "
-                                       "'radius': 1}"),
+    {"ellipse missing b", WITH_SEC("{'shape': 'ellipse', 'a': 0.01}"),
+     ": $.sections.wire: ", "missing required key \"b\""},
+    {"rectangle with radius",
+     WITH_SEC("{'shape': 'rectangle', 'width': 1, 'height': 1, "
+              "'radius': 1}"),
      ": $.sections.wire.radius: ", "unknown key \"radius\""},
-    {"explicit missing J", WITH_SEC("{'A': 1, 'I11': 1, 'I22': 1}"), ": $.sections.wire: ",
-     "missing required key \"J\""},
+    {"explicit missing J", WITH_SEC("{'A': 1, 'I11': 1, 'I22': 1}"),
+     ": $.sections.wire: ", "missing required key \"J\""},
     {"explicit indefinite", WITH_SEC("{'A': 1, 'I11': 1, 'I22': 1, 'I12': 2, 'J': 1}"),
      ": $.sections.wire.I12: ", "not positive definite"},
     {"explicit negative I22", WITH_SEC("{'A': 1, 'I11': 1, 'I22': -1, 'J': 1}"),
      ": $.sections.wire.I22: ", "expected a number > 0"},
     /* rods */
-    {"rod without name", WITH_ROD("{" ROD_BODY "}"), ": $.rods[0]: ",
-     "missing required key \"name\""},
-    {"empty rod name", WITH_ROD("{'name': '', " ROD_BODY "}"), ": $.rods[0].name: ",
-     "non-empty"},
-    {"duplicate rod name", WITH_ROD(ROD ", " ROD), ": $.rods[1].name: ",
-     "duplicate rod name \"beam\""},
+    {"rod without name", WITH_ROD("{" ROD_BODY "}"),
+     ": $.rods[0]: ", "missing required key \"name\""},
+    {"empty rod name", WITH_ROD("{'name': '', " ROD_BODY "}"),
+     ": $.rods[0].name: ", "non-empty"},
+    {"duplicate rod name", WITH_ROD(ROD ", " ROD),
+     ": $.rods[1].name: ", "duplicate rod name \"beam\""},
     {"unknown rod key", WITH_ROD("{'name': 'beam', 'colour': 'red', " ROD_BODY "}"),
      ": $.rods[0].colour: ", "unknown key \"colour\""},
-    {"unknown material", WITH_ROD("{'name': 'b', 'material': 'stel', 'section': 'wire', "
-                                  "'vertices': [[0,0,0],[1,0,0]]}"),
+    {"unknown material",
+     WITH_ROD("{'name': 'b', 'material': 'stel', 'section': 'wire', "
+              "'vertices': [[0,0,0],[1,0,0]]}"),
      ": $.rods[0].material: ", "unknown material \"stel\" (defined: \"steel\")"},
-    {"unknown section", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wir', "
-                                 "'vertices': [[0,0,0],[1,0,0]]}"),
+    {"unknown section",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wir', "
+              "'vertices': [[0,0,0],[1,0,0]]}"),
      ": $.rods[0].section: ", "unknown section \"wir\""},
-    {"line and vertices", WITH_ROD("{'name': 'b', " ROD_BODY ", 'vertices': [[0,0,0],[1,0,0]]}"),
+    {"line and vertices",
+     WITH_ROD("{'name': 'b', " ROD_BODY ", 'vertices': [[0,0,0],[1,0,0]]}"),
      ": $.rods[0]: ", "exactly one of \"line\""},
     {"no geometry", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire'}"),
      ": $.rods[0]: ", "exactly one of \"line\""},
-    {"one vertex", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                            "'line': {'from': [0,0,0], 'to': [1,0,0], 'vertices': 1}}"),
+    {"one vertex",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'line': {'from': [0,0,0], 'to': [1,0,0], 'vertices': 1}}"),
      ": $.rods[0].line.vertices: ", "expected an integer >= 2, got 1"},
     {"fractional vertex count",
      WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
               "'line': {'from': [0,0,0], 'to': [1,0,0], 'vertices': 2.5}}"),
      ": $.rods[0].line.vertices: ", "expected an integer >= 2, got 2.5"},
-    {"from == to", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                            "'line': {'from': [1,2,3], 'to': [1,2,3], 'vertices': 5}}"),
+    {"from == to",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'line': {'from': [1,2,3], 'to': [1,2,3], 'vertices': 5}}"),
      ": $.rods[0].line: ", "coincide"},
-    {"short point", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                             "'line': {'from': [0,0], 'to': [1,0,0], 'vertices': 5}}"),
+    {"short point",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'line': {'from': [0,0], 'to': [1,0,0], 'vertices': 5}}"),
      ": $.rods[0].line.from: ", "expected an array of 3 numbers, got an array of 2"},
-    {"zero-length edge", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                                  "'vertices': [[0,0,0],[1,0,0],[1,0,0],[2,0,0]]}"),
+    {"zero-length edge",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'vertices': [[0,0,0],[1,0,0],[1,0,0],[2,0,0]]}"),
      ": $.rods[0].vertices[2]: ", "edge 1 has zero length"},
-    {"fold back", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                           "'vertices': [[0,0,0],[1,0,0],[0.5,0,0]]}"),
+    {"fold back",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'vertices': [[0,0,0],[1,0,0],[0.5,0,0]]}"),
      ": $.rods[0].vertices[2]: ", "opposite directions"},
-    {"single vertex list", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                                    "'vertices': [[0,0,0]]}"),
+    {"single vertex list",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'vertices': [[0,0,0]]}"),
      ": $.rods[0].vertices: ", "expected at least 2 vertices, got 1"},
-    {"infinite coordinate", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                                     "'vertices': [[0,0,0],[-1e400,0,0]]}"),
+    {"infinite coordinate",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'vertices': [[0,0,0],[-1e400,0,0]]}"),
      ": $.rods[0].vertices[1][0]: ", "expected a finite number"},
-    {"vertex not a point", WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
-                                    "'vertices': [[0,0,0],[1,0,0,4]]}"),
+    {"vertex not a point",
+     WITH_ROD("{'name': 'b', 'material': 'steel', 'section': 'wire', "
+              "'vertices': [[0,0,0],[1,0,0,4]]}"),
      ": $.rods[0].vertices[1]: ", "expected an array of 3 numbers, got an array of 4"},
     {"d1 parallel", WITH_ROD("{'name': 'b', " ROD_BODY ", 'd1': [2, 0, 0]}"),
      ": $.rods[0].d1: ", "parallel to the rod's first edge"},
-    {"d1 zero", WITH_ROD("{'name': 'b', " ROD_BODY ", 'd1': [0, 0, 0]}"), ": $.rods[0].d1: ",
-     "zero vector"},
-    {"rest curvature size", WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'curvature': "
-                                     "[[0,0],[0,0]]}}"),
-     ": $.rods[0].rest.curvature: ", "expected 9 entries (one per interior vertex), got 2"},
-    {"rest curvature pair", WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'curvature': "
-                                     "[[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0]]}}"),
-     ": $.rods[0].rest.curvature[8]: ", "expected an array of 2 numbers, got an array of 1"},
+    {"d1 zero", WITH_ROD("{'name': 'b', " ROD_BODY ", 'd1': [0, 0, 0]}"),
+     ": $.rods[0].d1: ", "zero vector"},
+    {"rest curvature size",
+     WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'curvature': "
+              "[[0,0],[0,0]]}}"),
+     ": $.rods[0].rest.curvature: ",
+     "expected 9 entries (one per interior vertex), got 2"},
+    {"rest curvature pair",
+     WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'curvature': "
+              "[[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0]]}}"),
+     ": $.rods[0].rest.curvature[8]: ",
+     "expected an array of 2 numbers, got an array of 1"},
     {"rest twist type", WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'twist': 1}}"),
      ": $.rods[0].rest.twist: ", "expected an array, got 1"},
-    {"rest lengths size", WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'lengths': [1, 1]}}"),
+    {"rest lengths size",
+     WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'lengths': [1, 1]}}"),
      ": $.rods[0].rest.lengths: ", "expected 10 entries (one per edge), got 2"},
-    {"rest length negative", WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'lengths': "
-                                      "[1,1,1,-1,1,1,1,1,1,1]}}"),
+    {"rest length negative",
+     WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'lengths': "
+              "[1,1,1,-1,1,1,1,1,1,1]}}"),
      ": $.rods[0].rest.lengths[3]: ", "expected a number > 0, got -1"},
     {"rest unknown key", WITH_ROD("{'name': 'b', " ROD_BODY ", 'rest': {'strain': []}}"),
      ": $.rods[0].rest.strain: ", "unknown key"},
@@ -172,27 +196,32 @@ static const bad_case cases[] = {
      WITH_ROD("{'name': 'b', " ROD_BODY ", 'edge_properties': [{'edge': -1}]}"),
      ": $.rods[0].edge_properties[0]: ", "give \"material\" and/or \"section\""},
     {"edge properties section",
-     WITH_ROD("{'name': 'b', " ROD_BODY ", 'edge_properties': [{'edge': 3, 'section': 'x'}]}"),
+     WITH_ROD("{'name': 'b', " ROD_BODY
+              ", 'edge_properties': [{'edge': 3, 'section': 'x'}]}"),
      ": $.rods[0].edge_properties[0].section: ", "unknown section \"x\""},
     /* constraints */
-    {"clamp on a missing rod", SCENE(", 'constraints': [{'type': 'clamp', 'rod': 'bam', "
-                                     "'end': 'start'}]"),
+    {"clamp on a missing rod",
+     SCENE(", 'constraints': [{'type': 'clamp', 'rod': 'bam', "
+           "'end': 'start'}]"),
      ": $.constraints[0].rod: ", "no rod named \"bam\" (rods: \"beam\")"},
     {"clamp without rod", SCENE(", 'constraints': [{'type': 'clamp', 'end': 'start'}]"),
      ": $.constraints[0]: ", "missing required key \"rod\""},
-    {"clamp bad end", SCENE(", 'constraints': [{'type': 'clamp', 'rod': 'beam', "
-                            "'end': 'middle'}]"),
+    {"clamp bad end",
+     SCENE(", 'constraints': [{'type': 'clamp', 'rod': 'beam', "
+           "'end': 'middle'}]"),
      ": $.constraints[0].end: ", "expected \"start\" or \"end\", got \"middle\""},
     {"unknown constraint", SCENE(", 'constraints': [{'type': 'weld', 'rod': 'beam'}]"),
      ": $.constraints[0].type: ", "unknown constraint type \"weld\""},
     {"constraint without type", SCENE(", 'constraints': [{'rod': 'beam'}]"),
      ": $.constraints[0]: ", "missing required key \"type\""},
-    {"pin out of range", SCENE(", 'constraints': [{'type': 'pin', 'rod': 'beam', 'vertex': 11}]"),
+    {"pin out of range",
+     SCENE(", 'constraints': [{'type': 'pin', 'rod': 'beam', 'vertex': 11}]"),
      ": $.constraints[0].vertex: ", "vertex index 11 is out of range for rod \"beam\""},
     {"pin negative out of range",
      SCENE(", 'constraints': [{'type': 'pin', 'rod': 'beam', 'vertex': -12}]"),
      ": $.constraints[0].vertex: ", "vertex index -12 is out of range"},
-    {"pin fractional", SCENE(", 'constraints': [{'type': 'pin', 'rod': 'beam', 'vertex': 1.5}]"),
+    {"pin fractional",
+     SCENE(", 'constraints': [{'type': 'pin', 'rod': 'beam', 'vertex': 1.5}]"),
      ": $.constraints[0].vertex: ", "expected an integer"},
     {"fix_theta out of range",
      SCENE(", 'constraints': [{'type': 'fix_theta', 'rod': 'beam', 'edge': 10}]"),
@@ -220,31 +249,37 @@ static const bad_case cases[] = {
     /* loads */
     {"unknown load", SCENE(", 'loads': [{'type': 'pressure', 'value': 1}]"),
      ": $.loads[0].type: ", "unknown load type \"pressure\""},
-    {"force without value", SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1}]"),
+    {"force without value",
+     SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1}]"),
      ": $.loads[0]: ", "missing required key \"value\""},
     {"force value length",
-     SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1, 'value': [0, 1]}]"),
+     SCENE(
+         ", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1, 'value': [0, 1]}]"),
      ": $.loads[0].value: ", "expected an array of 3 numbers, got an array of 2"},
     {"force infinite",
-     SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1, 'value': [0, 0, 1e999]}]"),
+     SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1, 'value': [0, 0, "
+           "1e999]}]"),
      ": $.loads[0].value[2]: ", "expected a finite number"},
     {"moment on a missing vertex",
-     SCENE(", 'loads': [{'type': 'moment', 'rod': 'beam', 'vertex': 20, 'value': [0, 0, 1]}]"),
+     SCENE(", 'loads': [{'type': 'moment', 'rod': 'beam', 'vertex': 20, 'value': [0, 0, "
+           "1]}]"),
      ": $.loads[0].vertex: ", "vertex index 20 is out of range"},
     {"line load with vertex",
-     SCENE(", 'loads': [{'type': 'line_load', 'rod': 'beam', 'vertex': 1, 'value': [0,0,1]}]"),
+     SCENE(", 'loads': [{'type': 'line_load', 'rod': 'beam', 'vertex': 1, 'value': "
+           "[0,0,1]}]"),
      ": $.loads[0].vertex: ", "unknown key \"vertex\""},
-    {"gravity without density", SCENE(", 'loads': [{'type': 'gravity', 'value': [0, 0, -9.81]}]"),
+    {"gravity without density",
+     SCENE(", 'loads': [{'type': 'gravity', 'value': [0, 0, -9.81]}]"),
      ": $.loads[0]: ", "no rod's material has a \"density\" > 0"},
     /* solver block */
-    {"unknown solver", SCENE(", 'solver': {'method': 'newton'}"), ": $.solver.method: ",
-     "unknown solver \"newton\""},
+    {"unknown solver", SCENE(", 'solver': {'method': 'newton'}"),
+     ": $.solver.method: ", "unknown solver \"newton\""},
     {"zero iterations", SCENE(", 'solver': {'max_iterations': 0}"),
      ": $.solver.max_iterations: ", "expected an integer >= 1, got 0"},
-    {"negative gtol", SCENE(", 'solver': {'gtol': -1e-9}"), ": $.solver.gtol: ",
-     "expected a number > 0"},
-    {"unknown solver key", SCENE(", 'solver': {'tolerance': 1}"), ": $.solver.tolerance: ",
-     "unknown key"},
+    {"negative gtol", SCENE(", 'solver': {'gtol': -1e-9}"),
+     ": $.solver.gtol: ", "expected a number > 0"},
+    {"unknown solver key", SCENE(", 'solver': {'tolerance': 1}"),
+     ": $.solver.tolerance: ", "unknown key"},
 };
 
 static char *unquote(const char *s) {
@@ -289,8 +324,9 @@ static void check_special(rn_context *ctx) {
   CHECK(strstr(rn_context_last_error(ctx), "malformed JSON") != NULL);
   free(deep);
   CHECK(rn_scene_load(ctx, "/nonexistent/dir/scene.json", &s) == RN_ERR_IO);
-  CHECK(strstr(rn_context_last_error(ctx), "/nonexistent/dir/scene.json: cannot open: ") ==
-        rn_context_last_error(ctx));
+  CHECK(
+      strstr(rn_context_last_error(ctx), "/nonexistent/dir/scene.json: cannot open: ") ==
+      rn_context_last_error(ctx));
   CHECK(s == NULL);
 }
 

@@ -57,9 +57,11 @@ static void check_energy_terms(rn_network *net) {
   CHECK_STATUS(rn_network_energy_terms(net, x, E), RN_OK);
   /* rod s: edge 0 (round) l = 1, lbar = 2; edge 1 (box, A = 0.5) l = 1.5
    * (last vertex displaced by 0.5), lbar = 2: 1/2 E A (l - lbar)^2 / lbar. */
-  CHECK_REL(E[RN_TERM_STRETCH], 0.5 * 2 * A_round * 1.0 / 2 + 0.5 * 2 * 0.5 * 0.25 / 2, 1e-13);
+  CHECK_REL(E[RN_TERM_STRETCH], 0.5 * 2 * A_round * 1.0 / 2 + 0.5 * 2 * 0.5 * 0.25 / 2,
+            1e-13);
   /* rod b: 1/2 E kbar^T I kbar / vlen with vlen = 1. */
-  CHECK_REL(E[RN_TERM_BEND], 0.5 * 2 * (2 * 0.09 + 2 * 0.5 * 0.3 * -0.2 + 3 * 0.04), 1e-13);
+  CHECK_REL(E[RN_TERM_BEND], 0.5 * 2 * (2 * 0.09 + 2 * 0.5 * 0.3 * -0.2 + 3 * 0.04),
+            1e-13);
   /* rod t: 1/2 G J taubar^2 / vlen. */
   CHECK_REL(E[RN_TERM_TWIST], 0.5 * 1 * 4 * 0.01, 1e-13);
   /* force on s at x = 2.5; gravity on g (rho A L g at height 1). */

@@ -53,10 +53,12 @@ static void check_rods(const cJSON *root, rn_network *net) {
     const cJSON *p = cJSON_GetArrayItem(verts, i);
     exact &= cJSON_GetArraySize(p) == 3;
     for (int k = 0; k < 3; k++)
-      exact &= cJSON_GetArrayItem(p, k) && cJSON_GetArrayItem(p, k)->valuedouble == x[3 * i + k];
+      exact &= cJSON_GetArrayItem(p, k) &&
+               cJSON_GetArrayItem(p, k)->valuedouble == x[3 * i + k];
   }
   CHECK(exact);
-  for (int i = 0; i + 1 < nv; i++) CHECK(cJSON_GetArrayItem(theta, i)->valuedouble == 0.0);
+  for (int i = 0; i + 1 < nv; i++)
+    CHECK(cJSON_GetArrayItem(theta, i)->valuedouble == 0.0);
   free(x);
 }
 
@@ -71,8 +73,21 @@ int main(int argc, char **argv) {
   CHECK_STATUS(rn_scene_load(ctx, argv[1], &s), RN_OK);
   if (!s) return rn_test_finish("problems_writers");
   rn_network *net = rn_scene_network(s);
-  rn_result_info info = {"max_iterations", "tr-minres", "max_iterations", 0, 3, 1,
-                         10, 11, 12, 13, 14, -0.125, 1.0 / 3.0, 2.5, 0.75};
+  rn_result_info info = {"max_iterations",
+                         "tr-minres",
+                         "max_iterations",
+                         0,
+                         3,
+                         1,
+                         10,
+                         11,
+                         12,
+                         13,
+                         14,
+                         -0.125,
+                         1.0 / 3.0,
+                         2.5,
+                         0.75};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -97,11 +112,26 @@ int main(int argc, char **argv) {
     CHECK(num(ev, "energy") == 10 && num(ev, "gradient") == 11 && num(ev, "hvp") == 12 &&
           num(ev, "hessian") == 13 && num(ev, "krylov_iterations") == 14);
     const cJSON *terms = cJSON_GetObjectItemCaseSensitive(root, "energy_terms");
-    CHECK(num(terms, "stretch") == 0 && num(terms, "bend") == 0 && num(terms, "twist") == 0);
+    CHECK(num(terms, "stretch") == 0 && num(terms, "bend") == 0 &&
+          num(terms, "twist") == 0);
     CHECK(isfinite(num(terms, "load")));
     check_rods(root, net);
     cJSON_Delete(root);
   }
+  /* A NaN in the result: no file, and the previous one is kept intact. */
+  info.energy = NAN;
+  CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_ERR_NOT_FINITE);
+  CHECK(strstr(rn_context_last_error(ctx), "NaN or infinite") != NULL);
+  root = read_json(argv[2]);
+  CHECK(root != NULL && num(root, "energy") == -0.125);
+  cJSON_Delete(root);
+  char fresh[1024];
+  snprintf(fresh, sizeof fresh, "%s.nan.json", argv[2]);
+  remove(fresh);
+  CHECK_STATUS(rn_result_write_json(ctx, fresh, s, &info), RN_ERR_NOT_FINITE);
+  FILE *f = fopen(fresh, "rb");
+  CHECK(f == NULL);
+  if (f) fclose(f);
   rn_scene_destroy(&s);
   rn_context_destroy(&ctx);
   return rn_test_finish("problems_writers");

@@ -16,7 +16,8 @@
  * material E (nu = 0.3), section s, clamped at the start, tip force f[3] at the
  * last vertex.  NULL on failure (a CHECK fails). */
 static inline rn_network *shim_clamped_rod(rn_context *ctx, int nv, double L, int axis,
-                                           const rn_section *s, double E, const double f[3]) {
+                                           const rn_section *s, double E,
+                                           const double f[3]) {
   rn_network *net = NULL;
   rn_material m;
   int rod = -1;
@@ -25,7 +26,8 @@ static inline rn_network *shim_clamped_rod(rn_context *ctx, int nv, double L, in
   for (int i = 0; i < nv; ++i) xyz[3 * i + axis] = L * (double)i / (double)(nv - 1);
   CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
   CHECK_STATUS(rn_material_from_E_nu(E, 0.3, 0.0, &m), RN_OK);
-  CHECK_STATUS(rn_network_add_rod(net, "rod", nv, xyz, axis == 1 ? NULL : d1, &rod), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "rod", nv, xyz, axis == 1 ? NULL : d1, &rod),
+               RN_OK);
   CHECK_STATUS(rn_network_set_material(net, rod, -1, &m), RN_OK);
   CHECK_STATUS(rn_network_set_section(net, rod, -1, s), RN_OK);
   CHECK_STATUS(rn_network_clamp(net, rod, RN_START), RN_OK);
@@ -76,7 +78,8 @@ static inline double *shim_dense_hessian(const rn_network *net, const double *x)
   vals = calloc(nnz, sizeof(double));
   CHECK_STATUS(rn_network_hessian_values(net, x, vals), RN_OK);
   for (size_t i = 0; i < n; ++i)
-    for (int64_t k = rowptr[i]; k < rowptr[i + 1]; ++k) H[i + n * (size_t)col[k]] = vals[k];
+    for (int64_t k = rowptr[i]; k < rowptr[i + 1]; ++k)
+      H[i + n * (size_t)col[k]] = vals[k];
   free(vals);
   return H;
 }
@@ -84,7 +87,8 @@ static inline double *shim_dense_hessian(const rn_network *net, const double *x)
 /* Lowest eigenvalue of a dense symmetric matrix (destroyed) by LAPACK dsyev. */
 static inline double shim_dense_min_eigenvalue(int n, double *A) {
   int info = 0, lwork = 8 * n;
-  double *w = calloc((size_t)n, sizeof(double)), *work = calloc((size_t)lwork, sizeof(double));
+  double *w = calloc((size_t)n, sizeof(double)),
+         *work = calloc((size_t)lwork, sizeof(double));
   double lmin;
   dsyev_("N", "L", &n, A, &n, w, work, &lwork, &info, 1, 1);
   CHECK(info == 0);

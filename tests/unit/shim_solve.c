@@ -32,7 +32,8 @@ static void on_progress(void *user, const rn_iteration_info *info) {
   log->calls++;
   log->last_iteration = info->iteration;
   log->krylov_sum += info->krylov_iterations;
-  if (info->krylov_iterations > log->max_krylov) log->max_krylov = info->krylov_iterations;
+  if (info->krylov_iterations > log->max_krylov)
+    log->max_krylov = info->krylov_iterations;
   log->last_energy = info->energy;
   log->last_gnorm = info->gradient_norm;
   if (info->iteration > 0 && len + 8 < sizeof log->minres)
@@ -44,7 +45,6 @@ static void test_names_and_options(rn_context *ctx) {
   rn_solve_report rep;
   rn_solver_kind k = RN_SOLVER_ROL_TR_TCG;
   rn_network *net = NULL;
-  const double f[3] = {0.0, 0.0, -1e-3};
 
   rn_solve_options_default(&opt);
   CHECK(opt.solver == RN_SOLVER_TR_MINRES);
@@ -149,7 +149,8 @@ static void test_linear_cantilever(rn_context *ctx) {
   double rel1 = 0.0, rel2 = 0.0;
   const double e1 = linear_error(ctx, P, &rel1), e2 = linear_error(ctx, 0.5 * P, &rel2);
   printf("linear cantilever: |x - x0 - u| / |u| = %.3e at P, %.3e at P/2; ratio of "
-         "errors %.3f\n", rel1, rel2, e1 / e2);
+         "errors %.3f\n",
+         rel1, rel2, e1 / e2);
   CHECK(rel1 < 0.02);
   CHECK_NEAR(e1 / e2, 4.0, 0.4);
 }

@@ -62,13 +62,16 @@ int main(void) {
     CHECK(lambda_min_at(ctx, n, L, &m, &s, hi) < 0);
     for (int it = 0; it < 50 && hi - lo > 1e-11 * PE; ++it) {
       double mid = 0.5 * (lo + hi);
-      if (lambda_min_at(ctx, n, L, &m, &s, mid) > 0) lo = mid;
-      else hi = mid;
+      if (lambda_min_at(ctx, n, L, &m, &s, mid) > 0)
+        lo = mid;
+      else
+        hi = mid;
     }
     double Pc = 0.5 * (lo + hi);
-    double Pn = ratio[i] * PE;                          /* inextensible discrete */
+    double Pn = ratio[i] * PE;                                /* inextensible discrete */
     double expected = 0.5 * EA * (1 - sqrt(1 - 4 * Pn / EA)); /* P (1 - P/EA) = Pn */
-    printf("clamped-free n=%d: P_cr/P_E = %.10f, inextensible table %.10f, with extensibility %.10f\n",
+    printf("clamped-free n=%d: P_cr/P_E = %.10f, inextensible table %.10f, with "
+           "extensibility %.10f\n",
            n, Pc / PE, ratio[i], expected / PE);
     CHECK_REL(Pc, expected, 2e-9);
     hs[i] = L / (n - 0.5);

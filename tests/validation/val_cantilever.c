@@ -17,8 +17,10 @@ static void elastica_elliptic(double alpha, double *dh, double *dv) {
     th0 = 0.5 * (lo + hi);
     double k = sqrt((1 + sin(th0)) / 2), phi1 = asin(1 / (k * sqrt(2.0)));
     double f = val_ellK(k) - val_ellF(phi1, k) - sqrt(alpha);
-    if (f > 0) hi = th0; /* K - F decreases? check sign by bracketing */
-    else lo = th0;
+    if (f > 0)
+      hi = th0; /* K - F decreases? check sign by bracketing */
+    else
+      lo = th0;
   }
   double k = sqrt((1 + sin(th0)) / 2), phi1 = asin(1 / (k * sqrt(2.0)));
   *dh = 1 - sqrt(2 * sin(th0) / alpha);
@@ -53,8 +55,10 @@ static void elastica_shooting(double alpha, double *dh, double *dv) {
   for (int it = 0; it < 80; ++it) {
     c = 0.5 * (lo + hi);
     shoot(alpha, c, &w, &x, &y);
-    if (w > 0) hi = c;
-    else lo = c;
+    if (w > 0)
+      hi = c;
+    else
+      lo = c;
   }
   shoot(alpha, c, &w, &x, &y);
   *dh = 1 - x;
@@ -81,8 +85,8 @@ int main(void) {
     val_vertex(net, -1, tip);
     hs[i] = L / (ns[i] - 0.5);
     err[i] = fabs(-tip[2] - dref) / dref;
-    printf("small load n=%d: deflection %.10e (PL^3/3EI %.10e) rel err %.3e\n", ns[i], -tip[2],
-           dref, err[i]);
+    printf("small load n=%d: deflection %.10e (PL^3/3EI %.10e) rel err %.3e\n", ns[i],
+           -tip[2], dref, err[i]);
     rn_network_destroy(&net);
   }
   double order = rn_test_loglog_slope(4, hs, err);
@@ -94,8 +98,8 @@ int main(void) {
   double alpha = 2.0, dh_e, dv_e, dh_s, dv_s;
   elastica_elliptic(alpha, &dh_e, &dv_e);
   elastica_shooting(alpha, &dh_s, &dv_s);
-  printf("elastica alpha=2: elliptic (%.12f, %.12f), shooting (%.12f, %.12f)\n", dh_e, dv_e,
-         dh_s, dv_s);
+  printf("elastica alpha=2: elliptic (%.12f, %.12f), shooting (%.12f, %.12f)\n", dh_e,
+         dv_e, dh_s, dv_s);
   CHECK_NEAR(dh_e, dh_s, 1e-9);
   CHECK_NEAR(dv_e, dv_s, 1e-9);
   /* linear limit sanity: dv ~ alpha / 3 for small alpha */
@@ -116,7 +120,8 @@ int main(void) {
     val_vertex(net, -1, tip);
     double eh = (L - tip[0]) / L - dh_e, ev = -tip[2] / L - dv_e;
     err[i] = sqrt(eh * eh + ev * ev);
-    printf("elastica n=%d: tip error/L %.4e (planar DER table %.3e)\n", ns[i], err[i], table[i]);
+    printf("elastica n=%d: tip error/L %.4e (planar DER table %.3e)\n", ns[i], err[i],
+           table[i]);
     CHECK_REL(err[i], table[i], 0.02);
     rn_network_destroy(&net);
   }

@@ -17,8 +17,10 @@ static double turning(const double *x, int i) {
     a[k] = x[3 * i + k] - x[3 * (i - 1) + k];
     b[k] = x[3 * (i + 1) + k] - x[3 * i + k];
   }
-  double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+  double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0]};
+  return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+               a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }
 
 static double solve_u(double r) { /* u + u^3 = r */
@@ -50,7 +52,8 @@ int main(void) {
     double strain[64];
     rn_network_rod_strains(net, 0, strain, NULL, NULL);
     for (int j = 0; j < n; ++j) CHECK_NEAR(strain[j], 0.0, 1e-10);
-    printf("discrete-exact end moment: phi = %.15f (expected %.15f)\n", turning(x, n / 2), phi);
+    printf("discrete-exact end moment: phi = %.15f (expected %.15f)\n", turning(x, n / 2),
+           phi);
     free(x);
     rn_network_destroy(&net);
   }
@@ -68,8 +71,8 @@ int main(void) {
     /* the continuum tip is the clamp point (0, 0, 0) */
     err[i] = sqrt(tip[0] * tip[0] + tip[1] * tip[1] + tip[2] * tip[2]) / L;
     hs[i] = L / (ns[i] - 0.5);
-    printf("circle closure n=%d: tip error/L %.4e (planar DER table %.3e)\n", ns[i], err[i],
-           table[i]);
+    printf("circle closure n=%d: tip error/L %.4e (planar DER table %.3e)\n", ns[i],
+           err[i], table[i]);
     CHECK_REL(err[i], table[i], 0.02);
     rn_network_destroy(&net);
   }

@@ -17,8 +17,10 @@ static double turning(const double *x, int i) {
     a[k] = x[3 * i + k] - x[3 * (i - 1) + k];
     b[k] = x[3 * (i + 1) + k] - x[3 * i + k];
   }
-  double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+  double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0]};
+  return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+               a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }
 
 static void run(rn_context *ctx, double k1, double k2, double tw, const rn_section *s) {
@@ -69,7 +71,8 @@ static void run(rn_context *ctx, double k1, double k2, double tw, const rn_secti
     wk = fmax(wk, fmax(fabs(kap_out[2 * i] - k1), fabs(kap_out[2 * i + 1] - k2)));
     wt = fmax(wt, fabs(tau_out[i] - tw));
   }
-  printf("rest curvature (%.3f, %.3f), twist %.3f: E0 = %.3e -> E = %.3e, worst turning-angle "
+  printf("rest curvature (%.3f, %.3f), twist %.3f: E0 = %.3e -> E = %.3e, worst "
+         "turning-angle "
          "error %.2e, curvature %.2e, twist %.2e\n",
          k1, k2, tw, E0, E, worst, wk, wt);
   CHECK(E <= 1e-18 * E0);
@@ -89,8 +92,8 @@ int main(void) {
   rn_section ribbon, round;
   CHECK_STATUS(rn_section_rectangle(0.02, 0.004, &ribbon), RN_OK);
   CHECK_STATUS(rn_section_circle(0.005, &round), RN_OK);
-  run(ctx, 0.1, 0.0, 0.0, &ribbon);  /* about the stiff axis */
-  run(ctx, 0.0, 0.1, 0.0, &ribbon);  /* about the soft axis */
+  run(ctx, 0.1, 0.0, 0.0, &ribbon); /* about the stiff axis */
+  run(ctx, 0.0, 0.1, 0.0, &ribbon); /* about the soft axis */
   run(ctx, 0.06, -0.08, 0.0, &round);
   run(ctx, 0.08, 0.0, 0.03, &ribbon); /* helix */
   rn_context_destroy(&ctx);

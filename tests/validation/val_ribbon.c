@@ -10,8 +10,8 @@
 #include "valutil.h"
 
 /* tip deflection (along y = d1, along z = d2) for a tip force (0, Py, Pz) */
-static void tip_deflection(rn_context *ctx, int n, const rn_section *s, double Py, double Pz,
-                           double d[2]) {
+static void tip_deflection(rn_context *ctx, int n, const rn_section *s, double Py,
+                           double Pz, double d[2]) {
   rn_material m;
   CHECK_STATUS(rn_material_from_E_nu(1e7, 0.3, 0.0, &m), RN_OK);
   double f[3] = {0, Py, Pz}, tip[3];
@@ -36,7 +36,8 @@ int main(void) {
   for (int c = 0; c < 2; ++c) {
     const rn_section *s = secs[c];
     /* small oblique load: alpha ~ 1e-5 on the soft axis */
-    double Imin = 0.5 * (s->I11 + s->I22) - sqrt(0.25 * pow(s->I11 - s->I22, 2) + s->I12 * s->I12);
+    double Imin =
+        0.5 * (s->I11 + s->I22) - sqrt(0.25 * pow(s->I11 - s->I22, 2) + s->I12 * s->I12);
     double P = 1e-5 * E * Imin / (L * L), Py = P, Pz = P;
     /* beam theory: d = L^3/(3E) I^{-1} P */
     double det = s->I11 * s->I22 - s->I12 * s->I12;
@@ -48,8 +49,8 @@ int main(void) {
       tip_deflection(ctx, ns[i], s, Py, Pz, d);
       hs[i] = L / (ns[i] - 0.5);
       err[i] = sqrt(pow(d[0] - ey, 2) + pow(d[1] - ez, 2)) / sqrt(ey * ey + ez * ez);
-      printf("%s n=%d: tip (%.6e, %.6e) beam (%.6e, %.6e) rel err %.3e\n", names[c], ns[i], d[0],
-             d[1], ey, ez, err[i]);
+      printf("%s n=%d: tip (%.6e, %.6e) beam (%.6e, %.6e) rel err %.3e\n", names[c],
+             ns[i], d[0], d[1], ey, ez, err[i]);
     }
     double order = rn_test_loglog_slope(3, hs, err);
     printf("%s: convergence order %.3f\n", names[c], order);

@@ -27,12 +27,14 @@ rn_network *val_clamped_rod(rn_context *ctx, int n, double L, const rn_material 
   double d1[3] = {0, 1, 0};
   rn_status st = rn_network_create(ctx, &net);
   if (st) die(NULL, st, "rn_network_create");
-  if ((st = rn_network_add_rod(net, "rod", n + 1, xyz, d1, &rod))) die(net, st, "add_rod");
+  if ((st = rn_network_add_rod(net, "rod", n + 1, xyz, d1, &rod)))
+    die(net, st, "add_rod");
   free(xyz);
   if ((st = rn_network_set_material(net, rod, -1, m))) die(net, st, "set_material");
   if ((st = rn_network_set_section(net, rod, -1, s))) die(net, st, "set_section");
   if ((st = rn_network_clamp(net, rod, RN_START))) die(net, st, "clamp");
-  if (tip_force && (st = rn_network_add_force(net, rod, -1, tip_force))) die(net, st, "force");
+  if (tip_force && (st = rn_network_add_force(net, rod, -1, tip_force)))
+    die(net, st, "force");
   if (tip_moment && (st = rn_network_add_moment(net, rod, -1, tip_moment)))
     die(net, st, "moment");
   if (finalize && (st = rn_network_finalize(net))) die(net, st, "finalize");
@@ -47,7 +49,8 @@ rn_solve_report val_solve(rn_network *net, int load_steps) {
   rn_status st = rn_solve(net, &opt, &rep);
   if (st) die(net, st, "rn_solve");
   if (!rep.converged) {
-    rn_test_fail(__FILE__, __LINE__, "solve did not converge: stop=%s after %d iterations, |g|=%.3g",
+    rn_test_fail(__FILE__, __LINE__,
+                 "solve did not converge: stop=%s after %d iterations, |g|=%.3g",
                  rn_solve_stop_name(rep.stop), rep.iterations, rep.gradient_norm);
   }
   rn_test_checks++;
@@ -104,7 +107,8 @@ static double carlson_rd(double x, double y, double z) {
     double mu = (x + y + 3 * z) / 5.0;
     double dx = 1 - x / mu, dy = 1 - y / mu, dz = 1 - z / mu;
     if (fmax(fabs(dx), fmax(fabs(dy), fabs(dz))) < 1e-4) {
-      double ea = dx * dy, eb = dz * dz, ec = ea - eb, ed = ea - 6 * eb, ee = ed + ec + ec;
+      double ea = dx * dy, eb = dz * dz, ec = ea - eb, ed = ea - 6 * eb,
+             ee = ed + ec + ec;
       double s = 1 + ed * (-3.0 / 14 + 9.0 / 88 * ed - 4.5 / 26 * dz * ee) +
                  dz * (ee / 6 + dz * (-9.0 / 22 * ec + dz * 3.0 / 26 * ea));
       return 3 * sum + fac * s / (mu * sqrt(mu));
@@ -120,7 +124,8 @@ double val_ellF(double phi, double k) {
 
 double val_ellEinc(double phi, double k) {
   double s = sin(phi), c = cos(phi), q = 1 - k * k * s * s;
-  return s * carlson_rf(c * c, q, 1.0) - k * k * s * s * s * carlson_rd(c * c, q, 1.0) / 3.0;
+  return s * carlson_rf(c * c, q, 1.0) -
+         k * k * s * s * s * carlson_rd(c * c, q, 1.0) / 3.0;
 }
 
 double val_ellE(double k) { return val_ellEinc(M_PI / 2, k); }
