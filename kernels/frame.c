@@ -137,13 +137,13 @@ void rnk_twist_increment(const rnk_edge_jet f[2], double m_prev, jet *dm) {
   jvec_lin(&b1, cm, &f[1].a1, -sm, &f[1].a2);
   jvec_lin(&b2, sm, &f[1].a1, cm, &f[1].a2);
   jet num, den, p;
-  jvec_dot_mixed(&num, &f[0].a2, &b1);
-  jvec_dot_mixed(&p, &f[0].a1, &b2);
+  jvec_dot_blocks(&num, &f[0].a2, &b1);
+  jvec_dot_blocks(&p, &f[0].a1, &b2);
   jet_sub(&num, &num, &p);
-  jvec_dot_mixed(&den, &f[0].t, &f[1].t);
-  jvec_dot_mixed(&p, &f[0].a1, &b1);
+  jvec_dot_blocks(&den, &f[0].t, &f[1].t);
+  jvec_dot_blocks(&p, &f[0].a1, &b1);
   jet_add(&den, &den, &p);
-  jvec_dot_mixed(&p, &f[0].a2, &b2);
+  jvec_dot_blocks(&p, &f[0].a2, &b2);
   jet_add(&den, &den, &p);
   jet_add_const(&den, &den, 1.0);
   jet_atan2(dm, &num, &den);
@@ -167,16 +167,16 @@ void rnk_twist_jet(const rnk_edge_jet f[2], const double q[11], double m_prev, j
  * equals (t1 . d2_0 - t0 . d2_1) / (1 + t0 . t1): fewer operations. */
 int rnk_curvature_jet(const rnk_edge_jet f[2], jet kappa[2]) {
   jet den, p;
-  jvec_dot_mixed(&den, &f[0].t, &f[1].t);
+  jvec_dot_blocks(&den, &f[0].t, &f[1].t);
   jet_add_const(&den, &den, 1.0);
   if (!(den.v >= RNK_OPPOSITE_TOL)) return RNK_DEGENERATE;
   jet_inv(&den, &den);
-  jvec_dot_mixed(&kappa[0], &f[0].d1, &f[1].t);
-  jvec_dot_mixed(&p, &f[0].t, &f[1].d1);
+  jvec_dot_blocks(&kappa[0], &f[0].d1, &f[1].t);
+  jvec_dot_blocks(&p, &f[0].t, &f[1].d1);
   jet_sub(&kappa[0], &kappa[0], &p);
   jet_mul(&kappa[0], &kappa[0], &den);
-  jvec_dot_mixed(&kappa[1], &f[0].d2, &f[1].t);
-  jvec_dot_mixed(&p, &f[0].t, &f[1].d2);
+  jvec_dot_blocks(&kappa[1], &f[0].d2, &f[1].t);
+  jvec_dot_blocks(&p, &f[0].t, &f[1].d2);
   jet_sub(&kappa[1], &kappa[1], &p);
   jet_mul(&kappa[1], &kappa[1], &den);
   return RNK_OK;

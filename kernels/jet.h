@@ -260,42 +260,35 @@ static inline void jvec_comb(jvec *r, const jet *sa, const jvec *a, const jet *s
   for (int k = 0; k < 3; ++k) jet_copy(&r->c[k], &t.c[k]);
 }
 
-/* r = a . b where a depends on variables 0..3 and b on variables 0..3 of a
- * second block: r is a jet over 8 variables (a's block first).  Computed
- * from the 4-variable jets directly: the Hessian has the blocks
- * sum_k (b_k a_k'' , a_k' b_k'^T ; ., a_k b_k''). */
-static inline void jvec_dot_mixed(jet *r, const jvec *a, const jvec *b) {
-  int ord = a->c[0].ord;
-  r->n = 2 * 4;
+/* r = a . b with a over variables 0..na-1 and b over variables 0..nb-1 of a
+ * second block: r is a jet over na + nb variables (a's block first). */
+static inline void jvec_dot_blocks(jet *r, const jvec *a, const jvec *b) {
+  int ord = a->c[0].ord, na = a->c[0].n, nb = b->c[0].n;
+  r->n = na + nb;
   r->ord = ord;
   r->v = a->c[0].v * b->c[0].v + a->c[1].v * b->c[1].v + a->c[2].v * b->c[2].v;
-  if (ord >= 1)
-    for (int i = 0; i < 4; ++i) {
-      double ga = 0.0, gb = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        ga += a->c[k].g[i] * b->c[k].v;
-        gb += a->c[k].v * b->c[k].g[i];
-      }
-      r->g[i] = ga;
-      r->g[4 + i] = gb;
+  if (ord >= 1) {
+    for (int i = 0; i < na; ++i)
+      r->g[i] =
+          a->c[0].g[i] * b->c[0].v + a->c[1].g[i] * b->c[1].v + a->c[2].g[i] * b->c[2].v;
+    for (int i = 0; i < nb; ++i)
+      r->g[na + i] =
+          a->c[0].v * b->c[0].g[i] + a->c[1].v * b->c[1].g[i] + a->c[2].v * b->c[2].g[i];
+  }
+  if (ord >= 2) {
+    for (int i = 0; i < na; ++i) {
+      for (int j = i; j < na; ++j)
+        r->h[i][j] = a->c[0].h[i][j] * b->c[0].v + a->c[1].h[i][j] * b->c[1].v +
+                     a->c[2].h[i][j] * b->c[2].v;
+      for (int j = 0; j < nb; ++j)
+        r->h[i][na + j] = a->c[0].g[i] * b->c[0].g[j] + a->c[1].g[i] * b->c[1].g[j] +
+                          a->c[2].g[i] * b->c[2].g[j];
     }
-  if (ord >= 2)
-    for (int i = 0; i < 4; ++i) {
-      for (int j = i; j < 4; ++j) {
-        double ha = 0.0, hb = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          ha += a->c[k].h[i][j] * b->c[k].v;
-          hb += a->c[k].v * b->c[k].h[i][j];
-        }
-        r->h[i][j] = ha;
-        r->h[4 + i][4 + j] = hb;
-      }
-      for (int j = 0; j < 4; ++j) {
-        double hab = 0.0;
-        for (int k = 0; k < 3; ++k) hab += a->c[k].g[i] * b->c[k].g[j];
-        r->h[i][4 + j] = hab;
-      }
-    }
+    for (int i = 0; i < nb; ++i)
+      for (int j = i; j < nb; ++j)
+        r->h[na + i][na + j] = a->c[0].v * b->c[0].h[i][j] + a->c[1].v * b->c[1].h[i][j] +
+                               a->c[2].v * b->c[2].h[i][j];
+  }
 }
 
 static inline void jvec_embed(jvec *r, const jvec *a, int n_to, int offset) {

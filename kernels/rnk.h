@@ -158,6 +158,42 @@ int rnk_moment_hvp(const double q[7], const rnk_frame *ref, const rnk_moment_par
 int rnk_moment_angle(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
                      double *alpha);
 
+/* ---- joint stencil: a rod end meeting a joint (connection edge) ----------
+ * The rod's terminal edge (between the joint position x_J and the rod vertex
+ * next to it, x_n) meets a fictitious connection edge that is rigidly
+ * attached to the joint's rotation Q = exp([w]) Q_hat (seed 001; Perez et al.
+ * 2015): its frame is Q applied to the rest frame of the terminal edge.  The
+ * energy is the bending + twisting at the joint vertex between the two edges.
+ * Stencil q[10] = (x_n[3], theta of the terminal edge, x_J[3], w[3]);
+ * ref is the terminal edge's reference frame.  Twist is measured between the
+ * material frames, continued from the stored value twist.ref_twist. */
+typedef struct rnk_joint_param {
+  double c[9];           /* connection frame (t, d1, d2) at w = 0, i.e. Q_hat
+                            applied to the rest frame of the terminal edge */
+  int side;              /* 0: the rod ends at the joint (terminal edge first,
+                            from x_n to x_J); 1: the rod starts at it
+                            (connection edge first, terminal edge x_J -> x_n) */
+  rnk_bend_param bend;   /* B, kbar (0: straight continuation), vlen */
+  rnk_twist_param twist; /* beta, taubar, vlen, ref_twist */
+} rnk_joint_param;
+
+int rnk_joint_energy(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+                     double *E);
+int rnk_joint_grad(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+                   double *E, double g[10]);
+int rnk_joint_hess(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+                   double H[100]);
+int rnk_joint_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+                  const double v[10], double Hv[10]);
+/* Current curvature and twist at the joint vertex (for reference updates and
+ * output). */
+int rnk_joint_strains(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+                      double kappa[2], double *twist);
+
+/* Rotation matrix exp([w]) (row-major) of a rotation vector, accurate for
+ * small |w| (series), and R = exp([w]) R0. */
+void rnk_rotation_exp(const double w[3], double R[9]);
+
 /* ---- dead force on a vertex: E = -f . x (linear; Hessian zero) ----------- */
 double rnk_force_energy(const double x[3], const double f[3]);
 void rnk_force_grad(const double f[3], double g[3]);

@@ -1,2 +1,4 @@
 rn_add_test(kernels_conformance SOURCES unit/kernels_conformance.c
             LIBS rodnet_kernels_static LABELS unit)
+rn_add_test(kernels_joint SOURCES unit/kernels_joint.c
+            LIBS rodnet_kernels_static LABELS unit)

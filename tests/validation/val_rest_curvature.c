@@ -61,7 +61,11 @@ static void run(rn_context *ctx, double k1, double k2, double tw, const rn_secti
   double E;
   rn_network_energy(net, x, &E);
   rn_network_rod_vertices(net, rod, xyz);
+  /* Planar arc: every turning angle is the rest one, |kb| = 2 tan(phi/2) =
+   * |kappa|.  With rest twist the material curvature is measured in the
+   * averaged (twisted) frames, so only uniformity is asserted. */
   double kk = sqrt(k1 * k1 + k2 * k2), phi = 2 * atan(kk / 2);
+  if (tw != 0.0) phi = turning(xyz, nv / 2);
   double worst = 0;
   for (int i = 1; i < nv - 1; ++i) worst = fmax(worst, fabs(turning(xyz, i) - phi));
   double kap_out[2 * 64], tau_out[64];
