@@ -244,6 +244,76 @@ rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1, doub
  * Any pointer may be NULL. */
 rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
                                  double *kappa, double *tau);
+/* Rest length of each edge, len[nv-1] (the input edge lengths unless
+ * rn_network_set_rest_lengths overrode them).  Works before finalize too. */
+rn_status rn_network_rod_rest_lengths(const rn_network *net, int rod, double *len);
+/* Stress resultants and energies of the interior vertex stencils at the
+ * current state; entry i-1 belongs to interior vertex i (1 .. nv-2), and vlen
+ * is its Voronoi rest length (lbar^{i-1} + lbar^i) / 2:
+ *   moment[2*(nv-2)]      bending moment (m1, m2) = B (kappa - kbar) / vlen, in
+ *                         the material components of rn_network_rod_strains
+ *                         (kappa1 = kb . (d2^{i-1} + d2^i) / 2, kappa2 =
+ *                         -kb . (d1^{i-1} + d1^i) / 2), B the vertex's averaged
+ *                         bending stiffness; |M| = hypot(m1, m2) (= E I |kb| /
+ *                         vlen for an isotropic section and a straight rest
+ *                         shape);
+ *   twist_moment[nv-2]    twisting moment G J (tau - taubar) / vlen;
+ *   bend_energy[nv-2],    bending and twisting energy of the stencil (their
+ *   twist_energy[nv-2]    sums are the rod's RN_TERM_BEND and RN_TERM_TWIST).
+ * Any pointer may be NULL.  RN_DEGENERATE (> 0) for a degenerate stencil,
+ * RN_ERR_STATE before finalize, RN_ERR_RANGE for a bad rod. */
+rn_status rn_network_rod_vertex_fields(const rn_network *net, int rod, double *moment,
+                                       double *twist_moment, double *bend_energy,
+                                       double *twist_energy);
+/* Per edge at the current state: axial_force[nv-1] = E A (l / lbar - 1) and
+ * stretch_energy[nv-1] = 1/2 E A (l - lbar)^2 / lbar (its sum is the rod's
+ * RN_TERM_STRETCH).  Either pointer may be NULL. */
+rn_status rn_network_rod_edge_fields(const rn_network *net, int rod, double *axial_force,
+                                     double *stretch_energy);
+
+/* ---- joints (rod networks; docs/joints.md) ------------------------------- */
+typedef enum rn_joint_model {
+  /* Perez et al. 2015 / seed 001: the joint's rotation is the least-squares
+   * fit (polar decomposition) of the incident terminal edges' material frames
+   * to their rest frames; no rotation DOFs. */
+  RN_JOINT_ELASTIC = 0,
+  /* The joint's rotation is a DOF (rotation vector about a reference rotation
+   * that moves on accepted steps); rigid connections (frame theory). */
+  RN_JOINT_RIGID = 1
+} rn_joint_model;
+
+/* Add a joint where n_ends >= 1 rod ends meet: end k is end ends[k]
+ * (RN_START or RN_END) of rod rods[k].  The end vertices must coincide (to
+ * 1e-9 of the shortest incident edge); they become one vertex, the joint,
+ * whose position is a DOF.  Each rod end gets a connection edge that
+ * continues its terminal edge straight across the joint, rigidly attached to
+ * the joint's rotation; the bending and twisting between terminal and
+ * connection edge is the joint's energy.  A rod end belongs to at most one
+ * joint and cannot itself be clamped or pinned (constrain the joint).  name
+ * may be NULL.  *joint receives the joint index. */
+rn_status rn_network_add_joint(rn_network *net, const char *name, rn_joint_model model,
+                               int n_ends, const int *rods, const int *ends, int *joint);
+int rn_network_num_joints(const rn_network *net);
+const char *rn_network_joint_name(const rn_network *net, int joint); /* borrowed */
+int rn_network_joint_model(const rn_network *net, int joint);        /* -1 if invalid */
+int rn_network_joint_valence(const rn_network *net, int joint);      /* -1 if invalid */
+
+/* Boundary conditions on joints: clamp fixes position and rotation (an elastic
+ * joint then holds its connection edges in their rest orientation); pin
+ * fixes the position.  Prescribed motion (scaled by the load factor): disp of
+ * a pinned or clamped joint, rotvec (about the joint) of a clamped one. */
+rn_status rn_network_clamp_joint(rn_network *net, int joint);
+rn_status rn_network_pin_joint(rn_network *net, int joint);
+rn_status rn_network_displace_joint(rn_network *net, int joint, const double disp[3],
+                                    const double rotvec[3]);
+/* Dead force on a joint, and a couple on its rotation (model as for rods:
+ * rotation about the couple's axis). */
+rn_status rn_network_add_joint_force(rn_network *net, int joint, const double f[3]);
+rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m[3]);
+
+/* Current joint position x[3] and rotation R[9] (row-major, rest = identity). */
+rn_status rn_network_joint_position(const rn_network *net, int joint, double x[3]);
+rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9]);
 
 /* ---- derivative self-test ------------------------------------------------ */
 typedef struct rn_check_report {

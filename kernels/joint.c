@@ -77,7 +77,7 @@ typedef struct joint_frames {
 } joint_frames;
 
 static int joint_frames_eval(const double q[10], const rnk_frame *ref,
-                             const rnk_joint_param *p, int ord, joint_frames *f) {
+                             const rnk_joint_end_param *p, int ord, joint_frames *f) {
   double e[3];
   for (int k = 0; k < 3; ++k) e[k] = p->side == 0 ? q[4 + k] - q[k] : q[k] - q[4 + k];
   int st = rnk_edge_jet_eval(e, q[3], ref, ord, &f->term);
@@ -98,14 +98,14 @@ static int joint_frames_eval(const double q[10], const rnk_frame *ref,
 
 /* x . y with x from the first edge of the vertex and y from the second; the
  * result's variables are always (terminal edge, rotation). */
-static void edot(const rnk_joint_param *p, const jvec *x, const jvec *y, jet *r) {
+static void edot(const rnk_joint_end_param *p, const jvec *x, const jvec *y, jet *r) {
   if (p->side == 0)
     jvec_dot_blocks(r, x, y); /* first edge = terminal */
   else
     jvec_dot_blocks(r, y, x); /* first edge = connection */
 }
 
-static int joint_strains_jet(const joint_frames *f, const rnk_joint_param *p,
+static int joint_strains_jet(const joint_frames *f, const rnk_joint_end_param *p,
                              jet kappa[2], jet *tau) {
   const jvec *t0, *t1, *d10, *d11, *d20, *d21;
   if (p->side == 0) {
@@ -150,7 +150,7 @@ static int joint_strains_jet(const joint_frames *f, const rnk_joint_param *p,
   return RNK_OK;
 }
 
-static int joint_eval(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+static int joint_eval(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                       int ord, jet *E) {
   joint_frames f;
   jet k[2], tau, a, b, c;
@@ -174,7 +174,7 @@ static int joint_eval(const double q[10], const rnk_frame *ref, const rnk_joint_
 }
 
 /* jet variables (e[3], theta, w[3]) -> stencil DOFs (x_n[3], theta, x_J[3], w[3]) */
-static void scatter(const rnk_joint_param *p, const jet *E, double *g, double *H) {
+static void scatter(const rnk_joint_end_param *p, const jet *E, double *g, double *H) {
   int idx[7][2], cnt[7];
   double c[7][2];
   double sg = p->side == 0 ? 1.0 : -1.0; /* e = sg (x_J - x_n) */
@@ -204,7 +204,7 @@ static void scatter(const rnk_joint_param *p, const jet *E, double *g, double *H
   }
 }
 
-int rnk_joint_energy(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_energy(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                      double *E) {
   jet e;
   int st = joint_eval(q, ref, p, 0, &e);
@@ -213,7 +213,7 @@ int rnk_joint_energy(const double q[10], const rnk_frame *ref, const rnk_joint_p
   return RNK_OK;
 }
 
-int rnk_joint_grad(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_grad(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                    double *E, double g[10]) {
   jet e;
   int st = joint_eval(q, ref, p, 1, &e);
@@ -223,7 +223,7 @@ int rnk_joint_grad(const double q[10], const rnk_frame *ref, const rnk_joint_par
   return RNK_OK;
 }
 
-int rnk_joint_hess(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_hess(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                    double H[100]) {
   jet e;
   int st = joint_eval(q, ref, p, 2, &e);
@@ -232,16 +232,16 @@ int rnk_joint_hess(const double q[10], const rnk_frame *ref, const rnk_joint_par
   return RNK_OK;
 }
 
-int rnk_joint_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                   const double v[10], double Hv[10]) {
   double H[100];
-  int st = rnk_joint_hess(q, ref, p, H);
+  int st = rnk_joint_end_hess(q, ref, p, H);
   if (st) return st;
   rnk_block_mv(10, H, v, Hv);
   return RNK_OK;
 }
 
-int rnk_joint_strains(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_strains(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                       double kappa[2], double *twist) {
   joint_frames f;
   jet k[2], tau;

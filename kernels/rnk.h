@@ -167,7 +167,7 @@ int rnk_moment_angle(const double q[7], const rnk_frame *ref, const rnk_moment_p
  * Stencil q[10] = (x_n[3], theta of the terminal edge, x_J[3], w[3]);
  * ref is the terminal edge's reference frame.  Twist is measured between the
  * material frames, continued from the stored value twist.ref_twist. */
-typedef struct rnk_joint_param {
+typedef struct rnk_joint_end_param {
   double c[9];           /* connection frame (t, d1, d2) at w = 0, i.e. Q_hat
                             applied to the rest frame of the terminal edge */
   int side;              /* 0: the rod ends at the joint (terminal edge first,
@@ -175,23 +175,73 @@ typedef struct rnk_joint_param {
                             (connection edge first, terminal edge x_J -> x_n) */
   rnk_bend_param bend;   /* B, kbar (0: straight continuation), vlen */
   rnk_twist_param twist; /* beta, taubar, vlen, ref_twist */
-} rnk_joint_param;
+} rnk_joint_end_param;
 
-int rnk_joint_energy(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_energy(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                      double *E);
-int rnk_joint_grad(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_grad(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                    double *E, double g[10]);
-int rnk_joint_hess(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_hess(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                    double H[100]);
-int rnk_joint_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                   const double v[10], double Hv[10]);
 /* Current curvature and twist at the joint vertex (for reference updates and
  * output). */
-int rnk_joint_strains(const double q[10], const rnk_frame *ref, const rnk_joint_param *p,
+int rnk_joint_end_strains(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
                       double kappa[2], double *twist);
 
-/* Rotation matrix exp([w]) (row-major) of a rotation vector, accurate for
- * small |w| (series), and R = exp([w]) R0. */
+/* ---- a whole joint: every incident rod end, both models -------------------
+ * Stencil layout (the caller gathers it by index lists):
+ *   q = (x_J[3], w[3] if rigid, then per end k: x_n[3] of end k, theta_k)
+ * of size rnk_joint_stencil_size(): 3 (+3 rigid) + 4 valence.  End k's
+ * terminal edge runs from x_n to x_J (side 0) or from x_J to x_n (side 1).
+ * Rotation of the joint (rest = identity):
+ *   rigid:   Q = exp([w]) Qhat;
+ *   elastic: Q = polar(sum_k F_k Fbar_k^T), F_k = (t, d1, d2) of terminal edge k
+ *            as columns, Fbar_k its rest frame (the least-squares fit of the
+ *            rest frames to the current ones, Perez et al. 2015 eq. 4);
+ *            exact first and second derivatives through the polar factor.
+ * Energy: sum over ends of the end stencil (connection frame Q cbar_k) plus an
+ * optional couple on Q (as rnk_moment_*, about the couple's axis). */
+typedef struct rnk_joint_end {
+  int side;              /* 0: the rod ends at the joint, 1: it starts there */
+  double cbar[9];        /* rest frame (t, d1, d2) of the terminal edge */
+  rnk_bend_param bend;   /* B, kbar (0), vlen (half the terminal rest length) */
+  rnk_twist_param twist; /* beta, taubar (0), vlen, ref_twist (last update) */
+} rnk_joint_end;
+
+typedef struct rnk_joint {
+  int rigid;                  /* 1: rigid (rotation DOFs), 0: elastic */
+  int valence;                /* >= 1 */
+  const rnk_joint_end *ends;  /* [valence] */
+  const rnk_frame *refs;      /* reference frames of the terminal edges [valence] */
+  double Qhat[9];             /* rigid: reference rotation */
+  double M[3];                /* couple on the joint rotation (zero: none) */
+  double f0[9];               /* joint rotation at the last update (couple) */
+  double angle0;              /* couple angle accumulated up to that update */
+} rnk_joint;
+
+size_t rnk_joint_stencil_size(const rnk_joint *j);
+/* Doubles of workspace the functions below need (caller allocates). */
+size_t rnk_joint_work_size(const rnk_joint *j);
+int rnk_joint_energy(const double *q, const rnk_joint *j, double *work, double *E);
+/* g[n], H[n*n] with n = rnk_joint_stencil_size(j). */
+int rnk_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
+                   double *g);
+int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H);
+/* Current rotation Q (row-major), the twists at the joint vertex of every
+ * end (for the reference update: ends[k].twist.ref_twist <- twist[k]) and the
+ * couple's rotation angle since f0. */
+int rnk_joint_rotation(const double *q, const rnk_joint *j, double R[9]);
+int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist);
+int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha);
+
+/* Polar factor R of M (M = R U, U symmetric positive definite), by Newton
+ * iteration; RNK_DEGENERATE if M is (nearly) singular or det M <= 0. */
+int rnk_polar(const double M[9], double R[9]);
+
+/* Rotation matrix exp([w]) (row-major) of a rotation vector w, accurate for
+ * small |w| (series for the Rodrigues coefficients). */
 void rnk_rotation_exp(const double w[3], double R[9]);
 
 /* ---- dead force on a vertex: E = -f . x (linear; Hessian zero) ----------- */

@@ -49,7 +49,7 @@ static void frame_near(const double t0[3], double spread, double f[9]) {
 }
 
 static void random_joint(int side, double wmag, double q[10], rnk_frame *ref,
-                         rnk_joint_param *p) {
+                         rnk_joint_end_param *p) {
   double xn[3] = {0.1 * rnd(), 0.1 * rnd(), 0.1 * rnd()};
   double xj[3] = {1 + 0.2 * rnd(), 0.3 * rnd(), 0.3 * rnd()};
   if (side == 1) /* terminal edge from x_J to x_n: put x_n after x_J */
@@ -80,10 +80,10 @@ static void random_joint(int side, double wmag, double q[10], rnk_frame *ref,
       (rnk_twist_param){.beta = 1.1, .taubar = 0.07, .vlen = 0.8, .ref_twist = 0.2};
 }
 
-static void check_fd(const double q[10], const rnk_frame *ref, const rnk_joint_param *p) {
+static void check_fd(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p) {
   double E, g[10], H[100], Hv[10], v[10];
-  CHECK_STATUS(rnk_joint_grad(q, ref, p, &E, g), RNK_OK);
-  CHECK_STATUS(rnk_joint_hess(q, ref, p, H), RNK_OK);
+  CHECK_STATUS(rnk_joint_end_grad(q, ref, p, &E, g), RNK_OK);
+  CHECK_STATUS(rnk_joint_end_hess(q, ref, p, H), RNK_OK);
   double hmax = 0, asym = 0;
   for (int i = 0; i < 100; ++i) hmax = fmax(hmax, fabs(H[i]));
   for (int i = 0; i < 10; ++i)
@@ -93,7 +93,7 @@ static void check_fd(const double q[10], const rnk_frame *ref, const rnk_joint_p
     for (int i = 0; i < 10; ++i) v[i] = rnd();
     double nv = norm(10, v);
     for (int i = 0; i < 10; ++i) v[i] /= nv;
-    CHECK_STATUS(rnk_joint_hvp(q, ref, p, v, Hv), RNK_OK);
+    CHECK_STATUS(rnk_joint_end_hvp(q, ref, p, v, Hv), RNK_OK);
     double gv = 0;
     for (int i = 0; i < 10; ++i) gv += g[i] * v[i];
     double hs[5], eg[5], eh[5];
@@ -104,8 +104,8 @@ static void check_fd(const double q[10], const rnk_frame *ref, const rnk_joint_p
         qp[i] = q[i] + h * v[i];
         qm[i] = q[i] - h * v[i];
       }
-      CHECK_STATUS(rnk_joint_grad(qp, ref, p, &Ep, gp), RNK_OK);
-      CHECK_STATUS(rnk_joint_grad(qm, ref, p, &Em, gm), RNK_OK);
+      CHECK_STATUS(rnk_joint_end_grad(qp, ref, p, &Ep, gp), RNK_OK);
+      CHECK_STATUS(rnk_joint_end_grad(qm, ref, p, &Em, gm), RNK_OK);
       hs[s] = h;
       eg[s] = fabs((Ep - Em) / (2 * h) - gv) / sg;
       double err = 0;
@@ -151,7 +151,7 @@ static void test_fd(void) {
       for (int trial = 0; trial < 10; ++trial) {
         double q[10];
         rnk_frame ref;
-        rnk_joint_param p;
+        rnk_joint_end_param p;
         random_joint(side, mags[m], q, &ref, &p);
         check_fd(q, &ref, &p);
       }
@@ -162,7 +162,7 @@ static void test_rest_and_invariance(void) {
     for (int trial = 0; trial < 10; ++trial) {
       double q[10], E, g[10];
       rnk_frame ref;
-      rnk_joint_param p;
+      rnk_joint_end_param p;
       random_joint(side, 0.0, q, &ref, &p);
       /* rest: straight continuation with the same material frame */
       double e[3], t[3], d1[3], d2[3];
@@ -173,7 +173,7 @@ static void test_rest_and_invariance(void) {
       memcpy(p.c + 6, d2, sizeof d2);
       p.bend.kbar[0] = p.bend.kbar[1] = 0;
       p.twist.taubar = p.twist.ref_twist = 0;
-      CHECK_STATUS(rnk_joint_grad(q, &ref, &p, &E, g), RNK_OK);
+      CHECK_STATUS(rnk_joint_end_grad(q, &ref, &p, &E, g), RNK_OK);
       CHECK_NEAR(E, 0.0, 1e-20);
       CHECK_NEAR(norm(10, g), 0.0, 1e-13);
       /* rigid motion: rotate points, frames and w; translate */
@@ -181,7 +181,7 @@ static void test_rest_and_invariance(void) {
       double R[9], wv[3] = {rnd(), rnd(), rnd()}, c[3] = {rnd(), rnd(), rnd()}, q2[10];
       rnk_rotation_exp(wv, R);
       rnk_frame ref2;
-      rnk_joint_param p2 = p;
+      rnk_joint_end_param p2 = p;
       mat_vec(R, ref.t, ref2.t);
       mat_vec(R, ref.a1, ref2.a1);
       for (int v = 0; v < 3; ++v) mat_vec(R, p.c + 3 * v, p2.c + 3 * v);
@@ -191,8 +191,8 @@ static void test_rest_and_invariance(void) {
       mat_vec(R, q + 7, q2 + 7);
       for (int k = 0; k < 3; ++k) q2[k] += c[k], q2[4 + k] += c[k];
       double E1, E2;
-      CHECK_STATUS(rnk_joint_energy(q, &ref, &p, &E1), RNK_OK);
-      CHECK_STATUS(rnk_joint_energy(q2, &ref2, &p2, &E2), RNK_OK);
+      CHECK_STATUS(rnk_joint_end_energy(q, &ref, &p, &E1), RNK_OK);
+      CHECK_STATUS(rnk_joint_end_energy(q2, &ref2, &p2, &E2), RNK_OK);
       CHECK_NEAR(E2, E1, 1e-12 * E1);
     }
 }
@@ -217,13 +217,13 @@ static void test_matches_rod_vertex(void) {
     CHECK_STATUS(rnk_bendtwist_energy(q11, ref, &bp, &tp, &Eb, &Et), RNK_OK);
     CHECK_STATUS(rnk_bendtwist_grad(q11, ref, &bp, &tp, NULL, g11), RNK_OK);
     CHECK_STATUS(rnk_strains(q11, ref, tp.ref_twist, kap, &tau), RNK_OK);
-    rnk_joint_param p = {.side = 0, .bend = bp, .twist = tp};
+    rnk_joint_end_param p = {.side = 0, .bend = bp, .twist = tp};
     p.twist.ref_twist = tau;
     CHECK_STATUS(rnk_material_frame(e1, &ref[1], q11[7], p.c, p.c + 3, p.c + 6), RNK_OK);
     double q10[10] = {q11[0], q11[1], q11[2], q11[3], q11[4], q11[5], q11[6], 0, 0, 0};
     double E, g10[10], kj[2], tj;
-    CHECK_STATUS(rnk_joint_grad(q10, &ref[0], &p, &E, g10), RNK_OK);
-    CHECK_STATUS(rnk_joint_strains(q10, &ref[0], &p, kj, &tj), RNK_OK);
+    CHECK_STATUS(rnk_joint_end_grad(q10, &ref[0], &p, &E, g10), RNK_OK);
+    CHECK_STATUS(rnk_joint_end_strains(q10, &ref[0], &p, kj, &tj), RNK_OK);
     CHECK_NEAR(kj[0], kap[0], 1e-14);
     CHECK_NEAR(kj[1], kap[1], 1e-14);
     CHECK_NEAR(tj, tau, 1e-14);
