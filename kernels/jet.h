@@ -14,7 +14,7 @@
 #include <math.h>
 #include <string.h>
 
-#define JET_MAX 8
+#define JET_MAX 9
 
 typedef struct jet {
   int n, ord;

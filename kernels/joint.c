@@ -71,6 +71,18 @@ static void rotate_jet(const jvec *w, const jet *A, const jet *B, const jet *s,
   }
 }
 
+void rnk_rotate_jet(const double w[3], int ord, int nvec, const double *v, jvec *out) {
+  jvec wj;
+  jet s, A, B;
+  double a[3], b[3];
+  for (int k = 0; k < 3; ++k) jet_var(&wj.c[k], 3, ord, w[k], k);
+  jvec_dot(&s, &wj, &wj);
+  rodrigues_coeffs(s.v, a, b);
+  jet_chain(&A, &s, a[0], a[1], a[2]);
+  jet_chain(&B, &s, b[0], b[1], b[2]);
+  for (int i = 0; i < nvec; ++i) rotate_jet(&wj, &A, &B, &s, v + 3 * i, &out[i]);
+}
+
 typedef struct joint_frames {
   rnk_edge_jet term; /* 4 variables */
   jvec t, d1, d2;    /* connection edge, 3 variables */
@@ -82,17 +94,11 @@ static int joint_frames_eval(const double q[10], const rnk_frame *ref,
   for (int k = 0; k < 3; ++k) e[k] = p->side == 0 ? q[4 + k] - q[k] : q[k] - q[4 + k];
   int st = rnk_edge_jet_eval(e, q[3], ref, ord, &f->term);
   if (st) return st;
-  jvec w;
-  jet s, A, B;
-  double a[3], b[3];
-  for (int k = 0; k < 3; ++k) jet_var(&w.c[k], 3, ord, q[7 + k], k);
-  jvec_dot(&s, &w, &w);
-  rodrigues_coeffs(s.v, a, b);
-  jet_chain(&A, &s, a[0], a[1], a[2]);
-  jet_chain(&B, &s, b[0], b[1], b[2]);
-  rotate_jet(&w, &A, &B, &s, p->c, &f->t);
-  rotate_jet(&w, &A, &B, &s, p->c + 3, &f->d1);
-  rotate_jet(&w, &A, &B, &s, p->c + 6, &f->d2);
+  jvec c[3];
+  rnk_rotate_jet(q + 7, ord, 3, p->c, c);
+  f->t = c[0];
+  f->d1 = c[1];
+  f->d2 = c[2];
   return RNK_OK;
 }
 
@@ -150,8 +156,8 @@ static int joint_strains_jet(const joint_frames *f, const rnk_joint_end_param *p
   return RNK_OK;
 }
 
-static int joint_eval(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                      int ord, jet *E) {
+static int joint_eval(const double q[10], const rnk_frame *ref,
+                      const rnk_joint_end_param *p, int ord, jet *E) {
   joint_frames f;
   jet k[2], tau, a, b, c;
   int st = joint_frames_eval(q, ref, p, ord, &f);
@@ -204,8 +210,8 @@ static void scatter(const rnk_joint_end_param *p, const jet *E, double *g, doubl
   }
 }
 
-int rnk_joint_end_energy(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                     double *E) {
+int rnk_joint_end_energy(const double q[10], const rnk_frame *ref,
+                         const rnk_joint_end_param *p, double *E) {
   jet e;
   int st = joint_eval(q, ref, p, 0, &e);
   if (st) return st;
@@ -213,8 +219,8 @@ int rnk_joint_end_energy(const double q[10], const rnk_frame *ref, const rnk_joi
   return RNK_OK;
 }
 
-int rnk_joint_end_grad(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                   double *E, double g[10]) {
+int rnk_joint_end_grad(const double q[10], const rnk_frame *ref,
+                       const rnk_joint_end_param *p, double *E, double g[10]) {
   jet e;
   int st = joint_eval(q, ref, p, 1, &e);
   if (st) return st;
@@ -223,8 +229,8 @@ int rnk_joint_end_grad(const double q[10], const rnk_frame *ref, const rnk_joint
   return RNK_OK;
 }
 
-int rnk_joint_end_hess(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                   double H[100]) {
+int rnk_joint_end_hess(const double q[10], const rnk_frame *ref,
+                       const rnk_joint_end_param *p, double H[100]) {
   jet e;
   int st = joint_eval(q, ref, p, 2, &e);
   if (st) return st;
@@ -232,8 +238,8 @@ int rnk_joint_end_hess(const double q[10], const rnk_frame *ref, const rnk_joint
   return RNK_OK;
 }
 
-int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                  const double v[10], double Hv[10]) {
+int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref,
+                      const rnk_joint_end_param *p, const double v[10], double Hv[10]) {
   double H[100];
   int st = rnk_joint_end_hess(q, ref, p, H);
   if (st) return st;
@@ -241,8 +247,8 @@ int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_
   return RNK_OK;
 }
 
-int rnk_joint_end_strains(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                      double kappa[2], double *twist) {
+int rnk_joint_end_strains(const double q[10], const rnk_frame *ref,
+                          const rnk_joint_end_param *p, double kappa[2], double *twist) {
   joint_frames f;
   jet k[2], tau;
   int st = joint_frames_eval(q, ref, p, 0, &f);

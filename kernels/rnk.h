@@ -26,6 +26,8 @@
 #ifndef RODNET_RNK_H
 #define RODNET_RNK_H
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -177,18 +179,18 @@ typedef struct rnk_joint_end_param {
   rnk_twist_param twist; /* beta, taubar, vlen, ref_twist */
 } rnk_joint_end_param;
 
-int rnk_joint_end_energy(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                     double *E);
-int rnk_joint_end_grad(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                   double *E, double g[10]);
-int rnk_joint_end_hess(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                   double H[100]);
-int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                  const double v[10], double Hv[10]);
+int rnk_joint_end_energy(const double q[10], const rnk_frame *ref,
+                         const rnk_joint_end_param *p, double *E);
+int rnk_joint_end_grad(const double q[10], const rnk_frame *ref,
+                       const rnk_joint_end_param *p, double *E, double g[10]);
+int rnk_joint_end_hess(const double q[10], const rnk_frame *ref,
+                       const rnk_joint_end_param *p, double H[100]);
+int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref,
+                      const rnk_joint_end_param *p, const double v[10], double Hv[10]);
 /* Current curvature and twist at the joint vertex (for reference updates and
  * output). */
-int rnk_joint_end_strains(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p,
-                      double kappa[2], double *twist);
+int rnk_joint_end_strains(const double q[10], const rnk_frame *ref,
+                          const rnk_joint_end_param *p, double kappa[2], double *twist);
 
 /* ---- a whole joint: every incident rod end, both models -------------------
  * Stencil layout (the caller gathers it by index lists):
@@ -211,14 +213,14 @@ typedef struct rnk_joint_end {
 } rnk_joint_end;
 
 typedef struct rnk_joint {
-  int rigid;                  /* 1: rigid (rotation DOFs), 0: elastic */
-  int valence;                /* >= 1 */
-  const rnk_joint_end *ends;  /* [valence] */
-  const rnk_frame *refs;      /* reference frames of the terminal edges [valence] */
-  double Qhat[9];             /* rigid: reference rotation */
-  double M[3];                /* couple on the joint rotation (zero: none) */
-  double f0[9];               /* joint rotation at the last update (couple) */
-  double angle0;              /* couple angle accumulated up to that update */
+  int rigid;                 /* 1: rigid (rotation DOFs), 0: elastic */
+  int valence;               /* >= 1 */
+  const rnk_joint_end *ends; /* [valence] */
+  const rnk_frame *refs;     /* reference frames of the terminal edges [valence] */
+  double Qhat[9];            /* rigid: reference rotation */
+  double M[3];               /* couple on the joint rotation (zero: none) */
+  double f0[9];              /* joint rotation at the last update (couple) */
+  double angle0;             /* couple angle accumulated up to that update */
 } rnk_joint;
 
 size_t rnk_joint_stencil_size(const rnk_joint *j);

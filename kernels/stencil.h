@@ -38,6 +38,9 @@ int rnk_bend_from_frames(const rnk_edge_jet f[2], const rnk_bend_param *p, jet *
 void rnk_twist_from_frames(const rnk_edge_jet f[2], const double q[11],
                            const rnk_twist_param *p, jet *E);
 
+/* exp([w]) v_i for nvec vectors v[3 nvec], as jets over the 3 variables w. */
+void rnk_rotate_jet(const double w[3], int ord, int nvec, const double *v, jvec *out);
+
 /* Reference-twist increment relative to m_prev: angle from the transported
  * first reference director to the second, minus m_prev, in (-pi, pi). */
 void rnk_twist_increment(const rnk_edge_jet f[2], double m_prev, jet *dm);
