@@ -4,8 +4,8 @@
     python3 benchmarks/plot.py results/kernels.csv -o results/kernels.png
 
 kernels: median time per vertex against the number of vertices, one line per
-(shape, operation), log-log.  solve: median solve time and Newton/Krylov
-iterations against the number of vertices.  The title carries the commit and
+(shape, operation), log-log.  solve: median solve time (left) and Newton and
+Krylov iterations (right) against the number of vertices.  The title carries the commit and
 compiler recorded in the CSV.
 """
 import argparse
@@ -40,11 +40,13 @@ def plot_kernels(rows, ax):
     for r in rows:
         series[(r["case"], r["op"])].append(
             (int(r["size"]), float(r["median_per_vertex"]), float(r["min_per_vertex"])))
-    for (shape, op), pts in sorted(series.items()):
+    ops = sorted({op for _, op in series})
+    colors = {op: f"C{i}" for i, op in enumerate(ops)}
+    for (shape, op), pts in sorted(series.items(), key=lambda kv: (kv[0][1], kv[0][0])):
         pts.sort()
         style = "-" if shape == "straight" else "--"
         ax.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o",
-                label=f"{op} ({shape})")
+                color=colors[op], label=f"{op} ({shape})")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("vertices")
@@ -53,30 +55,28 @@ def plot_kernels(rows, ax):
     ax.legend(fontsize="small")
 
 
-def plot_solve(rows, ax):
+def plot_solve(rows, axes):
     by_solver = defaultdict(list)
     for r in rows:
         by_solver[r["case"]].append((int(r["size"]), float(r["median"]),
                                      int(r["newton_iterations"]),
                                      int(r["krylov_iterations"])))
-    ax2 = ax.twinx()
-    for solver, pts in sorted(by_solver.items()):
+    ax_t, ax_i = axes
+    for i, (solver, pts) in enumerate(sorted(by_solver.items())):
         pts.sort()
         n = [p[0] for p in pts]
-        ax.plot(n, [p[1] for p in pts], "-o", label=f"time ({solver})")
-        ax2.plot(n, [p[2] for p in pts], "--s", label=f"Newton its ({solver})")
-        ax2.plot(n, [p[3] for p in pts], ":^", label=f"Krylov its ({solver})")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax2.set_yscale("log")
-    ax.set_xlabel("vertices")
-    ax.set_ylabel("median solve time [s]")
-    ax2.set_ylabel("iterations")
-    ax.grid(True, which="both", alpha=0.3)
-    lines = ax.get_legend_handles_labels()
-    lines2 = ax2.get_legend_handles_labels()
-    ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize="small",
-              loc="upper left")
+        color = f"C{i}"
+        ax_t.plot(n, [p[1] for p in pts], "-o", color=color, label=solver)
+        ax_i.plot(n, [p[2] for p in pts], "-s", color=color, label=f"Newton ({solver})")
+        ax_i.plot(n, [p[3] for p in pts], ":^", color=color, label=f"Krylov ({solver})")
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("vertices")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize="small")
+    ax_t.set_ylabel("median solve time [s]")
+    ax_i.set_ylabel("iterations (all load steps)")
 
 
 def main():
@@ -90,14 +90,15 @@ def main():
     if len(kinds) != 1:
         sys.exit(f"plot.py: one benchmark per CSV, found {sorted(kinds)}")
     kind = kinds.pop()
-    fig, ax = plt.subplots(figsize=(8, 5.5))
     if kind == "kernels":
+        fig, ax = plt.subplots(figsize=(8, 5.5))
         plot_kernels(rows, ax)
     elif kind == "solve":
-        plot_solve(rows, ax)
+        fig, axes = plt.subplots(1, 2, figsize=(11, 5))
+        plot_solve(rows, axes)
     else:
         sys.exit(f"plot.py: unknown benchmark '{kind}'")
-    ax.set_title(title(rows, kind), fontsize="medium")
+    fig.suptitle(title(rows, kind), fontsize="medium")
     fig.tight_layout()
     out = args.output or (args.csv.rsplit(".", 1)[0] + ".png")
     fig.savefig(out, dpi=120)

@@ -1,6 +1,6 @@
 /* assembly.c - energy, gradient, Hessian-vector product, energy split and
- * Hessian values: one loop over the stencils of every rod that calls the
- * kernels of rnk.h.  Evaluation is pure: nothing in the network changes and
+ * Hessian values: one loop over the stencils of every rod and joint that
+ * calls the kernels of rnk.h.  Evaluation is pure: nothing in the network changes and
  * all scratch lives on the stack (reentrant). */
 #include <math.h>
 #include <string.h>
@@ -148,6 +148,81 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
   }
 }
 
+/* Energy of a joint split into its elastic part (RN_TERM_BEND) and the work
+ * of its couple, -|M| (angle0 + alpha) (RN_TERM_LOAD). */
+static int joint_energy_split(rn_joint_scratch *s, rnk_joint *kj, eval_args *a) {
+  double M[3], Eb = 0.0, alpha = 0.0, m;
+  int rc;
+  memcpy(M, kj->M, sizeof(M));
+  memset(kj->M, 0, sizeof(kj->M));
+  if ((rc = rnk_joint_energy(s->q, kj, s->work, &Eb)) != RNK_OK) return rc;
+  a->E[RN_TERM_BEND] += Eb;
+  m = sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]);
+  if (m == 0.0) return RNK_OK;
+  memcpy(kj->M, M, sizeof(M));
+  if ((rc = rnk_joint_couple_angle(s->q, kj, &alpha)) != RNK_OK) return rc;
+  a->E[RN_TERM_LOAD] -= m * (kj->angle0 + alpha);
+  return RNK_OK;
+}
+
+static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_scratch *s,
+                           rnk_joint *kj, eval_args *a) {
+  double E = 0.0;
+  int rc = RNK_OK;
+  switch (a->op) {
+  case OP_ENERGY:
+    return joint_energy_split(s, kj, a);
+  case OP_GRAD:
+    if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, s->loc)) != RNK_OK) return rc;
+    a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
+    rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->g);
+    break;
+  case OP_HVP: /* dense block times the gathered direction */
+    if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
+    rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
+    rnk_block_mv(s->n, s->loc, s->v, s->q);
+    rn_scatter_add_idx(net, s->q, J->idx, s->n, a->Hv);
+    break;
+  case OP_HESS:
+    if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
+    rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
+    break;
+  }
+  return rc;
+}
+
+/* The whole-joint stencil, gathered and scattered by its index list; the
+ * dead force on the joint position. */
+static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
+  const rn_joint *J = &net->joints[ij];
+  rn_joint_scratch s;
+  rnk_joint kj;
+  double f[3], xj[3], gl[3];
+  size_t p = rn_dof_joint_position(J->off);
+  int rc;
+  if (rn_joint_scratch_init(J, &s))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, a->where, "out of memory");
+  rn_joint_kernel(net, ij, s.refs, &kj);
+  rn_gather_idx(net, a->x, J->idx, s.n, s.q);
+  rc = joint_kernel_op(net, J, &s, &kj, a);
+  rn_joint_scratch_free(&s);
+  if (rc != RNK_OK)
+    return rn_fail(
+        net->ctx, RN_DEGENERATE, a->where,
+        "joint %d ('%s') is degenerate (opposite tangents at a connection edge, "
+        "a zero-length terminal edge or a singular rotation fit)",
+        ij, rn_network_joint_name(net, ij));
+  for (int k = 0; k < 3; ++k) f[k] = net->lambda * J->force[k];
+  if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) return RN_OK;
+  rn_gather(net, a->x, p, RN_DOFS_PER_VERTEX, xj);
+  a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
+  if (a->op == OP_GRAD) {
+    rnk_force_grad(f, gl);
+    rn_scatter_add(net, gl, p, RN_DOFS_PER_VERTEX, a->g);
+  }
+  return RN_OK;
+}
+
 static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
   const rn_rod *r = &net->rods[ir];
   for (int j = 0; j < r->ne; ++j)
@@ -169,6 +244,8 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
     if (moment_eval(net, &net->moments[im], a) != RNK_OK)
       return degenerate(net, a, "moment", net->moments[im].rod, "vertex",
                         net->moments[im].vertex);
+  for (int ij = 0; ij < net->njoints; ++ij)
+    if ((st = joint_eval(net, ij, a))) return st;
   return RN_OK;
 }
 

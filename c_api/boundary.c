@@ -150,6 +150,7 @@ static void continue_twist_near(rn_network *net, rn_rod *r, int j) {
 }
 
 rn_status rn_apply_load_factor(rn_network *net) {
+  rn_joints_place(net); /* first: rod stencils near joints read their position */
   for (int ir = 0; ir < net->nrods; ++ir) {
     rn_rod *r = &net->rods[ir];
     place_pins(net, r);
@@ -159,6 +160,7 @@ rn_status rn_apply_load_factor(rn_network *net) {
       if (r->has_end_motion[end]) continue_twist_near(net, r, clamp_edge(r, end));
     }
   }
+  rn_joints_continue_twists(net);
   return RN_OK;
 }
 

@@ -1,10 +1,11 @@
 /* check.c - derivative self-test: gradient and HVP against central
  * differences with an h-sweep, CSR Hessian against the HVP, CSR symmetry.
  *
- * Directions and perturbations are scaled per DOF: positions by the mean
- * rest edge length L, material angles by 1 (radian), so that h and perturb
- * are relative sizes.  Directions d have entries L r or r with r uniform in
- * [-1, 1) (splitmix64 from the seed: deterministic).  For each point and
+ * Directions and perturbations are scaled per DOF: positions (of vertices
+ * and joints) by the mean rest edge length L, material angles and joint
+ * rotation vectors by 1 (radian), so that h and perturb are relative sizes.
+ * Directions d have entries L r or r with r uniform in [-1, 1) (splitmix64
+ * from the seed: deterministic).  For each point and
  * direction and h in 1e-2 .. 1e-5 (half decades):
  *   gradient: e(h) = |(E(x+hd) - E(x-hd)) / 2h - g.d| / max(|g.d|, |g| |d| / sqrt(n))
  *   HVP:      e(h) = |(g(x+hd) - g(x-hd)) / 2h - H d| / |H d|
@@ -70,6 +71,16 @@ static void dof_scales(const rn_network *net, double *scale) {
       }
     for (int j = 0; j < r->ne; ++j) {
       int64_t m = net->map[rn_dof_theta(r->off, j)];
+      if (m >= 0) scale[m] = 1.0;
+    }
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) { /* position: L; rotation: 1 rad */
+    const rn_joint *J = &net->joints[ij];
+    for (int k = 0; k < 3; ++k) {
+      int64_t m = net->map[rn_dof_joint_position(J->off) + (size_t)k];
+      if (m >= 0) scale[m] = lsum / (double)ne;
+      if (!rn_joint_has_rotation(J)) continue;
+      m = net->map[rn_dof_joint_rotation(J->off) + (size_t)k];
       if (m >= 0) scale[m] = 1.0;
     }
   }

@@ -59,8 +59,12 @@ const char *rn_context_last_error(const rn_context *ctx) {
   return ctx ? ctx->message : "";
 }
 
-static void context_vset(rn_context *ctx, rn_status s, const char *where, const char *fmt,
-                         va_list ap) {
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 0)))
+#endif
+static void
+context_vset(rn_context *ctx, rn_status s, const char *where, const char *fmt,
+             va_list ap) {
   int used = 0;
   ctx->last = s;
   if (where) {

@@ -80,11 +80,47 @@ static void mark_fixed(rn_network *net, const rn_rod *r) {
   }
 }
 
+/* Joint DOFs: position fixed if pinned or clamped, rotation (present for
+ * rigid or clamped joints) fixed if clamped; initial position, w = 0. */
+static void mark_joint(rn_network *net, const rn_joint *J) {
+  size_t p = rn_dof_joint_position(J->off), w = rn_dof_joint_rotation(J->off);
+  for (int k = 0; k < 3; ++k) {
+    net->map[p + (size_t)k] = (J->pinned || J->clamped) ? -1 : 0;
+    net->xfull[p + (size_t)k] = J->x0[k];
+    if (!rn_joint_has_rotation(J)) continue;
+    net->map[w + (size_t)k] = J->clamped ? -1 : 0;
+  }
+}
+
+enum { ALIAS = -2 }; /* map marker of a rod end vertex attached to a joint */
+
+/* Marks (alias = 1) or maps (alias = 0) the rod end vertices of every joint
+ * to the joint position's entries. */
+static void alias_joint_ends(rn_network *net, int alias) {
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    size_t p = rn_dof_joint_position(J->off);
+    for (int k = 0; k < J->valence; ++k) {
+      const rn_rod *r = &net->rods[J->rod[k]];
+      size_t v = rn_dof_vertex(r->off, rn_end_vertex(r->nv, J->end[k]));
+      for (int c = 0; c < 3; ++c)
+        net->map[v + (size_t)c] = alias ? ALIAS : net->map[p + (size_t)c];
+    }
+  }
+}
+
+/* Full vector: rods, then joints.  Free entries are numbered in full order;
+ * aliased rod end vertices then take the numbers of their joint, which is
+ * the canonical full index of those reduced DOFs in red2full. */
 static rn_status build_dof_map(rn_network *net) {
   size_t off = 0, nred = 0;
   for (int ir = 0; ir < net->nrods; ++ir) {
     net->rods[ir].off = off;
     off += rn_dof_rod_count(net->rods[ir].nv);
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    net->joints[ij].off = off;
+    off += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[ij]));
   }
   net->nfull = off;
   net->map = malloc(off * sizeof(int64_t));
@@ -96,13 +132,20 @@ static rn_status build_dof_map(rn_network *net) {
     for (int v = 0; v < r->nv; ++v)
       memcpy(net->xfull + rn_dof_vertex(r->off, v), r->x0 + 3 * v, 3 * sizeof(double));
   }
-  for (size_t a = 0; a < off; ++a)
-    if (net->map[a] == 0) net->map[a] = (int64_t)nred++;
+  for (int ij = 0; ij < net->njoints; ++ij) mark_joint(net, &net->joints[ij]);
+  alias_joint_ends(net, 1);
+  for (size_t a = 0; a < off; ++a) nred += net->map[a] == 0;
   net->nred = nred;
   net->red2full = malloc((nred ? nred : 1) * sizeof(int64_t));
   if (!net->red2full) return RN_ERR_ALLOC;
+  nred = 0;
   for (size_t a = 0; a < off; ++a)
-    if (net->map[a] >= 0) net->red2full[net->map[a]] = (int64_t)a;
+    if (net->map[a] == 0) {
+      net->red2full[nred] = (int64_t)a;
+      net->map[a] = (int64_t)nred++;
+    }
+  alias_joint_ends(net, 0);
+  rn_joints_sync(net);
   return RN_OK;
 }
 
@@ -135,6 +178,7 @@ static void undo_finalize(rn_network *net) {
     r->bp = NULL;
     r->tp = NULL;
   }
+  rn_joints_unbuild(net);
   free(net->map);
   free(net->red2full);
   free(net->xfull);
@@ -152,6 +196,7 @@ rn_status rn_network_finalize(rn_network *net) {
   if ((st = rn_net_check_building(net, where))) return st;
   if (net->nrods == 0)
     return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
+  if ((st = rn_joints_validate(net, where))) return st;
   for (int ir = 0; ir < net->nrods; ++ir)
     if ((st = validate_rod(net, ir))) return st;
   for (int ir = 0; ir < net->nrods; ++ir) {
@@ -161,8 +206,9 @@ rn_status rn_network_finalize(rn_network *net) {
     }
     rn_rod_lump_forces(net, &net->rods[ir]);
   }
-  if (build_dof_map(net)) {
+  if (build_dof_map(net) || (st = rn_joints_build(net))) {
     undo_finalize(net);
+    if (st) return st;
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
   if (net->nred > (size_t)INT32_MAX) { /* CSR columns are int32 */
@@ -176,7 +222,7 @@ rn_status rn_network_finalize(rn_network *net) {
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
   rn_apply_load_factor(net);
-  if ((st = init_moments(net))) {
+  if ((st = init_moments(net)) || (st = rn_joints_check_initial(net, where))) {
     undo_finalize(net);
     return st;
   }

@@ -1,5 +1,8 @@
 /* hessian.c - CSR pattern of the reduced Hessian (fixed at finalize) and the
- * scatter of stencil blocks into it. */
+ * scatter of stencil blocks into it.  Rows collect the columns of every
+ * stencil touching them: rod stencils as ranges of their rod's full vector,
+ * joint stencils by their index lists, through the aliases of joint
+ * positions. */
 #include <stdlib.h>
 
 #include "network_internal.h"
@@ -12,10 +15,9 @@ static void cover(size_t *lo, size_t *hi, size_t s, int n) {
   }
 }
 
-/* Every stencil is a contiguous slice of its rod's full vector and stencils
- * that contain a DOF overlap, so the DOFs coupled to a are the range
- * [lo(a), hi(a)]; the free ones form row map[a] (sorted, as map is
- * increasing). */
+/* Rod stencils are contiguous slices of their rod's full vector and stencils
+ * that contain a DOF overlap, so the rod DOFs coupled to full index a are the
+ * range [lo(a), hi(a)]. */
 static void stencil_ranges(const rn_network *net, size_t *lo, size_t *hi) {
   for (size_t a = 0; a < net->nfull; ++a) {
     lo[a] = a;
@@ -30,42 +32,157 @@ static void stencil_ranges(const rn_network *net, size_t *lo, size_t *hi) {
   }
 }
 
-static size_t fill_rows(rn_network *net, const size_t *lo, const size_t *hi, int fill) {
-  size_t nnz = 0;
-  for (size_t row = 0; row < net->nred; ++row) {
-    size_t a = (size_t)net->red2full[row];
-    if (fill) net->rowptr[row] = (int64_t)nnz;
-    for (size_t b = lo[a]; b <= hi[a]; ++b) {
-      if (net->map[b] < 0) continue;
-      if (fill) {
-        size_t d = row > (size_t)net->map[b] ? row - (size_t)net->map[b]
-                                             : (size_t)net->map[b] - row;
-        net->col[nnz] = (int32_t)net->map[b];
-        if (d > net->bandwidth) net->bandwidth = d;
+/* Incidence lists in CSR form: for each reduced row, the full indices that
+ * map to it (one, or a joint position and its aliased rod end vertices) and
+ * the joints whose stencil contains it. */
+typedef struct row_lists {
+  size_t *fptr, *full; /* [nred + 1], [nfull] */
+  size_t *jptr, *jnt;  /* [nred + 1], [sum of free joint stencil entries] */
+} row_lists;
+
+static void row_lists_free(row_lists *L) {
+  free(L->fptr);
+  free(L->full);
+  free(L->jptr);
+  free(L->jnt);
+}
+
+static int joint_stencil_n(const rn_joint *J) {
+  return rn_joint_stencil_count(rn_joint_has_rotation(J), J->valence);
+}
+
+/* Counting sort of the full indices (pass 0: count, 1: fill). */
+static void fill_full_lists(const rn_network *net, row_lists *L) {
+  for (size_t a = 0; a < net->nfull; ++a)
+    if (net->map[a] >= 0) L->fptr[net->map[a] + 1]++;
+  for (size_t r = 0; r < net->nred; ++r) L->fptr[r + 1] += L->fptr[r];
+  for (size_t a = 0; a < net->nfull; ++a)
+    if (net->map[a] >= 0) L->full[L->fptr[net->map[a]]++] = a;
+  for (size_t r = net->nred; r > 0; --r) L->fptr[r] = L->fptr[r - 1];
+  L->fptr[0] = 0;
+}
+
+static rn_status row_lists_build(const rn_network *net, row_lists *L) {
+  size_t nj = 0, n1 = net->nred + 1;
+  for (int ij = 0; ij < net->njoints; ++ij)
+    nj += (size_t)joint_stencil_n(&net->joints[ij]);
+  L->fptr = calloc(n1, sizeof(size_t));
+  L->full = malloc((net->nfull + 1) * sizeof(size_t));
+  L->jptr = calloc(n1, sizeof(size_t));
+  L->jnt = malloc((nj + 1) * sizeof(size_t));
+  if (!L->fptr || !L->full || !L->jptr || !L->jnt) return RN_ERR_ALLOC;
+  fill_full_lists(net, L);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int ij = 0; ij < net->njoints; ++ij) {
+      const rn_joint *J = &net->joints[ij];
+      for (int k = 0; k < joint_stencil_n(J); ++k) {
+        int64_t m = net->map[J->idx[k]];
+        if (m < 0) continue;
+        if (pass == 0)
+          L->jptr[m + 1]++;
+        else
+          L->jnt[L->jptr[m]++] = (size_t)ij;
       }
-      nnz++;
     }
+    if (pass == 0)
+      for (size_t r = 0; r < net->nred; ++r) L->jptr[r + 1] += L->jptr[r];
   }
-  if (fill) net->rowptr[net->nred] = (int64_t)nnz;
-  return nnz;
+  for (size_t r = net->nred; r > 0; --r) L->jptr[r] = L->jptr[r - 1];
+  L->jptr[0] = 0;
+  return RN_OK;
+}
+
+static int cmp_i32(const void *a, const void *b) {
+  int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+  return (x > y) - (x < y);
+}
+
+static int increasing(const int32_t *c, size_t n) {
+  for (size_t i = 1; i < n; ++i)
+    if (c[i] <= c[i - 1]) return 0;
+  return 1;
+}
+
+/* Growable column buffer. */
+typedef struct col_buf {
+  int32_t *c;
+  size_t n, cap;
+} col_buf;
+
+static int push(col_buf *b, int64_t c) {
+  if (b->n == b->cap) {
+    size_t cap = b->cap ? 2 * b->cap : 64;
+    int32_t *p = realloc(b->c, cap * sizeof(int32_t));
+    if (!p) return -1;
+    b->c = p;
+    b->cap = cap;
+  }
+  b->c[b->n++] = (int32_t)c;
+  return 0;
+}
+
+/* Candidate columns of row r appended to b (unsorted, with duplicates). */
+static int row_candidates(const rn_network *net, const row_lists *L, const size_t *lo,
+                          const size_t *hi, size_t r, col_buf *b) {
+  for (size_t p = L->fptr[r]; p < L->fptr[r + 1]; ++p) {
+    size_t a = L->full[p];
+    for (size_t c = lo[a]; c <= hi[a]; ++c)
+      if (net->map[c] >= 0 && push(b, net->map[c])) return -1;
+  }
+  for (size_t p = L->jptr[r]; p < L->jptr[r + 1]; ++p) {
+    const rn_joint *J = &net->joints[L->jnt[p]];
+    for (int k = 0; k < joint_stencil_n(J); ++k)
+      if (net->map[J->idx[k]] >= 0 && push(b, net->map[J->idx[k]])) return -1;
+  }
+  return 0;
+}
+
+/* Rows in order: candidates sorted and made unique in place at the end of
+ * the column buffer (for plain rods they are already sorted and unique). */
+static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo,
+                           const size_t *hi, col_buf *b) {
+  for (size_t row = 0; row < net->nred; ++row) {
+    size_t start = b->n, u = start;
+    net->rowptr[row] = (int64_t)start;
+    if (row_candidates(net, L, lo, hi, row, b)) return RN_ERR_ALLOC;
+    if (!increasing(b->c + start, b->n - start)) /* rows away from joints are */
+      qsort(b->c + start, b->n - start, sizeof(int32_t), cmp_i32);
+    for (size_t p = start; p < b->n; ++p) {
+      size_t c = (size_t)b->c[p], d = c > row ? c - row : row - c;
+      if (u > start && b->c[u - 1] == b->c[p]) continue;
+      b->c[u++] = b->c[p];
+      if (d > net->bandwidth) net->bandwidth = d;
+    }
+    b->n = u;
+  }
+  net->rowptr[net->nred] = (int64_t)b->n;
+  return RN_OK;
 }
 
 rn_status rn_build_hessian_pattern(rn_network *net) {
   size_t *lo = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   size_t *hi = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
+  row_lists L = {NULL, NULL, NULL, NULL};
+  col_buf b = {NULL, 0, 0};
   rn_status st = RN_ERR_ALLOC;
-  if (!lo || !hi) goto done;
-  stencil_ranges(net, lo, hi);
-  net->nnz = fill_rows(net, lo, hi, 0);
   net->rowptr = malloc((net->nred + 1) * sizeof(int64_t));
-  net->col = malloc((net->nnz ? net->nnz : 1) * sizeof(int32_t));
-  if (!net->rowptr || !net->col) goto done;
+  if (!lo || !hi || !net->rowptr || row_lists_build(net, &L)) goto done;
+  stencil_ranges(net, lo, hi);
   net->bandwidth = 0;
-  fill_rows(net, lo, hi, 1);
-  st = RN_OK;
+  if (fill_rows(net, &L, lo, hi, &b)) goto done;
+  net->nnz = b.n;
+  { /* shrink to fit (also allocates when there are no entries) */
+    int32_t *p = realloc(b.c, (b.n ? b.n : 1) * sizeof(int32_t));
+    if (p) b.c = p;
+  }
+  net->col = b.c;
+  b.c = NULL;
+  st = net->col ? RN_OK : RN_ERR_ALLOC;
 done:
+  free(b.c);
   free(lo);
   free(hi);
+  row_lists_free(&L);
   return st;
 }
 
@@ -90,6 +207,20 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
     if (r < 0) continue;
     for (int l = 0; l < n; ++l) {
       int64_t c = net->map[s + (size_t)l], pos;
+      if (c < 0) continue;
+      pos = csr_find(net, r, c);
+      if (pos >= 0) vals[pos] += H[k * n + l];
+    }
+  }
+}
+
+void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
+                          const double *H, double *vals) {
+  for (int k = 0; k < n; ++k) {
+    int64_t r = net->map[idx[k]];
+    if (r < 0) continue;
+    for (int l = 0; l < n; ++l) {
+      int64_t c = net->map[idx[l]], pos;
       if (c < 0) continue;
       pos = csr_find(net, r, c);
       if (pos >= 0) vals[pos] += H[k * n + l];

@@ -81,6 +81,8 @@ void rn_network_destroy(rn_network **net) {
   for (int i = 0; i < n->nrods; ++i) rn_rod_free(&n->rods[i]);
   free(n->rods);
   free(n->moments);
+  for (int i = 0; i < n->njoints; ++i) rn_joint_free(&n->joints[i]);
+  free(n->joints);
   free(n->map);
   free(n->red2full);
   free(n->xfull);
@@ -95,6 +97,7 @@ static rn_status rod_alloc(rn_rod *r, int nv, const char *name) {
   size_t v = (size_t)nv, e = v - 1, in = v - 2;
   r->nv = nv;
   r->ne = nv - 1;
+  r->joint[0] = r->joint[1] = -1;
   if (name) {
     r->name = malloc(strlen(name) + 1);
     if (r->name) strcpy(r->name, name);
@@ -296,7 +299,7 @@ size_t rn_network_num_full_dofs(const rn_network *net) {
   size_t n = 0;
   if (!net) return 0;
   for (int i = 0; i < net->nrods; ++i) n += rn_dof_rod_count(net->rods[i].nv);
-  return n;
+  return n + rn_joints_full_count(net);
 }
 
 int rn_network_num_rods(const rn_network *net) { return net ? net->nrods : 0; }
@@ -331,7 +334,7 @@ rn_status rn_network_set_dofs(rn_network *net, const double *x) {
   if (!x && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "x is NULL");
   if (!rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
-  for (size_t r = 0; r < net->nred; ++r) net->xfull[net->red2full[r]] = x[r];
+  rn_expand_state(net, x, net->xfull); /* every alias of a reduced DOF */
   return RN_OK;
 }
 
@@ -361,5 +364,29 @@ void rn_expand_state(const rn_network *net, const double *x, double *full) {
   for (size_t a = 0; a < net->nfull; ++a) {
     int64_t m = net->map[a];
     full[a] = m >= 0 ? x[m] : net->xfull[a];
+  }
+}
+
+void rn_gather_idx(const rn_network *net, const double *x, const size_t *idx, int n,
+                   double *q) {
+  for (int k = 0; k < n; ++k) {
+    int64_t m = net->map[idx[k]];
+    q[k] = m >= 0 ? x[m] : net->xfull[idx[k]];
+  }
+}
+
+void rn_gather_dir_idx(const rn_network *net, const double *v, const size_t *idx, int n,
+                       double *q) {
+  for (int k = 0; k < n; ++k) {
+    int64_t m = net->map[idx[k]];
+    q[k] = m >= 0 ? v[m] : 0.0;
+  }
+}
+
+void rn_scatter_add_idx(const rn_network *net, const double *gl, const size_t *idx, int n,
+                        double *g) {
+  for (int k = 0; k < n; ++k) {
+    int64_t m = net->map[idx[k]];
+    if (m >= 0) g[m] += gl[k];
   }
 }

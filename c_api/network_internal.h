@@ -44,6 +44,7 @@ typedef struct rn_rod {
   rnk_stretch_param *sp; /* [ne] */
   rnk_bend_param *bp;    /* [nv-2] */
   rnk_twist_param *tp;   /* [nv-2], ref_twist taken from ref_twist[] */
+  int joint[2];          /* joint at RN_START / RN_END, -1: none */
 } rn_rod;
 
 /* A dead couple on the material frame of one edge. */
@@ -54,12 +55,40 @@ typedef struct rn_moment {
   double angle0; /* accumulated angle up to that update */
 } rn_moment;
 
+/* A joint: the end vertices of its rods become one vertex whose position is
+ * a DOF; rotation DOFs for rigid joints (docs/joints.md).  The rod end
+ * vertices alias the joint position (their full entries map to the joint's
+ * reduced indices, and xfull keeps them equal to it). */
+typedef struct rn_joint {
+  char *name;
+  int model;           /* rn_joint_model */
+  int valence;         /* >= 1 */
+  int *rod, *end;      /* incident rod ends [valence] */
+  double x0[3];        /* initial position (the first end's vertex) */
+  double lmin;         /* shortest incident terminal edge (input) */
+  size_t off;          /* first full DOF (set at finalize) */
+  int pinned, clamped; /* boundary conditions */
+  int has_motion;
+  double disp[3], rot[3]; /* prescribed motion (unscaled) */
+  double force[3], M[3];  /* loads (unscaled) */
+  /* reference state */
+  double Qhat[9]; /* rigid: reference rotation; clamped: prescribed rotation */
+  double f0[9];   /* rotation at the last reference update (couple) */
+  double angle0;  /* couple angle accumulated up to that update */
+  /* built at finalize */
+  rnk_joint_end *ends; /* kernel parameters [valence]; twist.ref_twist is the
+                          reference twist stored at the last update */
+  size_t *idx;         /* full index of each kernel stencil entry */
+} rn_joint;
+
 struct rn_network {
   rn_context *ctx;
   rn_rod *rods;
   int nrods, cap_rods;
   rn_moment *moments;
   int nmom, cap_mom;
+  rn_joint *joints;
+  int njoints, cap_joints;
   double gravity[3];
   int finalized;
   double lambda; /* load factor */
@@ -100,6 +129,13 @@ void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, doub
 void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, double *g);
 /* Full state from a reduced vector: free entries from x, fixed from xfull. */
 void rn_expand_state(const rn_network *net, const double *x, double *full);
+/* The same over an index list: q[k] from full index idx[k]. */
+void rn_gather_idx(const rn_network *net, const double *x, const size_t *idx, int n,
+                   double *q);
+void rn_gather_dir_idx(const rn_network *net, const double *v, const size_t *idx, int n,
+                       double *q);
+void rn_scatter_add_idx(const rn_network *net, const double *gl, const size_t *idx, int n,
+                        double *g);
 
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference
@@ -119,6 +155,59 @@ rn_status rn_build_hessian_pattern(rn_network *net);
  * into CSR values (hessian.c). */
 void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
                       double *vals);
+/* The same for a stencil gathered by the full index list idx[n]. */
+void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
+                          const double *H, double *vals);
+
+/* ---- joints (joints.c, joint_stencil.c) ------------------------------------ */
+/* End vertices of a joint coincide, and two joints are coincident, within
+ * this fraction of the shortest incident terminal edge. */
+#define RN_JOINT_COINCIDE_TOL 1e-9
+/* 1 if the joint has rotation DOFs in the full vector: rigid joints, and
+ * clamped joints of either model (rotation held at the prescribed value). */
+static inline int rn_joint_has_rotation(const rn_joint *J) {
+  return J->model == RN_JOINT_RIGID || J->clamped;
+}
+void rn_joint_free(rn_joint *J);
+/* Number of full DOFs of all joints. */
+size_t rn_joints_full_count(const rn_network *net);
+/* Finalize steps: BC conflicts with rod vertices, coincident joints
+ * (validate); kernel parameters and stencil index lists (build, after the
+ * DOF offsets are set); the fit at the initial state (check_initial). */
+rn_status rn_joints_validate(const rn_network *net, const char *where);
+rn_status rn_joints_build(rn_network *net);
+rn_status rn_joints_check_initial(const rn_network *net, const char *where);
+void rn_joints_unbuild(rn_network *net);
+/* Fixed joint DOFs (positions, prescribed rotations Qhat) for the current
+ * load factor, copied to the aliased rod end vertices of net->xfull (place);
+ * then, once every fixed DOF is placed, the stored twists of clamped joints
+ * with a prescribed motion are continued (continue_twists). */
+void rn_joints_place(rn_network *net);
+void rn_joints_continue_twists(rn_network *net);
+/* Copies each joint position in net->xfull to its rod end vertices. */
+void rn_joints_sync(rn_network *net);
+
+/* Kernel parameters of joint ij: copies the terminal edges' current
+ * reference frames to refs[valence] and fills kj (couple scaled by lambda:
+ * the caller sets kj->M as needed). */
+void rn_joint_kernel(const rn_network *net, int ij, rnk_frame *refs, rnk_joint *kj);
+/* Scratch of one joint evaluation (declared by the caller, on its stack:
+ * evaluation stays reentrant): q[n], v[n], loc[n n] (gradient or Hessian
+ * block), the kernel workspace and the reference frames; in the embedded
+ * buffers up to valence 8, on the heap beyond. */
+enum { RN_JOINT_STACK = 5120, RN_JOINT_STACK_ENDS = 8 };
+typedef struct rn_joint_scratch {
+  int n; /* stencil size */
+  double *q, *v, *loc, *work;
+  rnk_frame *refs;
+  double *heap; /* NULL if the buffers below suffice */
+  rnk_frame *heap_refs;
+  double buf[RN_JOINT_STACK];
+  rnk_frame frames[RN_JOINT_STACK_ENDS];
+} rn_joint_scratch;
+/* RN_ERR_ALLOC if the heap fallback fails. */
+rn_status rn_joint_scratch_init(const rn_joint *J, rn_joint_scratch *s);
+void rn_joint_scratch_free(rn_joint_scratch *s);
 
 /* ---- rods ---------------------------------------------------------------- */
 void rn_rod_free(rn_rod *r);

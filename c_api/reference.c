@@ -1,7 +1,10 @@
 /* reference.c - explicit update of the reference state on an accepted step:
  * reference twists continued with the old frames, frames moved by
- * time-parallel transport, moment angles accumulated.  All new values are
- * computed first and committed only if every stencil succeeded. */
+ * time-parallel transport, moment angles accumulated; at joints the end
+ * twists are continued, the couple angle accumulated and the rotation of a
+ * rigid joint moved into its reference rotation (its rotation DOFs reset to
+ * 0).  All new values are computed first, from the old reference state, and
+ * committed only if every stencil succeeded. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,6 +18,9 @@ typedef struct ref_update {
   double *twists;    /* new reference twists, all rods concatenated */
   double *angles;    /* new moment angles [nmom] */
   double *f0;        /* new moment frames [9 nmom] */
+  double *jtw;       /* new joint end twists, all joints concatenated */
+  double *jang;      /* new joint couple angles [njoints] */
+  double *jQ;        /* joint rotations at x [9 njoints] */
 } ref_update;
 
 static void ref_update_free(ref_update *u) {
@@ -23,10 +29,15 @@ static void ref_update_free(ref_update *u) {
   free(u->twists);
   free(u->angles);
   free(u->f0);
+  free(u->jtw);
+  free(u->jang);
+  free(u->jQ);
 }
 
 static rn_status ref_update_alloc(const rn_network *net, ref_update *u) {
-  size_t ne = 0, nin = 0, nm = (size_t)net->nmom + 1;
+  size_t ne = 0, nin = 0, nm = (size_t)net->nmom + 1, nj = (size_t)net->njoints + 1;
+  size_t nends = 1;
+  for (int ij = 0; ij < net->njoints; ++ij) nends += (size_t)net->joints[ij].valence;
   for (int ir = 0; ir < net->nrods; ++ir) {
     ne += (size_t)net->rods[ir].ne;
     nin += (size_t)(net->rods[ir].nv - 2);
@@ -36,7 +47,13 @@ static rn_status ref_update_alloc(const rn_network *net, ref_update *u) {
   u->twists = malloc((nin + 1) * sizeof(double));
   u->angles = malloc(nm * sizeof(double));
   u->f0 = malloc(9 * nm * sizeof(double));
-  return (u->full && u->frames && u->twists && u->angles && u->f0) ? RN_OK : RN_ERR_ALLOC;
+  u->jtw = malloc(nends * sizeof(double));
+  u->jang = malloc(nj * sizeof(double));
+  u->jQ = malloc(9 * nj * sizeof(double));
+  return (u->full && u->frames && u->twists && u->angles && u->f0 && u->jtw && u->jang &&
+          u->jQ)
+             ? RN_OK
+             : RN_ERR_ALLOC;
 }
 
 /* New twists and frames of one rod into tw[nv-2] and fr[ne]. */
@@ -87,7 +104,71 @@ static rn_status update_moments(const rn_network *net, const double *full,
   return RN_OK;
 }
 
-static void commit(rn_network *net, const ref_update *u) {
+/* Joint ij at the full state: end twists into tw[valence], couple angle and
+ * rotation (old reference frames and rotations). */
+static rn_status update_joint(const rn_network *net, int ij, const double *full,
+                              double *tw, double *angle, double Q[9]) {
+  const rn_joint *J = &net->joints[ij];
+  rn_joint_scratch s;
+  rnk_joint kj;
+  double alpha = 0.0;
+  int rc;
+  if (rn_joint_scratch_init(J, &s))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  rn_joint_kernel(net, ij, s.refs, &kj);
+  memcpy(kj.M, J->M, sizeof(kj.M)); /* its axis (unscaled: lambda may be 0) */
+  for (int i = 0; i < s.n; ++i) s.q[i] = full[J->idx[i]];
+  rc = rnk_joint_twists(s.q, &kj, tw);
+  if (rc == RNK_OK) rc = rnk_joint_couple_angle(s.q, &kj, &alpha);
+  if (rc == RNK_OK) rc = rnk_joint_rotation(s.q, &kj, Q);
+  rn_joint_scratch_free(&s);
+  if (rc != RNK_OK)
+    return rn_fail(net->ctx, RN_DEGENERATE, where, "joint %d ('%s'): degenerate joint",
+                   ij, rn_network_joint_name(net, ij));
+  *angle = J->angle0 + alpha;
+  return RN_OK;
+}
+
+/* A rigid joint whose rotation is free: its rotation moves into Qhat. */
+static int rotation_moves(const rn_joint *J) {
+  return J->model == RN_JOINT_RIGID && !J->clamped;
+}
+
+static rn_status update_joints(const rn_network *net, ref_update *u) {
+  size_t to = 0;
+  rn_status st;
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    if ((st = update_joint(net, ij, u->full, u->jtw + to, u->jang + ij, u->jQ + 9 * ij)))
+      return st;
+    to += (size_t)J->valence;
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) /* after every joint used the old w */
+    if (rotation_moves(&net->joints[ij]))
+      for (int c = 0; c < 3; ++c)
+        u->full[rn_dof_joint_rotation(net->joints[ij].off) + (size_t)c] = 0.0;
+  return RN_OK;
+}
+
+static void commit_joints(rn_network *net, const ref_update *u, double *x) {
+  size_t to = 0;
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    rn_joint *J = &net->joints[ij];
+    for (int k = 0; k < J->valence; ++k)
+      J->ends[k].twist.ref_twist = u->jtw[to + (size_t)k];
+    to += (size_t)J->valence;
+    J->angle0 = u->jang[ij];
+    memcpy(J->f0, u->jQ + 9 * ij, sizeof(J->f0));
+    if (!rotation_moves(J)) continue;
+    memcpy(J->Qhat, u->jQ + 9 * ij, sizeof(J->Qhat));
+    for (int c = 0; c < 3; ++c) {
+      int64_t m = net->map[rn_dof_joint_rotation(J->off) + (size_t)c];
+      if (m >= 0) x[m] = 0.0;
+    }
+  }
+}
+
+static void commit(rn_network *net, const ref_update *u, double *x) {
   size_t fo = 0, to = 0;
   memcpy(net->xfull, u->full, net->nfull * sizeof(double));
   for (int ir = 0; ir < net->nrods; ++ir) {
@@ -102,10 +183,11 @@ static void commit(rn_network *net, const ref_update *u) {
     net->moments[im].angle0 = u->angles[im];
     memcpy(net->moments[im].f0, u->f0 + 9 * im, 9 * sizeof(double));
   }
+  commit_joints(net, u, x);
 }
 
-rn_status rn_network_update_reference(rn_network *net, const double *x) {
-  ref_update u = {NULL, NULL, NULL, NULL, NULL};
+rn_status rn_network_update_reference(rn_network *net, double *x) {
+  ref_update u = {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
   size_t fo = 0, to = 0;
   rn_status st;
   if (!net) return RN_ERR_ARG;
@@ -124,7 +206,8 @@ rn_status rn_network_update_reference(rn_network *net, const double *x) {
     to += (size_t)(net->rods[ir].nv - 2);
   }
   if (!st) st = update_moments(net, u.full, &u);
-  if (!st) commit(net, &u);
+  if (!st) st = update_joints(net, &u);
+  if (!st) commit(net, &u, x);
   ref_update_free(&u);
   return st;
 }

@@ -1,5 +1,6 @@
 /* results.c - per-rod results at the current state: vertices, angles,
- * directors, strains. */
+ * directors, strains, rest lengths, stress resultants and energies per
+ * stencil. */
 #include <math.h>
 #include <string.h>
 
@@ -93,6 +94,80 @@ rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
       kappa[2 * (i - 1) + 1] = k2[1];
     }
     if (tau) tau[i - 1] = t;
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_rod_rest_lengths(const rn_network *net, int rod, double *len) {
+  static const char *where = "rn_network_rod_rest_lengths";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if (!len) return rn_fail(net->ctx, RN_ERR_ARG, where, "len is NULL");
+  memcpy(len, net->rods[rod].lbar, (size_t)net->rods[rod].ne * sizeof(double));
+  return RN_OK;
+}
+
+/* Bending moment B (kappa - kbar) / vlen and twisting moment of one stencil. */
+static void vertex_moments(const rnk_bend_param *bp, const rnk_twist_param *tp,
+                           const double kappa[2], double tau, double m[2], double *mt) {
+  double dk0 = kappa[0] - bp->kbar[0], dk1 = kappa[1] - bp->kbar[1];
+  m[0] = (bp->B[0] * dk0 + bp->B[1] * dk1) / bp->vlen;
+  m[1] = (bp->B[1] * dk0 + bp->B[2] * dk1) / bp->vlen;
+  *mt = tp->beta * (tau - tp->taubar) / tp->vlen;
+}
+
+rn_status rn_network_rod_vertex_fields(const rn_network *net, int rod, double *moment,
+                                       double *twist_moment, double *bend_energy,
+                                       double *twist_energy) {
+  static const char *where = "rn_network_rod_vertex_fields";
+  const rn_rod *r;
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_result(net, where, rod))) return st;
+  r = &net->rods[rod];
+  for (int i = 1; i < r->nv - 1; ++i) {
+    const double *q = net->xfull + rn_dof_vertex_stencil(r->off, i);
+    const rnk_frame *ref = &r->ref[i - 1];
+    rnk_twist_param tp = r->tp[i - 1];
+    double kappa[2], tau, m[2], mt, eb, et;
+    tp.ref_twist = r->ref_twist[i - 1];
+    if (rnk_strains(q, ref, tp.ref_twist, kappa, &tau) != RNK_OK ||
+        rnk_bendtwist_energy(q, ref, &r->bp[i - 1], &tp, &eb, &et) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where,
+                     "rod %d vertex %d: degenerate stencil", rod, i);
+    vertex_moments(&r->bp[i - 1], &tp, kappa, tau, m, &mt);
+    if (moment) {
+      moment[2 * (i - 1)] = m[0];
+      moment[2 * (i - 1) + 1] = m[1];
+    }
+    if (twist_moment) twist_moment[i - 1] = mt;
+    if (bend_energy) bend_energy[i - 1] = eb;
+    if (twist_energy) twist_energy[i - 1] = et;
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_rod_edge_fields(const rn_network *net, int rod, double *axial_force,
+                                     double *stretch_energy) {
+  static const char *where = "rn_network_rod_edge_fields";
+  const rn_rod *r;
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_result(net, where, rod))) return st;
+  r = &net->rods[rod];
+  for (int j = 0; j < r->ne; ++j) {
+    const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
+    double l2 = 0.0, E = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      double d = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
+      l2 += d * d;
+    }
+    if (rnk_stretch_energy(q, &r->sp[j], &E) != RNK_OK)
+      return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
+                     rod, j);
+    if (axial_force) axial_force[j] = r->sp[j].k * (sqrt(l2) / r->sp[j].lbar - 1.0);
+    if (stretch_energy) stretch_energy[j] = E;
   }
   return RN_OK;
 }

@@ -18,8 +18,11 @@
  *
  * Degrees of freedom.  A rod with n vertices has 4n-1 full DOFs in the order
  * (x_0[3], theta^0, x_1[3], theta^1, ..., x_{n-1}[3]); rods are concatenated.
- * Boundary conditions fix DOFs; the *reduced* DOF vector holds the free ones
- * in the same order.  All evaluation functions work on reduced vectors.
+ * Joints follow all rods: position (3) and, for rigid (or clamped) joints, a
+ * rotation vector (3).  A rod end vertex attached to a joint is the joint's
+ * position (one reduced DOF, not two).  Boundary conditions fix DOFs; the
+ * *reduced* DOF vector holds the free ones in the same order.  All
+ * evaluation functions work on reduced vectors.
  */
 #ifndef RODNET_H
 #define RODNET_H
@@ -211,7 +214,9 @@ rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
 /* Hessian-vector product Hv = H(x) v, matrix-free from the stencil blocks. */
 rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v,
                          double *Hv);
-/* Energy split by term: E[RN_TERM_COUNT]. */
+/* Energy split by term: E[RN_TERM_COUNT].  The bending and twisting energy
+ * of joints (between terminal and connection edges) counts as RN_TERM_BEND;
+ * forces and couples on joints as RN_TERM_LOAD. */
 enum { RN_TERM_STRETCH = 0, RN_TERM_BEND, RN_TERM_TWIST, RN_TERM_LOAD, RN_TERM_COUNT };
 rn_status rn_network_energy_terms(const rn_network *net, const double *x, double *E);
 
@@ -227,8 +232,11 @@ size_t rn_network_hessian_bandwidth(const rn_network *net);
 
 /* Accept x as the new state: x becomes current, reference frames are moved by
  * time-parallel transport, reference twists and moment angles are continued.
- * The energy at x is unchanged by the update. */
-rn_status rn_network_update_reference(rn_network *net, const double *x);
+ * x is updated in place: the rotation DOFs of rigid joints are reset to 0 as
+ * their rotation moves into the joint's reference rotation (nothing else in
+ * x changes).  The energy at x is unchanged by the update.  On error (e.g.
+ * RN_DEGENERATE) neither the network nor x changes. */
+rn_status rn_network_update_reference(rn_network *net, double *x);
 
 /* ---- results ------------------------------------------------------------- */
 /* Current vertex positions xyz[3*nv] and material angles theta[nv-1]
@@ -311,7 +319,9 @@ rn_status rn_network_displace_joint(rn_network *net, int joint, const double dis
 rn_status rn_network_add_joint_force(rn_network *net, int joint, const double f[3]);
 rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m[3]);
 
-/* Current joint position x[3] and rotation R[9] (row-major, rest = identity). */
+/* Current joint position x[3] and rotation R[9] (row-major, rest = identity).
+ * RN_ERR_STATE before finalize, RN_ERR_RANGE for a bad joint, RN_DEGENERATE
+ * if an elastic joint's fit is singular at the current state. */
 rn_status rn_network_joint_position(const rn_network *net, int joint, double x[3]);
 rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9]);
 

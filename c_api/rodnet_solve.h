@@ -16,8 +16,9 @@ extern "C" {
 #endif
 
 typedef enum rn_solver_kind {
-  /* rodnet's trust region: (H + lambda M) s = -g solved by Belos MINRES with
-   * a banded-Cholesky (LAPACK) preconditioner; negative curvature handled. */
+  /* rodnet's trust region: (H + lambda D) s = -g (D = |diag H| of the first
+   * iteration) solved by Belos MINRES with a banded-Cholesky (LAPACK)
+   * preconditioner; negative curvature handled (leaves saddles). */
   RN_SOLVER_TR_MINRES = 0,
   /* ROL trust region with truncated CG (Steihaug-Toint), preconditioned. */
   RN_SOLVER_ROL_TR_TCG = 1,
@@ -126,7 +127,9 @@ void rn_runtime_finalize(void);
  * ROL-LS-Newton) or truncated-CG iterations (ROL-TR-TCG, counted as Hessian-
  * vector products); rep->hvp_evals counts matrix-free and CSR Hessian-vector
  * products; rep->load_steps counts load steps attempted (including those cut
- * back). */
+ * back).  Only TR-MINRES leaves saddles; the ROL kinds can stop at one (check
+ * with rn_hessian_min_eigenvalue).  A network without free DOFs is converged
+ * at once (iterations 0). */
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep);
 
 /* Smallest eigenvalue of the reduced Hessian at the current state (LAPACK

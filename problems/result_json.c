@@ -116,6 +116,49 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   return RN_OK;
 }
 
+static void put_vec(json_out *o, const double *v) {
+  fputc('[', o->f);
+  for (int k = 0; k < 3; k++) {
+    if (k) fputs(", ", o->f);
+    put_num(o, v[k]);
+  }
+  fputc(']', o->f);
+}
+
+/* {"name", "model", "valence", "position": [x, y, z], "rotation": 3 rows}. */
+static rn_status put_joint(json_out *o, rn_network *net, int j) {
+  double x[3], R[9];
+  rn_status st = rn_network_joint_position(net, j, x);
+  if (!st) st = rn_network_joint_rotation(net, j, R);
+  if (st) return st;
+  FILE *f = o->f;
+  fputs("    {\"name\": ", f);
+  put_str(f, rn_network_joint_name(net, j));
+  fprintf(f, ", \"model\": \"%s\", \"valence\": %d,\n     \"position\": ",
+          rn_network_joint_model(net, j) == RN_JOINT_RIGID ? "rigid" : "elastic",
+          rn_network_joint_valence(net, j));
+  put_vec(o, x);
+  fputs(",\n     \"rotation\": [", f);
+  for (int r = 0; r < 3; r++) {
+    fputs(r ? ", " : "", f);
+    put_vec(o, &R[3 * r]);
+  }
+  fputs("]}", f);
+  return RN_OK;
+}
+
+static rn_status put_joints(json_out *o, rn_network *net) {
+  int n = rn_network_num_joints(net);
+  rn_status st = RN_OK;
+  fputs(n ? ",\n  \"joints\": [\n" : ",\n  \"joints\": [", o->f);
+  for (int j = 0; j < n && !st; j++) {
+    st = put_joint(o, net, j);
+    fputs(j + 1 < n ? ",\n" : "\n  ", o->f);
+  }
+  fputs("]\n", o->f);
+  return st;
+}
+
 static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   json_out *o = user;
   rn_network *net = rn_scene_network(o->scene);
@@ -133,7 +176,9 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     st = put_rod(o, net, r, buf);
     fputs(r + 1 < nrods ? ",\n" : "\n", f);
   }
-  fputs("  ]\n}\n", f);
+  fputs("  ]", f);
+  if (!st) st = put_joints(o, net);
+  fputs("}\n", f);
   free(buf);
   if (st) {
     char msg[512];

@@ -17,8 +17,10 @@ typedef struct rn_result_info {
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info,
- * energy by term and load factor (from the network), and per rod its name,
- * vertices [[x, y, z], ...] and material angles theta.  Numbers are printed
+ * energy by term and load factor (from the network), per rod its name,
+ * vertices [[x, y, z], ...] and material angles theta, and per joint its
+ * name, model, valence, position [x, y, z] and rotation (3 rows of the
+ * rotation matrix, identity at rest).  Numbers are printed
  * with %.17g; the file is written atomically (atomic_file.h).
  * RN_ERR_NOT_FINITE (and no file) if any value is NaN or infinite. */
 rn_status rn_result_write_json(rn_context *ctx, const char *path, const rn_scene *scene,

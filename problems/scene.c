@@ -83,22 +83,33 @@ static rn_status text_error(rn_context *ctx, const char *label, const char *text
                               col, reason, near);
 }
 
+/* text[len] need not be NUL-terminated: nothing past text[len - 1] is read
+ * (cJSON gets a NUL-terminated copy, so that running off the end of the text
+ * is reported as such). */
 static rn_status parse_json(rn_context *ctx, const char *label, const char *text,
                             size_t len, cJSON **root) {
-  size_t nul = strlen(text);
-  if (nul < len) return text_error(ctx, label, text, len, nul, "NUL byte in the file");
-  size_t first = strspn(text, " \t\r\n");
+  const char *nul = memchr(text, '\0', len);
+  if (nul)
+    return text_error(ctx, label, text, len, (size_t)(nul - text),
+                      "NUL byte in the file");
+  size_t first = 0;
+  while (first < len && strchr(" \t\r\n", text[first])) first++;
   if (first == len)
     return rn_context_set_error(ctx, RN_ERR_PARSE,
                                 "%s: the file is empty (expected a "
                                 "JSON object)",
                                 label);
+  char *copy = malloc(len + 1);
+  if (!copy) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", label);
+  memcpy(copy, text, len);
+  copy[len] = '\0';
   const char *end = NULL;
   /* The length includes the terminating NUL: cJSON checks that nothing but
    * white space follows the value. */
-  *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1);
+  *root = cJSON_ParseWithLengthOpts(copy, len + 1, &end, 1);
+  size_t pos = (end && end >= copy) ? (size_t)(end - copy) : 0;
+  free(copy);
   if (*root) return RN_OK;
-  size_t pos = (end && end >= text) ? (size_t)(end - text) : 0;
   return text_error(ctx, label, text, len, pos, "malformed JSON");
 }
 
@@ -416,47 +427,53 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
 
 /* ---- top level ------------------------------------------------------------- */
 
+/* The value of top-level key steps[i] (read in this order). */
+static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
+  switch (i) {
+  case 0:
+    return read_materials(p, v);
+  case 1:
+    return read_sections(p, v);
+  case 2:
+    return rn_scene_read_graph(p, v);
+  case 3:
+    return rn_scene_read_rods(p, v);
+  case 4:
+    return rn_scene_read_joints(p, v);
+  case 5:
+    return rn_scene_read_constraints(p, v);
+  case 6:
+    return rn_scene_read_loads(p, v);
+  default:
+    return read_solver(p, v);
+  }
+}
+
 static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
-  static const char *const keys[] = {"description", "materials", "sections", "rods",
-                                     "constraints", "loads",     "solver",   NULL};
+  static const char *const keys[] = {"description", "materials", "sections",    "graph",
+                                     "rods",        "joints",    "constraints", "loads",
+                                     "solver",      NULL};
+  static const char *const steps[] = {"materials", "sections",    "graph", "rods",
+                                      "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
-  const cJSON *v;
   const char *desc = NULL;
   rn_status st = rn_json_check_keys(w, root, keys);
   if (!st) st = rn_jm_string(w, root, "description", 0, &desc);
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
-  static const char *const steps[] = {"materials",   "sections", "rods",
-                                      "constraints", "loads",    "solver"};
-  for (int i = 0; i < 6 && !st; i++) {
-    int required = i < 3;
-    v = rn_jm_get(root, steps[i]);
+  for (int i = 0; i < 8 && !st; i++) {
+    const cJSON *v = rn_jm_get(root, steps[i]);
     if (!v) {
-      if (required) st = rn_jwalk_error(w, "missing required key \"%s\"", steps[i]);
+      if (i < 2)
+        st = rn_jwalk_error(w, "missing required key \"%s\"", steps[i]);
+      else if (i == 3 && !rn_jm_get(root, "graph"))
+        st = rn_jwalk_error(w, "missing required key \"rods\" (or \"graph\", an OBJ "
+                               "line graph)");
       continue;
     }
     size_t mark = rn_jwalk_key(w, steps[i]);
-    switch (i) {
-    case 0:
-      st = read_materials(p, v);
-      break;
-    case 1:
-      st = read_sections(p, v);
-      break;
-    case 2:
-      st = rn_scene_read_rods(p, v);
-      break;
-    case 3:
-      st = rn_scene_read_constraints(p, v);
-      break;
-    case 4:
-      st = rn_scene_read_loads(p, v);
-      break;
-    default:
-      st = read_solver(p, v);
-      break;
-    }
+    st = read_step(p, i, v);
     rn_jwalk_pop(w, mark);
   }
   if (st) return st;
@@ -529,6 +546,8 @@ void rn_scene_destroy(rn_scene **sp) {
     free(s->rods[i].pinned);
   }
   free(s->rods);
+  for (int i = 0; i < s->njoints; i++) free(s->joints[i].name);
+  free(s->joints);
   rn_network_destroy(&s->net);
   free(s->label);
   free(s->description);

@@ -1,8 +1,10 @@
 /* scene.h - JSON scene reader (docs/scene-format.md).
  *
  * A scene builds a finalized rn_network through the public API and keeps what
- * the network does not: the file label, the rod name table and the solver
- * settings of the scene's "solver" block.  Every error is recorded in the
+ * the network does not: the file label, the rod and joint name tables and
+ * the solver settings of the scene's "solver" block.  A scene may take its
+ * rods and joints from an OBJ line graph (obj.h), whose path is resolved
+ * against the folder of the scene's label.  Every error is recorded in the
  * context as ONE line "FILE: $.json.path: reason" (malformed JSON:
  * "FILE:LINE:COLUMN: reason"); nothing is printed.
  */
@@ -23,7 +25,8 @@ typedef struct rn_scene rn_scene;
  * error. */
 rn_status rn_scene_load(rn_context *ctx, const char *path, rn_scene **out);
 
-/* Same from text[len] in memory; label names it in messages. */
+/* Same from the len bytes at text (no NUL terminator needed; a NUL byte
+ * among them is an error); label names it in messages. */
 rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, size_t len,
                          rn_scene **out);
 
@@ -38,6 +41,12 @@ const char *rn_scene_label(const rn_scene *s);
 const char *rn_scene_description(const rn_scene *s);
 /* Index of the rod called name, -1 if there is none. */
 int rn_scene_find_rod(const rn_scene *s, const char *name);
+/* Index of the joint called name, -1 if there is none (joint indices are
+ * the network's). */
+int rn_scene_find_joint(const rn_scene *s, const char *name);
+/* Initial position x[3] of a joint (where its rod ends met in the input);
+ * RN_ERR_RANGE for a bad index. */
+rn_status rn_scene_joint_initial_position(const rn_scene *s, int joint, double x[3]);
 /* Total number of vertices over all rods. */
 long rn_scene_num_vertices(const rn_scene *s);
 

@@ -27,7 +27,7 @@ static rn_status read_type(rn_jwalk *w, const cJSON *obj, const char *what,
   return st;
 }
 
-static rn_status read_end(rn_jwalk *w, const cJSON *obj, int *end) {
+rn_status rn_scene_end_ref(rn_jwalk *w, const cJSON *obj, int *end) {
   const char *s = NULL;
   rn_status st = rn_jm_string(w, obj, "end", 1, &s);
   if (st) return st;
@@ -47,30 +47,89 @@ static rn_status lib(rn_jwalk *w, rn_status st) {
   return st ? rn_jwalk_lib_error(w, st) : RN_OK;
 }
 
+/* Exactly one of "rod" and "joint": *is_joint says which. */
+static rn_status read_target(rn_jwalk *w, const cJSON *v, int *is_joint) {
+  int has_rod = rn_jm_get(v, "rod") != NULL, has_joint = rn_jm_get(v, "joint") != NULL;
+  if (has_rod && has_joint)
+    return rn_jwalk_error(w, "give either \"rod\" or \"joint\", not both");
+  if (!has_rod && !has_joint)
+    return rn_jwalk_error(w, "missing required key \"rod\" (or \"joint\")");
+  *is_joint = has_joint;
+  return RN_OK;
+}
+
+/* The joint at vertex (0 or the last) of a rod, -1 if none. */
+static int joint_at_vertex(const rn_scene_rod *r, int vertex) {
+  if (vertex == 0 && r->joint[RN_START] >= 0) return r->joint[RN_START];
+  if (vertex == r->nv - 1 && r->joint[RN_END] >= 0) return r->joint[RN_END];
+  return -1;
+}
+
+/* Error at obj[key]: vertex of rod r is joint j; "what the joint instead". */
+static rn_status at_joint_error(rn_scene_parser *p, const char *key,
+                                const rn_scene_rod *r, int vertex, int j,
+                                const char *what) {
+  size_t mark = rn_jwalk_key(&p->w, key);
+  rn_status st = rn_jwalk_error(&p->w,
+                                "vertex %d of rod \"%s\" is joint \"%s\": %s the "
+                                "joint instead ({\"joint\": \"%s\"})",
+                                vertex, r->name, p->scene->joints[j].name, what,
+                                p->scene->joints[j].name);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
 /* ---- constraints ---------------------------------------------------------------- */
 
 enum { C_CLAMP = 0, C_PIN, C_FIX_THETA, C_DISPLACE, C_COUNT };
 static const char *const constraint_names[C_COUNT] = {"clamp", "pin", "fix_theta",
                                                       "displace"};
 
+/* {"type": "clamp" | "pin", "joint": name}. */
+static rn_status read_joint_support(rn_scene_parser *p, const cJSON *v, int clamp) {
+  static const char *const keys[] = {"type", "joint", NULL};
+  int j = -1;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_joint_ref(p, v, &j);
+  if (st) return st;
+  rn_network *net = p->scene->net;
+  st = lib(&p->w, clamp ? rn_network_clamp_joint(net, j) : rn_network_pin_joint(net, j));
+  if (!st && clamp) p->scene->joints[j].clamped = 1;
+  if (!st && !clamp) p->scene->joints[j].pinned = 1;
+  return st;
+}
+
 static rn_status read_clamp(rn_scene_parser *p, const cJSON *v) {
   static const char *const keys[] = {"type", "rod", "end", NULL};
-  int rod = -1, end = 0;
-  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  int rod = -1, end = 0, is_joint = 0;
+  rn_status st = read_target(&p->w, v, &is_joint);
+  if (st || is_joint) return st ? st : read_joint_support(p, v, 1);
+  st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
-  if (!st) st = read_end(&p->w, v, &end);
-  if (!st) st = lib(&p->w, rn_network_clamp(p->scene->net, rod, end));
+  if (!st) st = rn_scene_end_ref(&p->w, v, &end);
+  if (st) return st;
+  const rn_scene_rod *r = &p->scene->rods[rod];
+  if (r->joint[end] >= 0)
+    return at_joint_error(p, "end", r, end == RN_START ? 0 : r->nv - 1, r->joint[end],
+                          "clamp");
+  st = lib(&p->w, rn_network_clamp(p->scene->net, rod, end));
   if (!st) p->scene->rods[rod].clamped[end] = 1;
   return st;
 }
 
 static rn_status read_pin(rn_scene_parser *p, const cJSON *v) {
   static const char *const keys[] = {"type", "rod", "vertex", NULL};
-  int rod = -1, vertex = 0;
-  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  int rod = -1, vertex = 0, is_joint = 0;
+  rn_status st = read_target(&p->w, v, &is_joint);
+  if (st || is_joint) return st ? st : read_joint_support(p, v, 0);
+  st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
   if (!st) st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
-  if (!st) st = lib(&p->w, rn_network_pin(p->scene->net, rod, vertex));
+  if (st) return st;
+  const rn_scene_rod *r = &p->scene->rods[rod];
+  int j = joint_at_vertex(r, vertex);
+  if (j >= 0) return at_joint_error(p, "vertex", r, vertex, j, "pin");
+  st = lib(&p->w, rn_network_pin(p->scene->net, rod, vertex));
   if (!st) p->scene->rods[rod].pinned[vertex] = 1;
   return st;
 }
@@ -94,7 +153,7 @@ static rn_status read_displace_end(rn_scene_parser *p, const cJSON *v, int rod) 
   const rn_scene_rod *r = &p->scene->rods[rod];
   double d[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
   int end = 0, has_d = 0, has_rot = 0;
-  rn_status st = read_end(&p->w, v, &end);
+  rn_status st = rn_scene_end_ref(&p->w, v, &end);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 0, 3, RN_J_ANY, d, &has_d);
   if (!st) st = rn_jm_vec(&p->w, v, "rotation", 0, 3, RN_J_ANY, rot, &has_rot);
   if (st) return st;
@@ -125,6 +184,8 @@ static rn_status read_displace_vertex(rn_scene_parser *p, const cJSON *v, int ro
   rn_status st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, d, NULL);
   if (st) return st;
+  int j = joint_at_vertex(r, vertex);
+  if (j >= 0) return at_joint_error(p, "vertex", r, vertex, j, "displace");
   if (!vertex_is_fixed(r, vertex))
     return rn_jwalk_error(&p->w,
                           "vertex %d of rod \"%s\" is free: pin it (or clamp "
@@ -133,11 +194,37 @@ static rn_status read_displace_vertex(rn_scene_parser *p, const cJSON *v, int ro
   return lib(&p->w, rn_network_displace_vertex(p->scene->net, rod, vertex, d));
 }
 
+/* {"type": "displace", "joint": name, "value": d, "rotation": r}. */
+static rn_status read_displace_joint(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"type", "joint", "value", "rotation", NULL};
+  double d[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
+  int j = -1, has_d = 0, has_rot = 0;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_joint_ref(p, v, &j);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 0, 3, RN_J_ANY, d, &has_d);
+  if (!st) st = rn_jm_vec(&p->w, v, "rotation", 0, 3, RN_J_ANY, rot, &has_rot);
+  if (st) return st;
+  const rn_scene_joint *J = &p->scene->joints[j];
+  if (!has_d && !has_rot)
+    return rn_jwalk_error(&p->w, "give \"value\" (a displacement) and/or \"rotation\" "
+                                 "(a rotation vector)");
+  if (!J->clamped && (has_rot || !J->pinned))
+    return rn_jwalk_error(&p->w,
+                          "joint \"%s\" is not %s: add {\"type\": \"%s\", "
+                          "\"joint\": \"%s\"}",
+                          J->name, has_rot ? "clamped (a rotation needs a clamp)" : "pinned or clamped",
+                          has_rot ? "clamp" : "pin", J->name);
+  return lib(&p->w, rn_network_displace_joint(p->scene->net, j, has_d ? d : NULL,
+                                              has_rot ? rot : NULL));
+}
+
 static rn_status read_displace(rn_scene_parser *p, const cJSON *v) {
   static const char *const keys[] = {"type",  "rod",      "end", "vertex",
                                      "value", "rotation", NULL};
-  int rod = -1;
-  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  int rod = -1, is_joint = 0;
+  rn_status st = read_target(&p->w, v, &is_joint);
+  if (st || is_joint) return st ? st : read_displace_joint(p, v);
+  st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
   if (st) return st;
   int has_end = rn_jm_get(v, "end") != NULL, has_vertex = rn_jm_get(v, "vertex") != NULL;
@@ -186,11 +273,27 @@ enum { L_FORCE = 0, L_MOMENT, L_LINE_LOAD, L_GRAVITY, L_COUNT };
 static const char *const load_names[L_COUNT] = {"force", "moment", "line_load",
                                                 "gravity"};
 
-static rn_status read_point_load(rn_scene_parser *p, const cJSON *v, int moment) {
-  static const char *const keys[] = {"type", "rod", "vertex", "value", NULL};
-  int rod = -1, vertex = 0;
+/* {"type": "force" | "moment", "joint": name, "value": v}. */
+static rn_status read_joint_load(rn_scene_parser *p, const cJSON *v, int moment) {
+  static const char *const keys[] = {"type", "joint", "value", NULL};
+  int j = -1;
   double f[3];
   rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_joint_ref(p, v, &j);
+  if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, f, NULL);
+  if (st) return st;
+  rn_network *net = p->scene->net;
+  return lib(&p->w, moment ? rn_network_add_joint_moment(net, j, f)
+                           : rn_network_add_joint_force(net, j, f));
+}
+
+static rn_status read_point_load(rn_scene_parser *p, const cJSON *v, int moment) {
+  static const char *const keys[] = {"type", "rod", "vertex", "value", NULL};
+  int rod = -1, vertex = 0, is_joint = 0;
+  double f[3];
+  rn_status st = read_target(&p->w, v, &is_joint);
+  if (st || is_joint) return st ? st : read_joint_load(p, v, moment);
+  st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
   if (!st) st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, f, NULL);

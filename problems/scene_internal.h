@@ -1,6 +1,7 @@
 /* scene_internal.h - state shared by the scene reader's files (scene.c:
  * file, top level, materials, sections, solver; scene_rods.c: rods;
- * scene_bcs.c: constraints and loads).  Internal to problems/. */
+ * scene_joints.c: joints; scene_graph.c: OBJ line graphs; scene_bcs.c:
+ * constraints and loads).  Internal to problems/. */
 #ifndef RN_SCENE_INTERNAL_H
 #define RN_SCENE_INTERNAL_H
 
@@ -12,16 +13,31 @@ typedef struct rn_scene_rod {
   char *name;
   int nv;
   int clamped[2];        /* RN_START, RN_END */
+  int joint[2];          /* joint at RN_START / RN_END, -1: none */
+  double end_xyz[2][3];  /* initial end vertices */
+  double end_len[2];     /* lengths of the terminal edges */
+  long obj_line;         /* line of its OBJ segment, 0 if not from a graph */
   unsigned char *pinned; /* nv flags */
   double max_density;    /* over its edges (gravity check) */
 } rn_scene_rod;
+
+/* What the scene remembers about a joint. */
+typedef struct rn_scene_joint {
+  char *name;
+  int model; /* rn_joint_model */
+  int clamped, pinned;
+  double x0[3];  /* initial position (its first rod end) */
+  long obj_line; /* line of its OBJ vertex, 0 if not from a graph */
+} rn_scene_joint;
 
 struct rn_scene {
   char *label;
   char *description;
   rn_network *net;
-  int nrods;
+  int nrods, cap_rods;
   rn_scene_rod *rods;
+  int njoints, cap_joints;
+  rn_scene_joint *joints;
   unsigned solver_set; /* bits: which fields of solver_opt the scene sets */
   rn_solve_options solver_opt;
 };
@@ -36,20 +52,51 @@ typedef struct rn_scene_parser {
   rn_material *mats;
   const char **sec_names;
   rn_section *secs;
+  const char *where; /* if set, library errors read "PATH: where: message" */
 } rn_scene_parser;
+
+/* Wrap the library's last error (status st) at the walker's path, prefixed
+ * with p->where if set; returns st. */
+rn_status rn_scene_lib_error(rn_scene_parser *p, rn_status st);
 
 /* Index of a named material / section, -1 if none. */
 int rn_scene_parser_material(const rn_scene_parser *p, const char *name);
 int rn_scene_parser_section(const rn_scene_parser *p, const char *name);
 
-/* Read a "rods" array / "constraints" array / "loads" array (the value at the
- * walker's current path). */
+/* Read a "rods" array / "joints" array / "graph" object / "constraints" array
+ * / "loads" array (the value at the walker's current path). */
 rn_status rn_scene_read_rods(rn_scene_parser *p, const cJSON *rods);
+rn_status rn_scene_read_joints(rn_scene_parser *p, const cJSON *joints);
+rn_status rn_scene_read_graph(rn_scene_parser *p, const cJSON *graph);
 rn_status rn_scene_read_constraints(rn_scene_parser *p, const cJSON *list);
 rn_status rn_scene_read_loads(rn_scene_parser *p, const cJSON *list);
 
 /* obj["rod"] names a rod of the scene: its index in *rod. */
 rn_status rn_scene_rod_ref(rn_scene_parser *p, const cJSON *obj, int *rod);
+/* obj["joint"] names a joint of the scene: its index in *joint. */
+rn_status rn_scene_joint_ref(rn_scene_parser *p, const cJSON *obj, int *joint);
+/* obj["end"] is "start" or "end": RN_START / RN_END in *end. */
+rn_status rn_scene_end_ref(rn_jwalk *w, const cJSON *obj, int *end);
+/* obj["material"] / obj["section"] names a material / section: its index. */
+rn_status rn_scene_material_ref(rn_scene_parser *p, const cJSON *obj, int *m);
+rn_status rn_scene_section_ref(rn_scene_parser *p, const cJSON *obj, int *s);
+/* obj[key] (optional) is a joint model name; *model is left unchanged if
+ * the key is absent. */
+rn_status rn_scene_joint_model_ref(rn_jwalk *w, const cJSON *obj, const char *key,
+                                   int *model);
+
+/* Add a rod to the network and the scene (copies name): nv vertices xyz,
+ * material axis d1 (NULL: derived), material m and section sec for all
+ * edges.  Library errors are reported at the walker's path.  *rod receives
+ * its index. */
+rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
+                           const double *xyz, const double *d1, int m, int sec,
+                           int *rod);
+/* Add a joint of the rod ends (rods[k], ends[k]) to the network and the
+ * scene (copies name).  The ends must be free of other joints (checked by
+ * the caller); library errors are reported at the walker's path. */
+rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, int n,
+                             const int *rods, const int *ends, int *joint);
 /* v (at the walker's path) / obj[key] is a vertex (edge when edges != 0) index of rod,
  * negative counting from the end; the resolved index in *out. */
 rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod, int edges,

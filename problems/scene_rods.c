@@ -212,7 +212,7 @@ static rn_status read_d1(rn_jwalk *w, const cJSON *rod, const double *xyz, doubl
 
 /* ---- properties ---------------------------------------------------------------- */
 
-static rn_status lookup_material(rn_scene_parser *p, const cJSON *obj, int *m) {
+rn_status rn_scene_material_ref(rn_scene_parser *p, const cJSON *obj, int *m) {
   const char *name = NULL;
   rn_status st = rn_jm_string(&p->w, obj, "material", 1, &name);
   if (st) return st;
@@ -226,7 +226,7 @@ static rn_status lookup_material(rn_scene_parser *p, const cJSON *obj, int *m) {
   return st;
 }
 
-static rn_status lookup_section(rn_scene_parser *p, const cJSON *obj, int *s) {
+rn_status rn_scene_section_ref(rn_scene_parser *p, const cJSON *obj, int *s) {
   const char *name = NULL;
   rn_status st = rn_jm_string(&p->w, obj, "section", 1, &name);
   if (st) return st;
@@ -301,8 +301,8 @@ static rn_status read_edge_properties(rn_scene_parser *p, const cJSON *list, int
     if (!st) st = edge_range(p, v, rod, &first, &last);
     if (!st && !rn_jm_get(v, "material") && !rn_jm_get(v, "section"))
       st = rn_jwalk_error(&p->w, "give \"material\" and/or \"section\"");
-    if (!st && rn_jm_get(v, "material")) st = lookup_material(p, v, &m);
-    if (!st && rn_jm_get(v, "section")) st = lookup_section(p, v, &s);
+    if (!st && rn_jm_get(v, "material")) st = rn_scene_material_ref(p, v, &m);
+    if (!st && rn_jm_get(v, "section")) st = rn_scene_section_ref(p, v, &s);
     if (!st) st = set_properties(p, rod, first, last, m, s);
     rn_jwalk_pop(&p->w, mark);
   }
@@ -366,10 +366,67 @@ static rn_status read_rest(rn_scene_parser *p, const cJSON *rest, int rod) {
   return st;
 }
 
-/* ---- one rod ------------------------------------------------------------------------
- */
+/* ---- one rod ------------------------------------------------------------------ */
 
-static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, int i) {
+rn_status rn_scene_lib_error(rn_scene_parser *p, rn_status st) {
+  if (!p->where) return rn_jwalk_lib_error(&p->w, st);
+  char msg[1024];
+  const char *last = rn_context_last_error(p->w.ctx);
+  snprintf(msg, sizeof msg, "%s", (last && *last) ? last : rn_status_message(st));
+  return rn_jwalk_fail(&p->w, st, "%s: %s", p->where, msg);
+}
+
+static rn_status reserve_rods(rn_scene_parser *p, int extra) {
+  rn_scene *s = p->scene;
+  if (s->nrods + extra <= s->cap_rods) return RN_OK;
+  int cap = s->nrods + extra;
+  rn_scene_rod *r = realloc(s->rods, (size_t)cap * sizeof *r);
+  if (!r) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  s->rods = r;
+  s->cap_rods = cap;
+  return RN_OK;
+}
+
+static double dist3(const double *a, const double *b) {
+  double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  return sqrt(dot3(d, d));
+}
+
+rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
+                           const double *xyz, const double *d1, int m, int sec,
+                           int *rod) {
+  rn_scene *s = p->scene;
+  rn_status st = reserve_rods(p, 1);
+  if (st) return st;
+  rn_scene_rod *r = &s->rods[s->nrods];
+  memset(r, 0, sizeof *r);
+  r->joint[0] = r->joint[1] = -1;
+  r->name = dup_string(name);
+  r->pinned = calloc((size_t)nv, 1);
+  int idx = -1;
+  if (!r->name || !r->pinned)
+    st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  else if ((st = rn_network_add_rod(s->net, name, nv, xyz, d1, &idx)))
+    st = rn_scene_lib_error(p, st);
+  else if (idx != s->nrods)
+    st = rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "rod index %d, expected %d", idx,
+                       s->nrods);
+  if (st) {
+    free(r->name);
+    free(r->pinned);
+    return st;
+  }
+  r->nv = nv;
+  memcpy(r->end_xyz[RN_START], xyz, 3 * sizeof(double));
+  memcpy(r->end_xyz[RN_END], &xyz[3 * (nv - 1)], 3 * sizeof(double));
+  r->end_len[RN_START] = dist3(&xyz[0], &xyz[3]);
+  r->end_len[RN_END] = dist3(&xyz[3 * (nv - 2)], &xyz[3 * (nv - 1)]);
+  s->nrods++;
+  *rod = idx;
+  return set_properties(p, idx, 0, nv - 2, m, sec);
+}
+
+static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, const char **out) {
   const char *name = NULL;
   rn_status st = rn_jm_string(&p->w, v, "name", 1, &name);
   if (st) return st;
@@ -378,48 +435,36 @@ static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, int i) {
     st = rn_jwalk_error(&p->w, "expected a non-empty name");
   else if (rn_scene_find_rod(p->scene, name) >= 0)
     st = rn_jwalk_error(&p->w, "duplicate rod name \"%s\"", name);
-  else if (!(p->scene->rods[i].name = dup_string(name)))
-    st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   rn_jwalk_pop(&p->w, mark);
+  *out = name;
   return st;
 }
 
-static rn_status read_rod(rn_scene_parser *p, const cJSON *v, int i) {
+static rn_status read_rod(rn_scene_parser *p, const cJSON *v) {
   static const char *const keys[] = {"name",     "material", "section",         "line",
                                      "vertices", "d1",       "edge_properties", "rest",
                                      NULL};
-  rn_scene *s = p->scene;
+  const char *name = NULL;
   double *xyz = NULL, d1[3];
   int nv = 0, has_d1 = 0, m = -1, sec = -1, rod = -1;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
-  if (!st) st = read_rod_name(p, v, i);
-  if (!st) st = lookup_material(p, v, &m);
-  if (!st) st = lookup_section(p, v, &sec);
+  if (!st) st = read_rod_name(p, v, &name);
+  if (!st) st = rn_scene_material_ref(p, v, &m);
+  if (!st) st = rn_scene_section_ref(p, v, &sec);
   if (!st) st = read_geometry(&p->w, v, &xyz, &nv);
   if (!st) st = read_d1(&p->w, v, xyz, d1, &has_d1);
-  if (!st) {
-    st = rn_network_add_rod(s->net, s->rods[i].name, nv, xyz, has_d1 ? d1 : NULL, &rod);
-    if (st)
-      st = rn_jwalk_lib_error(&p->w, st);
-    else if (rod != i)
-      st = rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "rod index %d, expected %d", rod, i);
-  }
+  if (!st) st = rn_scene_add_rod(p, name, nv, xyz, has_d1 ? d1 : NULL, m, sec, &rod);
   free(xyz);
   if (st) return st;
-  s->rods[i].nv = nv;
-  s->nrods = i + 1;
-  if (!(s->rods[i].pinned = calloc((size_t)nv, 1)))
-    return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
-  st = set_properties(p, i, 0, nv - 2, m, sec);
   const cJSON *ep = rn_jm_get(v, "edge_properties"), *rest = rn_jm_get(v, "rest");
-  if (!st && ep) {
+  if (ep) {
     size_t mark = rn_jwalk_key(&p->w, "edge_properties");
-    st = read_edge_properties(p, ep, i);
+    st = read_edge_properties(p, ep, rod);
     rn_jwalk_pop(&p->w, mark);
   }
   if (!st && rest) {
     size_t mark = rn_jwalk_key(&p->w, "rest");
-    st = read_rest(p, rest, i);
+    st = read_rest(p, rest, rod);
     rn_jwalk_pop(&p->w, mark);
   }
   return st;
@@ -430,15 +475,12 @@ rn_status rn_scene_read_rods(rn_scene_parser *p, const cJSON *rods) {
   rn_status st = rn_jv_array(&p->w, rods, &n);
   if (st) return st;
   if (n == 0) return rn_jwalk_error(&p->w, "expected at least one rod");
-  p->scene->rods = calloc((size_t)n, sizeof *p->scene->rods);
-  if (!p->scene->rods) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  if ((st = reserve_rods(p, n))) return st;
   int i = 0;
   for (const cJSON *v = rods->child; v && !st; v = v->next, i++) {
     size_t mark = rn_jwalk_index(&p->w, i);
-    st = read_rod(p, v, i);
+    st = read_rod(p, v);
     rn_jwalk_pop(&p->w, mark);
-    /* A rod whose name was read but that failed later is still freed. */
-    if (st && p->scene->nrods <= i && p->scene->rods[i].name) p->scene->nrods = i + 1;
   }
   return st;
 }

@@ -1,34 +1,249 @@
-/* vtk.c - .vtu writer (VTK XML UnstructuredGrid, ASCII). */
+/* vtk.c - .vtu writer (VTK XML UnstructuredGrid, ASCII).  Each data array is
+ * one field: a function that fills the values of one rod, written rod after
+ * rod (the field table is in vtk.h's order). */
 #include "vtk.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "atomic_file.h"
 
-enum { VTK_LINE = 3 };
-
-/* Per-rod quantities written as one data array over all rods. */
-typedef enum vtk_field {
-  F_POINTS,
-  F_DISPLACEMENT,
-  F_CURVATURE,
-  F_TWIST_RATE, /* per vertex */
-  F_ROD,
-  F_EDGE,
-  F_THETA,
-  F_STRETCH,
-  F_D1,
-  F_D2 /* per edge */
-} vtk_field;
+enum { VTK_VERTEX = 1, VTK_LINE = 3, N_WORK = 4 };
 
 typedef struct vtk_out {
   FILE *f;
+  const rn_scene *scene;
   rn_network *net;
   int not_finite;
-  double *a, *b; /* scratch, 3 * max vertices each */
+  double *val;          /* values of one rod, 9 * max vertices */
+  double *work[N_WORK]; /* scratch, 3 * max vertices each */
 } vtk_out;
+
+/* Fills o->val with the values of one rod (count * ncomp). */
+typedef rn_status (*vtk_fill)(vtk_out *o, int rod, double *val);
+
+typedef struct vtk_field {
+  const char *name;
+  const char *type; /* VTK type of the array */
+  int ncomp;
+  int on_edges; /* cell data (else point data) */
+  vtk_fill fill;
+} vtk_field;
+
+/* ---- small vector helpers ------------------------------------------------- */
+
+static double dist3(const double *p, const double *q) {
+  double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+static double dot3(const double *a, const double *b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* u = normalise(a + b - ((a + b) . e) e) (e unit or NULL). */
+static void mean_direction(const double *a, const double *b, const double *e, double *u) {
+  double s[3] = {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+  double p = e ? dot3(s, e) : 0.0;
+  for (int k = 0; k < 3; k++) s[k] -= e ? p * e[k] : 0.0;
+  double n = sqrt(dot3(s, s));
+  for (int k = 0; k < 3; k++) u[k] = n > 0 ? s[k] / n : 0.0;
+}
+
+/* Current Voronoi length of interior vertex i of the polyline x. */
+static double voronoi(const double *x, int i) {
+  return 0.5 * (dist3(&x[3 * i - 3], &x[3 * i]) + dist3(&x[3 * i], &x[3 * i + 3]));
+}
+
+/* ---- point fields ------------------------------------------------------------ */
+
+static rn_status fill_points(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_vertices(o->net, rod, val);
+}
+
+static rn_status fill_displacement(vtk_out *o, int rod, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  double *x0 = o->work[0];
+  rn_status st = rn_network_rod_vertices(o->net, rod, val);
+  if (!st) st = rn_network_rod_initial_vertices(o->net, rod, x0);
+  for (int k = 0; !st && k < 3 * nv; k++) val[k] -= x0[k];
+  return st;
+}
+
+/* Integrated curvature (ncomp 2) or twist (ncomp 1) per current Voronoi
+ * length; 0 at the rod's ends. */
+static rn_status strain_rate(vtk_out *o, int rod, int ncomp, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  double *x = o->work[0], *s = o->work[1];
+  rn_status st = rn_network_rod_vertices(o->net, rod, x);
+  if (!st)
+    st = rn_network_rod_strains(o->net, rod, NULL, ncomp == 2 ? s : NULL,
+                                ncomp == 1 ? s : NULL);
+  if (st) return st;
+  memset(val, 0, (size_t)(ncomp * nv) * sizeof *val);
+  for (int i = 1; i + 1 < nv; i++)
+    for (int k = 0; k < ncomp; k++)
+      val[ncomp * i + k] = s[ncomp * (i - 1) + k] / voronoi(x, i);
+  return RN_OK;
+}
+
+static rn_status fill_curvature(vtk_out *o, int rod, double *val) {
+  return strain_rate(o, rod, 2, val);
+}
+
+static rn_status fill_twist_rate(vtk_out *o, int rod, double *val) {
+  return strain_rate(o, rod, 1, val);
+}
+
+static rn_status fill_moment(vtk_out *o, int rod, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  double *m = o->work[0];
+  rn_status st = rn_network_rod_vertex_fields(o->net, rod, m, NULL, NULL, NULL);
+  if (st) return st;
+  memset(val, 0, (size_t)nv * sizeof *val);
+  for (int i = 1; i + 1 < nv; i++) val[i] = hypot(m[2 * i - 2], m[2 * i - 1]);
+  return RN_OK;
+}
+
+/* m1 e2 - m2 e1 with (e1, e2) the orthonormalised mean of the directors of
+ * the vertex's two edges (the curvature binormal is kappa1 d2 - kappa2 d1). */
+static rn_status fill_moment_vector(vtk_out *o, int rod, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  double *m = o->work[0], *d1 = o->work[1], *d2 = o->work[2];
+  rn_status st = rn_network_rod_vertex_fields(o->net, rod, m, NULL, NULL, NULL);
+  if (!st) st = rn_network_rod_frames(o->net, rod, d1, d2);
+  if (st) return st;
+  memset(val, 0, 3 * (size_t)nv * sizeof *val);
+  for (int i = 1; i + 1 < nv; i++) {
+    double e1[3], e2[3];
+    mean_direction(&d1[3 * i - 3], &d1[3 * i], NULL, e1);
+    mean_direction(&d2[3 * i - 3], &d2[3 * i], e1, e2);
+    for (int k = 0; k < 3; k++)
+      val[3 * i + k] = m[2 * i - 2] * e2[k] - m[2 * i - 1] * e1[k];
+  }
+  return RN_OK;
+}
+
+static rn_status fill_twisting_moment(vtk_out *o, int rod, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  rn_status st = rn_network_rod_vertex_fields(o->net, rod, NULL, val + 1, NULL, NULL);
+  if (st) return st;
+  val[0] = val[nv - 1] = 0.0;
+  return RN_OK;
+}
+
+/* ---- cell fields --------------------------------------------------------------- */
+
+static rn_status fill_rod(vtk_out *o, int rod, double *val) {
+  int ne = rn_network_rod_num_vertices(o->net, rod) - 1;
+  for (int e = 0; e < ne; e++) val[e] = rod;
+  return RN_OK;
+}
+
+static rn_status fill_edge(vtk_out *o, int rod, double *val) {
+  int ne = rn_network_rod_num_vertices(o->net, rod) - 1;
+  for (int e = 0; e < ne; e++) val[e] = e;
+  return RN_OK;
+}
+
+static rn_status fill_theta(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_theta(o->net, rod, val);
+}
+
+static rn_status fill_stretch(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_strains(o->net, rod, val, NULL, NULL);
+}
+
+static rn_status fill_d1(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_frames(o->net, rod, val, NULL);
+}
+
+static rn_status fill_d2(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_frames(o->net, rod, NULL, val);
+}
+
+/* Mean twist rate (as in twist_rate) of the edge's interior end vertices. */
+static rn_status fill_edge_twist(vtk_out *o, int rod, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  double *rate = o->work[3];
+  rn_status st = strain_rate(o, rod, 1, rate);
+  if (st) return st;
+  for (int e = 0; e + 1 < nv; e++) {
+    int n = (e > 0) + (e + 2 < nv);
+    val[e] = n ? (rate[e] + rate[e + 1]) / n : 0.0;
+  }
+  return RN_OK;
+}
+
+static rn_status fill_axial_force(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_edge_fields(o->net, rod, val, NULL);
+}
+
+static rn_status fill_rest_length(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_rest_lengths(o->net, rod, val);
+}
+
+/* Elastic energy per unit rest length of each edge: its stretching energy
+ * plus, from each interior end vertex, the bending + twisting energy density
+ * (energy / Voronoi rest length) over the half edge in that vertex's Voronoi
+ * cell.  Sum over edges of energy_density * rest_length = elastic energy. */
+static rn_status fill_energy_density(vtk_out *o, int rod, double *val) {
+  int nv = rn_network_rod_num_vertices(o->net, rod);
+  double *es = o->work[0], *eb = o->work[1], *et = o->work[2], *len = o->work[3];
+  rn_status st = rn_network_rod_edge_fields(o->net, rod, NULL, es);
+  if (!st) st = rn_network_rod_vertex_fields(o->net, rod, NULL, NULL, eb, et);
+  if (!st) st = rn_network_rod_rest_lengths(o->net, rod, len);
+  if (st) return st;
+  for (int e = 0; e + 1 < nv; e++) val[e] = es[e] / len[e];
+  for (int i = 1; i + 1 < nv; i++) {
+    double w = (eb[i - 1] + et[i - 1]) / (0.5 * (len[i - 1] + len[i]));
+    val[i - 1] += 0.5 * w;
+    val[i] += 0.5 * w;
+  }
+  return RN_OK;
+}
+
+/* ---- joints: one extra point and VTK_VERTEX cell each, after the rods ------ */
+
+/* Rods' rows of the joint fields: no rotation (zeros), joint index -1. */
+static rn_status fill_no_rotation(vtk_out *o, int rod, double *val) {
+  memset(val, 0, 9 * (size_t)rn_network_rod_num_vertices(o->net, rod) * sizeof *val);
+  return RN_OK;
+}
+
+static rn_status fill_no_joint(vtk_out *o, int rod, double *val) {
+  int ne = rn_network_rod_num_vertices(o->net, rod) - 1;
+  for (int e = 0; e < ne; e++) val[e] = -1;
+  return RN_OK;
+}
+
+/* In the order of vtk.h.  Points come first: they are written in <Points>. */
+static const vtk_field points_field = {"points", "Float64", 3, 0, fill_points};
+static const vtk_field fields[] = {
+    {"displacement", "Float64", 3, 0, fill_displacement},
+    {"curvature", "Float64", 2, 0, fill_curvature},
+    {"twist_rate", "Float64", 1, 0, fill_twist_rate},
+    {"bending_moment", "Float64", 1, 0, fill_moment},
+    {"bending_moment_vector", "Float64", 3, 0, fill_moment_vector},
+    {"twisting_moment", "Float64", 1, 0, fill_twisting_moment},
+    {"rod", "Int32", 1, 1, fill_rod},
+    {"edge", "Int32", 1, 1, fill_edge},
+    {"theta", "Float64", 1, 1, fill_theta},
+    {"stretch", "Float64", 1, 1, fill_stretch},
+    {"d1", "Float64", 3, 1, fill_d1},
+    {"d2", "Float64", 3, 1, fill_d2},
+    {"twist", "Float64", 1, 1, fill_edge_twist},
+    {"axial_force", "Float64", 1, 1, fill_axial_force},
+    {"rest_length", "Float64", 1, 1, fill_rest_length},
+    {"energy_density", "Float64", 1, 1, fill_energy_density},
+    {"joint_rotation", "Float64", 9, 0, fill_no_rotation},
+    {"joint", "Int32", 1, 1, fill_no_joint},
+};
+enum { N_FIELDS = (int)(sizeof fields / sizeof fields[0]) };
+
+/* ---- writing ------------------------------------------------------------------- */
 
 static void put_num(vtk_out *o, double x) {
   if (!isfinite(x)) {
@@ -38,94 +253,68 @@ static void put_num(vtk_out *o, double x) {
   fprintf(o->f, "%.17g", x);
 }
 
-static void put_row(vtk_out *o, const double *v, int n) {
-  fputs("          ", o->f);
-  for (int k = 0; k < n; k++) {
-    if (k) fputc(' ', o->f);
-    put_num(o, v[k]);
-  }
-  fputc('\n', o->f);
-}
-
-static double dist3(const double *p, const double *q) {
-  double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-}
-
-/* Per-vertex rows of one rod: points, displacement, curvature, twist rate. */
-static rn_status vertex_rows(vtk_out *o, int rod, vtk_field fld) {
-  int nv = rn_network_rod_num_vertices(o->net, rod);
-  double *x = o->a, *y = o->b;
-  rn_status st = rn_network_rod_vertices(o->net, rod, x);
-  if (!st && fld == F_DISPLACEMENT) st = rn_network_rod_initial_vertices(o->net, rod, y);
-  if (!st && fld == F_CURVATURE) st = rn_network_rod_strains(o->net, rod, NULL, y, NULL);
-  if (!st && fld == F_TWIST_RATE) st = rn_network_rod_strains(o->net, rod, NULL, NULL, y);
-  if (st) return st;
-  for (int i = 0; i < nv; i++) {
-    const double *p = &x[3 * i];
-    double row[3] = {0, 0, 0};
-    int interior = i > 0 && i + 1 < nv;
-    double vor = interior ? 0.5 * (dist3(p - 3, p) + dist3(p, p + 3)) : 1;
-    switch (fld) {
-    case F_POINTS:
-      put_row(o, p, 3);
-      break;
-    case F_DISPLACEMENT:
-      for (int k = 0; k < 3; k++) row[k] = p[k] - y[3 * i + k];
-      put_row(o, row, 3);
-      break;
-    case F_CURVATURE:
-      if (interior) {
-        row[0] = y[2 * (i - 1)] / vor;
-        row[1] = y[2 * (i - 1) + 1] / vor;
-      }
-      put_row(o, row, 2);
-      break;
-    default:
-      if (interior) row[0] = y[i - 1] / vor;
-      put_row(o, row, 1);
-      break;
+static void put_rows(vtk_out *o, const double *v, int rows, int ncomp) {
+  for (int r = 0; r < rows; r++) {
+    fputs("          ", o->f);
+    for (int k = 0; k < ncomp; k++) {
+      if (k) fputc(' ', o->f);
+      put_num(o, v[ncomp * r + k]);
     }
+    fputc('\n', o->f);
+  }
+}
+
+/* The row of joint j in field fld: position, displacement, rotation and
+ * joint index; rod and edge -1; every other field 0. */
+static rn_status joint_row(vtk_out *o, const vtk_field *fld, int j, double *val) {
+  memset(val, 0, (size_t)fld->ncomp * sizeof *val);
+  if (fld->fill == fill_points) return rn_network_joint_position(o->net, j, val);
+  if (fld->fill == fill_no_rotation) return rn_network_joint_rotation(o->net, j, val);
+  if (fld->fill == fill_no_joint) {
+    val[0] = j;
+  } else if (fld->fill == fill_rod || fld->fill == fill_edge) {
+    val[0] = -1;
+  } else if (fld->fill == fill_displacement) {
+    double x0[3];
+    rn_status st = rn_network_joint_position(o->net, j, val);
+    if (!st) st = rn_scene_joint_initial_position(o->scene, j, x0);
+    for (int k = 0; k < 3 && !st; k++) val[k] -= x0[k];
+    return st;
   }
   return RN_OK;
 }
 
-/* Per-edge rows of one rod. */
-static rn_status edge_rows(vtk_out *o, int rod, vtk_field fld) {
-  int ne = rn_network_rod_num_vertices(o->net, rod) - 1;
-  double *y = o->a;
+static rn_status joint_rows(vtk_out *o, const vtk_field *fld) {
+  int nj = rn_network_num_joints(o->net);
   rn_status st = RN_OK;
-  if (fld == F_THETA)
-    st = rn_network_rod_theta(o->net, rod, y);
-  else if (fld == F_STRETCH)
-    st = rn_network_rod_strains(o->net, rod, y, NULL, NULL);
-  else if (fld == F_D1)
-    st = rn_network_rod_frames(o->net, rod, y, NULL);
-  else if (fld == F_D2)
-    st = rn_network_rod_frames(o->net, rod, NULL, y);
-  if (st) return st;
-  for (int e = 0; e < ne; e++) {
-    if (fld == F_ROD || fld == F_EDGE)
-      fprintf(o->f, "          %d\n", fld == F_ROD ? rod : e);
-    else if (fld == F_D1 || fld == F_D2)
-      put_row(o, &y[3 * e], 3);
-    else
-      put_row(o, &y[e], 1);
+  for (int j = 0; j < nj && !st; j++) {
+    st = joint_row(o, fld, j, o->val);
+    if (!st) put_rows(o, o->val, 1, fld->ncomp);
   }
-  return RN_OK;
+  return st;
 }
 
-static rn_status data_array(vtk_out *o, vtk_field fld, const char *name, const char *type,
-                            int ncomp) {
+static rn_status data_array(vtk_out *o, const vtk_field *fld) {
   fprintf(o->f,
-          "        <DataArray type=\"%s\"%s%s%s NumberOfComponents=\"%d\" "
+          "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
           "format=\"ascii\">\n",
-          type, name ? " Name=\"" : "", name ? name : "", name ? "\"" : "", ncomp);
+          fld->type, fld->name, fld->ncomp);
   rn_status st = RN_OK;
   int nrods = rn_network_num_rods(o->net);
-  for (int r = 0; r < nrods && !st; r++)
-    st = fld <= F_TWIST_RATE ? vertex_rows(o, r, fld) : edge_rows(o, r, fld);
+  for (int r = 0; r < nrods && !st; r++) {
+    int rows = rn_network_rod_num_vertices(o->net, r) - fld->on_edges;
+    st = fld->fill(o, r, o->val);
+    if (!st) put_rows(o, o->val, rows, fld->ncomp);
+  }
+  if (!st) st = joint_rows(o, fld);
   fputs("        </DataArray>\n", o->f);
+  return st;
+}
+
+static rn_status field_arrays(vtk_out *o, int on_edges) {
+  rn_status st = RN_OK;
+  for (int i = 0; i < N_FIELDS && !st; i++)
+    if (fields[i].on_edges == on_edges) st = data_array(o, &fields[i]);
   return st;
 }
 
@@ -141,14 +330,18 @@ static void cell_arrays(vtk_out *o) {
     base += nv;
     cells += nv - 1;
   }
+  int nj = rn_network_num_joints(o->net);
+  for (int j = 0; j < nj; j++) fprintf(f, "          %ld\n", base + j);
   fputs("        </DataArray>\n"
         "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
         f);
   for (long c = 1; c <= cells; c++) fprintf(f, "          %ld\n", 2 * c);
+  for (int j = 1; j <= nj; j++) fprintf(f, "          %ld\n", 2 * cells + j);
   fputs("        </DataArray>\n"
         "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
         f);
   for (long c = 0; c < cells; c++) fprintf(f, "          %d\n", VTK_LINE);
+  for (int j = 0; j < nj; j++) fprintf(f, "          %d\n", VTK_VERTEX);
   fputs("        </DataArray>\n", f);
 }
 
@@ -161,20 +354,13 @@ static rn_status write_body(vtk_out *o, long npoints, long ncells) {
           "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
           "  <UnstructuredGrid>\n"
           "    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n"
-          "      <PointData Vectors=\"displacement\">\n",
+          "      <PointData Vectors=\"displacement\" Scalars=\"bending_moment\">\n",
           npoints, ncells);
-  if ((st = data_array(o, F_DISPLACEMENT, "displacement", "Float64", 3))) return st;
-  if ((st = data_array(o, F_CURVATURE, "curvature", "Float64", 2))) return st;
-  if ((st = data_array(o, F_TWIST_RATE, "twist_rate", "Float64", 1))) return st;
-  fputs("      </PointData>\n      <CellData Scalars=\"theta\">\n", f);
-  if ((st = data_array(o, F_ROD, "rod", "Int32", 1))) return st;
-  if ((st = data_array(o, F_EDGE, "edge", "Int32", 1))) return st;
-  if ((st = data_array(o, F_THETA, "theta", "Float64", 1))) return st;
-  if ((st = data_array(o, F_STRETCH, "stretch", "Float64", 1))) return st;
-  if ((st = data_array(o, F_D1, "d1", "Float64", 3))) return st;
-  if ((st = data_array(o, F_D2, "d2", "Float64", 3))) return st;
+  if ((st = field_arrays(o, 0))) return st;
+  fputs("      </PointData>\n      <CellData Scalars=\"energy_density\">\n", f);
+  if ((st = field_arrays(o, 1))) return st;
   fputs("      </CellData>\n      <Points>\n", f);
-  if ((st = data_array(o, F_POINTS, "points", "Float64", 3))) return st;
+  if ((st = data_array(o, &points_field))) return st;
   fputs("      </Points>\n      <Cells>\n", f);
   cell_arrays(o);
   fputs("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n", f);
@@ -191,12 +377,16 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
     npoints += nv;
     ncells += nv - 1;
   }
+  npoints += rn_network_num_joints(o->net);
+  ncells += rn_network_num_joints(o->net);
   o->f = f;
-  o->a = malloc(3 * (size_t)maxnv * sizeof *o->a);
-  o->b = malloc(3 * (size_t)maxnv * sizeof *o->b);
-  rn_status st = (o->a && o->b) ? write_body(o, npoints, ncells) : RN_ERR_ALLOC;
-  free(o->a);
-  free(o->b);
+  /* val: 9 values per vertex (joint_rotation); work: 3 each */
+  double *mem = malloc(3 * (size_t)maxnv * (N_WORK + 3) * sizeof *mem);
+  o->val = mem;
+  for (int k = 0; k < N_WORK; k++)
+    o->work[k] = mem ? mem + 3 * (size_t)maxnv * (k + 3) : NULL;
+  rn_status st = mem ? write_body(o, npoints, ncells) : RN_ERR_ALLOC;
+  free(mem);
   if (st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));
@@ -211,6 +401,9 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
 }
 
 rn_status rn_vtk_write(rn_context *ctx, const char *path, const rn_scene *scene) {
-  vtk_out o = {NULL, rn_scene_network(scene), 0, NULL, NULL};
+  vtk_out o;
+  memset(&o, 0, sizeof o);
+  o.scene = scene;
+  o.net = rn_scene_network(scene);
   return rn_file_write_atomic(ctx, path, write_vtu, &o);
 }

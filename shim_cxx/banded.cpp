@@ -35,7 +35,8 @@ int lapack_int(size_t v, const char *what) {
 }
 
 // Lower band storage: A(i, j), j <= i <= j + kd, at ab[(i - j) + j * (kd + 1)].
-void load_band(const Problem &p, double shift, const double *d, size_t kd,
+// A = H + shift M with M given by CSR values m on the Hessian's pattern (or NULL).
+void load_band(const Problem &p, double shift, const double *m, size_t kd,
                std::vector<double> &ab) {
   const size_t n = p.size(), ld = kd + 1;
   ab.assign(n * ld, 0.0);
@@ -43,9 +44,8 @@ void load_band(const Problem &p, double shift, const double *d, size_t kd,
     for (int64_t k = p.rowptr()[i]; k < p.rowptr()[i + 1]; ++k) {
       const size_t j = static_cast<size_t>(p.col()[k]);
       if (j > i || i - j > kd) continue; // upper triangle (or outside the band)
-      ab[(i - j) + j * ld] += p.values()[k];
+      ab[(i - j) + j * ld] += m ? p.values()[k] + shift * m[k] : p.values()[k];
     }
-    if (d) ab[i * ld] += shift * d[i];
   }
 }
 
@@ -57,8 +57,8 @@ BandedSpd::BandedSpd(size_t n, size_t kd) : n_(n), kd_(kd) {
   ab_.assign(n * (kd + 1), 0.0);
 }
 
-void BandedSpd::load(const Problem &p, double shift, const double *d) {
-  load_band(p, shift, d, kd_, ab_);
+void BandedSpd::load(const Problem &p, double shift, const double *m) {
+  load_band(p, shift, m, kd_, ab_);
   factored_ = false;
 }
 
@@ -78,11 +78,11 @@ void BandedSpd::solve(double *x) const {
   if (info != 0) throw Error(RN_ERR_LAPACK, "rn_solve: dpbtrs failed");
 }
 
-double factor_shifted(BandedSpd &f, const Problem &p, double shift, const double *d) {
-  f.load(p, shift, d);
+double factor_shifted(BandedSpd &f, const Problem &p, double shift, const double *m) {
+  f.load(p, shift, m);
   if (f.factor()) return 0.0;
   for (double sigma = 1e-10; sigma <= 1e10; sigma *= 10.0) {
-    f.load(p, shift + sigma, d);
+    f.load(p, shift + sigma, m);
     if (f.factor()) return sigma;
   }
   throw Error(RN_ERR_LAPACK,

@@ -18,8 +18,9 @@ class BandedSpd {
 public:
   BandedSpd(size_t n, size_t kd); // throws Error if n or kd exceed LAPACK's int
 
-  // Load H + shift diag(d) from the problem's assembled Hessian.
-  void load(const Problem &p, double shift, const double *d);
+  // Load H + shift M from the problem's assembled Hessian; M is given by its CSR
+  // values m on the Hessian's pattern (NULL: H alone).
+  void load(const Problem &p, double shift, const double *m);
   // Cholesky factorisation; true if the loaded matrix is positive definite.
   bool factor();
   // x <- A^{-1} x with the factorisation (requires a successful factor()).
@@ -32,10 +33,11 @@ private:
   bool factored_ = false;
 };
 
-// Factor H + (shift + sigma) D with the smallest sigma in {0, 1e-10, 1e-9, ...} that
-// gives a positive definite matrix; returns sigma.  Throws Error (RN_ERR_LAPACK) if
-// no shift up to 1e10 works (e.g. non-finite entries).
-double factor_shifted(BandedSpd &f, const Problem &p, double shift, const double *d);
+// Factor H + (shift + sigma) M (M: CSR values m on the Hessian's pattern, SPD) with
+// the smallest sigma in {0, 1e-10, 1e-9, ...} that gives a positive definite matrix;
+// returns sigma.  Throws Error (RN_ERR_LAPACK) if no shift up to 1e10 works (e.g.
+// non-finite entries).
+double factor_shifted(BandedSpd &f, const Problem &p, double shift, const double *m);
 
 // Smallest eigenvalue of the assembled Hessian (LAPACK dsbevx on the band, exact
 // up to round-off).  Throws Error on failure.

@@ -100,7 +100,8 @@ MinresResult MinresSolver::solve(const VectorOperator &A, const VectorOperator &
   impl_->work->dot(b, bPb());
   if (!(bPb[0] > 0.0)) { // b = 0 (or a preconditioner that is not SPD)
     if (bPb[0] < 0.0 || !std::isfinite(bPb[0]))
-      throw Error(RN_ERR_SOLVER, "rn_solve: MINRES preconditioner is not positive definite");
+      throw Error(RN_ERR_SOLVER,
+                  "rn_solve: MINRES preconditioner is not positive definite");
     res.converged = true;
     return res;
   }
@@ -117,8 +118,8 @@ MinresResult MinresSolver::solve(const VectorOperator &A, const VectorOperator &
   auto conv = Teuchos::rcp(new ResNorm(impl_->tol));
   conv->defineResForm(ResNorm::Implicit, Belos::TwoNorm);
   conv->defineScaleForm(Belos::None, Belos::TwoNorm, std::sqrt(bPb[0]));
-  auto maxit = Teuchos::rcp(
-      new Belos::StatusTestMaxIters<double, MV, OP>(impl_->max_iterations));
+  auto maxit =
+      Teuchos::rcp(new Belos::StatusTestMaxIters<double, MV, OP>(impl_->max_iterations));
   auto test = Teuchos::rcp(new Belos::StatusTestCombo<double, MV, OP>(
       Belos::StatusTestCombo<double, MV, OP>::OR, maxit, conv));
   auto printer = Teuchos::rcp(new Belos::OutputManager<double>(

@@ -39,16 +39,29 @@ void Problem::assemble_hessian(const double *x) {
     throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
 }
 
-void Problem::hessian_apply(const double *v, double *y, double shift, const double *d) {
+void Problem::hessian_apply(const double *v, double *y, double shift, const double *m) {
   ++counters.hvp;
   for (size_t i = 0; i < n_; ++i) {
     double s = 0.0;
-    for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += vals_[k] * v[col_[k]];
-    y[i] = d ? s + shift * d[i] * v[i] : s;
+    if (m) {
+      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
+        s += (vals_[k] + shift * m[k]) * v[col_[k]];
+    } else {
+      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += vals_[k] * v[col_[k]];
+    }
+    y[i] = s;
   }
 }
 
-void Problem::accept(const double *x) {
+void Problem::pattern_apply(const double *m, const double *v, double *y) const {
+  for (size_t i = 0; i < n_; ++i) {
+    double s = 0.0;
+    for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += m[k] * v[col_[k]];
+    y[i] = s;
+  }
+}
+
+void Problem::accept(double *x) {
   check_status(rn_network_update_reference(net_, x), "rn_network_update_reference");
 }
 
@@ -63,6 +76,29 @@ std::vector<double> hessian_metric(const Problem &p, double floor_rel) {
   if (!(dmax > 0.0) || !std::isfinite(dmax)) return std::vector<double>(n, 1.0);
   for (double &v : d) v = std::max(v, floor_rel * dmax);
   return d;
+}
+
+std::vector<double> diagonal_on_pattern(const Problem &p, const std::vector<double> &d) {
+  std::vector<double> m(static_cast<size_t>(p.rowptr()[p.size()]), 0.0);
+  for (size_t i = 0; i < p.size(); ++i) {
+    bool found = false;
+    for (int64_t k = p.rowptr()[i]; k < p.rowptr()[i + 1]; ++k) {
+      if (static_cast<size_t>(p.col()[k]) == i) {
+        m[k] = d[i];
+        found = true;
+      }
+    }
+    if (!found)
+      throw Error(RN_ERR_INTERNAL, "rn_solve: Hessian pattern lacks a diagonal entry");
+  }
+  return m;
+}
+
+std::vector<double> shifted_hessian_values(const Problem &p, double shift,
+                                           const std::vector<double> &d) {
+  std::vector<double> m = diagonal_on_pattern(p, d);
+  for (size_t k = 0; k < m.size(); ++k) m[k] = p.values()[k] + shift * m[k];
+  return m;
 }
 
 } // namespace rodnet

@@ -36,17 +36,20 @@ public:
 
   // Assemble the CSR Hessian values at x (kept until the next assembly).
   void assemble_hessian(const double *x);
-  // y = (H + shift diag(d)) v with the assembled values (d may be NULL: shift
-  // ignored).  Counted as a Hessian-vector product.
+  // y = (H + shift M) v with the assembled values; M is a matrix on the Hessian's
+  // pattern given by its CSR values m (NULL: shift ignored).  Counted as an HVP.
   void hessian_apply(const double *v, double *y, double shift = 0.0,
-                     const double *d = nullptr);
+                     const double *m = nullptr);
+  // y = M v for CSR values m on the Hessian's pattern (not counted).
+  void pattern_apply(const double *m, const double *v, double *y) const;
   // Entry (i, j) of the assembled Hessian in CSR form.
   const int64_t *rowptr() const { return rowptr_; }
   const int32_t *col() const { return col_; }
   const double *values() const { return vals_.data(); }
 
-  // Accept x as the new state (explicit reference update).
-  void accept(const double *x);
+  // Accept x as the new state (explicit reference update).  x is updated in place
+  // (rigid-joint rotation DOFs move into the reference; the energy is unchanged).
+  void accept(double *x);
 
   Counters counters;
 
@@ -72,9 +75,15 @@ inline double wnorm(size_t n, const double *d, const double *a) {
   return std::sqrt(s);
 }
 
-// Metric D = |diag H| of the assembled Hessian, floored at floor_rel * max |H_ii|
-// (1 everywhere if the diagonal vanishes).
+// D = |diag H| of the assembled Hessian, floored at floor_rel * max |H_ii| (1
+// everywhere if the diagonal vanishes).
 std::vector<double> hessian_metric(const Problem &p, double floor_rel = 1e-8);
+// CSR values on the Hessian's pattern of diag(d) (throws if a diagonal entry is not
+// in the pattern).
+std::vector<double> diagonal_on_pattern(const Problem &p, const std::vector<double> &d);
+// CSR values of H + shift diag(d) (assembled H).
+std::vector<double> shifted_hessian_values(const Problem &p, double shift,
+                                           const std::vector<double> &d);
 
 } // namespace rodnet
 

@@ -35,6 +35,8 @@ double RodObjective::value(const RolVector &x, double & /*tol*/) {
   if (have_energy_ && at_accepted(xp)) return e_acc_;
   double E = 0.0;
   if (p_.energy(xp, &E) != RN_OK) return std::numeric_limits<double>::infinity();
+  x_last_.assign(xp, xp + p_.size());
+  e_last_ = E;
   return E;
 }
 
@@ -62,19 +64,34 @@ void RodObjective::precond(RolVector &pv, const RolVector &v, const RolVector & 
   factor_.solve(out);
 }
 
+// Accept moves the reference state and may change x (rigid-joint rotations move into
+// the reference): the objective keeps the accepted x and writes it back into ROL's
+// iterate, on Accept and on Revert (ROL reverts to its own stale copy).
 void RodObjective::update(const RolVector &x, ROL::UpdateType type, int /*iter*/) {
+  const size_t n = p_.size();
+  if (type == ROL::UpdateType::Revert) {
+    double *xw = host_data(const_cast<RolVector &>(x));
+    std::copy(x_acc_.begin(), x_acc_.end(), xw);
+    return;
+  }
   if (type != ROL::UpdateType::Initial && type != ROL::UpdateType::Accept) return;
   const double *xp = host_data(x);
+  const bool known =
+      x_last_.size() == n && std::memcmp(xp, x_last_.data(), n * sizeof(double)) == 0;
+  double E = e_last_;
+  if (!known && p_.energy(xp, &E) != RN_OK)
+    throw Error(RN_ERR_SOLVER, "rn_solve: accepted a degenerate point");
   const bool accept = (type == ROL::UpdateType::Accept);
   if (accept) {
     x_prev_ = x_acc_;
     e_prev_ = e_acc_;
-    p_.accept(xp);
   }
-  std::copy(xp, xp + p_.size(), x_acc_.begin());
-  double E = 0.0;
-  if (p_.energy(xp, &E) != RN_OK)
-    throw Error(RN_ERR_SOLVER, "rn_solve: accepted a degenerate point");
+  std::copy(xp, xp + n, x_acc_.begin());
+  if (accept) {
+    p_.accept(x_acc_.data());
+    double *xw = host_data(const_cast<RolVector &>(x));
+    std::copy(x_acc_.begin(), x_acc_.end(), xw);
+  }
   e_acc_ = E;
   have_energy_ = true;
   accepted_ = accept;
@@ -95,7 +112,7 @@ bool RodObjective::take_accepted(double *step_norm, double *energy_change) {
 void RodObjective::ensure_hessian() {
   if (hess_ok_) return;
   p_.assemble_hessian(x_acc_.data());
-  if (metric_.empty()) metric_ = hessian_metric(p_);
+  if (metric_.empty()) metric_ = diagonal_on_pattern(p_, hessian_metric(p_));
   hess_ok_ = true;
 }
 

@@ -61,7 +61,10 @@ private:
   void ensure_factor();
 
   Problem &p_;
-  std::vector<double> x_acc_, x_prev_, metric_;
+  std::vector<double> x_acc_, x_prev_;
+  std::vector<double> metric_; // D = |diag H| (first Hessian), CSR values on its pattern
+  std::vector<double> x_last_; // point of the last finite value() (E there: e_last_)
+  double e_last_ = 0.0;
   double e_acc_ = 0.0, e_prev_ = 0.0, sigma_ = 0.0;
   bool have_energy_ = false, accepted_ = false, hess_ok_ = false, factor_ok_ = false;
   BandedSpd factor_;

@@ -38,10 +38,21 @@ void ensure_runtime() {
     g_atexit_registered = true;
 }
 
+// The integer value of a C enum field.  A C caller may store any int in it; read as
+// the C++ enum type, a value outside the enumerators' range is undefined behaviour.
+template <class Enum>
+int enum_value(const Enum &e) {
+  static_assert(sizeof(Enum) == sizeof(int), "C enums are int-sized");
+  int v = 0;
+  std::memcpy(&v, &e, sizeof v);
+  return v;
+}
+
 rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
-  if (o.solver != RN_SOLVER_TR_MINRES && o.solver != RN_SOLVER_ROL_TR_TCG &&
-      o.solver != RN_SOLVER_ROL_LS_NEWTON)
+  const int kind = enum_value(o.solver);
+  if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
+      kind != RN_SOLVER_ROL_LS_NEWTON)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -101,7 +112,7 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t,
 }
 
 // Back to a converged state: its DOFs, with the reference frames transported to it.
-void restore_state(Problem &p, const std::vector<double> &x, double t) {
+void restore_state(Problem &p, std::vector<double> &x, double t) {
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   p.accept(x.data());
 }
@@ -172,10 +183,17 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
     throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
   const double force_scale = norm2(p.size(), g.data());
   SolveTotals tot;
-  if (opt.load_steps > 0)
+  if (p.size() == 0) { // every DOF is prescribed: nothing to solve
+    double E = 0.0;
+    if (p.energy(x.data(), &E) != RN_OK)
+      throw Error(RN_ERR_GEOMETRY, "rn_solve: the prescribed state is degenerate");
+    tot.stop = RN_STOP_GRADIENT;
+    tot.energy = E;
+  } else if (opt.load_steps > 0) {
     fixed_stepping(p, opt, target, force_scale, start, tot);
-  else
+  } else {
     automatic_stepping(p, opt, target, force_scale, start, tot);
+  }
   if (rep)
     fill_report(p, tot, force_scale,
                 std::chrono::duration<double>(Clock::now() - start).count(), rep);
@@ -229,7 +247,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
-  switch (s) {
+  switch (rodnet::enum_value(s)) {
   case RN_STOP_GRADIENT:
     return "gradient";
   case RN_STOP_STEP:
@@ -247,7 +265,7 @@ const char *rn_solve_stop_name(rn_solve_stop s) {
 }
 
 const char *rn_solver_name(rn_solver_kind k) {
-  switch (k) {
+  switch (rodnet::enum_value(k)) {
   case RN_SOLVER_TR_MINRES:
     return "tr-minres";
   case RN_SOLVER_ROL_TR_TCG:

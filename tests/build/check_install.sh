@@ -30,7 +30,7 @@ for f in "$libdir/cmake/rodnet/rodnetConfig.cmake" \
 done
 ls "$prefix"/share/rodnet/scenes/*.json >/dev/null 2>&1 || fail "no scenes in share/rodnet/scenes"
 # The exported package must not drag Trilinos/MPI into consumers.
-if grep -Eiq 'trilinos|mpi|metis|lapack' "$libdir/cmake/rodnet/rodnetTargets.cmake" \
+if grep -Eiq 'trilinos|\bmpi|metis|lapack' "$libdir/cmake/rodnet/rodnetTargets.cmake" \
      "$libdir/pkgconfig/rodnet.pc"; then
   fail "the installed package names Trilinos/MPI/METIS/LAPACK (they must stay private)"
 fi

@@ -98,6 +98,19 @@ static void test_names_and_options(rn_context *ctx) {
       CHECK(strstr(rn_context_last_error(ctx), "rn_solve") != NULL);
     }
   }
+  /* Every DOF prescribed (a clamped 2-vertex rod): converged at once. */
+  {
+    rn_section sec;
+    const double f[3] = {0.0, 0.0, -1.0};
+    rn_network *fixed;
+    CHECK_STATUS(rn_section_circle(0.01, &sec), RN_OK);
+    fixed = shim_clamped_rod(ctx, 2, 1.0, 0, &sec, 1e7, f);
+    CHECK(rn_network_num_dofs(fixed) == 0);
+    CHECK_STATUS(rn_solve(fixed, NULL, &rep), RN_OK);
+    CHECK(rep.converged == 1 && rep.stop == RN_STOP_GRADIENT && rep.iterations == 0);
+    CHECK(rep.energy == 0.0);
+    rn_network_destroy(&fixed);
+  }
   /* Options NULL: the defaults. */
   CHECK_STATUS(rn_solve(net, NULL, &rep), RN_OK);
   CHECK(rep.converged == 1);

@@ -1,0 +1,48 @@
+/* joint_results.c - joint position and rotation at the current state. */
+#include <string.h>
+
+#include "network_internal.h"
+
+static rn_status check_joint_result(const rn_network *net, const char *where, int joint,
+                                    const void *out) {
+  rn_status st;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (joint < 0 || joint >= net->njoints)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "joint %d does not exist (%d joints)",
+                   joint, net->njoints);
+  if (!out) return rn_fail(net->ctx, RN_ERR_ARG, where, "output is NULL");
+  return RN_OK;
+}
+
+rn_status rn_network_joint_position(const rn_network *net, int joint, double x[3]) {
+  static const char *where = "rn_network_joint_position";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_result(net, where, joint, x))) return st;
+  memcpy(x, net->xfull + rn_dof_joint_position(net->joints[joint].off),
+         3 * sizeof(double));
+  return RN_OK;
+}
+
+rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9]) {
+  static const char *where = "rn_network_joint_rotation";
+  const rn_joint *J;
+  rn_joint_scratch s;
+  rnk_joint kj;
+  rn_status st;
+  int rc;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_result(net, where, joint, R))) return st;
+  J = &net->joints[joint];
+  if (rn_joint_scratch_init(J, &s))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  rn_joint_kernel(net, joint, s.refs, &kj);
+  for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
+  rc = rnk_joint_rotation(s.q, &kj, R);
+  rn_joint_scratch_free(&s);
+  if (rc != RNK_OK)
+    return rn_fail(net->ctx, RN_DEGENERATE, where,
+                   "joint %d ('%s'): the rotation fit is singular at the current state",
+                   joint, rn_network_joint_name(net, joint));
+  return RN_OK;
+}

@@ -1,0 +1,296 @@
+/* joint_stencil.c - joints at finalize and under the load factor: validation
+ * (conflicting BCs, coincident joints, the fit at the initial state), the
+ * kernel parameters of rnk.h's whole-joint stencil and its full index list,
+ * fixed joint DOFs and the aliasing of rod end vertices, evaluation
+ * scratch. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+/* ---- validation ----------------------------------------------------------- */
+/* A rod vertex that belongs to a joint cannot carry a BC of its own. */
+static rn_status check_end_bcs(const rn_network *net, const char *where, int ij, int k) {
+  const rn_joint *J = &net->joints[ij];
+  const rn_rod *r = &net->rods[J->rod[k]];
+  int v = rn_end_vertex(r->nv, J->end[k]);
+  int in_clamp =
+      (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
+  if (r->pinned[v] || r->has_vdisp[v] || in_clamp)
+    return rn_fail(net->ctx, RN_ERR_BC, where,
+                   "rod %d ('%s') vertex %d belongs to joint %d ('%s') but is %s; "
+                   "constrain the joint instead (rn_network_clamp_joint, "
+                   "rn_network_pin_joint, rn_network_displace_joint)",
+                   J->rod[k], rn_network_rod_name(net, J->rod[k]), v, ij,
+                   rn_network_joint_name(net, ij),
+                   in_clamp ? "in a clamped end"
+                            : (r->pinned[v] ? "pinned" : "displaced"));
+  return RN_OK;
+}
+
+static rn_status check_joint_motion(const rn_network *net, const char *where, int ij) {
+  const rn_joint *J = &net->joints[ij];
+  int rotates = J->rot[0] != 0.0 || J->rot[1] != 0.0 || J->rot[2] != 0.0;
+  if (J->has_motion && !J->pinned && !J->clamped)
+    return rn_fail(net->ctx, RN_ERR_BC, where,
+                   "joint %d ('%s'): prescribed motion of a joint that is neither pinned "
+                   "nor clamped",
+                   ij, rn_network_joint_name(net, ij));
+  if (J->has_motion && rotates && !J->clamped)
+    return rn_fail(net->ctx, RN_ERR_BC, where,
+                   "joint %d ('%s'): prescribed rotation of a joint that is not clamped",
+                   ij, rn_network_joint_name(net, ij));
+  return RN_OK;
+}
+
+typedef struct joint_key {
+  double x;
+  int j;
+} joint_key;
+
+static int key_cmp(const void *a, const void *b) {
+  double xa = ((const joint_key *)a)->x, xb = ((const joint_key *)b)->x;
+  return (xa > xb) - (xa < xb);
+}
+
+/* Two joints closer than 1e-9 of the shorter of their shortest incident
+ * edges: sweep over the joints sorted by x. */
+static rn_status check_coincident(const rn_network *net, const char *where) {
+  joint_key *keys;
+  double lmax = 0.0;
+  rn_status st = RN_OK;
+  if (net->njoints < 2) return RN_OK;
+  keys = malloc((size_t)net->njoints * sizeof(*keys));
+  if (!keys) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  for (int i = 0; i < net->njoints; ++i) {
+    keys[i].x = net->joints[i].x0[0];
+    keys[i].j = i;
+    lmax = fmax(lmax, net->joints[i].lmin);
+  }
+  qsort(keys, (size_t)net->njoints, sizeof(*keys), key_cmp);
+  for (int a = 0; a < net->njoints && !st; ++a)
+    for (int b = a + 1; b < net->njoints && !st; ++b) {
+      const rn_joint *A = &net->joints[keys[a].j], *B = &net->joints[keys[b].j];
+      double d0, d1, d2, tol;
+      if (keys[b].x - keys[a].x > RN_JOINT_COINCIDE_TOL * lmax) break;
+      d0 = A->x0[0] - B->x0[0];
+      d1 = A->x0[1] - B->x0[1];
+      d2 = A->x0[2] - B->x0[2];
+      tol = RN_JOINT_COINCIDE_TOL * fmin(A->lmin, B->lmin);
+      if (sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= tol) {
+        int i = keys[a].j < keys[b].j ? keys[a].j : keys[b].j;
+        int j = keys[a].j < keys[b].j ? keys[b].j : keys[a].j;
+        st = rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
+                     "joints %d ('%s') and %d ('%s') are coincident (at (%g, %g, %g)); "
+                     "merge them into one joint",
+                     i, rn_network_joint_name(net, i), j, rn_network_joint_name(net, j),
+                     A->x0[0], A->x0[1], A->x0[2]);
+      }
+    }
+  free(keys);
+  return st;
+}
+
+rn_status rn_joints_validate(const rn_network *net, const char *where) {
+  rn_status st;
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    for (int k = 0; k < net->joints[ij].valence; ++k)
+      if ((st = check_end_bcs(net, where, ij, k))) return st;
+    if ((st = check_joint_motion(net, where, ij))) return st;
+  }
+  return check_coincident(net, where);
+}
+
+/* ---- kernel parameters and index lists ------------------------------------ */
+/* End k: side, rest frame of the terminal edge (its initial material frame),
+ * stiffness of the terminal edge, half its rest length. */
+static rn_status build_end(const rn_rod *r, int end, rnk_joint_end *e) {
+  int j = rn_end_edge(r->nv, end);
+  double ev[3];
+  const rn_material *m = &r->mat[j];
+  const rn_section *s = &r->sec[j];
+  memset(e, 0, sizeof(*e));
+  e->side = end == RN_END ? 0 : 1;
+  for (int c = 0; c < 3; ++c) ev[c] = r->x0[3 * (j + 1) + c] - r->x0[3 * j + c];
+  if (rnk_material_frame(ev, &r->ref_base[j], 0.0, e->cbar, e->cbar + 3, e->cbar + 6))
+    return RN_ERR_GEOMETRY;
+  e->bend.B[0] = m->E * s->I11;
+  e->bend.B[1] = m->E * s->I12;
+  e->bend.B[2] = m->E * s->I22;
+  e->bend.vlen = 0.5 * r->lbar[j];
+  e->twist.beta = m->G * s->J;
+  e->twist.vlen = e->bend.vlen;
+  return RN_OK;
+}
+
+static void build_indices(const rn_network *net, rn_joint *J) {
+  int rigid = rn_joint_has_rotation(J);
+  for (int c = 0; c < 3; ++c) {
+    J->idx[RN_JOINT_LOCAL_X + c] = rn_dof_joint_position(J->off) + (size_t)c;
+    if (rigid) J->idx[RN_JOINT_LOCAL_W + c] = rn_dof_joint_rotation(J->off) + (size_t)c;
+  }
+  for (int k = 0; k < J->valence; ++k) {
+    const rn_rod *r = &net->rods[J->rod[k]];
+    size_t *e = J->idx + rn_joint_local_end(rigid, k);
+    size_t xv = rn_dof_vertex(r->off, rn_end_neighbor(r->nv, J->end[k]));
+    for (int c = 0; c < 3; ++c) e[c] = xv + (size_t)c;
+    e[3] = rn_dof_theta(r->off, rn_end_edge(r->nv, J->end[k]));
+  }
+}
+
+rn_status rn_joints_build(rn_network *net) {
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    rn_joint *J = &net->joints[ij];
+    int n = rn_joint_stencil_count(rn_joint_has_rotation(J), J->valence);
+    J->ends = calloc((size_t)J->valence, sizeof(rnk_joint_end));
+    J->idx = malloc((size_t)n * sizeof(size_t));
+    if (!J->ends || !J->idx)
+      return rn_fail(net->ctx, RN_ERR_ALLOC, "rn_network_finalize", "out of memory");
+    for (int k = 0; k < J->valence; ++k)
+      if (build_end(&net->rods[J->rod[k]], J->end[k], &J->ends[k]))
+        return rn_fail(net->ctx, RN_ERR_GEOMETRY, "rn_network_finalize",
+                       "joint %d ('%s'): degenerate terminal edge of rod %d", ij,
+                       rn_network_joint_name(net, ij), J->rod[k]);
+    build_indices(net, J);
+  }
+  return RN_OK;
+}
+
+void rn_joints_unbuild(rn_network *net) {
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    rn_joint *J = &net->joints[ij];
+    free(J->ends);
+    free(J->idx);
+    J->ends = NULL;
+    J->idx = NULL;
+  }
+}
+
+void rn_joint_kernel(const rn_network *net, int ij, rnk_frame *refs, rnk_joint *kj) {
+  const rn_joint *J = &net->joints[ij];
+  memset(kj, 0, sizeof(*kj));
+  kj->rigid = rn_joint_has_rotation(J);
+  kj->valence = J->valence;
+  kj->ends = J->ends;
+  for (int k = 0; k < J->valence; ++k) {
+    const rn_rod *r = &net->rods[J->rod[k]];
+    refs[k] = r->ref[rn_end_edge(r->nv, J->end[k])];
+  }
+  kj->refs = refs;
+  memcpy(kj->Qhat, J->Qhat, sizeof(kj->Qhat));
+  memcpy(kj->f0, J->f0, sizeof(kj->f0));
+  kj->angle0 = J->angle0;
+  for (int c = 0; c < 3; ++c) kj->M[c] = net->lambda * J->M[c];
+}
+
+/* ---- scratch ----------------------------------------------------------------- */
+rn_status rn_joint_scratch_init(const rn_joint *J, rn_joint_scratch *s) {
+  rnk_joint kj;
+  size_t n, need;
+  memset(&kj, 0, sizeof(kj));
+  kj.rigid = rn_joint_has_rotation(J);
+  kj.valence = J->valence;
+  n = rnk_joint_stencil_size(&kj);
+  need = 2 * n + n * n + rnk_joint_work_size(&kj);
+  s->n = (int)n;
+  s->heap = NULL;
+  s->heap_refs = NULL;
+  s->refs = s->frames;
+  s->q = s->buf;
+  if (need > RN_JOINT_STACK) s->q = s->heap = malloc(need * sizeof(double));
+  if (J->valence > RN_JOINT_STACK_ENDS)
+    s->refs = s->heap_refs = malloc((size_t)J->valence * sizeof(rnk_frame));
+  if ((need > RN_JOINT_STACK && !s->heap) ||
+      (J->valence > RN_JOINT_STACK_ENDS && !s->heap_refs)) {
+    rn_joint_scratch_free(s);
+    return RN_ERR_ALLOC;
+  }
+  s->v = s->q + n;
+  s->loc = s->v + n;
+  s->work = s->loc + n * n;
+  return RN_OK;
+}
+
+void rn_joint_scratch_free(rn_joint_scratch *s) {
+  free(s->heap);
+  free(s->heap_refs);
+  s->heap = NULL;
+  s->heap_refs = NULL;
+}
+
+/* ---- fixed DOFs and aliases ----------------------------------------------------- */
+void rn_joints_sync(rn_network *net) {
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    const double *xj = net->xfull + rn_dof_joint_position(J->off);
+    for (int k = 0; k < J->valence; ++k) {
+      const rn_rod *r = &net->rods[J->rod[k]];
+      double *xv = net->xfull + rn_dof_vertex(r->off, rn_end_vertex(r->nv, J->end[k]));
+      memcpy(xv, xj, 3 * sizeof(double));
+    }
+  }
+}
+
+/* Continues the stored twists of a clamped joint whose rotation was moved
+ * (keeps the 2 pi branch near the stored value), as for clamped rod ends. */
+static void continue_joint_twists(rn_network *net, int ij) {
+  rn_joint *J = &net->joints[ij];
+  rn_joint_scratch s;
+  rnk_joint kj;
+  if (rn_joint_scratch_init(J, &s)) return;
+  rn_joint_kernel(net, ij, s.refs, &kj);
+  for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
+  if (rnk_joint_twists(s.q, &kj, s.v) == RNK_OK)
+    for (int k = 0; k < J->valence; ++k) J->ends[k].twist.ref_twist = s.v[k];
+  rn_joint_scratch_free(&s);
+}
+
+void rn_joints_place(rn_network *net) {
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    rn_joint *J = &net->joints[ij];
+    double *x = net->xfull + rn_dof_joint_position(J->off), w[3];
+    if (!J->pinned && !J->clamped) continue;
+    for (int c = 0; c < 3; ++c) x[c] = J->x0[c] + net->lambda * J->disp[c];
+    if (!J->clamped) continue;
+    for (int c = 0; c < 3; ++c) {
+      w[c] = net->lambda * J->rot[c];
+      net->xfull[rn_dof_joint_rotation(J->off) + (size_t)c] = 0.0;
+    }
+    rnk_rotation_exp(w, J->Qhat);
+  }
+  rn_joints_sync(net);
+}
+
+void rn_joints_continue_twists(rn_network *net) {
+  for (int ij = 0; ij < net->njoints; ++ij)
+    if (net->joints[ij].clamped && net->joints[ij].has_motion)
+      continue_joint_twists(net, ij);
+}
+
+/* Rotation (for elastic joints the fit), energy and gradient at the initial
+ * state: a degenerate joint there is bad input, not a trial point. */
+rn_status rn_joints_check_initial(const rn_network *net, const char *where) {
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    rn_joint_scratch s;
+    rnk_joint kj;
+    double E, R[9];
+    int rc;
+    if (rn_joint_scratch_init(J, &s))
+      return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+    rn_joint_kernel(net, ij, s.refs, &kj);
+    for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
+    rc = rnk_joint_rotation(s.q, &kj, R);
+    if (rc == RNK_OK) rc = rnk_joint_grad(s.q, &kj, s.work, &E, s.loc);
+    rn_joint_scratch_free(&s);
+    if (rc != RNK_OK)
+      return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
+                     "joint %d ('%s'): degenerate at the initial state (%s)", ij,
+                     rn_network_joint_name(net, ij),
+                     kj.rigid ? "opposite tangents at a connection edge"
+                              : "the incident frames make the rotation fit singular, or "
+                                "opposite tangents at a connection edge");
+  }
+  return RN_OK;
+}

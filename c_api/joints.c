@@ -1,0 +1,240 @@
+/* joints.c - joints of a rod network: creation (rod ends that meet at one
+ * vertex), boundary conditions, loads, names and sizes.  The kernel
+ * parameters, validation at finalize and the load factor are in
+ * joint_stencil.c; results in joint_results.c. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+void rn_joint_free(rn_joint *J) {
+  free(J->name);
+  free(J->rod);
+  free(J->end);
+  free(J->ends);
+  free(J->idx);
+  memset(J, 0, sizeof(*J));
+}
+
+size_t rn_joints_full_count(const rn_network *net) {
+  size_t n = 0;
+  for (int i = 0; i < net->njoints; ++i)
+    n += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[i]));
+  return n;
+}
+
+static const char *end_name(int end) { return end == RN_START ? "start" : "end"; }
+
+/* Range, end value and membership of end k of a new joint. */
+static rn_status check_joint_end(const rn_network *net, const char *where,
+                                 const int *rods, const int *ends, int k) {
+  rn_status st;
+  int rod = rods[k], end = ends[k];
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if (end != RN_START && end != RN_END)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "joint end %d: end must be RN_START or RN_END, got %d", k, end);
+  if (net->rods[rod].joint[end] >= 0) {
+    int o = net->rods[rod].joint[end];
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "the %s of rod %d ('%s') already belongs to joint %d ('%s'); a rod "
+                   "end belongs to at most one joint",
+                   end_name(end), rod, rn_network_rod_name(net, rod), o,
+                   rn_network_joint_name(net, o));
+  }
+  for (int l = 0; l < k; ++l)
+    if (rods[l] == rod && ends[l] == end)
+      return rn_fail(net->ctx, RN_ERR_ARG, where,
+                     "the %s of rod %d ('%s') is listed twice in the joint",
+                     end_name(end), rod, rn_network_rod_name(net, rod));
+  return RN_OK;
+}
+
+static double dist3(const double a[3], const double b[3]) {
+  double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+}
+
+/* The end vertices must coincide to RN_JOINT_COINCIDE_TOL of the shortest
+ * incident terminal edge; sets J->x0 (first end's vertex) and J->lmin. */
+static rn_status check_coincide(const rn_network *net, const char *where,
+                                const char *name, rn_joint *J) {
+  double lmin = INFINITY;
+  for (int k = 0; k < J->valence; ++k) {
+    const rn_rod *r = &net->rods[J->rod[k]];
+    int j = rn_end_edge(r->nv, J->end[k]);
+    double l = dist3(r->x0 + 3 * j, r->x0 + 3 * (j + 1)); /* input length */
+    if (l < lmin) lmin = l;
+  }
+  J->lmin = lmin;
+  {
+    const rn_rod *r0 = &net->rods[J->rod[0]];
+    memcpy(J->x0, r0->x0 + 3 * rn_end_vertex(r0->nv, J->end[0]), sizeof(J->x0));
+  }
+  for (int k = 1; k < J->valence; ++k) {
+    const rn_rod *r = &net->rods[J->rod[k]];
+    double d = dist3(J->x0, r->x0 + 3 * rn_end_vertex(r->nv, J->end[k]));
+    if (!(d <= RN_JOINT_COINCIDE_TOL * lmin))
+      return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
+                     "joint %d ('%s'): the %s of rod %d ('%s') is %g away from the "
+                     "joint's first end (tolerance %g = 1e-9 of the shortest incident "
+                     "edge); the end vertices of a joint must coincide",
+                     net->njoints, name ? name : "", end_name(J->end[k]), J->rod[k],
+                     rn_network_rod_name(net, J->rod[k]), d,
+                     RN_JOINT_COINCIDE_TOL * lmin);
+  }
+  return RN_OK;
+}
+
+static rn_status grow_joints(rn_network *net) {
+  rn_joint *p;
+  int cap;
+  if (net->njoints < net->cap_joints) return RN_OK;
+  cap = net->cap_joints ? 2 * net->cap_joints : 8;
+  p = realloc(net->joints, (size_t)cap * sizeof(*p));
+  if (!p) return RN_ERR_ALLOC;
+  net->joints = p;
+  net->cap_joints = cap;
+  return RN_OK;
+}
+
+static rn_status joint_alloc(rn_joint *J, const char *name, int n, const int *rods,
+                             const int *ends) {
+  memset(J, 0, sizeof(*J));
+  J->valence = n;
+  J->rod = malloc((size_t)n * sizeof(int));
+  J->end = malloc((size_t)n * sizeof(int));
+  if (name) {
+    J->name = malloc(strlen(name) + 1);
+    if (J->name) strcpy(J->name, name);
+  }
+  if (!J->rod || !J->end || (name && !J->name)) return RN_ERR_ALLOC;
+  memcpy(J->rod, rods, (size_t)n * sizeof(int));
+  memcpy(J->end, ends, (size_t)n * sizeof(int));
+  for (int i = 0; i < 9; ++i) J->Qhat[i] = J->f0[i] = (i % 4 == 0) ? 1.0 : 0.0;
+  return RN_OK;
+}
+
+rn_status rn_network_add_joint(rn_network *net, const char *name, rn_joint_model model,
+                               int n_ends, const int *rods, const int *ends, int *joint) {
+  static const char *where = "rn_network_add_joint";
+  rn_joint J;
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (model != RN_JOINT_ELASTIC && model != RN_JOINT_RIGID)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "joint '%s': unknown model %d",
+                   name ? name : "", (int)model);
+  if (n_ends < 1)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "joint '%s' needs at least one rod end (valence %d)", name ? name : "",
+                   n_ends);
+  if (!rods || !ends) return rn_fail(net->ctx, RN_ERR_ARG, where, "rods or ends is NULL");
+  for (int k = 0; k < n_ends; ++k)
+    if ((st = check_joint_end(net, where, rods, ends, k))) return st;
+  if (grow_joints(net)) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  if (joint_alloc(&J, name, n_ends, rods, ends)) {
+    rn_joint_free(&J);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  J.model = (int)model;
+  if ((st = check_coincide(net, where, name, &J))) {
+    rn_joint_free(&J);
+    return st;
+  }
+  for (int k = 0; k < n_ends; ++k) net->rods[rods[k]].joint[ends[k]] = net->njoints;
+  net->joints[net->njoints] = J;
+  if (joint) *joint = net->njoints;
+  net->njoints++;
+  return RN_OK;
+}
+
+int rn_network_num_joints(const rn_network *net) { return net ? net->njoints : 0; }
+
+const char *rn_network_joint_name(const rn_network *net, int joint) {
+  if (!net || joint < 0 || joint >= net->njoints || !net->joints[joint].name) return "";
+  return net->joints[joint].name;
+}
+
+int rn_network_joint_model(const rn_network *net, int joint) {
+  if (!net || joint < 0 || joint >= net->njoints) return -1;
+  return net->joints[joint].model;
+}
+
+int rn_network_joint_valence(const rn_network *net, int joint) {
+  if (!net || joint < 0 || joint >= net->njoints) return -1;
+  return net->joints[joint].valence;
+}
+
+/* ---- boundary conditions and loads ------------------------------------------ */
+static rn_status check_joint_arg(const rn_network *net, const char *where, int joint) {
+  rn_status st;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (joint < 0 || joint >= net->njoints)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "joint %d does not exist (%d joints)",
+                   joint, net->njoints);
+  return RN_OK;
+}
+
+rn_status rn_network_clamp_joint(rn_network *net, int joint) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_arg(net, "rn_network_clamp_joint", joint))) return st;
+  net->joints[joint].clamped = 1;
+  return RN_OK;
+}
+
+rn_status rn_network_pin_joint(rn_network *net, int joint) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_arg(net, "rn_network_pin_joint", joint))) return st;
+  net->joints[joint].pinned = 1;
+  return RN_OK;
+}
+
+rn_status rn_network_displace_joint(rn_network *net, int joint, const double disp[3],
+                                    const double rotvec[3]) {
+  static const char *where = "rn_network_displace_joint";
+  rn_status st;
+  rn_joint *J;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_arg(net, where, joint))) return st;
+  if ((disp && !rn_all_finite(3, disp)) || (rotvec && !rn_all_finite(3, rotvec)))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "joint %d: motion is not finite",
+                   joint);
+  J = &net->joints[joint];
+  J->has_motion = 1;
+  for (int k = 0; k < 3; ++k) {
+    J->disp[k] = disp ? disp[k] : 0.0;
+    J->rot[k] = rotvec ? rotvec[k] : 0.0;
+  }
+  return RN_OK;
+}
+
+static rn_status check_joint_load(const rn_network *net, const char *where, int joint,
+                                  const double *v) {
+  rn_status st;
+  if ((st = check_joint_arg(net, where, joint))) return st;
+  if (!v) return rn_fail(net->ctx, RN_ERR_ARG, where, "value is NULL");
+  if (!rn_all_finite(3, v))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "joint %d: load is not finite",
+                   joint);
+  return RN_OK;
+}
+
+rn_status rn_network_add_joint_force(rn_network *net, int joint, const double f[3]) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_load(net, "rn_network_add_joint_force", joint, f))) return st;
+  for (int k = 0; k < 3; ++k) net->joints[joint].force[k] += f[k];
+  return RN_OK;
+}
+
+rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m[3]) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_load(net, "rn_network_add_joint_moment", joint, m))) return st;
+  for (int k = 0; k < 3; ++k) net->joints[joint].M[k] += m[k];
+  return RN_OK;
+}

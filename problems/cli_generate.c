@@ -1,0 +1,330 @@
+/* cli_generate.c - `rodnet generate KIND [options] -o SCENE.json`: lattice
+ * scenes (lattice.h, lattice_scene.h; docs/lattices.md). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "lattice.h"
+#include "lattice_scene.h"
+
+static const char generate_help[] =
+    "Usage: rodnet generate KIND [options] -o SCENE.json\n"
+    "\n"
+    "Write a lattice of rods joined at joints as a JSON scene (explicit rods and\n"
+    "joints) that 'rodnet solve' reads.  Every lattice node is a joint \"v<k>\",\n"
+    "every bar a rod \"e<k>\"; geometry and numbering: docs/lattices.md.\n"
+    "\n"
+    "Kinds:\n"
+    "  square, triangular, honeycomb, kagome   planar, in the xy plane\n"
+    "  cubic, bcc, octet                       3D blocks\n"
+    "\n"
+    "Options:\n"
+    "  -o, --output FILE        scene to write (required)\n"
+    "      --cells NX[,NY[,NZ]] cells per direction (missing counts = NX; default 4)\n"
+    "      --cell-size A        lattice period (default 1)\n"
+    "      --edges-per-rod N    edges of each rod (default 8)\n"
+    "      --section S          circle:R | rectangle:W,H | ellipse:A,B (W and A\n"
+    "                           along d1 = +z for planar lattices; default\n"
+    "                           circle with radius A/50)\n"
+    "      --material E,NU      Young's modulus and Poisson's ratio (default 1,0.3)\n"
+    "      --joint-model M      elastic (default) or rigid\n"
+    "      --load L:VALUE       stretch-x|y|z:STRAIN  pin the joints of the two\n"
+    "                             faces normal to the axis, displace the max face\n"
+    "                             by STRAIN times the lattice's extent\n"
+    "                           compress-x|y|z:STRAIN the same with -STRAIN\n"
+    "                           pull-x|y|z:FORCE      total FORCE on the max face,\n"
+    "                             -FORCE on the min face whose centre joint is\n"
+    "                             clamped (free lateral contraction)\n"
+    "  -q, --quiet              no summary\n"
+    "  -h, --help               show this help\n"
+    "\n"
+    "The file is written completely or not at all.\n"
+    "Exit status: 0 written, 2 usage error, 3 the file cannot be written.\n";
+
+typedef struct gen_args {
+  const char *kind_name, *output, *section, *load;
+  rn_lattice_kind kind;
+  int cells[3], ncells, quiet;
+  double a;
+  rn_lattice_scene sc;
+} gen_args;
+
+/* "x,y[,z]" into up to max numbers (doubles); count in *n; 0 if ok. */
+static int parse_list(const char *s, int max, double *v, int *n) {
+  *n = 0;
+  const char *p = s;
+  while (*n < max) {
+    char *end = NULL;
+    errno = 0;
+    double x = strtod(p, &end);
+    if (end == p || errno || !isfinite(x)) return -1;
+    v[(*n)++] = x;
+    if (*end == '\0') return 0;
+    if (*end != ',') return -1;
+    p = end + 1;
+  }
+  return -1;
+}
+
+static int parse_cells(gen_args *a, const char *v) {
+  double c[3];
+  int n = 0;
+  if (parse_list(v, 3, c, &n) == 0) {
+    int ok = 1;
+    for (int k = 0; k < n; k++)
+      ok &= c[k] == floor(c[k]) && c[k] >= 1 && c[k] <= RN_LATTICE_MAX_CELLS;
+    if (ok) {
+      for (int k = 0; k < 3; k++) a->cells[k] = (int)(k < n ? c[k] : c[0]);
+      a->ncells = n;
+      return 0;
+    }
+  }
+  return rn_cli_usage_error("generate",
+                            "--cells expects NX[,NY[,NZ]] with integers in [1, %d], "
+                            "got '%s'",
+                            RN_LATTICE_MAX_CELLS, v);
+}
+
+static int parse_section(gen_args *a, const char *v) {
+  static const struct {
+    const char *prefix;
+    rn_lattice_section_shape shape;
+    int n;
+  } shapes[] = {{"circle:", RN_LSEC_CIRCLE, 1},
+                {"rectangle:", RN_LSEC_RECTANGLE, 2},
+                {"ellipse:", RN_LSEC_ELLIPSE, 2}};
+  for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
+    size_t len = strlen(shapes[i].prefix);
+    if (strncmp(v, shapes[i].prefix, len) != 0) continue;
+    double p[2];
+    int n = 0;
+    if (parse_list(v + len, 2, p, &n) == 0 && n == shapes[i].n && p[0] > 0 &&
+        (n == 1 || p[1] > 0)) {
+      a->sc.shape = shapes[i].shape;
+      a->sc.section[0] = p[0];
+      a->sc.section[1] = n == 2 ? p[1] : 0;
+      a->section = v;
+      return 0;
+    }
+  }
+  return rn_cli_usage_error("generate",
+                            "--section expects circle:R, rectangle:W,H or ellipse:A,B "
+                            "with lengths > 0, got '%s'",
+                            v);
+}
+
+static int parse_material(gen_args *a, const char *v) {
+  double p[2];
+  int n = 0;
+  if (parse_list(v, 2, p, &n) == 0 && n == 2 && p[0] > 0 && p[1] > -1 && p[1] <= 0.5) {
+    a->sc.E = p[0];
+    a->sc.nu = p[1];
+    return 0;
+  }
+  return rn_cli_usage_error("generate",
+                            "--material expects E,NU with E > 0 and -1 < NU <= 0.5, "
+                            "got '%s'",
+                            v);
+}
+
+static int parse_load(gen_args *a, const char *v) {
+  static const char *const kinds[] = {"stretch-", "compress-", "pull-"};
+  for (int k = 0; k < 3; k++) {
+    size_t len = strlen(kinds[k]);
+    if (strncmp(v, kinds[k], len) != 0) continue;
+    const char *ax = v + len;
+    char *end = NULL;
+    double x = (ax[0] >= 'x' && ax[0] <= 'z' && ax[1] == ':') ? strtod(ax + 2, &end) : 0;
+    if (end && end != ax + 2 && *end == '\0' && isfinite(x) && x != 0) {
+      a->sc.load = k == 2 ? RN_LLOAD_PULL : RN_LLOAD_STRETCH;
+      a->sc.load_axis = ax[0] - 'x';
+      a->sc.load_value = k == 1 ? -x : x;
+      a->load = v;
+      return 0;
+    }
+  }
+  return rn_cli_usage_error("generate",
+                            "--load expects stretch-AXIS:STRAIN, compress-AXIS:STRAIN "
+                            "or pull-AXIS:FORCE (AXIS x, y or z; value non-zero), got "
+                            "'%s'",
+                            v);
+}
+
+static int parse_joint_model(gen_args *a, const char *v) {
+  if (strcmp(v, "elastic") == 0)
+    a->sc.joint_model = RN_JOINT_ELASTIC;
+  else if (strcmp(v, "rigid") == 0)
+    a->sc.joint_model = RN_JOINT_RIGID;
+  else
+    return rn_cli_usage_error("generate",
+                              "--joint-model expects elastic or rigid, got '%s'", v);
+  return 0;
+}
+
+/* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
+static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
+  static const char *const names[] = {"--output",  "--cells",    "--cell-size",
+                                      "--edges-per-rod", "--section", "--material",
+                                      "--joint-model",   "--load"};
+  const char *v = NULL;
+  int m = 0, which = -1;
+  for (int k = 0; k < 8 && m == 0; k++) {
+    m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
+                            &v);
+    which = k;
+  }
+  *rc = m < 0 ? RN_EXIT_USAGE : 0;
+  if (m <= 0) return m != 0;
+  switch (which) {
+  case 0:
+    a->output = v;
+    break;
+  case 1:
+    *rc = parse_cells(a, v);
+    break;
+  case 2:
+    *rc = rn_cli_parse_double("generate", "--cell-size", v, 0.0, &a->a);
+    break;
+  case 3:
+    *rc = rn_cli_parse_int("generate", "--edges-per-rod", v, 1, 100000L,
+                           &a->sc.edges_per_rod);
+    break;
+  case 4:
+    *rc = parse_section(a, v);
+    break;
+  case 5:
+    *rc = parse_material(a, v);
+    break;
+  case 6:
+    *rc = parse_joint_model(a, v);
+    break;
+  default:
+    *rc = parse_load(a, v);
+    break;
+  }
+  return 1;
+}
+
+static void set_defaults(gen_args *a) {
+  memset(a, 0, sizeof *a);
+  a->cells[0] = a->cells[1] = a->cells[2] = 4;
+  a->a = 1.0;
+  a->sc.edges_per_rod = 8;
+  a->sc.joint_model = RN_JOINT_ELASTIC;
+  a->sc.E = 1.0;
+  a->sc.nu = 0.3;
+  a->sc.shape = RN_LSEC_CIRCLE;
+  a->sc.load = RN_LLOAD_NONE;
+}
+
+static int check_args(gen_args *a) {
+  if (!a->kind_name) return rn_cli_usage_error("generate", "missing the lattice KIND");
+  if (rn_lattice_kind_from_name(a->kind_name, &a->kind) != 0)
+    return rn_cli_usage_error("generate",
+                              "unknown lattice '%s' (known: square, triangular, "
+                              "honeycomb, kagome, cubic, bcc, octet)",
+                              a->kind_name);
+  if (!a->output) return rn_cli_usage_error("generate", "missing -o SCENE.json");
+  int dim = rn_lattice_kind_dimension(a->kind);
+  if (a->ncells > dim)
+    return rn_cli_usage_error("generate", "--cells: the %s lattice is planar, give "
+                                          "NX[,NY]",
+                              a->kind_name);
+  if (dim == 2 && a->sc.load != RN_LLOAD_NONE && a->sc.load_axis == 2)
+    return rn_cli_usage_error("generate",
+                              "--load: the %s lattice lies in the xy plane, load it "
+                              "along x or y",
+                              a->kind_name);
+  if (!a->section) a->sc.section[0] = a->a / 50;
+  return 0;
+}
+
+/* 0 to go on, -1 help shown, otherwise an exit status. */
+static int parse_generate_args(int argc, char **argv, gen_args *a) {
+  set_defaults(a);
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i];
+    int rc = 0;
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+      fputs(generate_help, stdout);
+      return -1;
+    }
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
+      a->quiet = 1;
+    else if (parse_value_option(argc, argv, &i, a, &rc)) {
+      if (rc) return rc;
+    } else if (s[0] == '-' && s[1] != '\0')
+      return rn_cli_usage_error("generate", "unknown option '%s'", s);
+    else if (a->kind_name)
+      return rn_cli_usage_error("generate", "more than one KIND given ('%s' and '%s')",
+                                a->kind_name, s);
+    else
+      a->kind_name = s;
+  }
+  return check_args(a);
+}
+
+/* "rodnet generate ..." as the scene's description. */
+static void describe(const gen_args *a, char *buf, size_t n) {
+  int dim = rn_lattice_kind_dimension(a->kind);
+  int len = snprintf(buf, n, "rodnet generate %s --cells %d,%d", a->kind_name,
+                     a->cells[0], a->cells[1]);
+  if (dim == 3 && len > 0 && (size_t)len < n)
+    len += snprintf(buf + len, n - (size_t)len, ",%d", a->cells[2]);
+  if (len > 0 && (size_t)len < n)
+    len += snprintf(buf + len, n - (size_t)len,
+                    " --cell-size %.17g --edges-per-rod %d --section %s --material "
+                    "%.17g,%.17g --joint-model %s",
+                    a->a, a->sc.edges_per_rod, a->section ? a->section : "(default)",
+                    a->sc.E, a->sc.nu,
+                    a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
+  if (a->load && len > 0 && (size_t)len < n)
+    snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
+}
+
+static void print_summary(const gen_args *a, const rn_lattice *lat) {
+  int nn = rn_lattice_num_nodes(lat), hist[64] = {0};
+  for (int n = 0; n < nn; n++) {
+    int v = rn_lattice_valence(lat, n);
+    hist[v < 63 ? v : 63]++;
+  }
+  printf("rodnet generate: %s lattice, %d rods, %d joints (valence", a->kind_name,
+         rn_lattice_num_bars(lat), nn);
+  int first = 1;
+  for (int v = 0; v < 64; v++)
+    if (hist[v]) {
+      printf("%s %d: %d", first ? "" : ",", v, hist[v]);
+      first = 0;
+    }
+  printf("); wrote %s\n", a->output);
+}
+
+int rn_cli_generate(int argc, char **argv) {
+  gen_args a;
+  int rc = parse_generate_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+  char desc[1024];
+  describe(&a, desc, sizeof desc);
+  a.sc.description = desc;
+  rn_context *ctx = NULL;
+  if (rn_context_create(&ctx) != RN_OK) {
+    fprintf(stderr, "rodnet generate: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  rn_lattice *lat = NULL;
+  rn_status st = rn_lattice_build(ctx, a.kind, a.cells, a.a, &lat);
+  if (!st) st = rn_lattice_write_scene(ctx, a.output, lat, &a.sc);
+  if (st) {
+    fprintf(stderr, "rodnet generate: %s\n", rn_context_last_error(ctx));
+    rc = st == RN_ERR_IO ? RN_EXIT_INPUT
+         : (st == RN_ERR_ARG || st == RN_ERR_RANGE) ? RN_EXIT_USAGE
+                                                    : RN_EXIT_INTERNAL;
+  } else if (!a.quiet)
+    print_summary(&a, lat);
+  rn_lattice_destroy(&lat);
+  rn_context_destroy(&ctx);
+  return rc;
+}

@@ -1,0 +1,219 @@
+/* lattice_scene.c - lattice -> JSON scene writer (lattice_scene.h). */
+#include "lattice_scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atomic_file.h"
+
+typedef struct scene_out {
+  FILE *f;
+  const rn_lattice *lat;
+  const rn_lattice_scene *opt;
+  int *first, *inc; /* bars at each node: inc[first[n] .. first[n+1]) = 2 b + end */
+} scene_out;
+
+static void put_str(FILE *f, const char *s) {
+  fputc('"', f);
+  for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+    if (*p == '"' || *p == '\\')
+      fprintf(f, "\\%c", *p);
+    else if (*p < 0x20)
+      fprintf(f, "\\u%04x", *p);
+    else
+      fputc(*p, f);
+  }
+  fputc('"', f);
+}
+
+static void put_vec(FILE *f, const double *v) {
+  fprintf(f, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
+}
+
+static void put_header(scene_out *o) {
+  const rn_lattice_scene *opt = o->opt;
+  FILE *f = o->f;
+  fputs("{\n  \"description\": ", f);
+  put_str(f, opt->description ? opt->description : "rodnet lattice");
+  fprintf(f, ",\n  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n",
+          opt->E, opt->nu);
+  fputs("  \"sections\": {\"section\": ", f);
+  if (opt->shape == RN_LSEC_CIRCLE)
+    fprintf(f, "{\"shape\": \"circle\", \"radius\": %.17g}", opt->section[0]);
+  else if (opt->shape == RN_LSEC_RECTANGLE)
+    fprintf(f, "{\"shape\": \"rectangle\", \"width\": %.17g, \"height\": %.17g}",
+            opt->section[0], opt->section[1]);
+  else
+    fprintf(f, "{\"shape\": \"ellipse\", \"a\": %.17g, \"b\": %.17g}", opt->section[0],
+            opt->section[1]);
+  fputs("},\n", f);
+}
+
+static void put_rods(scene_out *o) {
+  FILE *f = o->f;
+  int nb = rn_lattice_num_bars(o->lat);
+  int planar = rn_lattice_kind_dimension(rn_lattice_get_kind(o->lat)) == 2;
+  fputs("  \"rods\": [\n", f);
+  for (int b = 0; b < nb; b++) {
+    int n[2];
+    double p[3], q[3];
+    rn_lattice_bar(o->lat, b, n);
+    rn_lattice_node(o->lat, n[0], p);
+    rn_lattice_node(o->lat, n[1], q);
+    fprintf(f, "    {\"name\": \"e%d\", \"material\": \"material\", \"section\": "
+               "\"section\",\n     \"line\": {\"from\": ",
+            b + 1);
+    put_vec(f, p);
+    fputs(", \"to\": ", f);
+    put_vec(f, q);
+    fprintf(f, ", \"vertices\": %d}%s}%s\n", o->opt->edges_per_rod + 1,
+            planar ? ", \"d1\": [0, 0, 1]" : "", b + 1 < nb ? "," : "");
+  }
+  fputs("  ],\n", f);
+}
+
+/* Incident bar ends of every node (counting sort). */
+static int build_incidence(scene_out *o) {
+  int nn = rn_lattice_num_nodes(o->lat), nb = rn_lattice_num_bars(o->lat);
+  o->first = calloc((size_t)nn + 1, sizeof *o->first);
+  o->inc = malloc(2 * (size_t)(nb ? nb : 1) * sizeof *o->inc);
+  if (!o->first || !o->inc) return 0;
+  for (int n = 0; n < nn; n++) o->first[n + 1] = o->first[n] + rn_lattice_valence(o->lat, n);
+  int *fill = malloc((size_t)(nn ? nn : 1) * sizeof *fill);
+  if (!fill) return 0;
+  memcpy(fill, o->first, (size_t)nn * sizeof *fill);
+  for (int b = 0; b < nb; b++) {
+    int e[2];
+    rn_lattice_bar(o->lat, b, e);
+    for (int k = 0; k < 2; k++) o->inc[fill[e[k]]++] = 2 * b + k;
+  }
+  free(fill);
+  return 1;
+}
+
+static void put_joints(scene_out *o) {
+  FILE *f = o->f;
+  int nn = rn_lattice_num_nodes(o->lat);
+  const char *model = o->opt->joint_model == RN_JOINT_RIGID ? "rigid" : "elastic";
+  fputs("  \"joints\": [\n", f);
+  for (int n = 0; n < nn; n++) {
+    fprintf(f, "    {\"name\": \"v%d\", \"model\": \"%s\", \"ends\": [", n + 1, model);
+    for (int k = o->first[n]; k < o->first[n + 1]; k++)
+      fprintf(f, "%s{\"rod\": \"e%d\", \"end\": \"%s\"}", k > o->first[n] ? ", " : "",
+              o->inc[k] / 2 + 1, o->inc[k] % 2 ? "end" : "start");
+    fprintf(f, "]}%s\n", n + 1 < nn ? "," : "");
+  }
+  fputs("  ]", f);
+}
+
+/* The node of the minimum face along axis nearest the face's centroid. */
+static int face_centre_node(const rn_lattice *lat, int axis) {
+  int nn = rn_lattice_num_nodes(lat), count = 0, best = -1;
+  double c[3] = {0, 0, 0}, x[3], dbest = INFINITY;
+  for (int n = 0; n < nn; n++)
+    if (rn_lattice_face(lat, n, axis) < 0) {
+      rn_lattice_node(lat, n, x);
+      for (int d = 0; d < 3; d++) c[d] += x[d];
+      count++;
+    }
+  for (int d = 0; d < 3; d++) c[d] /= count;
+  for (int n = 0; n < nn; n++)
+    if (rn_lattice_face(lat, n, axis) < 0) {
+      rn_lattice_node(lat, n, x);
+      double dd = 0;
+      for (int d = 0; d < 3; d++) dd += (x[d] - c[d]) * (x[d] - c[d]);
+      if (dd < dbest) {
+        dbest = dd;
+        best = n;
+      }
+    }
+  return best;
+}
+
+/* Separator before the next entry of a list. */
+static void next_entry(FILE *f, int *count) {
+  fputs(*count ? ",\n    " : "\n    ", f);
+  (*count)++;
+}
+
+static void put_stretch(scene_out *o) {
+  FILE *f = o->f;
+  int axis = o->opt->load_axis, nn = rn_lattice_num_nodes(o->lat), count = 0;
+  double d[3] = {0, 0, 0};
+  d[axis] = o->opt->load_value * rn_lattice_extent(o->lat, axis);
+  fputs(",\n  \"constraints\": [", f);
+  for (int n = 0; n < nn; n++)
+    if (rn_lattice_face(o->lat, n, axis)) {
+      next_entry(f, &count);
+      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"}", n + 1);
+    }
+  for (int n = 0; n < nn; n++)
+    if (rn_lattice_face(o->lat, n, axis) > 0) {
+      next_entry(f, &count);
+      fprintf(f, "{\"type\": \"displace\", \"joint\": \"v%d\", \"value\": ", n + 1);
+      put_vec(f, d);
+      fputc('}', f);
+    }
+  fputs("\n  ]", f);
+}
+
+static void put_pull(scene_out *o) {
+  FILE *f = o->f;
+  int axis = o->opt->load_axis, nn = rn_lattice_num_nodes(o->lat), count = 0;
+  int nmin = 0, nmax = 0, fixed = face_centre_node(o->lat, axis);
+  for (int n = 0; n < nn; n++) {
+    nmin += rn_lattice_face(o->lat, n, axis) < 0;
+    nmax += rn_lattice_face(o->lat, n, axis) > 0;
+  }
+  fprintf(f, ",\n  \"constraints\": [{\"type\": \"clamp\", \"joint\": \"v%d\"}],\n",
+          fixed + 1);
+  fputs("  \"loads\": [", f);
+  for (int n = 0; n < nn; n++) {
+    int face = rn_lattice_face(o->lat, n, axis);
+    if (!face || n == fixed) continue;
+    double F[3] = {0, 0, 0};
+    F[axis] = face > 0 ? o->opt->load_value / nmax : -o->opt->load_value / nmin;
+    next_entry(f, &count);
+    fprintf(f, "{\"type\": \"force\", \"joint\": \"v%d\", \"value\": ", n + 1);
+    put_vec(f, F);
+    fputc('}', f);
+  }
+  fputs("\n  ]", f);
+}
+
+static rn_status write_scene(FILE *f, void *user, rn_context *ctx) {
+  scene_out *o = user;
+  o->f = f;
+  if (!build_incidence(o))
+    return rn_context_set_error(ctx, RN_ERR_ALLOC, "generate: out of memory");
+  put_header(o);
+  put_rods(o);
+  put_joints(o);
+  if (o->opt->load == RN_LLOAD_STRETCH) put_stretch(o);
+  if (o->opt->load == RN_LLOAD_PULL) put_pull(o);
+  fputs("\n}\n", f);
+  return RN_OK;
+}
+
+rn_status rn_lattice_write_scene(rn_context *ctx, const char *path, const rn_lattice *lat,
+                                 const rn_lattice_scene *opt) {
+  if (!lat || !opt || opt->edges_per_rod < 1)
+    return rn_context_set_error(ctx, RN_ERR_ARG, "generate: bad arguments");
+  if (opt->load != RN_LLOAD_NONE &&
+      (opt->load_axis < 0 || opt->load_axis > 2 ||
+       !(rn_lattice_extent(lat, opt->load_axis) > 0)))
+    return rn_context_set_error(ctx, RN_ERR_ARG,
+                                "generate: the %s lattice is flat along %c: it cannot "
+                                "be loaded along that axis",
+                                rn_lattice_kind_name(rn_lattice_get_kind(lat)),
+                                "xyz"[opt->load_axis < 0 || opt->load_axis > 2
+                                          ? 0
+                                          : opt->load_axis]);
+  scene_out o = {NULL, lat, opt, NULL, NULL};
+  rn_status st = rn_file_write_atomic(ctx, path, write_scene, &o);
+  free(o.first);
+  free(o.inc);
+  return st;
+}

@@ -1,0 +1,49 @@
+/* lattice_scene.h - write a lattice (lattice.h) as a JSON scene with explicit
+ * rods and joints (docs/lattices.md, docs/scene-format.md). */
+#ifndef RN_LATTICE_SCENE_H
+#define RN_LATTICE_SCENE_H
+
+#include "lattice.h"
+#include "rodnet.h"
+
+typedef enum rn_lattice_section_shape {
+  RN_LSEC_CIRCLE = 0, /* p[0] = radius */
+  RN_LSEC_RECTANGLE,  /* p[0] = width (along d1), p[1] = height */
+  RN_LSEC_ELLIPSE     /* p[0] = a (along d1), p[1] = b */
+} rn_lattice_section_shape;
+
+typedef enum rn_lattice_load_kind {
+  RN_LLOAD_NONE = 0,
+  /* Displacement control: the joints of the minimum face along axis are
+   * pinned; those of the maximum face are pinned and displaced by
+   * value * extent along axis (value < 0 compresses). */
+  RN_LLOAD_STRETCH,
+  /* Force control: total force value along axis spread equally over the
+   * joints of the maximum face, and -value over those of the minimum face,
+   * one of which (the one nearest the face's centre) is clamped instead of
+   * loaded. */
+  RN_LLOAD_PULL
+} rn_lattice_load_kind;
+
+typedef struct rn_lattice_scene {
+  const char *description; /* may be NULL */
+  int edges_per_rod;       /* >= 1 */
+  int joint_model;         /* rn_joint_model */
+  double E, nu;
+  rn_lattice_section_shape shape;
+  double section[2];
+  rn_lattice_load_kind load;
+  int load_axis; /* 0 x, 1 y, 2 z */
+  double load_value;
+} rn_lattice_scene;
+
+/* Write the scene atomically to path: material "material", section
+ * "section", rod "e<k>" for bar k-1 (from its first to its second node,
+ * edges_per_rod edges, d1 = +z for planar lattices, derived otherwise),
+ * joint "v<k>" for node k-1 (every node, any valence), and the constraints
+ * and loads of opt->load.  RN_ERR_ARG if the load names an axis along which
+ * the lattice is flat; RN_ERR_IO if the file cannot be written. */
+rn_status rn_lattice_write_scene(rn_context *ctx, const char *path, const rn_lattice *lat,
+                                 const rn_lattice_scene *opt);
+
+#endif

@@ -1,0 +1,226 @@
+/* scene_joints.c - the "joints" array of a scene: rod ends joined at a point,
+ * elastic or rigid (docs/scene-format.md, "Joints"). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+static const char *const model_names[] = {"elastic", "rigid"}; /* rn_joint_model */
+static const char *const end_names[] = {"start", "end"};
+
+static char *dup_string(const char *s) {
+  size_t n = strlen(s) + 1;
+  char *d = malloc(n);
+  if (d) memcpy(d, s, n);
+  return d;
+}
+
+int rn_scene_find_joint(const rn_scene *s, const char *name) {
+  for (int i = 0; s && name && i < s->njoints; i++)
+    if (strcmp(s->joints[i].name, name) == 0) return i;
+  return -1;
+}
+
+rn_status rn_scene_joint_initial_position(const rn_scene *s, int joint, double x[3]) {
+  if (!s || !x) return RN_ERR_ARG;
+  if (joint < 0 || joint >= s->njoints) return RN_ERR_RANGE;
+  memcpy(x, s->joints[joint].x0, 3 * sizeof(double));
+  return RN_OK;
+}
+
+rn_status rn_scene_joint_model_ref(rn_jwalk *w, const cJSON *obj, const char *key,
+                                   int *model) {
+  const char *name = NULL;
+  rn_status st = rn_jm_string(w, obj, key, 0, &name);
+  if (st || !name) return st;
+  if (strcmp(name, model_names[RN_JOINT_ELASTIC]) == 0)
+    *model = RN_JOINT_ELASTIC;
+  else if (strcmp(name, model_names[RN_JOINT_RIGID]) == 0)
+    *model = RN_JOINT_RIGID;
+  else {
+    size_t mark = rn_jwalk_key(w, key);
+    st = rn_jwalk_error(w, "unknown joint model \"%s\" (known: elastic, rigid)", name);
+    rn_jwalk_pop(w, mark);
+  }
+  return st;
+}
+
+rn_status rn_scene_joint_ref(rn_scene_parser *p, const cJSON *obj, int *joint) {
+  const char *name = NULL;
+  rn_status st = rn_jm_string(&p->w, obj, "joint", 1, &name);
+  if (st) return st;
+  *joint = rn_scene_find_joint(p->scene, name);
+  if (*joint >= 0) return RN_OK;
+  const rn_scene *s = p->scene;
+  char list[512];
+  size_t len = 0;
+  list[0] = '\0';
+  for (int i = 0; i < s->njoints && len + 1 < sizeof list; i++) {
+    int k = snprintf(list + len, sizeof list - len, "%s\"%s\"", i ? ", " : "",
+                     s->joints[i].name);
+    if (k < 0) break;
+    len += (size_t)k;
+  }
+  size_t mark = rn_jwalk_key(&p->w, "joint");
+  if (s->njoints == 0)
+    st = rn_jwalk_error(&p->w, "no joint named \"%s\" (the scene has no joints)", name);
+  else
+    st = rn_jwalk_error(&p->w, "no joint named \"%s\" (joints: %s)", name, list);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
+static rn_status reserve_joints(rn_scene_parser *p, int extra) {
+  rn_scene *s = p->scene;
+  if (s->njoints + extra <= s->cap_joints) return RN_OK;
+  int cap = s->njoints + extra;
+  rn_scene_joint *j = realloc(s->joints, (size_t)cap * sizeof *j);
+  if (!j) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  s->joints = j;
+  s->cap_joints = cap;
+  return RN_OK;
+}
+
+rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, int n,
+                             const int *rods, const int *ends, int *joint) {
+  rn_scene *s = p->scene;
+  rn_status st = reserve_joints(p, 1);
+  if (st) return st;
+  rn_scene_joint *J = &s->joints[s->njoints];
+  memset(J, 0, sizeof *J);
+  J->model = model;
+  int idx = -1;
+  if (!(J->name = dup_string(name)))
+    st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  else if ((st = rn_network_add_joint(s->net, name, (rn_joint_model)model, n, rods, ends,
+                                      &idx)))
+    st = rn_scene_lib_error(p, st);
+  else if (idx != s->njoints)
+    st = rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "joint index %d, expected %d", idx,
+                       s->njoints);
+  if (st) {
+    free(J->name);
+    return st;
+  }
+  for (int k = 0; k < n; k++) s->rods[rods[k]].joint[ends[k]] = idx;
+  memcpy(J->x0, s->rods[rods[0]].end_xyz[ends[0]], sizeof J->x0);
+  s->njoints++;
+  *joint = idx;
+  return RN_OK;
+}
+
+/* ---- one joint ------------------------------------------------------------------- */
+
+static rn_status read_joint_name(rn_scene_parser *p, const cJSON *v, const char **out) {
+  rn_status st = rn_jm_string(&p->w, v, "name", 1, out);
+  if (st) return st;
+  size_t mark = rn_jwalk_key(&p->w, "name");
+  if (!**out)
+    st = rn_jwalk_error(&p->w, "expected a non-empty name");
+  else if (rn_scene_find_joint(p->scene, *out) >= 0)
+    st = rn_jwalk_error(&p->w, "duplicate joint name \"%s\"", *out);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
+/* End k of the list: {"rod": name, "end": "start" | "end"}, not joined
+ * elsewhere and not listed twice (ends[0 .. k-1] of this joint). */
+static rn_status read_joint_end(rn_scene_parser *p, const cJSON *v, int k, int *rods,
+                                int *ends) {
+  static const char *const keys[] = {"rod", "end", NULL};
+  const rn_scene *s = p->scene;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = rn_scene_rod_ref(p, v, &rods[k]);
+  if (!st) st = rn_scene_end_ref(&p->w, v, &ends[k]);
+  if (st) return st;
+  const rn_scene_rod *r = &s->rods[rods[k]];
+  int other = r->joint[ends[k]];
+  if (other >= 0)
+    return rn_jwalk_error(&p->w, "the %s of rod \"%s\" is already joined at joint \"%s\"",
+                          end_names[ends[k]], r->name, s->joints[other].name);
+  for (int i = 0; i < k; i++)
+    if (rods[i] == rods[k] && ends[i] == ends[k])
+      return rn_jwalk_error(&p->w, "the %s of rod \"%s\" is listed twice (ends[%d])",
+                            end_names[ends[k]], r->name, i);
+  return RN_OK;
+}
+
+/* The end vertices must coincide to 1e-9 of the shortest terminal edge (the
+ * library's tolerance, rodnet.h); the walker is at "ends". */
+static rn_status check_ends_meet(rn_scene_parser *p, int n, const int *rods,
+                                 const int *ends) {
+  const rn_scene *s = p->scene;
+  double lmin = INFINITY;
+  for (int k = 0; k < n; k++)
+    if (s->rods[rods[k]].end_len[ends[k]] < lmin) lmin = s->rods[rods[k]].end_len[ends[k]];
+  const double *x0 = s->rods[rods[0]].end_xyz[ends[0]];
+  for (int k = 1; k < n; k++) {
+    const double *x = s->rods[rods[k]].end_xyz[ends[k]];
+    double d = sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) +
+                    (x[2] - x0[2]) * (x[2] - x0[2]));
+    if (d > 1e-9 * lmin) {
+      size_t mark = rn_jwalk_index(&p->w, k);
+      rn_status st = rn_jwalk_error(
+          &p->w,
+          "the rod ends do not meet: the %s of rod \"%s\" at [%.17g, %.17g, %.17g] is "
+          "%.3g away from the %s of rod \"%s\" at [%.17g, %.17g, %.17g]",
+          end_names[ends[k]], s->rods[rods[k]].name, x[0], x[1], x[2], d,
+          end_names[ends[0]], s->rods[rods[0]].name, x0[0], x0[1], x0[2]);
+      rn_jwalk_pop(&p->w, mark);
+      return st;
+    }
+  }
+  return RN_OK;
+}
+
+static rn_status read_joint_ends(rn_scene_parser *p, const cJSON *list, int **rods,
+                                 int **ends, int *n) {
+  rn_status st = rn_jv_array(&p->w, list, n);
+  if (st) return st;
+  if (*n == 0) return rn_jwalk_error(&p->w, "expected at least one rod end");
+  *rods = malloc((size_t)*n * sizeof **rods);
+  *ends = malloc((size_t)*n * sizeof **ends);
+  if (!*rods || !*ends) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  int k = 0;
+  for (const cJSON *v = list->child; v && !st; v = v->next, k++) {
+    size_t mark = rn_jwalk_index(&p->w, k);
+    st = read_joint_end(p, v, k, *rods, *ends);
+    rn_jwalk_pop(&p->w, mark);
+  }
+  return st ? st : check_ends_meet(p, *n, *rods, *ends);
+}
+
+static rn_status read_joint(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"name", "model", "ends", NULL};
+  const char *name = NULL;
+  const cJSON *list = NULL;
+  int model = RN_JOINT_ELASTIC, n = 0, *rods = NULL, *ends = NULL, joint = -1;
+  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  if (!st) st = read_joint_name(p, v, &name);
+  if (!st) st = rn_scene_joint_model_ref(&p->w, v, "model", &model);
+  if (!st) st = rn_jm_require(&p->w, v, "ends", &list);
+  if (!st) {
+    size_t mark = rn_jwalk_key(&p->w, "ends");
+    st = read_joint_ends(p, list, &rods, &ends, &n);
+    rn_jwalk_pop(&p->w, mark);
+  }
+  if (!st) st = rn_scene_add_joint(p, name, model, n, rods, ends, &joint);
+  free(rods);
+  free(ends);
+  return st;
+}
+
+rn_status rn_scene_read_joints(rn_scene_parser *p, const cJSON *joints) {
+  int n = 0;
+  rn_status st = rn_jv_array(&p->w, joints, &n);
+  if (!st) st = reserve_joints(p, n);
+  int i = 0;
+  for (const cJSON *v = st ? NULL : joints->child; v && !st; v = v->next, i++) {
+    size_t mark = rn_jwalk_index(&p->w, i);
+    st = read_joint(p, v);
+    rn_jwalk_pop(&p->w, mark);
+  }
+  return st;
+}
