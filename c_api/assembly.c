@@ -110,6 +110,7 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
   if (p.M[0] == 0.0 && p.M[1] == 0.0 && p.M[2] == 0.0) return RNK_OK;
   memcpy(p.f0, mo->f0, sizeof(p.f0));
   p.angle0 = mo->angle0;
+  memcpy(p.b, mo->b, sizeof(p.b));
   rn_gather(net, a->x, s, N, q);
   switch (a->op) {
   case OP_ENERGY:

@@ -162,6 +162,7 @@ static rn_status init_moments(rn_network *net) {
                            mo->f0 + 3, mo->f0 + 6) != RNK_OK)
       return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
                      "rod %d edge %d: degenerate edge under a moment", mo->rod, mo->edge);
+    rn_couple_vector(mo->f0, mo->M, mo->b);
   }
   return RN_OK;
 }

@@ -143,6 +143,7 @@ rn_status rn_joints_build(rn_network *net) {
   for (int ij = 0; ij < net->njoints; ++ij) {
     rn_joint *J = &net->joints[ij];
     int n = rn_joint_stencil_count(rn_joint_has_rotation(J), J->valence);
+    rn_couple_vector(J->f0, J->M, J->couple_p); /* f0 = identity: rest coordinates */
     J->ends = calloc((size_t)J->valence, sizeof(rnk_joint_end));
     J->idx = malloc((size_t)n * sizeof(size_t));
     if (!J->ends || !J->idx)
@@ -181,6 +182,7 @@ void rn_joint_kernel(const rn_network *net, int ij, rnk_frame *refs, rnk_joint *
   memcpy(kj->Qhat, J->Qhat, sizeof(kj->Qhat));
   memcpy(kj->f0, J->f0, sizeof(kj->f0));
   kj->angle0 = J->angle0;
+  memcpy(kj->couple_p, J->couple_p, sizeof(kj->couple_p));
   for (int c = 0; c < 3; ++c) kj->M[c] = net->lambda * J->M[c];
 }
 

@@ -53,6 +53,7 @@ typedef struct rn_moment {
   double M[3];
   double f0[9];  /* (t, d1, d2) at the last reference update */
   double angle0; /* accumulated angle up to that update */
+  double b[3];   /* body vector the couple turns (rnk_moment_param.b) */
 } rn_moment;
 
 /* A joint: the end vertices of its rods become one vertex whose position is
@@ -72,9 +73,10 @@ typedef struct rn_joint {
   double disp[3], rot[3]; /* prescribed motion (unscaled) */
   double force[3], M[3];  /* loads (unscaled) */
   /* reference state */
-  double Qhat[9]; /* rigid: reference rotation; clamped: prescribed rotation */
-  double f0[9];   /* rotation at the last reference update (couple) */
-  double angle0;  /* couple angle accumulated up to that update */
+  double Qhat[9];     /* rigid: reference rotation; clamped: prescribed rotation */
+  double f0[9];       /* rotation at the last reference update (couple) */
+  double angle0;      /* couple angle accumulated up to that update */
+  double couple_p[3]; /* vector the couple turns (rnk_joint.couple_p) */
   /* built at finalize */
   rnk_joint_end *ends; /* kernel parameters [valence]; twist.ref_twist is the
                           reference twist stored at the last update */
@@ -213,6 +215,10 @@ void rn_joint_scratch_free(rn_joint_scratch *s);
 void rn_rod_free(rn_rod *r);
 /* Vertex forces r->fvert from point forces, line load and gravity (loads.c). */
 void rn_rod_lump_forces(const rn_network *net, rn_rod *r);
+/* The vector a couple m works on, in the coordinates of the frame f (rows
+ * f[3k..3k+2], orthonormal): the frame vector most perpendicular to m,
+ * projected onto the plane normal to m and normalised (zero if m = 0). */
+void rn_couple_vector(const double f[9], const double m[3], double b[3]);
 /* Edge of the material frame a moment at vertex acts on. */
 int rn_moment_edge(int nv, int vertex);
 

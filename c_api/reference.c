@@ -90,6 +90,7 @@ static rn_status update_moments(const rn_network *net, const double *full,
     double alpha = 0.0, e[3], *f0 = u->f0 + 9 * im;
     memcpy(p.M, mo->M, sizeof(p.M));
     memcpy(p.f0, mo->f0, sizeof(p.f0));
+    memcpy(p.b, mo->b, sizeof(p.b));
     p.angle0 = mo->angle0;
     for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
     if ((mo->M[0] != 0.0 || mo->M[1] != 0.0 || mo->M[2] != 0.0) &&

@@ -210,28 +210,16 @@ static int couple_jet(const rnk_joint *j, const double Qref[9], const double w[3
   double m = sqrt(j->M[0] * j->M[0] + j->M[1] * j->M[1] + j->M[2] * j->M[2]);
   jet_const(E, 3, ord, 0.0);
   if (!(m > 0.0)) return RNK_OK;
-  double n[3] = {j->M[0] / m, j->M[1] / m, j->M[2] / m}, cols[9];
-  for (int k = 0; k < 3; ++k)
-    for (int a = 0; a < 3; ++a) cols[3 * k + a] = Qref[3 * a + k];
-  jvec f[3];
-  rnk_rotate_jet(w, ord, 3, cols, f);
-  jet num, den, t;
-  jet_const(&num, 3, ord, 0.0);
-  jet_const(&den, 3, ord, 1.0);
-  for (int k = 0; k < 3; ++k) {
-    double f0[3] = {j->f0[k], j->f0[3 + k], j->f0[6 + k]}; /* column k of f0 */
-    double c[3] = {n[1] * f0[2] - n[2] * f0[1], n[2] * f0[0] - n[0] * f0[2],
-                   n[0] * f0[1] - n[1] * f0[0]};
-    for (int a = 0; a < 3; ++a) {
-      jet_scale(&t, c[a], &f[k].c[a]);
-      jet_add(&num, &num, &t);
-      jet_scale(&t, f0[a], &f[k].c[a]);
-      jet_add(&den, &den, &t);
-    }
+  double n[3] = {j->M[0] / m, j->M[1] / m, j->M[2] / m}, col[3], f0c[3];
+  const double *cp = j->couple_p;
+  for (int a = 0; a < 3; ++a) {
+    col[a] = Qref[3 * a] * cp[0] + Qref[3 * a + 1] * cp[1] + Qref[3 * a + 2] * cp[2];
+    f0c[a] = j->f0[3 * a] * cp[0] + j->f0[3 * a + 1] * cp[1] + j->f0[3 * a + 2] * cp[2];
   }
-  if (!(den.v > RNK_OPPOSITE_TOL)) return RNK_DEGENERATE;
-  jet_atan2(E, &num, &den);
-  jet_scale(E, 2.0, E);
+  jvec f;
+  rnk_rotate_jet(w, ord, 1, col, &f);
+  int st = rnk_projected_angle(&f, f0c, n, E);
+  if (st) return st;
   jet_add_const(E, E, j->angle0);
   jet_scale(E, -m, E);
   return RNK_OK;

@@ -1,12 +1,30 @@
 /* moment.c - a couple M acting on the material frame of one edge.
- * E = -|M| (angle0 + alpha), alpha the rotation of the frame (t, d1, d2) about
- * the fixed axis n = M / |M| since the reference frame f0 (swing-twist
- * decomposition of the incremental rotation R = sum_k f_k f0_k^T):
- * tan(alpha / 2) = n . sum_k (f0_k x f_k) / (1 + sum_k f0_k . f_k). */
+ * E = -|M| (angle0 + alpha), alpha = rotation about n = M / |M| of a vector
+ * f fixed in the material frame since the last update (value f0): with u0
+ * the projection of f0 onto the plane normal to n,
+ * alpha = atan2((n x u0) . f, u0 . f). */
 #include <math.h>
 
 #include "rnk.h"
 #include "stencil.h"
+
+/* alpha for the frame vector f (jets) against the constant f0 about n. */
+int rnk_projected_angle(const jvec *f, const double f0[3], const double n[3],
+                        jet *alpha) {
+  double fn = f0[0] * n[0] + f0[1] * n[1] + f0[2] * n[2], u0[3], c[3];
+  for (int k = 0; k < 3; ++k) u0[k] = f0[k] - fn * n[k];
+  double uu = u0[0] * u0[0] + u0[1] * u0[1] + u0[2] * u0[2];
+  if (!(uu > 1e-12)) return RNK_DEGENERATE;
+  c[0] = n[1] * u0[2] - n[2] * u0[1];
+  c[1] = n[2] * u0[0] - n[0] * u0[2];
+  c[2] = n[0] * u0[1] - n[1] * u0[0];
+  jet num, den;
+  jvec_dot_const(&num, f, c);
+  jvec_dot_const(&den, f, u0);
+  if (!(num.v * num.v + den.v * den.v > 1e-12 * uu)) return RNK_DEGENERATE;
+  jet_atan2(alpha, &num, &den);
+  return RNK_OK;
+}
 
 static int moment_eval(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
                        int ord, jet *alpha, double *mag) {
@@ -15,30 +33,22 @@ static int moment_eval(const double q[7], const rnk_frame *ref, const rnk_moment
   int st = rnk_edge_jet_eval(e, q[3], ref, ord, &f);
   if (st) return st;
   double m = sqrt(p->M[0] * p->M[0] + p->M[1] * p->M[1] + p->M[2] * p->M[2]);
-  double n[3] = {0.0, 0.0, 0.0};
-  if (m > 0.0)
-    for (int k = 0; k < 3; ++k) n[k] = p->M[k] / m;
   *mag = m;
-  const jvec *fr[3] = {&f.t, &f.d1, &f.d2};
-  jet num, den, tmp;
-  jet_const(&num, 4, ord, 0.0);
-  jet_const(&den, 4, ord, 1.0);
-  for (int k = 0; k < 3; ++k) {
-    const double *f0 = p->f0 + 3 * k;
-    double c[3] = {n[1] * f0[2] - n[2] * f0[1], n[2] * f0[0] - n[0] * f0[2],
-                   n[0] * f0[1] - n[1] * f0[0]};
-    /* n . (f0 x f) = (n x f0) . f */
-    for (int a = 0; a < 3; ++a) {
-      jet_scale(&tmp, c[a], &fr[k]->c[a]);
-      jet_add(&num, &num, &tmp);
-      jet_scale(&tmp, f0[a], &fr[k]->c[a]);
-      jet_add(&den, &den, &tmp);
-    }
+  if (!(m > 0.0)) {
+    jet_const(alpha, 4, ord, 0.0);
+    return RNK_OK;
   }
-  if (!(den.v > RNK_OPPOSITE_TOL)) return RNK_DEGENERATE;
-  jet_atan2(alpha, &num, &den);
-  jet_scale(alpha, 2.0, alpha);
-  return RNK_OK;
+  double n[3] = {p->M[0] / m, p->M[1] / m, p->M[2] / m};
+  /* f = b1 t + b2 d1 + b3 d2, and its value at the last update */
+  jvec fv;
+  double f0[3];
+  for (int a = 0; a < 3; ++a) {
+    jet t1;
+    jet_lin(&t1, p->b[0], &f.t.c[a], p->b[1], &f.d1.c[a]);
+    jet_lin(&fv.c[a], 1.0, &t1, p->b[2], &f.d2.c[a]);
+    f0[a] = p->b[0] * p->f0[a] + p->b[1] * p->f0[3 + a] + p->b[2] * p->f0[6 + a];
+  }
+  return rnk_projected_angle(&fv, f0, n, alpha);
 }
 
 static int moment_energy_jet(const double q[7], const rnk_frame *ref,

@@ -136,16 +136,23 @@ int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
                       const rnk_bend_param *bp, const rnk_twist_param *tp,
                       const double v[11], double Hv[11]);
 
-/* ---- dead couple on an edge's material frame, edge stencil q[7] ----------
- * E = -|M| (angle0 + alpha), alpha = rotation of the edge's material frame
- * about the fixed axis M/|M| since the last reference update (swing-twist
- * decomposition of the incremental rotation), angle0 the angle accumulated
- * up to that update.  For rotations about the axis of M this is exactly the
- * work of a dead couple. */
+/* ---- couple on an edge's material frame, edge stencil q[7] ---------------
+ * E = -|M| (angle0 + alpha): alpha is the rotation about the fixed axis
+ * n = M/|M|, since the last reference update, of a vector f = b1 t + b2 d1 +
+ * b3 d2 fixed in the edge's material frame (the caller picks b once, so that
+ * f is perpendicular to n at the start): the signed angle between the
+ * projections of f0 and f onto the plane normal to n; angle0 accumulates it
+ * over updates.  The energy is a function of the configuration (a continuous
+ * lift of a planar angle), hence conservative; for rotations about n it is
+ * exactly the work of a dead couple (planar end-moment problems are
+ * reproduced), and at the start its virtual work is M . (rotation).  (A
+ * constant couple in 3D is not conservative: no energy matches it for all
+ * finite rotations.) */
 typedef struct rnk_moment_param {
   double M[3];   /* applied moment */
   double f0[9];  /* material frame (t, d1, d2) at the last update */
   double angle0; /* accumulated angle at the last update */
+  double b[3];   /* body coordinates (t, d1, d2) of the turned vector */
 } rnk_moment_param;
 
 int rnk_moment_energy(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
@@ -204,7 +211,8 @@ int rnk_joint_end_strains(const double q[10], const rnk_frame *ref,
  *            rest frames to the current ones, Perez et al. 2015 eq. 4);
  *            exact first and second derivatives through the polar factor.
  * Energy: sum over ends of the end stencil (connection frame Q cbar_k) plus an
- * optional couple on Q (as rnk_moment_*, about the couple's axis). */
+ * optional couple on Q (as rnk_moment_*: rotation about the couple's axis of
+ * the vector Q couple_p). */
 typedef struct rnk_joint_end {
   int side;              /* 0: the rod ends at the joint, 1: it starts there */
   double cbar[9];        /* rest frame (t, d1, d2) of the terminal edge */
@@ -221,6 +229,8 @@ typedef struct rnk_joint {
   double M[3];               /* couple on the joint rotation (zero: none) */
   double f0[9];              /* joint rotation at the last update (couple) */
   double angle0;             /* couple angle accumulated up to that update */
+  double couple_p[3];        /* vector turned by the couple: Q couple_p (rest
+                                coordinates; perpendicular to M at rest) */
 } rnk_joint;
 
 size_t rnk_joint_stencil_size(const rnk_joint *j);

@@ -41,6 +41,10 @@ void rnk_twist_from_frames(const rnk_edge_jet f[2], const double q[11],
 /* exp([w]) v_i for nvec vectors v[3 nvec], as jets over the 3 variables w. */
 void rnk_rotate_jet(const double w[3], int ord, int nvec, const double *v, jvec *out);
 
+/* Signed rotation about n of the frame vector f (jets) since it was f0: the
+ * angle between the projections onto the plane normal to n (moment.c). */
+int rnk_projected_angle(const jvec *f, const double f0[3], const double n[3], jet *alpha);
+
 /* Reference-twist increment relative to m_prev: angle from the transported
  * first reference director to the second, minus m_prev, in (-pi, pi). */
 void rnk_twist_increment(const rnk_edge_jet f[2], double m_prev, jet *dm);

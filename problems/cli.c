@@ -17,6 +17,8 @@ static const char main_help[] =
     "                                    the result as JSON (and VTK with --vtk)\n"
     "  check SCENE.json                  derivative self-test: gradient and Hessian of\n"
     "                                    the scene's energy against finite differences\n"
+    "  generate KIND -o SCENE.json       write a lattice scene (square, triangular,\n"
+    "                                    honeycomb, kagome, cubic, bcc, octet)\n"
     "\n"
     "Options:\n"
     "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
@@ -54,6 +56,7 @@ int rn_cli_main(int argc, char **argv) {
   }
   if (strcmp(cmd, "solve") == 0) return rn_cli_solve(argc - 1, argv + 1);
   if (strcmp(cmd, "check") == 0) return rn_cli_check(argc - 1, argv + 1);
+  if (strcmp(cmd, "generate") == 0) return rn_cli_generate(argc - 1, argv + 1);
   fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
   return RN_EXIT_USAGE;
 }

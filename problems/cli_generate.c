@@ -274,12 +274,16 @@ static void describe(const gen_args *a, char *buf, size_t n) {
                      a->cells[0], a->cells[1]);
   if (dim == 3 && len > 0 && (size_t)len < n)
     len += snprintf(buf + len, n - (size_t)len, ",%d", a->cells[2]);
+  char section[64];
+  if (a->section)
+    snprintf(section, sizeof section, "%s", a->section);
+  else
+    snprintf(section, sizeof section, "circle:%.15g", a->sc.section[0]);
   if (len > 0 && (size_t)len < n)
     len += snprintf(buf + len, n - (size_t)len,
-                    " --cell-size %.17g --edges-per-rod %d --section %s --material "
-                    "%.17g,%.17g --joint-model %s",
-                    a->a, a->sc.edges_per_rod, a->section ? a->section : "(default)",
-                    a->sc.E, a->sc.nu,
+                    " --cell-size %.15g --edges-per-rod %d --section %s --material "
+                    "%.15g,%.15g --joint-model %s",
+                    a->a, a->sc.edges_per_rod, section, a->sc.E, a->sc.nu,
                     a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
   if (a->load && len > 0 && (size_t)len < n)
     snprintf(buf + len, n - (size_t)len, " --load %s", a->load);

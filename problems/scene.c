@@ -478,7 +478,7 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   }
   if (st) return st;
   st = rn_network_finalize(p->scene->net);
-  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+  return st ? rn_scene_finalize_error(p, st) : rn_scene_check_finite(p);
 }
 
 static rn_status scene_new(rn_context *ctx, const char *label, rn_scene **out) {
@@ -548,6 +548,7 @@ void rn_scene_destroy(rn_scene **sp) {
   free(s->rods);
   for (int i = 0; i < s->njoints; i++) free(s->joints[i].name);
   free(s->joints);
+  free(s->obj_path);
   rn_network_destroy(&s->net);
   free(s->label);
   free(s->description);

@@ -65,16 +65,23 @@ static int joint_at_vertex(const rn_scene_rod *r, int vertex) {
   return -1;
 }
 
-/* Error at obj[key]: vertex of rod r is joint j; "what the joint instead". */
+/* Error at obj[key]: vertex of rod r is joint j (the whole end if clamp);
+ * suggests {"type": type, "joint": ...}. */
 static rn_status at_joint_error(rn_scene_parser *p, const char *key,
                                 const rn_scene_rod *r, int vertex, int j,
-                                const char *what) {
+                                const char *type) {
+  char what[64];
+  if (strcmp(type, "clamp") == 0)
+    snprintf(what, sizeof what, "the %s", vertex == 0 ? "start" : "end");
+  else
+    snprintf(what, sizeof what, "vertex %d", vertex);
+  const char *jn = p->scene->joints[j].name;
   size_t mark = rn_jwalk_key(&p->w, key);
   rn_status st = rn_jwalk_error(&p->w,
-                                "vertex %d of rod \"%s\" is joint \"%s\": %s the "
-                                "joint instead ({\"joint\": \"%s\"})",
-                                vertex, r->name, p->scene->joints[j].name, what,
-                                p->scene->joints[j].name);
+                                "%s of rod \"%s\" belongs to joint \"%s\": constrain "
+                                "the joint instead ({\"type\": \"%s\", \"joint\": "
+                                "\"%s\"})",
+                                what, r->name, jn, type, jn);
   rn_jwalk_pop(&p->w, mark);
   return st;
 }

@@ -183,6 +183,6 @@ rn_status rn_scene_read_graph(rn_scene_parser *p, const cJSON *v) {
   rn_jwalk_pop(&p->w, mark);
   if (!st) st = build_graph(p, path, g, &spec);
   rn_obj_graph_destroy(&g);
-  free(path);
+  p->scene->obj_path = path;
   return st;
 }

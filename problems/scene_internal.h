@@ -17,6 +17,7 @@ typedef struct rn_scene_rod {
   double end_xyz[2][3];  /* initial end vertices */
   double end_len[2];     /* lengths of the terminal edges */
   long obj_line;         /* line of its OBJ segment, 0 if not from a graph */
+  int json_index;        /* index in the "rods" array, -1 if from a graph */
   unsigned char *pinned; /* nv flags */
   double max_density;    /* over its edges (gravity check) */
 } rn_scene_rod;
@@ -26,8 +27,9 @@ typedef struct rn_scene_joint {
   char *name;
   int model; /* rn_joint_model */
   int clamped, pinned;
-  double x0[3];  /* initial position (its first rod end) */
-  long obj_line; /* line of its OBJ vertex, 0 if not from a graph */
+  double x0[3];   /* initial position (its first rod end) */
+  long obj_line;  /* line of its OBJ vertex, 0 if not from a graph */
+  int json_index; /* index in the "joints" array, -1 if from a graph */
 } rn_scene_joint;
 
 struct rn_scene {
@@ -38,6 +40,7 @@ struct rn_scene {
   rn_scene_rod *rods;
   int njoints, cap_joints;
   rn_scene_joint *joints;
+  char *obj_path; /* the OBJ file of the "graph" (resolved), NULL if none */
   unsigned solver_set; /* bits: which fields of solver_opt the scene sets */
   rn_solve_options solver_opt;
 };
@@ -58,6 +61,10 @@ typedef struct rn_scene_parser {
 /* Wrap the library's last error (status st) at the walker's path, prefixed
  * with p->where if set; returns st. */
 rn_status rn_scene_lib_error(rn_scene_parser *p, rn_status st);
+/* Wrap an error of rn_network_finalize: at the JSON path (or OBJ line) of
+ * the first joint or rod its message names ("joint 3 ('v4')", "rod 0
+ * ('a')"), else at the walker's path; returns st. */
+rn_status rn_scene_finalize_error(rn_scene_parser *p, rn_status st);
 
 /* Index of a named material / section, -1 if none. */
 int rn_scene_parser_material(const rn_scene_parser *p, const char *name);
@@ -70,6 +77,9 @@ rn_status rn_scene_read_joints(rn_scene_parser *p, const cJSON *joints);
 rn_status rn_scene_read_graph(rn_scene_parser *p, const cJSON *graph);
 rn_status rn_scene_read_constraints(rn_scene_parser *p, const cJSON *list);
 rn_status rn_scene_read_loads(rn_scene_parser *p, const cJSON *list);
+/* After finalize: the initial state evaluates to finite numbers
+ * (scene_finite.c); RN_ERR_NOT_FINITE otherwise. */
+rn_status rn_scene_check_finite(rn_scene_parser *p);
 
 /* obj["rod"] names a rod of the scene: its index in *rod. */
 rn_status rn_scene_rod_ref(rn_scene_parser *p, const cJSON *obj, int *rod);

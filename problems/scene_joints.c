@@ -91,6 +91,7 @@ rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, in
   rn_scene_joint *J = &s->joints[s->njoints];
   memset(J, 0, sizeof *J);
   J->model = model;
+  J->json_index = -1;
   int idx = -1;
   if (!(J->name = dup_string(name)))
     st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
@@ -192,7 +193,7 @@ static rn_status read_joint_ends(rn_scene_parser *p, const cJSON *list, int **ro
   return st ? st : check_ends_meet(p, *n, *rods, *ends);
 }
 
-static rn_status read_joint(rn_scene_parser *p, const cJSON *v) {
+static rn_status read_joint(rn_scene_parser *p, const cJSON *v, int json_index) {
   static const char *const keys[] = {"name", "model", "ends", NULL};
   const char *name = NULL;
   const cJSON *list = NULL;
@@ -207,6 +208,7 @@ static rn_status read_joint(rn_scene_parser *p, const cJSON *v) {
     rn_jwalk_pop(&p->w, mark);
   }
   if (!st) st = rn_scene_add_joint(p, name, model, n, rods, ends, &joint);
+  if (!st) p->scene->joints[joint].json_index = json_index;
   free(rods);
   free(ends);
   return st;
@@ -219,8 +221,53 @@ rn_status rn_scene_read_joints(rn_scene_parser *p, const cJSON *joints) {
   int i = 0;
   for (const cJSON *v = st ? NULL : joints->child; v && !st; v = v->next, i++) {
     size_t mark = rn_jwalk_index(&p->w, i);
-    st = read_joint(p, v);
+    st = read_joint(p, v, i);
     rn_jwalk_pop(&p->w, mark);
   }
+  return st;
+}
+
+/* ---- errors of finalize ---------------------------------------------------------- */
+
+/* First "joint N ('", "joints N ('" or "rod N ('" in msg: *is_joint,
+ * *index; 0 if none. */
+static int named_item(const char *msg, int *is_joint, int *index) {
+  for (const char *p = msg; *p; p++) {
+    int joints = strncmp(p, "joints ", 7) == 0;
+    int joint = joints || strncmp(p, "joint ", 6) == 0, rod = strncmp(p, "rod ", 4) == 0;
+    if (!joint && !rod) continue;
+    const char *q = p + (joints ? 7 : joint ? 6 : 4);
+    char *end = NULL;
+    long i = strtol(q, &end, 10);
+    if (end != q && *q >= '0' && *q <= '9' && strncmp(end, " ('", 3) == 0 &&
+        i < 2147483647L) {
+      *is_joint = joint;
+      *index = (int)i;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+rn_status rn_scene_finalize_error(rn_scene_parser *p, rn_status st) {
+  const rn_scene *s = p->scene;
+  char msg[1024];
+  const char *last = rn_context_last_error(p->w.ctx);
+  snprintf(msg, sizeof msg, "%s", (last && *last) ? last : rn_status_message(st));
+  int is_joint = 0, i = -1;
+  if (!named_item(msg, &is_joint, &i) || i >= (is_joint ? s->njoints : s->nrods))
+    return rn_jwalk_fail(&p->w, st, "%s", msg);
+  long line = is_joint ? s->joints[i].obj_line : s->rods[i].obj_line;
+  int json = is_joint ? s->joints[i].json_index : s->rods[i].json_index;
+  const char *name = is_joint ? s->joints[i].name : s->rods[i].name;
+  size_t mark = rn_jwalk_key(&p->w, line > 0 ? "graph" : is_joint ? "joints" : "rods");
+  if (line > 0)
+    st = rn_jwalk_fail(&p->w, st, "%s:%ld: %s %s: %s", s->obj_path ? s->obj_path : "?",
+                       line, is_joint ? "joint" : "segment", name, msg);
+  else {
+    if (json >= 0) rn_jwalk_index(&p->w, json);
+    st = rn_jwalk_fail(&p->w, st, "%s", msg);
+  }
+  rn_jwalk_pop(&p->w, mark);
   return st;
 }

@@ -401,6 +401,7 @@ rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
   rn_scene_rod *r = &s->rods[s->nrods];
   memset(r, 0, sizeof *r);
   r->joint[0] = r->joint[1] = -1;
+  r->json_index = -1;
   r->name = dup_string(name);
   r->pinned = calloc((size_t)nv, 1);
   int idx = -1;
@@ -440,7 +441,7 @@ static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, const char **
   return st;
 }
 
-static rn_status read_rod(rn_scene_parser *p, const cJSON *v) {
+static rn_status read_rod(rn_scene_parser *p, const cJSON *v, int json_index) {
   static const char *const keys[] = {"name",     "material", "section",         "line",
                                      "vertices", "d1",       "edge_properties", "rest",
                                      NULL};
@@ -456,6 +457,7 @@ static rn_status read_rod(rn_scene_parser *p, const cJSON *v) {
   if (!st) st = rn_scene_add_rod(p, name, nv, xyz, has_d1 ? d1 : NULL, m, sec, &rod);
   free(xyz);
   if (st) return st;
+  p->scene->rods[rod].json_index = json_index;
   const cJSON *ep = rn_jm_get(v, "edge_properties"), *rest = rn_jm_get(v, "rest");
   if (ep) {
     size_t mark = rn_jwalk_key(&p->w, "edge_properties");
@@ -479,7 +481,7 @@ rn_status rn_scene_read_rods(rn_scene_parser *p, const cJSON *rods) {
   int i = 0;
   for (const cJSON *v = rods->child; v && !st; v = v->next, i++) {
     size_t mark = rn_jwalk_index(&p->w, i);
-    st = read_rod(p, v);
+    st = read_rod(p, v, i);
     rn_jwalk_pop(&p->w, mark);
   }
   return st;

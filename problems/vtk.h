@@ -21,7 +21,9 @@
  *               rest length: the edge's stretching energy / rest length plus,
  *               for each interior end vertex, half of that vertex's bending +
  *               twisting energy / Voronoi rest length; summed times
- *               rest_length over the edges it gives the elastic energy).
+ *               rest_length over the edges it gives the elastic energy of
+ *               the rods; the energy of joints, at their connection edges,
+ *               is not in it).
  * Joints: point data joint_rotation (9 components, the rotation matrix
  * row-major; zeros at rod vertices) and displacement (current minus initial
  * position); cell data joint (joint index, -1 on rod edges), rod and edge

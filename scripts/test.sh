@@ -2,12 +2,16 @@
 # test.sh: set up and build (scripts/setup.sh), then run the whole test suite:
 #   1. a sanitizer build (build-asan, -DRN_SANITIZE=address,undefined) running the
 #      unit and validation tests;
-#   2. the main build's ctest: every label but fuzz and bench (bench-smoke is in),
+#   2. a clang build (build-fuzz: -DRN_FUZZ=ON, no Trilinos, warnings as errors)
+#      of the libFuzzer targets only, running `ctest -L fuzz` (each target for a
+#      fixed number of executions; about 2-3 minutes on 2 busy cores);
+#   3. the main build's ctest: every label but fuzz and bench (bench-smoke is in),
 #      which includes the layering, install/consumer and clang-format checks.
 # Exits non-zero if any stage fails; ctest's own summary lines come last.
 #
 #   bash scripts/test.sh
-# Environment: RN_JOBS (2), RN_SKIP_ASAN=1 to skip the sanitizer stage.
+# Environment: RN_JOBS (2), RN_SKIP_ASAN=1 / RN_SKIP_FUZZ=1 to skip the sanitizer /
+# fuzz stage.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${RN_JOBS:-2}
@@ -39,6 +43,22 @@ if [ "${RN_SKIP_ASAN:-0}" != 1 ]; then
     fi
   else
     failed+=("sanitizer build")
+  fi
+fi
+
+if [ "${RN_SKIP_FUZZ:-0}" != 1 ]; then
+  stamp "fuzz build (build-fuzz: clang, libFuzzer targets)"
+  if cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRN_WERROR=ON \
+       -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DRN_FUZZ=ON \
+       -DRN_WITH_TRILINOS=OFF -DRN_BUILD_BENCHMARKS=OFF </dev/null &&
+     cmake --build build-fuzz -j"$jobs" --target fuzz_targets </dev/null; then
+    stamp "fuzz tests (ctest -L fuzz)"
+    if ! ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz \
+         </dev/null; then
+      failed+=("fuzz tests")
+    fi
+  else
+    failed+=("fuzz build")
   fi
 fi
 

@@ -6,7 +6,8 @@
 #    (-fsanitize=fuzzer,address,undefined) over an instrumented copy of the
 #    kernels, the C API and problems/; the ctest fuzz_scene_run (label fuzz)
 #    runs it for a fixed number of executions on a fresh copy of the seed
-#    corpus (problems/scenes/*.json and tests/data/bad/*.json).
+#    corpus (problems/scenes/*.json, tests/data/bad/*.json and the regression
+#    inputs) with a dictionary of the format's keys (fuzz/scene.dict).
 set(RN_FUZZ_SRC ${CMAKE_CURRENT_SOURCE_DIR}/fuzz)
 set(RN_FUZZ_REG ${CMAKE_CURRENT_SOURCE_DIR}/data/fuzz_regressions)
 
@@ -15,6 +16,14 @@ rn_add_test(fuzz_regressions SOURCES fuzz/fuzz_regressions.c fuzz/scene_check.c
             LIBS rodnet_problems LABELS unit
             ARGS ${RN_FUZZ_REG}/expected.tsv ${RN_FUZZ_REG_FILES})
 target_include_directories(fuzz_regressions PRIVATE ${RN_FUZZ_SRC})
+
+# The OBJ reader: fuzz_obj_replay (label unit, every build) runs the seed
+# corpus tests/data/obj/*.obj through the contract of fuzz/fuzz_obj.c; with
+# RN_FUZZ the libFuzzer target fuzz_obj and its ctest fuzz_obj_run (below).
+file(GLOB RN_FUZZ_OBJ_SEEDS ${CMAKE_CURRENT_SOURCE_DIR}/data/obj/*.obj
+     ${PROJECT_SOURCE_DIR}/problems/scenes/*.obj)
+rn_add_test(fuzz_obj_replay SOURCES fuzz/fuzz_obj.c LIBS rodnet_problems LABELS unit
+            ARGS ${RN_FUZZ_OBJ_SEEDS})
 
 if(NOT RN_FUZZ)
   return()
@@ -58,11 +67,19 @@ target_include_directories(fuzz_scene PRIVATE ${RN_FUZZ_SRC})
 target_compile_options(fuzz_scene PRIVATE ${RN_FUZZ_FLAGS} -fsanitize=fuzzer)
 target_link_options(fuzz_scene PRIVATE -fsanitize=fuzzer,address,undefined)
 target_link_libraries(fuzz_scene PRIVATE rn_fuzz_lib)
+# Every libFuzzer target joins fuzz_targets (what scripts/test.sh builds).
+add_executable(fuzz_obj fuzz/fuzz_obj.c)
+target_compile_definitions(fuzz_obj PRIVATE RN_LIBFUZZER=1)
+target_compile_options(fuzz_obj PRIVATE ${RN_FUZZ_FLAGS} -fsanitize=fuzzer)
+target_link_options(fuzz_obj PRIVATE -fsanitize=fuzzer,address,undefined)
+target_link_libraries(fuzz_obj PRIVATE rn_fuzz_lib)
+add_custom_target(fuzz_targets)
+add_dependencies(fuzz_targets fuzz_scene fuzz_obj)
 
 set(RN_FUZZ_RUNS 20000 CACHE STRING "Executions of each fuzz target in its ctest")
 set(RN_FUZZ_MAX_TIME 150 CACHE STRING "Cap on the seconds of each fuzz ctest")
 file(GLOB RN_FUZZ_SEEDS ${PROJECT_SOURCE_DIR}/problems/scenes/*.json
-     ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/*.json)
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/*.json ${RN_FUZZ_REG}/*.json)
 string(REPLACE ";" "@@" seeds "${RN_FUZZ_SEEDS}")
 add_test(NAME fuzz_scene_run
          COMMAND ${CMAKE_COMMAND} -DFUZZER=$<TARGET_FILE:fuzz_scene>
@@ -71,3 +88,12 @@ add_test(NAME fuzz_scene_run
                  -DMAX_TIME=${RN_FUZZ_MAX_TIME} -P ${RN_FUZZ_SRC}/run_fuzz.cmake)
 math(EXPR rn_fuzz_timeout "${RN_FUZZ_MAX_TIME} + 120")
 set_tests_properties(fuzz_scene_run PROPERTIES LABELS fuzz TIMEOUT ${rn_fuzz_timeout})
+
+# The OBJ reader (fuzz/fuzz_obj.c) on the OBJ seed corpus.
+string(REPLACE ";" "@@" obj_seeds "${RN_FUZZ_OBJ_SEEDS}")
+add_test(NAME fuzz_obj_run
+         COMMAND ${CMAKE_COMMAND} -DFUZZER=$<TARGET_FILE:fuzz_obj>
+                 -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fuzz_obj_work -DSEEDS=${obj_seeds}
+                 -DDICT=${RN_FUZZ_SRC}/obj.dict -DRUNS=${RN_FUZZ_RUNS}
+                 -DMAX_TIME=${RN_FUZZ_MAX_TIME} -P ${RN_FUZZ_SRC}/run_fuzz.cmake)
+set_tests_properties(fuzz_obj_run PROPERTIES LABELS fuzz TIMEOUT ${rn_fuzz_timeout})

@@ -35,6 +35,14 @@ rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_EXAMPLE_SCENES})
 rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_CLI_OUT}/atomic_scratch)
+set(RN_OBJ_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/obj)
+rn_add_test(problems_obj SOURCES unit/problems_obj_test.c
+            LIBS rodnet_problems LABELS unit ARGS ${RN_OBJ_DATA})
+rn_add_test(problems_graph SOURCES unit/problems_graph_test.c
+            LIBS rodnet_problems LABELS unit ARGS ${RN_OBJ_DATA})
+file(MAKE_DIRECTORY ${RN_CLI_OUT}/generate)
+rn_add_test(problems_generate SOURCES unit/problems_generate_test.c
+            LIBS rodnet_problems LABELS unit ARGS ${RN_CLI_OUT}/generate)
 rn_add_test(problems_writers SOURCES unit/problems_writers_test.c
             LIBS rodnet_problems LABELS unit
             ARGS ${RN_SCENES}/cantilever.json ${RN_CLI_OUT}/writers.json
@@ -45,6 +53,20 @@ add_test(NAME problems_writers_vtu
                  ${RN_CLI_OUT}/writers.vtu --result ${RN_CLI_OUT}/writers.json --clamped-start)
 set_tests_properties(problems_writers_vtu PROPERTIES LABELS unit
                      FIXTURES_REQUIRED problems_writers_out)
+# Mechanical fields of the .vtu (moments, energy density, ...) at the initial state.
+set(RN_CHECK_FIELDS ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_vtu_fields.py)
+add_test(NAME problems_writers_vtu_fields
+         COMMAND ${RN_VTK_PYTHON} ${RN_CHECK_FIELDS} ${RN_CLI_OUT}/writers.vtu
+                 --result ${RN_CLI_OUT}/writers.json)
+set_tests_properties(problems_writers_vtu_fields PROPERTIES LABELS unit
+                     FIXTURES_REQUIRED problems_writers_out)
+# docs/render_vtu.py (the PNG of the docs) runs on a .vtu: a smoke test.
+add_test(NAME problems_render_vtu
+         COMMAND ${RN_VTK_PYTHON} ${PROJECT_SOURCE_DIR}/docs/render_vtu.py
+                 ${RN_CLI_OUT}/writers.vtu ${RN_CLI_OUT}/writers.png --field stretch)
+set_tests_properties(problems_render_vtu PROPERTIES LABELS unit
+                     FIXTURES_REQUIRED problems_writers_out
+                     PASS_REGULAR_EXPRESSION "wrote .*writers.png \\(100 segments")
 
 # ---- the command ----------------------------------------------------------------------
 # rn_cli_test(NAME EXIT_STATUS REGEX [STDERR_LINES n] [ABSENT path] [REMOVE path]
@@ -111,7 +133,86 @@ rn_cli_test(problems_cli_check_cantilever 0 "gradient vs central differences.*PA
 rn_cli_test(problems_cli_check_fails 1 "FAILED.*FAIL: worst relative error above"
             ARGS check ${cant} --random 0 --tol 1e-14)
 
+# ---- rodnet generate ------------------------------------------------------------------
+set(gen ${RN_CLI_OUT}/generate)
+rn_cli_test(problems_cli_generate_help 0
+            "Usage: rodnet generate KIND.*--cells NX.*--cell-size A.*--edges-per-rod N.*--section.*--material E,NU.*--joint-model.*--load"
+            ARGS generate --help)
+rn_cli_test(problems_cli_generate_unknown_kind 2 "unknown lattice 'hexagonal' \\(known: square"
+            ARGS generate hexagonal -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_bad_cells 2 "--cells expects NX\\[,NY\\[,NZ\\]\\] with integers in \\[1, 100000\\], got '3,0'"
+            ARGS generate square --cells 3,0 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_planar_cells 2 "the kagome lattice is planar, give NX\\[,NY\\]"
+            ARGS generate kagome --cells 2,2,2 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_planar_load 2 "the honeycomb lattice lies in the xy plane"
+            ARGS generate honeycomb --load stretch-z:0.1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_bad_section 2 "--section expects circle:R, rectangle:W,H or ellipse:A,B"
+            ARGS generate cubic --section rectangle:0.1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_bad_material 2 "--material expects E,NU with E > 0"
+            ARGS generate cubic --material 1,0.6 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_bad_load 2 "--load expects stretch-AXIS:STRAIN"
+            ARGS generate cubic --load shear-x:0.1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_bad_model 2 "--joint-model expects elastic or rigid, got 'welded'"
+            ARGS generate cubic --joint-model welded -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_missing_output 2 "missing -o SCENE.json" ARGS generate bcc)
+rn_cli_test(problems_cli_generate_unwritable 3 "no/such/dir/x.json: cannot create the file"
+            ABSENT ${gen}/no/such/dir/x.json ARGS generate bcc -o ${gen}/no/such/dir/x.json)
+rn_cli_test(problems_cli_generate_honeycomb 0
+            "honeycomb lattice, 38 rods, 30 joints \\(valence 2: 14, 3: 16\\); wrote"
+            REMOVE ${gen}/honeycomb_3x3.json FIXTURE_SETUP problems_generate_hc33
+            ARGS generate honeycomb --cells 3 --edges-per-rod 2 -o ${gen}/honeycomb_3x3.json)
+rn_cli_test(problems_cli_generate_check 0 "38 rods, 114 vertices.*PASS"
+            ARGS check ${gen}/honeycomb_3x3.json --random 1)
+set_tests_properties(problems_cli_generate_check PROPERTIES
+                     FIXTURES_REQUIRED problems_generate_hc33)
+
 if(RN_WITH_TRILINOS)
+  # End to end: generate -> solve -> result JSON and .vtu read back by VTK.
+  # rn_e2e_lattice(NAME RESULT_CHECKS GENERATE_ARGS...)
+  function(rn_e2e_lattice name checks)
+    set(scene ${gen}/${name}.json)
+    set(res ${gen}/${name}_result.json)
+    set(vtu ${gen}/${name}.vtu)
+    rn_cli_test(problems_e2e_${name}_generate 0 "wrote" REMOVE ${scene}
+                FIXTURE_SETUP problems_e2e_${name}_scene ARGS generate ${ARGN} -o ${scene})
+    rn_cli_test(problems_e2e_${name}_solve 0 "status +converged" REMOVE ${res} TIMEOUT 900
+                FIXTURE_SETUP problems_e2e_${name}_result
+                ARGS solve ${scene} -o ${res} --vtk ${vtu} --quiet)
+    set_tests_properties(problems_e2e_${name}_solve PROPERTIES
+                         FIXTURES_REQUIRED problems_e2e_${name}_scene)
+    string(REPLACE " " ";" checks "${checks}")
+    add_test(NAME problems_e2e_${name}_result
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_result.py ${res}
+                     --status converged --joint-at-rod-ends ${checks})
+    add_test(NAME problems_e2e_${name}_vtu
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_vtu.py ${vtu}
+                     --result ${res})
+    set_tests_properties(problems_e2e_${name}_result problems_e2e_${name}_vtu PROPERTIES
+                         LABELS unit FIXTURES_REQUIRED problems_e2e_${name}_result)
+  endfunction()
+  # A 4 x 4 honeycomb stretched by 0.1 % along x, both joint models.
+  foreach(model rigid elastic)
+    rn_e2e_lattice(honeycomb_${model} "--joints 48" honeycomb --cells 4,4
+                   --edges-per-rod 4 --joint-model ${model} --load stretch-x:0.001)
+  endforeach()
+  # A 3 x 3 square grid under grip stretch: every bar along x carries the
+  # strain exactly, nothing bends (closed form, both joint models).
+  foreach(model rigid elastic)
+    rn_e2e_lattice(square_${model} "--joints 16 --stretch-energy 12 1 0.02 0.001 1" square
+                   --cells 3 --edges-per-rod 4 --joint-model ${model}
+                   --load stretch-x:0.001)
+  endforeach()
+  # A 2 x 2 x 2 octet block compressed by 0.1 % along z.
+  rn_e2e_lattice(octet_rigid "--joints 63" octet --cells 2 --edges-per-rod 2
+                 --joint-model rigid --load compress-z:0.001)
+  # The portal frame example (an OBJ line graph) solved by the loop below.
+  add_test(NAME problems_example_portal_frame_vtu
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_vtu.py
+                   ${RN_CLI_OUT}/example_portal_frame.vtu
+                   --result ${RN_CLI_OUT}/example_portal_frame.json)
+  set_tests_properties(problems_example_portal_frame_vtu PROPERTIES LABELS unit
+                       DEPENDS problems_example_portal_frame)
+
   set(res ${RN_CLI_OUT}/cantilever_result.json)
   set(vtu ${RN_CLI_OUT}/cantilever.vtu)
   rn_cli_test(problems_cli_solve_cantilever 0
@@ -152,6 +253,22 @@ if(RN_WITH_TRILINOS)
                 ARGS solve ${scene} -o ${RN_CLI_OUT}/example_${stem}.json
                      --vtk ${RN_CLI_OUT}/example_${stem}.vtu --quiet)
   endforeach()
+  # The .vtu fields of solved scenes: moments in equilibrium with the tip force
+  # (cantilever) and the end couple (end_moment), energy density summing to the
+  # elastic energy.
+  add_test(NAME problems_cli_result_vtu_fields
+           COMMAND ${RN_VTK_PYTHON} ${RN_CHECK_FIELDS} ${vtu} --result ${res}
+                   --tip-force 0 0 -0.39)
+  set_tests_properties(problems_cli_result_vtu_fields PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_cantilever_result)
+  set_tests_properties(problems_example_end_moment PROPERTIES
+                       FIXTURES_SETUP problems_end_moment_result)
+  add_test(NAME problems_example_end_moment_vtu_fields
+           COMMAND ${RN_VTK_PYTHON} ${RN_CHECK_FIELDS} ${RN_CLI_OUT}/example_end_moment.vtu
+                   --result ${RN_CLI_OUT}/example_end_moment.json
+                   --end-moment 0 -0.24674011002723394 0)
+  set_tests_properties(problems_example_end_moment_vtu_fields PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_end_moment_result)
 else()
   rn_cli_test(problems_cli_solve_without_solver 4 "built without the solver"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json)

@@ -8,14 +8,25 @@
 Always: the required fields exist with the right types and finite values;
 energy equals the sum of energy_terms; a converged result has a gradient
 norm far below the initial one and load factor 1; every rod has
-len(theta) == len(vertices) - 1.  Options add: the status; the vertex count
+len(theta) == len(vertices) - 1; every joint has a name, a model, a finite
+position and a rotation matrix that is orthonormal with determinant 1.  Options add: the status; the vertex count
 of the first rod; a clamped start (first two vertices unmoved, given as
 x of vertex 0 and 1 on the x axis); inextensibility (every edge within 1e-3
 of L); the tip position of a cantilever elastica under a dead tip load P
 (-z) along x, clamped at x = X0 (a DER clamp fixes the first edge: the
 continuum clamp sits at its midpoint) with the tip at x = XTIP, computed here
 by shooting; tolerance 5e-4 of the length (the O(h^2) discretisation and the
-axial stretch give about 1e-4 at 100 edges)."""
+axial stretch give about 1e-4 at 100 edges).
+
+    [--joints N] [--joint-at-rod-ends]
+    [--stretch-energy NBARS E RADIUS STRAIN LENGTH]
+
+--joints: the number of joints; --joint-at-rod-ends: every joint's position
+equals the end vertex of some rod exactly (rod ends alias the joint);
+--stretch-energy: uniform axial strain of NBARS straight round bars (a
+square lattice stretched along its bars): stretching energy
+NBARS * E * pi RADIUS^2 * STRAIN^2 * LENGTH / 2 to 1e-8, bending and
+twisting below 1e-12 of it."""
 import argparse
 import json
 import math
@@ -62,6 +73,52 @@ def elastica_tip(P, EI, L, n=4000):
     return s[2], s[3]
 
 
+def det3(m):
+    return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+
+
+def check_joints(r, a):
+    if not isinstance(r.get("joints"), list):
+        fail("missing field 'joints' (a list)")
+    ends = set()
+    for rod in r["rods"]:
+        ends.add(tuple(rod["vertices"][0]))
+        ends.add(tuple(rod["vertices"][-1]))
+    for j in r["joints"]:
+        if not isinstance(j.get("name"), str) or j.get("model") not in ("rigid", "elastic"):
+            fail("joint %r: bad name or model" % j.get("name"))
+        p, R = j.get("position"), j.get("rotation")
+        if not isinstance(p, list) or len(p) != 3 or not isinstance(R, list) or len(R) != 3:
+            fail("joint %r: position or rotation missing" % j["name"])
+        for x in p:
+            finite(x, "joint position")
+        for row in R:
+            if len(row) != 3:
+                fail("joint %r: rotation rows must have 3 entries" % j["name"])
+            for x in row:
+                finite(x, "joint rotation")
+        err = max(abs(sum(R[k][i] * R[k][m] for k in range(3)) - (i == m))
+                  for i in range(3) for m in range(3))
+        if err > 1e-9 or abs(det3(R) - 1) > 1e-9:
+            fail("joint %r: rotation not orthonormal (err %g, det %r)" % (j["name"], err, det3(R)))
+        if a.joint_at_rod_ends and tuple(p) not in ends:
+            fail("joint %r at %r is not a rod end vertex" % (j["name"], p))
+    if a.joints is not None and len(r["joints"]) != a.joints:
+        fail("%d joints, expected %d" % (len(r["joints"]), a.joints))
+
+
+def check_stretch_energy(r, nbars, E, radius, strain, length):
+    want = nbars * 0.5 * E * math.pi * radius ** 2 * strain ** 2 * length
+    got = r["energy_terms"]
+    print("check_result: stretching energy %.17g, uniform strain %.17g" % (got["stretch"], want))
+    if abs(got["stretch"] / want - 1) > 1e-8:
+        fail("stretching energy %r, expected %r" % (got["stretch"], want))
+    if abs(got["bend"]) + abs(got["twist"]) > 1e-12 * want:
+        fail("bending %r / twisting %r energy in a uniform stretch" % (got["bend"], got["twist"]))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("result")
@@ -70,6 +127,9 @@ def main():
     ap.add_argument("--clamped-start", type=float, nargs=2)
     ap.add_argument("--edge-length", type=float)
     ap.add_argument("--elastica", type=float, nargs=4)
+    ap.add_argument("--joints", type=int)
+    ap.add_argument("--joint-at-rod-ends", action="store_true")
+    ap.add_argument("--stretch-energy", type=float, nargs=5)
     a = ap.parse_args()
     with open(a.result) as f:
         r = json.load(f)
@@ -112,6 +172,9 @@ def main():
                 finite(x, "vertex coordinate")
         for t in th:
             finite(t, "theta")
+    check_joints(r, a)
+    if a.stretch_energy:
+        check_stretch_energy(r, *a.stretch_energy)
     v = r["rods"][0]["vertices"]
     if a.vertices is not None and len(v) != a.vertices:
         fail("%d vertices, expected %d" % (len(v), a.vertices))

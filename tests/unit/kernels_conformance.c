@@ -268,7 +268,8 @@ static void make_terms(term *T) {
   T[2].tp = (rnk_twist_param){.beta = 1.3, .taubar = 0.1, .vlen = 0.9, .ref_twist = 0.4};
   T[3] = (term){
       .name = "moment", .n = 7, .energy = mo_e, .grad = mo_g, .hess = mo_h, .hvp = mo_v};
-  T[3].mp = (rnk_moment_param){.M = {0.3, -0.5, 0.8}, .angle0 = 0.25};
+  T[3].mp =
+      (rnk_moment_param){.M = {0.3, -0.5, 0.8}, .angle0 = 0.25, .b = {0.6, 0.0, 0.8}};
   T[4] = (term){.name = "bendtwist",
                 .n = 11,
                 .energy = bt_e,

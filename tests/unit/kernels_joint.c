@@ -80,7 +80,8 @@ static void random_joint(int side, double wmag, double q[10], rnk_frame *ref,
       (rnk_twist_param){.beta = 1.1, .taubar = 0.07, .vlen = 0.8, .ref_twist = 0.2};
 }
 
-static void check_fd(const double q[10], const rnk_frame *ref, const rnk_joint_end_param *p) {
+static void check_fd(const double q[10], const rnk_frame *ref,
+                     const rnk_joint_end_param *p) {
   double E, g[10], H[100], Hv[10], v[10];
   CHECK_STATUS(rnk_joint_end_grad(q, ref, p, &E, g), RNK_OK);
   CHECK_STATUS(rnk_joint_end_hess(q, ref, p, H), RNK_OK);

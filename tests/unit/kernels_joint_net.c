@@ -246,6 +246,7 @@ int main(void) {
         make_star(&s, v, rigid, 0.15);
         if (trial == 3) { /* with a couple on the rotation */
           s.j.M[0] = 0.3, s.j.M[1] = -0.2, s.j.M[2] = 0.5;
+          s.j.couple_p[0] = 0.8, s.j.couple_p[1] = 0.6, s.j.couple_p[2] = -0.24;
           s.j.angle0 = 0.1;
         }
         fd_check(&s, &wg, &wh, &og, &oh);
