@@ -238,6 +238,27 @@ size_t rn_network_hessian_bandwidth(const rn_network *net);
  * RN_DEGENERATE) neither the network nor x changes. */
 rn_status rn_network_update_reference(rn_network *net, double *x);
 
+/* ---- state snapshots (continuation, line searches, what-if studies) ------ */
+/* An opaque copy of a finalized network's whole mutable state: the current
+ * state (all DOFs, fixed ones included), the load factor, the rods' reference
+ * frames and reference twists, the couples' reference frames and angles, and
+ * the joints' reference rotations, couple frames and angles and stored end
+ * twists.  Restoring it makes every evaluation (energy, gradient, HVP,
+ * Hessian, results) bit-identical to what it was when the state was saved,
+ * whatever happened in between (solves, reference updates, load factor
+ * changes).  Topology, properties, BCs and loads are not part of it. */
+typedef struct rn_state rn_state;
+
+/* Save the state of a finalized network into a new snapshot *s (owned by the
+ * caller: rn_state_destroy).  RN_ERR_STATE before finalize, RN_ERR_ALLOC;
+ * *s is NULL on error. */
+rn_status rn_network_state_save(const rn_network *net, rn_state **s);
+/* Make s the network's state.  s must have been saved from this network
+ * (RN_ERR_ARG otherwise); it stays valid and can be restored again. */
+rn_status rn_network_state_restore(rn_network *net, const rn_state *s);
+/* Destroy a snapshot; accepts NULL and *s == NULL; sets *s to NULL. */
+void rn_state_destroy(rn_state **s);
+
 /* ---- results ------------------------------------------------------------- */
 /* Current vertex positions xyz[3*nv] and material angles theta[nv-1]
  * (relative to the reference directors; see rn_network_rod_frames). */

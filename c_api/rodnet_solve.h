@@ -17,14 +17,29 @@ extern "C" {
 
 typedef enum rn_solver_kind {
   /* rodnet's trust region: (H + lambda D) s = -g (D = |diag H| of the first
-   * iteration) solved by Belos MINRES with a banded-Cholesky (LAPACK)
-   * preconditioner; negative curvature handled (leaves saddles). */
+   * iteration) solved by Belos MINRES preconditioned by a Cholesky
+   * factorisation of H + (lambda + sigma) D (banded or sparse, see
+   * rn_factorization); negative curvature handled (leaves saddles). */
   RN_SOLVER_TR_MINRES = 0,
   /* ROL trust region with truncated CG (Steihaug-Toint), preconditioned. */
   RN_SOLVER_ROL_TR_TCG = 1,
   /* ROL line-search Newton-Krylov with Belos MINRES as the Krylov solver. */
   RN_SOLVER_ROL_LS_NEWTON = 2
 } rn_solver_kind;
+
+/* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
+ * search, negative curvature) and as the SPD preconditioner of every solver kind
+ * (docs/solvers.md). */
+typedef enum rn_factorization {
+  /* banded if the Hessian's half bandwidth is at most 64 (single rods, networks
+   * without joints), sparse otherwise (networks with joints) */
+  RN_FACTOR_AUTO = 0,
+  /* LAPACK banded Cholesky (dpbtrf): memory n (kd + 1), kd the half bandwidth;
+   * refused when that exceeds 4 GiB */
+  RN_FACTOR_BANDED = 1,
+  /* supernodal sparse Cholesky with a METIS nested-dissection ordering */
+  RN_FACTOR_SPARSE = 2
+} rn_factorization;
 
 /* Why a solve stopped. */
 typedef enum rn_solve_stop {
@@ -63,6 +78,7 @@ typedef struct rn_solve_options {
   int max_load_cuts;         /* automatic halvings allowed (default 8) */
   void (*progress)(void *user, const rn_iteration_info *info);
   void *progress_user;
+  rn_factorization factorization; /* default RN_FACTOR_AUTO */
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -77,6 +93,8 @@ typedef struct rn_solve_report {
   int load_steps;         /* continuation steps taken */
   double energy, gradient_norm, initial_gradient_norm;
   double time_s;
+  rn_factorization factorization; /* the one used (never RN_FACTOR_AUTO once
+                                     the solver ran) */
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
@@ -85,6 +103,10 @@ typedef struct rn_solve_report {
 const char *rn_solve_stop_name(rn_solve_stop s);
 const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
+/* Name of a factorisation ("auto", "banded", "sparse") and its parse
+ * (RN_ERR_ARG if unknown). */
+const char *rn_factorization_name(rn_factorization f);
+rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
 
 /* ---- runtime (Tpetra / Kokkos / MPI) --------------------------------------
  * The solvers run on Tpetra, whose runtime (Kokkos and, if not yet initialised,
@@ -109,8 +131,9 @@ void rn_runtime_finalize(void);
  * Load stepping: the target is the network's load factor at the call (normally
  * 1).  load_steps = N > 0 solves at target*k/N, k = 1..N, stopping at the first
  * step that does not converge.  load_steps = 0 tries the target directly; if
- * that does not converge it goes back to the last converged state (DOFs set
- * back, reference frames transported to them) and halves the increment, at most
+ * that does not converge it goes back to the last converged state (restored
+ * exactly from its rn_network_state_save snapshot: DOFs, reference frames,
+ * joint rotations) and halves the increment, at most
  * max_load_cuts times, doubling it again after each converged step.  When the
  * solve does not converge the network is left at the last iterate of the last
  * attempt, at that attempt's load factor (rn_network_load_factor tells).

@@ -20,9 +20,36 @@ static rn_status io_error(rn_context *ctx, const char *path, const char *what, i
   return rn_context_set_error(ctx, RN_ERR_IO, "%s: %s: %s", path, what, strerror(err));
 }
 
+/* 1 if path exists and is neither a regular file nor a directory (a device
+ * such as /dev/null or /dev/stdout, a FIFO): such a target is written in
+ * place, never replaced by a rename. */
+static int is_special(const char *path) {
+  struct stat sb;
+  return stat(path, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode);
+}
+
+static rn_status write_in_place(rn_context *ctx, const char *path, rn_file_writer write,
+                                void *user) {
+  FILE *f = fopen(path, "wb");
+  if (!f) return io_error(ctx, path, "cannot open for writing", errno);
+  rn_status st = write(f, user, ctx);
+  int err = 0;
+  if (!st && (fflush(f) != 0 || ferror(f))) {
+    err = errno;
+    st = RN_ERR_IO;
+  }
+  if (fclose(f) != 0 && !st) {
+    err = errno;
+    st = RN_ERR_IO;
+  }
+  if (st == RN_ERR_IO && err) st = io_error(ctx, path, "write failed", err);
+  return st;
+}
+
 rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer write,
                                void *user) {
   if (!path || !write) return rn_context_set_error(ctx, RN_ERR_ARG, "write: no path");
+  if (is_special(path)) return write_in_place(ctx, path, write, user);
   char *tmp = temp_name(path);
   if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
   FILE *f = fopen(tmp, "wb");
@@ -56,6 +83,10 @@ rn_status rn_file_probe_writable(rn_context *ctx, const char *path) {
   struct stat sb;
   if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
     return rn_context_set_error(ctx, RN_ERR_IO, "%s: is a directory", path);
+  if (is_special(path))
+    return access(path, W_OK) == 0
+               ? RN_OK
+               : io_error(ctx, path, "cannot open for writing", errno);
   char *tmp = temp_name(path);
   if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
   FILE *f = fopen(tmp, "wb");

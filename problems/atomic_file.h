@@ -3,6 +3,9 @@
  * The content goes to "<path>.tmp.<pid>" in the same directory, which is
  * renamed over path only when everything was written and flushed; on any
  * error the temporary file is removed and path is left as it was.
+ * An existing path that is neither a regular file nor a directory (a device
+ * such as /dev/null or /dev/stdout, a FIFO) is written in place instead:
+ * a rename would replace the device by a regular file.
  */
 #ifndef RN_ATOMIC_FILE_H
 #define RN_ATOMIC_FILE_H

@@ -166,7 +166,7 @@ static int parse_joint_model(gen_args *a, const char *v) {
 
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
-  static const char *const names[] = {"--output",  "--cells",    "--cell-size",
+  static const char *const names[] = {"--output",        "--cells",   "--cell-size",
                                       "--edges-per-rod", "--section", "--material",
                                       "--joint-model",   "--load"};
   const char *v = NULL;
@@ -230,8 +230,9 @@ static int check_args(gen_args *a) {
   if (!a->output) return rn_cli_usage_error("generate", "missing -o SCENE.json");
   int dim = rn_lattice_kind_dimension(a->kind);
   if (a->ncells > dim)
-    return rn_cli_usage_error("generate", "--cells: the %s lattice is planar, give "
-                                          "NX[,NY]",
+    return rn_cli_usage_error("generate",
+                              "--cells: the %s lattice is planar, give "
+                              "NX[,NY]",
                               a->kind_name);
   if (dim == 2 && a->sc.load != RN_LLOAD_NONE && a->sc.load_axis == 2)
     return rn_cli_usage_error("generate",
@@ -323,7 +324,7 @@ int rn_cli_generate(int argc, char **argv) {
   if (!st) st = rn_lattice_write_scene(ctx, a.output, lat, &a.sc);
   if (st) {
     fprintf(stderr, "rodnet generate: %s\n", rn_context_last_error(ctx));
-    rc = st == RN_ERR_IO ? RN_EXIT_INPUT
+    rc = st == RN_ERR_IO                            ? RN_EXIT_INPUT
          : (st == RN_ERR_ARG || st == RN_ERR_RANGE) ? RN_EXIT_USAGE
                                                     : RN_EXIT_INTERNAL;
   } else if (!a.quiet)

@@ -389,7 +389,8 @@ int rn_lattice_num_nodes(const rn_lattice *L) { return L ? L->nn : 0; }
 int rn_lattice_num_bars(const rn_lattice *L) { return L ? L->nb : 0; }
 
 void rn_lattice_node(const rn_lattice *L, int n, double xyz[3]) {
-  for (int d = 0; d < 3; d++) xyz[d] = (double)(L->grid[3 * n + d] - L->lo[d]) * L->scale[d];
+  for (int d = 0; d < 3; d++)
+    xyz[d] = (double)(L->grid[3 * n + d] - L->lo[d]) * L->scale[d];
 }
 
 void rn_lattice_bar(const rn_lattice *L, int b, int nodes[2]) {

@@ -62,8 +62,9 @@ static void put_rods(scene_out *o) {
     rn_lattice_bar(o->lat, b, n);
     rn_lattice_node(o->lat, n[0], p);
     rn_lattice_node(o->lat, n[1], q);
-    fprintf(f, "    {\"name\": \"e%d\", \"material\": \"material\", \"section\": "
-               "\"section\",\n     \"line\": {\"from\": ",
+    fprintf(f,
+            "    {\"name\": \"e%d\", \"material\": \"material\", \"section\": "
+            "\"section\",\n     \"line\": {\"from\": ",
             b + 1);
     put_vec(f, p);
     fputs(", \"to\": ", f);
@@ -80,7 +81,8 @@ static int build_incidence(scene_out *o) {
   o->first = calloc((size_t)nn + 1, sizeof *o->first);
   o->inc = malloc(2 * (size_t)(nb ? nb : 1) * sizeof *o->inc);
   if (!o->first || !o->inc) return 0;
-  for (int n = 0; n < nn; n++) o->first[n + 1] = o->first[n] + rn_lattice_valence(o->lat, n);
+  for (int n = 0; n < nn; n++)
+    o->first[n + 1] = o->first[n] + rn_lattice_valence(o->lat, n);
   int *fill = malloc((size_t)(nn ? nn : 1) * sizeof *fill);
   if (!fill) return 0;
   memcpy(fill, o->first, (size_t)nn * sizeof *fill);
@@ -201,16 +203,14 @@ rn_status rn_lattice_write_scene(rn_context *ctx, const char *path, const rn_lat
                                  const rn_lattice_scene *opt) {
   if (!lat || !opt || opt->edges_per_rod < 1)
     return rn_context_set_error(ctx, RN_ERR_ARG, "generate: bad arguments");
-  if (opt->load != RN_LLOAD_NONE &&
-      (opt->load_axis < 0 || opt->load_axis > 2 ||
-       !(rn_lattice_extent(lat, opt->load_axis) > 0)))
-    return rn_context_set_error(ctx, RN_ERR_ARG,
-                                "generate: the %s lattice is flat along %c: it cannot "
-                                "be loaded along that axis",
-                                rn_lattice_kind_name(rn_lattice_get_kind(lat)),
-                                "xyz"[opt->load_axis < 0 || opt->load_axis > 2
-                                          ? 0
-                                          : opt->load_axis]);
+  if (opt->load != RN_LLOAD_NONE && (opt->load_axis < 0 || opt->load_axis > 2 ||
+                                     !(rn_lattice_extent(lat, opt->load_axis) > 0)))
+    return rn_context_set_error(
+        ctx, RN_ERR_ARG,
+        "generate: the %s lattice is flat along %c: it cannot "
+        "be loaded along that axis",
+        rn_lattice_kind_name(rn_lattice_get_kind(lat)),
+        "xyz"[opt->load_axis < 0 || opt->load_axis > 2 ? 0 : opt->load_axis]);
   scene_out o = {NULL, lat, opt, NULL, NULL};
   rn_status st = rn_file_write_atomic(ctx, path, write_scene, &o);
   free(o.first);

@@ -63,10 +63,10 @@ fail_at(const obj_reader *r, long line, const char *fmt, ...) {
 static const char *shown(token t, char *buf, size_t cap) {
   size_t j = 0;
   for (size_t i = 0; i < t.n && j + 4 < cap && i < 32; i++)
-    buf[j++] = ((unsigned char)t.s[i] < 0x20 || (unsigned char)t.s[i] >= 0x7f ||
-                t.s[i] == '\'')
-                   ? '?'
-                   : t.s[i];
+    buf[j++] =
+        ((unsigned char)t.s[i] < 0x20 || (unsigned char)t.s[i] >= 0x7f || t.s[i] == '\'')
+            ? '?'
+            : t.s[i];
   if (t.n > 32 && j + 4 < cap) {
     memcpy(buf + j, "...", 3);
     j += 3;
@@ -173,8 +173,9 @@ static rn_status read_v(obj_reader *r, const char *p, const char *end) {
     if (st) return st;
   }
   if (next_token(&p, end).n)
-    return fail_at(r, r->line, "a v record takes exactly 3 coordinates (x y z); "
-                               "weights and vertex colours are not supported");
+    return fail_at(r, r->line,
+                   "a v record takes exactly 3 coordinates (x y z); "
+                   "weights and vertex colours are not supported");
   return push_vertex(r, x);
 }
 
@@ -220,13 +221,14 @@ static rn_status read_l(obj_reader *r, const char *p, const char *end) {
     prev = i;
   }
   if (!st && count < 2)
-    st = fail_at(r, r->line, "an l record needs at least 2 vertex indices, got %d",
-                 count);
+    st =
+        fail_at(r, r->line, "an l record needs at least 2 vertex indices, got %d", count);
   return st;
 }
 
 static int ignored_record(token t) {
-  static const char *const names[] = {"vn", "vt", "vp", "o", "g", "s", "mtllib", "usemtl"};
+  static const char *const names[] = {"vn", "vt", "vp",     "o",
+                                      "g",  "s",  "mtllib", "usemtl"};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
     if (token_is(t, names[i])) return 1;
   return 0;
@@ -241,8 +243,9 @@ static rn_status read_line(obj_reader *r, const char *p, const char *end) {
   if (token_is(kw, "v")) return read_v(r, p, end);
   if (token_is(kw, "l")) return read_l(r, p, end);
   if (token_is(kw, "f"))
-    return fail_at(r, r->line, "faces (f records) are not supported: rodnet reads line "
-                               "graphs (v and l records)");
+    return fail_at(r, r->line,
+                   "faces (f records) are not supported: rodnet reads line "
+                   "graphs (v and l records)");
   return fail_at(r, r->line,
                  "unknown record '%s' (rodnet reads v and l records and ignores vn, "
                  "vt, vp, o, g, s, mtllib, usemtl)",

@@ -549,6 +549,8 @@ void rn_scene_destroy(rn_scene **sp) {
   for (int i = 0; i < s->njoints; i++) free(s->joints[i].name);
   free(s->joints);
   free(s->obj_path);
+  rn_name_index_free(&s->rod_names);
+  rn_name_index_free(&s->joint_names);
   rn_network_destroy(&s->net);
   free(s->label);
   free(s->description);
@@ -563,9 +565,7 @@ const char *rn_scene_description(const rn_scene *s) {
 }
 
 int rn_scene_find_rod(const rn_scene *s, const char *name) {
-  for (int i = 0; s && name && i < s->nrods; i++)
-    if (strcmp(s->rods[i].name, name) == 0) return i;
-  return -1;
+  return s ? rn_name_index_get(&s->rod_names, name) : -1;
 }
 
 long rn_scene_num_vertices(const rn_scene *s) {

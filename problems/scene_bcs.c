@@ -216,11 +216,12 @@ static rn_status read_displace_joint(rn_scene_parser *p, const cJSON *v) {
     return rn_jwalk_error(&p->w, "give \"value\" (a displacement) and/or \"rotation\" "
                                  "(a rotation vector)");
   if (!J->clamped && (has_rot || !J->pinned))
-    return rn_jwalk_error(&p->w,
-                          "joint \"%s\" is not %s: add {\"type\": \"%s\", "
-                          "\"joint\": \"%s\"}",
-                          J->name, has_rot ? "clamped (a rotation needs a clamp)" : "pinned or clamped",
-                          has_rot ? "clamp" : "pin", J->name);
+    return rn_jwalk_error(
+        &p->w,
+        "joint \"%s\" is not %s: add {\"type\": \"%s\", "
+        "\"joint\": \"%s\"}",
+        J->name, has_rot ? "clamped (a rotation needs a clamp)" : "pinned or clamped",
+        has_rot ? "clamp" : "pin", J->name);
   return lib(&p->w, rn_network_displace_joint(p->scene->net, j, has_d ? d : NULL,
                                               has_rot ? rot : NULL));
 }

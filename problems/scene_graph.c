@@ -33,9 +33,8 @@ static char *resolve_path(const char *label, const char *path) {
 }
 
 static rn_status read_spec(rn_scene_parser *p, const cJSON *v, graph_spec *g) {
-  static const char *const keys[] = {"obj",     "edges_per_rod", "material",
-                                     "section", "joint_model",   "d1",
-                                     NULL};
+  static const char *const keys[] = {
+      "obj", "edges_per_rod", "material", "section", "joint_model", "d1", NULL};
   rn_jwalk *w = &p->w;
   rn_status st = rn_json_check_keys(w, v, keys);
   if (!st) st = rn_jm_string(w, v, "obj", 1, &g->obj);
@@ -117,11 +116,14 @@ static rn_status add_vertex_joints(rn_scene_parser *p, const char *file,
                                    int first_rod) {
   int nv = rn_obj_graph_num_vertices(g), ns = rn_obj_graph_num_segments(g);
   int *start = calloc((size_t)nv + 1, sizeof *start);
-  int *rods = malloc(2 * (size_t)ns * sizeof *rods), *ends = malloc(2 * (size_t)ns * sizeof *ends);
-  rn_status st = (start && rods && ends) ? RN_OK
-                                         : rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  int *rods = malloc(2 * (size_t)ns * sizeof *rods),
+      *ends = malloc(2 * (size_t)ns * sizeof *ends);
+  rn_status st = (start && rods && ends)
+                     ? RN_OK
+                     : rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   /* incident rod ends grouped by vertex (counting sort) */
-  for (int v = 0; v < nv && !st; v++) start[v + 1] = start[v] + rn_obj_graph_valence(g, v);
+  for (int v = 0; v < nv && !st; v++)
+    start[v + 1] = start[v] + rn_obj_graph_valence(g, v);
   for (int s = 0; s < ns && !st; s++) {
     int e[2];
     rn_obj_graph_segment(g, s, e);

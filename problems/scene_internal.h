@@ -5,6 +5,7 @@
 #ifndef RN_SCENE_INTERNAL_H
 #define RN_SCENE_INTERNAL_H
 
+#include "name_index.h"
 #include "scene.h"
 #include "scene_json.h"
 
@@ -41,6 +42,7 @@ struct rn_scene {
   int njoints, cap_joints;
   rn_scene_joint *joints;
   char *obj_path; /* the OBJ file of the "graph" (resolved), NULL if none */
+  rn_name_index rod_names, joint_names; /* name -> index */
   unsigned solver_set; /* bits: which fields of solver_opt the scene sets */
   rn_solve_options solver_opt;
 };
@@ -100,8 +102,7 @@ rn_status rn_scene_joint_model_ref(rn_jwalk *w, const cJSON *obj, const char *ke
  * edges.  Library errors are reported at the walker's path.  *rod receives
  * its index. */
 rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
-                           const double *xyz, const double *d1, int m, int sec,
-                           int *rod);
+                           const double *xyz, const double *d1, int m, int sec, int *rod);
 /* Add a joint of the rod ends (rods[k], ends[k]) to the network and the
  * scene (copies name).  The ends must be free of other joints (checked by
  * the caller); library errors are reported at the walker's path. */

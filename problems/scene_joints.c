@@ -18,9 +18,7 @@ static char *dup_string(const char *s) {
 }
 
 int rn_scene_find_joint(const rn_scene *s, const char *name) {
-  for (int i = 0; s && name && i < s->njoints; i++)
-    if (strcmp(s->joints[i].name, name) == 0) return i;
-  return -1;
+  return s ? rn_name_index_get(&s->joint_names, name) : -1;
 }
 
 rn_status rn_scene_joint_initial_position(const rn_scene *s, int joint, double x[3]) {
@@ -109,6 +107,8 @@ rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, in
   memcpy(J->x0, s->rods[rods[0]].end_xyz[ends[0]], sizeof J->x0);
   s->njoints++;
   *joint = idx;
+  if (rn_name_index_put(&s->joint_names, J->name, idx))
+    return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   return RN_OK;
 }
 
@@ -155,7 +155,8 @@ static rn_status check_ends_meet(rn_scene_parser *p, int n, const int *rods,
   const rn_scene *s = p->scene;
   double lmin = INFINITY;
   for (int k = 0; k < n; k++)
-    if (s->rods[rods[k]].end_len[ends[k]] < lmin) lmin = s->rods[rods[k]].end_len[ends[k]];
+    if (s->rods[rods[k]].end_len[ends[k]] < lmin)
+      lmin = s->rods[rods[k]].end_len[ends[k]];
   const double *x0 = s->rods[rods[0]].end_xyz[ends[0]];
   for (int k = 1; k < n; k++) {
     const double *x = s->rods[rods[k]].end_xyz[ends[k]];

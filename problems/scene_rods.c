@@ -410,8 +410,8 @@ rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
   else if ((st = rn_network_add_rod(s->net, name, nv, xyz, d1, &idx)))
     st = rn_scene_lib_error(p, st);
   else if (idx != s->nrods)
-    st = rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "rod index %d, expected %d", idx,
-                       s->nrods);
+    st =
+        rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "rod index %d, expected %d", idx, s->nrods);
   if (st) {
     free(r->name);
     free(r->pinned);
@@ -424,6 +424,8 @@ rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
   r->end_len[RN_END] = dist3(&xyz[3 * (nv - 2)], &xyz[3 * (nv - 1)]);
   s->nrods++;
   *rod = idx;
+  if (rn_name_index_put(&s->rod_names, r->name, idx))
+    return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   return set_properties(p, idx, 0, nv - 2, m, sec);
 }
 

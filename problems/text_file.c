@@ -59,7 +59,8 @@ rn_status rn_text_file_read(rn_context *ctx, const char *path, size_t max_bytes,
   fclose(f);
   if (st == RN_ERR_ALLOC)
     return rn_context_set_error(ctx, st, "%s: out of memory reading the file", path);
-  if (st) return rn_context_set_error(ctx, st, "%s: cannot read: %s", path, strerror(err));
+  if (st)
+    return rn_context_set_error(ctx, st, "%s: cannot read: %s", path, strerror(err));
   if (*len > max_bytes) {
     free(*text);
     *text = NULL;

@@ -28,7 +28,10 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 failed=()
 if [ "${RN_SKIP_ASAN:-0}" != 1 ]; then
   stamp "sanitizer build (build-asan)"
+  # -O1 -g1 (line tables) halves the compile time of the Trilinos translation units
+  # under ASan compared with -O2 -g; assertions stay on (no NDEBUG).
   if cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRN_WERROR=ON \
+       -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
        -DRN_SANITIZE=address,undefined -DRN_BUILD_BENCHMARKS=OFF </dev/null &&
      cmake --build build-asan -j"$jobs" </dev/null; then
     stamp "sanitizer tests (unit|validation)"

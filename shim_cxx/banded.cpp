@@ -57,12 +57,8 @@ BandedSpd::BandedSpd(size_t n, size_t kd) : n_(n), kd_(kd) {
   ab_.assign(n * (kd + 1), 0.0);
 }
 
-void BandedSpd::load(const Problem &p, double shift, const double *m) {
+bool BandedSpd::factor(const Problem &p, double shift, const double *m) {
   load_band(p, shift, m, kd_, ab_);
-  factored_ = false;
-}
-
-bool BandedSpd::factor() {
   const int n = static_cast<int>(n_), kd = static_cast<int>(kd_), ld = kd + 1;
   int info = 0;
   if (n > 0) dpbtrf_("L", &n, &kd, ab_.data(), &ld, &info, 1);
@@ -76,18 +72,6 @@ void BandedSpd::solve(double *x) const {
   int info = 0;
   if (n > 0) dpbtrs_("L", &n, &kd, &one, ab_.data(), &ld, x, &n, &info, 1);
   if (info != 0) throw Error(RN_ERR_LAPACK, "rn_solve: dpbtrs failed");
-}
-
-double factor_shifted(BandedSpd &f, const Problem &p, double shift, const double *m) {
-  f.load(p, shift, m);
-  if (f.factor()) return 0.0;
-  for (double sigma = 1e-10; sigma <= 1e10; sigma *= 10.0) {
-    f.load(p, shift + sigma, m);
-    if (f.factor()) return sigma;
-  }
-  throw Error(RN_ERR_LAPACK,
-              "rn_solve: no diagonal shift makes the Hessian positive definite "
-              "(non-finite Hessian?)");
 }
 
 double banded_min_eigenvalue(const Problem &p) {

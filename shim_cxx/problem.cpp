@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "shim_error.hpp"
+#include "sparse_cholesky.hpp"
 
 namespace rodnet {
 
@@ -59,6 +60,11 @@ void Problem::pattern_apply(const double *m, const double *v, double *y) const {
     for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += m[k] * v[col_[k]];
     y[i] = s;
   }
+}
+
+std::shared_ptr<const SparseAnalysis> Problem::sparse_analysis() {
+  if (!analysis_) analysis_ = std::make_shared<SparseAnalysis>(n_, rowptr_, col_);
+  return analysis_;
 }
 
 void Problem::accept(double *x) {

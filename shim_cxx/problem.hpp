@@ -10,11 +10,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rodnet.h"
 
 namespace rodnet {
+
+class SparseAnalysis;
 
 struct Counters {
   long energy = 0, gradient = 0, hvp = 0, hessian = 0, krylov = 0;
@@ -47,6 +50,10 @@ public:
   const int32_t *col() const { return col_; }
   const double *values() const { return vals_.data(); }
 
+  // Symbolic analysis of the Hessian's pattern for the sparse Cholesky factorisation
+  // (sparse_cholesky.hpp), computed on first use and shared by every factorisation.
+  std::shared_ptr<const SparseAnalysis> sparse_analysis();
+
   // Accept x as the new state (explicit reference update).  x is updated in place
   // (rigid-joint rotation DOFs move into the reference; the energy is unchanged).
   void accept(double *x);
@@ -59,6 +66,7 @@ private:
   const int64_t *rowptr_ = nullptr;
   const int32_t *col_ = nullptr;
   std::vector<double> vals_;
+  std::shared_ptr<const SparseAnalysis> analysis_;
 };
 
 // Small dense vector helpers on host arrays of length n.

@@ -84,7 +84,7 @@ void run_rol_ls_newton(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   auto xmv = Teuchos::rcp(new MV(map, 1));
   check_status(rn_network_get_dofs(p.network(), host_data(*xmv)), "rn_network_get_dofs");
   TpetraVector x(xmv), g(Teuchos::rcp(new MV(map, 1)));
-  RodObjective obj(p);
+  RodObjective obj(p, opt);
 
   ROL::ParameterList list;
   set_common_rol_parameters(list, opt);

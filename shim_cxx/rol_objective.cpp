@@ -23,8 +23,8 @@ double *host_data(RolVector &v) {
   return host_data(*tv->getVector());
 }
 
-RodObjective::RodObjective(Problem &p)
-    : p_(p), x_acc_(p.size()), x_prev_(p.size()), factor_(p.size(), p.bandwidth()) {}
+RodObjective::RodObjective(Problem &p, const rn_solve_options &opt)
+    : p_(p), factorization_(opt.factorization), x_acc_(p.size()), x_prev_(p.size()) {}
 
 bool RodObjective::at_accepted(const double *x) const {
   return std::memcmp(x, x_acc_.data(), x_acc_.size() * sizeof(double)) == 0;
@@ -61,7 +61,7 @@ void RodObjective::precond(RolVector &pv, const RolVector &v, const RolVector & 
   ensure_factor();
   double *out = host_data(pv);
   std::copy(host_data(v), host_data(v) + p_.size(), out);
-  factor_.solve(out);
+  factor_->solve(out);
 }
 
 // Accept moves the reference state and may change x (rigid-joint rotations move into
@@ -119,7 +119,8 @@ void RodObjective::ensure_hessian() {
 void RodObjective::ensure_factor() {
   if (factor_ok_) return;
   ensure_hessian();
-  sigma_ = factor_shifted(factor_, p_, 0.0, metric_.data());
+  if (!factor_) factor_ = make_spd_factor(p_, factorization_);
+  sigma_ = factor_shifted(*factor_, p_, 0.0, metric_.data());
   factor_ok_ = true;
 }
 

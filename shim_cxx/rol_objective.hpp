@@ -3,8 +3,9 @@
 // RodObjective evaluates the pure functions of rodnet.h at whatever point ROL asks
 // (trial points included) and moves the network's reference state only on
 // update(x, UpdateType::Accept).  The Hessian at the accepted state is assembled
-// once (CSR) and used for hessVec and for the SPD preconditioner (banded Cholesky of
-// H + sigma D, sigma >= 0 the smallest shift that factors, D = |diag H| floored);
+// once (CSR) and used for hessVec and for the SPD preconditioner (Cholesky of
+// H + sigma D, banded or sparse (spd_factor.hpp), sigma >= 0 the smallest shift that
+// factors, D = |diag H| floored);
 // hessVec at any other point uses the matrix-free HVP.  A degenerate trial point has
 // value +inf (ROL then rejects the step / backtracks).
 //
@@ -20,10 +21,10 @@
 #include <ROL_StatusTest.hpp>
 #include <ROL_TpetraMultiVector.hpp>
 
-#include "banded.hpp"
 #include "minres.hpp"
 #include "monitor.hpp"
 #include "problem.hpp"
+#include "spd_factor.hpp"
 
 namespace rodnet {
 
@@ -36,7 +37,7 @@ double *host_data(RolVector &v);
 
 class RodObjective : public ROL::Objective<double> {
 public:
-  explicit RodObjective(Problem &p);
+  RodObjective(Problem &p, const rn_solve_options &opt);
 
   double value(const RolVector &x, double &tol) override;
   void gradient(RolVector &g, const RolVector &x, double &tol) override;
@@ -61,13 +62,14 @@ private:
   void ensure_factor();
 
   Problem &p_;
+  rn_factorization factorization_;
   std::vector<double> x_acc_, x_prev_;
   std::vector<double> metric_; // D = |diag H| (first Hessian), CSR values on its pattern
   std::vector<double> x_last_; // point of the last finite value() (E there: e_last_)
   double e_last_ = 0.0;
   double e_acc_ = 0.0, e_prev_ = 0.0, sigma_ = 0.0;
   bool have_energy_ = false, accepted_ = false, hess_ok_ = false, factor_ok_ = false;
-  BandedSpd factor_;
+  std::unique_ptr<SpdFactor> factor_; // created on first use
 };
 
 class RodStatusTest : public ROL::StatusTest<double> {

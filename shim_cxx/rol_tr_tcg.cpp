@@ -1,9 +1,9 @@
 // rol_tr_tcg.cpp - ROL trust region with truncated CG (RN_SOLVER_ROL_TR_TCG).
 //
 // ROL::TypeU::TrustRegionAlgorithm, "Truncated CG" subproblem (Steihaug-Toint, in the
-// preconditioner's norm), preconditioned by RodObjective::precond (banded Cholesky
-// of the shifted Hessian).  Krylov iterations are counted as Hessian-vector products
-// (one per CG iteration).
+// preconditioner's norm), preconditioned by RodObjective::precond (Cholesky
+// factorisation of the shifted Hessian, spd_factor.hpp).  Krylov iterations are counted
+// as Hessian-vector products (one per CG iteration).
 #include <ROL_TypeU_TrustRegionAlgorithm.hpp>
 #include <Teuchos_oblackholestream.hpp>
 
@@ -18,7 +18,7 @@ void run_rol_tr_tcg(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   auto xmv = Teuchos::rcp(new MV(map, 1));
   check_status(rn_network_get_dofs(p.network(), host_data(*xmv)), "rn_network_get_dofs");
   TpetraVector x(xmv), g(Teuchos::rcp(new MV(map, 1)));
-  RodObjective obj(p);
+  RodObjective obj(p, opt);
 
   ROL::ParameterList list;
   set_common_rol_parameters(list, opt);

@@ -18,6 +18,7 @@
 #include "rodnet_solve.h"
 #include "shim_error.hpp"
 #include "solvers.hpp"
+#include "spd_factor.hpp"
 
 namespace rodnet {
 namespace {
@@ -74,6 +75,10 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "load_steps must be >= 0";
   else if (o.max_load_cuts < 0 || o.max_load_cuts > 60)
     bad = "max_load_cuts must be in [0, 60]";
+  else if (enum_value(o.factorization) != RN_FACTOR_AUTO &&
+           enum_value(o.factorization) != RN_FACTOR_BANDED &&
+           enum_value(o.factorization) != RN_FACTOR_SPARSE)
+    bad = "unknown factorization";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
 }
@@ -84,6 +89,7 @@ struct SolveTotals {
   long krylov = 0;
   rn_solve_stop stop = RN_STOP_FAILED;
   double energy = 0.0, gnorm = 0.0;
+  rn_factorization factorization = RN_FACTOR_AUTO;
 };
 
 // One minimisation at load factor t from the current state.
@@ -111,11 +117,24 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t,
   return mon.converged();
 }
 
-// Back to a converged state: its DOFs, with the reference frames transported to it.
-void restore_state(Problem &p, std::vector<double> &x, double t) {
-  check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
-  p.accept(x.data());
-}
+// A snapshot of the network's whole mutable state (rn_network_state_save), owned.
+class Snapshot {
+public:
+  Snapshot() = default;
+  ~Snapshot() { rn_state_destroy(&s_); }
+  Snapshot(const Snapshot &) = delete;
+  Snapshot &operator=(const Snapshot &) = delete;
+  void save(const rn_network *net) {
+    rn_state_destroy(&s_);
+    check_status(rn_network_state_save(net, &s_), "rn_network_state_save");
+  }
+  void restore(rn_network *net) const {
+    check_status(rn_network_state_restore(net, s_), "rn_network_state_restore");
+  }
+
+private:
+  rn_state *s_ = nullptr;
+};
 
 // Fixed continuation: load_steps equal increments up to the target.
 void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
@@ -128,12 +147,13 @@ void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
 }
 
 // Automatic continuation: the full step first; on failure back to the last converged
-// state with half the increment (at most max_load_cuts times), doubling it again
-// after each success.
+// state (its snapshot: exact, reference frames and joint rotations included) with
+// half the increment (at most max_load_cuts times), doubling it again after each
+// success.
 void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
                         double force_scale, Clock::time_point start, SolveTotals &tot) {
-  std::vector<double> x_done(p.size());
-  check_status(rn_network_get_dofs(p.network(), x_done.data()), "rn_network_get_dofs");
+  Snapshot done;
+  done.save(p.network());
   double t_done = 0.0, inc = target;
   int cuts = 0;
   for (;;) {
@@ -141,14 +161,13 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
     if (solve_load_step(p, opt, t, force_scale, start, tot)) {
       if (t >= target) return;
       t_done = t;
-      check_status(rn_network_get_dofs(p.network(), x_done.data()),
-                   "rn_network_get_dofs");
+      done.save(p.network());
       inc *= 2.0;
     } else {
       if (cuts >= opt.max_load_cuts || target <= 0.0) return;
       ++cuts;
       inc *= 0.5;
-      restore_state(p, x_done, t_done);
+      done.restore(p.network());
     }
   }
 }
@@ -170,6 +189,7 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->gradient_norm = tot.gnorm;
   rep->initial_gradient_norm = g0;
   rep->time_s = seconds;
+  rep->factorization = tot.factorization;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
@@ -183,6 +203,7 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
     throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
   const double force_scale = norm2(p.size(), g.data());
   SolveTotals tot;
+  tot.factorization = choose_factor_kind(p, opt.factorization);
   if (p.size() == 0) { // every DOF is prescribed: nothing to solve
     double E = 0.0;
     if (p.energy(x.data(), &E) != RN_OK)
@@ -244,6 +265,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->max_load_cuts = 8;
   opt->progress = nullptr;
   opt->progress_user = nullptr;
+  opt->factorization = RN_FACTOR_AUTO;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -283,6 +305,30 @@ rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
   for (rn_solver_kind kind : kinds) {
     if (std::strcmp(name, rn_solver_name(kind)) == 0) {
       *k = kind;
+      return RN_OK;
+    }
+  }
+  return RN_ERR_ARG;
+}
+
+const char *rn_factorization_name(rn_factorization f) {
+  switch (rodnet::enum_value(f)) {
+  case RN_FACTOR_AUTO:
+    return "auto";
+  case RN_FACTOR_BANDED:
+    return "banded";
+  case RN_FACTOR_SPARSE:
+    return "sparse";
+  }
+  return "unknown";
+}
+
+rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
+  if (!name || !f) return RN_ERR_ARG;
+  const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE};
+  for (rn_factorization kind : kinds) {
+    if (std::strcmp(name, rn_factorization_name(kind)) == 0) {
+      *f = kind;
       return RN_OK;
     }
   }

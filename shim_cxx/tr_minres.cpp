@@ -4,9 +4,10 @@
 // state x (reference frames of x):
 //  1. gradient g and CSR Hessian H at x; metric D = |diag H| of the first iteration
 //     (floored), fixed for the load step; trust-region norm ||s||_D = sqrt(s' D s).
-//  2. Factor H (banded Cholesky).  If it fails, the smallest sigma that factors
-//     H + sigma D is found and inverse iteration with that factorisation gives the
-//     lowest eigenpair (mu, v) of the pencil (H, D).
+//  2. Factor H (Cholesky: banded for single rods, sparse with a nested-dissection
+//     ordering for networks with joints; spd_factor.hpp).  If it fails, the smallest
+//     sigma that factors H + sigma D is found and inverse iteration with that
+//     factorisation gives the lowest eigenpair (mu, v) of the pencil (H, D).
 //  3. Multiplier lambda >= max(0, -mu): lambda = 0 if H is positive definite and the
 //     Newton step fits the radius; otherwise a More-Sorensen iteration on lambda
 //     (Newton on 1/||s(lambda)||_D - 1/radius, safeguarded, with factorisations of
@@ -15,8 +16,8 @@
 //     where g is orthogonal to v): s(lambda) + tau v on the boundary, with the sign of
 //     tau that lowers the model, so the iteration leaves saddles.
 //  4. The step solves (H + lambda D) s = -g by Belos MINRES preconditioned with the
-//     banded Cholesky of H + (lambda + sigma) D, sigma >= 0 the smallest shift that
-//     factors (exact preconditioner when sigma = 0).
+//     Cholesky factorisation of H + (lambda + sigma) D, sigma >= 0 the smallest shift
+//     that factors (exact preconditioner when sigma = 0).
 //  5. Ratio test rho = (E(x) - E(x+s)) / (-(g's + s'Hs/2)) (with the usual 10 eps |E|
 //     safeguard), accept if rho > 1e-4, radius /4 if rho < 1/4, x2 if rho > 3/4 on
 //     the boundary.  A degenerate trial point (rn_network_energy > 0) is rejected and
@@ -30,17 +31,18 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <ROL_TypeU_Algorithm.hpp>
 #include <Teuchos_oblackholestream.hpp>
 
-#include "banded.hpp"
 #include "minres.hpp"
 #include "monitor.hpp"
 #include "problem.hpp"
 #include "rol_objective.hpp"
 #include "shim_error.hpp"
 #include "solvers.hpp"
+#include "spd_factor.hpp"
 
 namespace rodnet {
 
@@ -66,10 +68,10 @@ private:
   double shift_;
 };
 
-// y = A^{-1} x with a banded Cholesky factorisation.
-class BandedPreconditioner : public VectorOperator {
+// y = A^{-1} x with a Cholesky factorisation.
+class FactorPreconditioner : public VectorOperator {
 public:
-  explicit BandedPreconditioner(const BandedSpd &f) : f_(f) {}
+  explicit FactorPreconditioner(const SpdFactor &f) : f_(f) {}
   void apply(const MV &x, MV &y) const override {
     const double *in = host_data(x);
     double *out = host_data(y);
@@ -78,7 +80,7 @@ public:
   }
 
 private:
-  const BandedSpd &f_;
+  const SpdFactor &f_;
 };
 
 struct Step {
@@ -92,9 +94,11 @@ class TrustRegionMinres : public ROL::TypeU::Algorithm<double> {
 public:
   TrustRegionMinres(Problem &p, Monitor &mon, const rn_solve_options &opt,
                     const Teuchos::RCP<const Map> &map)
-      : p_(p), mon_(mon), opt_(opt), n_(p.size()), f0_(n_, p.bandwidth()),
-        fl_(n_, p.bandwidth()), minres_(map, opt.krylov_tol, opt.krylov_max_iterations),
-        rhs_(map, 1), sol_(map, 1), w_(n_), q_(n_), hs_(n_), ms_(n_) {}
+      : p_(p), mon_(mon), opt_(opt), n_(p.size()),
+        f0_(make_spd_factor(p, opt.factorization)),
+        fl_(make_spd_factor(p, opt.factorization)),
+        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), rhs_(map, 1),
+        sol_(map, 1), w_(n_), q_(n_), hs_(n_), ms_(n_) {}
 
   using ROL::TypeU::Algorithm<double>::run;
   void run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
@@ -119,8 +123,10 @@ private:
   size_t n_;
   std::vector<double> d_; // D = |diag H_0| (floored)
   std::vector<double> m_; // metric M = D as CSR values on the Hessian's pattern
-  BandedSpd f0_, fl_;     // factorisations at lambda = 0 (+ sigma0) and lambda
-  double sigma0_ = 0.0, fl_shift_ = 0.0; // f0_ = H + sigma0 M, fl_ = H + fl_shift_ M
+  // Factorisations of H + sigma0 M (f0_) and of H + fl_lambda_ M (fl_; fl_lambda_ is
+  // NaN when fl_ holds no factorisation of the current H at a known multiplier).
+  std::unique_ptr<SpdFactor> f0_, fl_;
+  double sigma0_ = 0.0, fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
   bool negcurv_ = false;
   double mu_ = 0.0;       // lowest eigenvalue estimate of the pencil (H, M)
   std::vector<double> v_; // its eigenvector, ||v||_M = 1
@@ -142,7 +148,8 @@ void TrustRegionMinres::analyse_hessian(const double *x) {
   }
   negcurv_ = false;
   mu_ = 0.0;
-  sigma0_ = factor_shifted(f0_, p_, 0.0, m_.data());
+  fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+  sigma0_ = factor_shifted(*f0_, p_, 0.0, m_.data());
   if (sigma0_ > 0.0) {
     lowest_eigenpair(sigma0_);
     negcurv_ = mu_ < -kCurvTol;
@@ -164,7 +171,7 @@ void TrustRegionMinres::lowest_eigenpair(double sigma) {
   for (double &e : v_) e /= nv;
   for (int k = 0; k < 100; ++k) {
     p_.pattern_apply(m_.data(), v_.data(), w_.data());
-    f0_.solve(w_.data());
+    f0_->solve(w_.data());
     nv = mnorm(w_.data());
     for (size_t i = 0; i < n_; ++i) v_[i] = w_[i] / nv;
     p_.hessian_apply(v_.data(), hs_.data());
@@ -197,11 +204,11 @@ double TrustRegionMinres::gradient_radius(const double *g) const {
 // Factor H + lambda M into fl_ and put s(lambda) = -(H + lambda M)^{-1} g in w_;
 // false if H + lambda M is not positive definite.
 bool TrustRegionMinres::trial_step(const double *g, double lambda, double *ns) {
-  fl_.load(p_, lambda, m_.data());
-  fl_shift_ = lambda;
-  if (!fl_.factor()) return false;
+  fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+  if (!fl_->factor(p_, lambda, m_.data())) return false;
+  fl_lambda_ = lambda;
   for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
-  fl_.solve(w_.data());
+  fl_->solve(w_.data());
   *ns = mnorm(w_.data());
   return true;
 }
@@ -211,19 +218,21 @@ double TrustRegionMinres::model(const double *g, const double *s) {
   return dot(n_, g, s) + 0.5 * dot(n_, s, hs_.data());
 }
 
-// Solve (H + lambda M) s = -g with Belos MINRES, preconditioned by the banded
-// Cholesky of H + (lambda + sigma) M.
+// Solve (H + lambda M) s = -g with Belos MINRES, preconditioned by the Cholesky
+// factorisation of H + (lambda + sigma) M.
 void TrustRegionMinres::minres_step(const double *g, double lambda, Step &st) {
-  const BandedSpd *prec = &f0_;
+  const SpdFactor *prec = f0_.get();
   if (lambda > 0.0 || sigma0_ > 0.0) {
-    if (!(fl_.factored() && fl_shift_ == lambda))
-      factor_shifted(fl_, p_, lambda, m_.data());
-    prec = &fl_;
+    if (!(fl_->factored() && fl_lambda_ == lambda)) {
+      fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+      if (factor_shifted(*fl_, p_, lambda, m_.data()) == 0.0) fl_lambda_ = lambda;
+    }
+    prec = fl_.get();
   }
   double *b = host_data(rhs_);
   for (size_t i = 0; i < n_; ++i) b[i] = -g[i];
   const ShiftedHessian A(p_, m_.data(), lambda);
-  const BandedPreconditioner P(*prec);
+  const FactorPreconditioner P(*prec);
   const MinresResult r = minres_.solve(A, P, rhs_, sol_);
   const double *s = host_data(sol_);
   st.s.assign(s, s + n_);
@@ -257,7 +266,7 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
   double lo = 0.0, lambda = 0.0, ns = 0.0;
   if (sigma0_ == 0.0) { // H positive definite: try the Newton step
     for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
-    f0_.solve(w_.data());
+    f0_->solve(w_.data());
     ns = mnorm(w_.data());
     if (ns <= radius) {
       minres_step(g, 0.0, st);
@@ -294,7 +303,7 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
     }
     // Newton step on 1/||s(lambda)||_M - 1/radius: q = (H + lambda M)^{-1} M s.
     p_.pattern_apply(m_.data(), w_.data(), q_.data());
-    (lambda == 0.0 && sigma0_ == 0.0 ? f0_ : fl_).solve(q_.data());
+    (lambda == 0.0 && sigma0_ == 0.0 ? *f0_ : *fl_).solve(q_.data());
     lambda += (ns / radius - 1.0) * ns * ns / mdot(w_.data(), q_.data());
   }
   minres_step(g, lambda, st);
@@ -387,7 +396,7 @@ void run_tr_minres(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   auto xmv = Teuchos::rcp(new MV(map, 1));
   check_status(rn_network_get_dofs(p.network(), host_data(*xmv)), "rn_network_get_dofs");
   TpetraVector x(xmv), g(Teuchos::rcp(new MV(map, 1)));
-  RodObjective obj(p);
+  RodObjective obj(p, opt);
   TrustRegionMinres alg(p, mon, opt, map);
   Teuchos::oblackholestream out;
   alg.run(x, g, obj, out);

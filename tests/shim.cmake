@@ -15,3 +15,6 @@ if(MPIEXEC_EXECUTABLE)
   set_tests_properties(shim_lazy_runtime_mpirun PROPERTIES LABELS "unit;mpi" TIMEOUT 120
     PROCESSORS 1 ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
 endif()
+# Networks with joints: the three solver kinds agree (rigid rotation reset on every
+# path), sparse vs banded factorisation, continuation with cut-backs.
+rn_add_test(shim_networks SOURCES unit/shim_networks.c LIBS rodnet m LABELS unit)

@@ -90,7 +90,8 @@ static int build_network(rn_context *ctx, const rn_obj_graph *g) {
     if (!st) st = rn_network_set_material(net, rod, -1, &m);
     if (!st) st = rn_network_set_section(net, rod, -1, &sec);
   }
-  int *rods = malloc(2 * (size_t)ns * sizeof *rods), *ends = malloc(2 * (size_t)ns * sizeof *ends);
+  int *rods = malloc(2 * (size_t)ns * sizeof *rods),
+      *ends = malloc(2 * (size_t)ns * sizeof *ends);
   for (int v = 0; v < nv && !st && rods && ends; v++) {
     int n = 0, joint;
     if (rn_obj_graph_valence(g, v) < 2) continue;
@@ -121,7 +122,8 @@ static int build_network(rn_context *ctx, const rn_obj_graph *g) {
       int finite = isfinite(E);
       for (size_t i = 0; i < n && !st; i++) finite &= isfinite(gr[i]) != 0;
       if (st < 0 || (!st && !finite))
-        rule = broken("energy and gradient at the initial state", rn_context_last_error(ctx));
+        rule = broken("energy and gradient at the initial state",
+                      rn_context_last_error(ctx));
     }
     free(x);
     free(gr);
@@ -137,14 +139,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   rn_status st = rn_obj_graph_parse(ctx, label, (const char *)data, size, &g);
   int bad = 0;
   if (st) {
-    bad |= (st > 0 || g != NULL) ? broken("rejected with a non-negative status or a graph",
-                                          NULL)
-                                 : 0;
+    bad |= (st > 0 || g != NULL)
+               ? broken("rejected with a non-negative status or a graph", NULL)
+               : 0;
     bad |= !one_line(rn_context_last_error(ctx), label)
                ? broken("one line starting with the label", rn_context_last_error(ctx))
                : 0;
   } else {
-    bad |= rn_obj_graph_num_segments(g) < 1 ? broken("accepted without segments", NULL) : 0;
+    bad |=
+        rn_obj_graph_num_segments(g) < 1 ? broken("accepted without segments", NULL) : 0;
     for (int v = 0; v < rn_obj_graph_num_vertices(g) && !bad; v++) {
       double x[3];
       rn_obj_graph_vertex(g, v, x);

@@ -53,6 +53,24 @@ static int temp_files(const char *dir) {
   return n;
 }
 
+/* A device target is written in place and stays a device: /dev/full (every
+ * write fails with ENOSPC: an error, no temporary file in /dev) and
+ * /dev/null (success).  Skipped where they are not character devices. */
+static void check_devices(rn_context *ctx) {
+  struct stat sb;
+  if (stat("/dev/full", &sb) == 0 && S_ISCHR(sb.st_mode)) {
+    CHECK_STATUS(rn_file_write_atomic(ctx, "/dev/full", write_hello, NULL), RN_ERR_IO);
+    CHECK(strstr(rn_context_last_error(ctx), "/dev/full: write failed") != NULL);
+    CHECK(stat("/dev/full", &sb) == 0 && S_ISCHR(sb.st_mode));
+    CHECK(temp_files("/dev") == 0);
+    CHECK_STATUS(rn_file_probe_writable(ctx, "/dev/full"), RN_OK);
+  }
+  if (stat("/dev/null", &sb) == 0 && S_ISCHR(sb.st_mode)) {
+    CHECK_STATUS(rn_file_write_atomic(ctx, "/dev/null", write_hello, NULL), RN_OK);
+    CHECK(stat("/dev/null", &sb) == 0 && S_ISCHR(sb.st_mode));
+  }
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: %s SCRATCH_DIR\n", argv[0]);
@@ -70,6 +88,7 @@ int main(int argc, char **argv) {
   mkdir(sub, 0755);
   rn_context *ctx = NULL;
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
+  check_devices(ctx);
 
   /* success */
   CHECK_STATUS(rn_file_write_atomic(ctx, ok, write_hello, NULL), RN_OK);

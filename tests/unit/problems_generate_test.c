@@ -61,7 +61,8 @@ static void expected(lattice_case *c) {
     break;
   case RN_LATTICE_CUBIC:
     c->nodes = (nx + 1) * (ny + 1) * (nz + 1);
-    c->bars = nx * (ny + 1) * (nz + 1) + ny * (nx + 1) * (nz + 1) + nz * (nx + 1) * (ny + 1);
+    c->bars =
+        nx * (ny + 1) * (nz + 1) + ny * (nx + 1) * (nz + 1) + nz * (nx + 1) * (ny + 1);
     c->hist[3] = 8;
     c->hist[6] = (nx - 1) * (ny - 1) * (nz - 1);
     c->bar = 1;

@@ -16,10 +16,10 @@
 static char label[1024];
 static const char *data_dir;
 
-#define MS                                        \
+#define MS                                       \
   "'materials': {'m': {'E': 1e3, 'nu': 0.25}}, " \
   "'sections': {'s': {'shape': 'circle', 'radius': 0.01}}"
-#define GRAPH(obj, extra)                                                     \
+#define GRAPH(obj, extra)                                                        \
   "'graph': {'obj': '" obj "', 'edges_per_rod': 4, 'material': 'm', 'section': " \
   "'s'" extra "}"
 
@@ -41,15 +41,20 @@ static rn_scene *parse(rn_context *ctx, const char *text, rn_status *st) {
 /* The 2 x 2 grid with rigid joints, a clamped and a displaced joint. */
 static void check_square(rn_context *ctx) {
   rn_status st;
-  rn_scene *s = parse(ctx,
-                      "{" MS ", " GRAPH("square_2x2.obj",
-                                        ", 'joint_model': 'rigid', 'd1': [0, 0, 1]")
-                      ", 'constraints': [{'type': 'displace', 'joint': 'v9', 'value': "
-                      "[0.1, 0, 0]}, {'type': 'clamp', 'joint': 'v1'}, {'type': 'pin', "
-                      "'joint': 'v9'}], 'loads': [{'type': 'force', 'joint': 'v5', "
-                      "'value': [0, 0, 2]}, {'type': 'moment', 'joint': 'v5', 'value': "
-                      "[0, 0, 1]}]}",
-                      &st);
+  rn_scene *s =
+      parse(ctx,
+            "{" MS ", " GRAPH("square_2x2.obj", ", 'joint_model': 'rigid', 'd1': [0, 0, "
+                                                "1]") ", 'constraints': [{'type': "
+                                                      "'displace', 'joint': 'v9', "
+                                                      "'value': "
+                                                      "[0.1, 0, 0]}, {'type': 'clamp', "
+                                                      "'joint': 'v1'}, {'type': 'pin', "
+                                                      "'joint': 'v9'}], 'loads': "
+                                                      "[{'type': 'force', 'joint': 'v5', "
+                                                      "'value': [0, 0, 2]}, {'type': "
+                                                      "'moment', 'joint': 'v5', 'value': "
+                                                      "[0, 0, 1]}]}",
+            &st);
   CHECK_STATUS(st, RN_OK);
   if (!s) {
     fprintf(stderr, "%s\n", rn_context_last_error(ctx));
@@ -96,13 +101,18 @@ static void check_mixed(rn_context *ctx) {
   rn_status st;
   rn_scene *s = parse(
       ctx,
-      "{" MS ", " GRAPH("tripod.obj", "") ", 'rods': [{'name': 'brace', 'material': "
-      "'m', 'section': 's', 'vertices': [[1, 0, 0], [-0.5, 0.8660254037844386, 0]]}],"
-      " 'joints': [{'name': 'f2', 'model': 'rigid', 'ends': [{'rod': 'e1', 'end': "
-      "'end'}, {'rod': 'brace', 'end': 'start'}]}, {'name': 'f3', 'ends': [{'rod': "
-      "'brace', 'end': 'end'}, {'rod': 'e2', 'end': 'end'}]}],"
-      " 'constraints': [{'type': 'clamp', 'rod': 'e3', 'end': 'end'}, {'type': "
-      "'pin', 'joint': 'f2'}, {'type': 'clamp', 'joint': 'f3'}]}",
+      "{" MS ", " GRAPH(
+          "tripod.obj",
+          "") ", 'rods': [{'name': 'brace', 'material': "
+              "'m', 'section': 's', 'vertices': [[1, 0, 0], [-0.5, 0.8660254037844386, "
+              "0]]}],"
+              " 'joints': [{'name': 'f2', 'model': 'rigid', 'ends': [{'rod': 'e1', "
+              "'end': "
+              "'end'}, {'rod': 'brace', 'end': 'start'}]}, {'name': 'f3', 'ends': "
+              "[{'rod': "
+              "'brace', 'end': 'end'}, {'rod': 'e2', 'end': 'end'}]}],"
+              " 'constraints': [{'type': 'clamp', 'rod': 'e3', 'end': 'end'}, {'type': "
+              "'pin', 'joint': 'f2'}, {'type': 'clamp', 'joint': 'f3'}]}",
       &st);
   CHECK_STATUS(st, RN_OK);
   if (!s) {
@@ -133,18 +143,18 @@ typedef struct bad_case {
 
 #define SQUARE(extra) "{" MS ", " GRAPH("square_2x2.obj", "") extra "}"
 #define TRIPOD(extra) "{" MS ", " GRAPH("tripod.obj", "") extra "}"
-#define ROD_A                                                                     \
+#define ROD_A                                                                   \
   "{'name': 'a', 'material': 'm', 'section': 's', 'line': {'from': [0, 0, 0], " \
   "'to': [1, 0, 0], 'vertices': 3}}"
-#define ROD_B                                                                     \
+#define ROD_B                                                                   \
   "{'name': 'b', 'material': 'm', 'section': 's', 'line': {'from': [1, 0, 0], " \
   "'to': [1, 1, 0], 'vertices': 3}}"
-#define ROD_C                                                                     \
+#define ROD_C                                                                   \
   "{'name': 'c', 'material': 'm', 'section': 's', 'line': {'from': [2, 0, 0], " \
   "'to': [3, 0, 0], 'vertices': 3}}"
 #define RODS(joints, extra) \
   "{" MS ", 'rods': [" ROD_A ", " ROD_B ", " ROD_C "], 'joints': [" joints "]" extra "}"
-#define J_AB                                                                         \
+#define J_AB                                                                      \
   "{'name': 'j', 'model': 'rigid', 'ends': [{'rod': 'a', 'end': 'end'}, {'rod': " \
   "'b', 'end': 'start'}]}"
 
@@ -153,7 +163,8 @@ static const bad_case cases[] = {
     {"unknown model",
      RODS("{'name': 'j', 'model': 'welded', 'ends': [{'rod': 'a', 'end': 'end'}]}", ""),
      "$.joints[0].model", "unknown joint model \"welded\" (known: elastic, rigid)"},
-    {"end used twice", RODS(J_AB ", {'name': 'k', 'ends': [{'rod': 'b', 'end': 'start'}]}", ""),
+    {"end used twice",
+     RODS(J_AB ", {'name': 'k', 'ends': [{'rod': 'b', 'end': 'start'}]}", ""),
      "$.joints[1].ends[0]", "the start of rod \"b\" is already joined at joint \"j\""},
     {"end listed twice",
      RODS("{'name': 'j', 'ends': [{'rod': 'a', 'end': 'end'}, {'rod': 'a', 'end': "
@@ -165,7 +176,8 @@ static const bad_case cases[] = {
           "'start'}]}",
           ""),
      "$.joints[0].ends[1]", "the rod ends do not meet: the start of rod \"c\""},
-    {"unknown rod in a joint", RODS("{'name': 'j', 'ends': [{'rod': 'z', 'end': 'end'}]}", ""),
+    {"unknown rod in a joint",
+     RODS("{'name': 'j', 'ends': [{'rod': 'z', 'end': 'end'}]}", ""),
      "$.joints[0].ends[0].rod", "no rod named \"z\""},
     {"bad end", RODS("{'name': 'j', 'ends': [{'rod': 'a', 'end': 'middle'}]}", ""),
      "$.joints[0].ends[0].end", "expected \"start\" or \"end\""},
@@ -175,7 +187,8 @@ static const bad_case cases[] = {
      "missing required key \"ends\""},
     {"joint without name", RODS("{'ends': [{'rod': 'a', 'end': 'end'}]}", ""),
      "$.joints[0]", "missing required key \"name\""},
-    {"duplicate joint name", RODS(J_AB ", {'name': 'j', 'ends': [{'rod': 'c', 'end': 'end'}]}", ""),
+    {"duplicate joint name",
+     RODS(J_AB ", {'name': 'j', 'ends': [{'rod': 'c', 'end': 'end'}]}", ""),
      "$.joints[1].name", "duplicate joint name \"j\""},
     {"unknown joint key",
      RODS("{'name': 'j', 'stiffness': 1, 'ends': [{'rod': 'a', 'end': 'end'}]}", ""),
@@ -193,7 +206,8 @@ static const bad_case cases[] = {
      "[1, 0, 0]}]}",
      "$.loads[0].joint", "no joint named \"q\" (the scene has no joints)"},
     {"rod and joint",
-     RODS(J_AB, ", 'constraints': [{'type': 'pin', 'joint': 'j', 'rod': 'a', 'vertex': 0}]"),
+     RODS(J_AB,
+          ", 'constraints': [{'type': 'pin', 'joint': 'j', 'rod': 'a', 'vertex': 0}]"),
      "$.constraints[0]", "give either \"rod\" or \"joint\", not both"},
     {"joint clamp with end",
      RODS(J_AB, ", 'constraints': [{'type': 'clamp', 'joint': 'j', 'end': 'start'}]"),
@@ -206,11 +220,13 @@ static const bad_case cases[] = {
      RODS(J_AB, ", 'constraints': [{'type': 'pin', 'rod': 'a', 'vertex': -1}]"),
      "$.constraints[0].vertex", "vertex 2 of rod \"a\" belongs to joint \"j\""},
     {"displace a joint vertex",
-     RODS(J_AB, ", 'constraints': [{'type': 'displace', 'rod': 'a', 'vertex': 2, 'value': "
-                "[0, 0, 1]}]"),
+     RODS(J_AB,
+          ", 'constraints': [{'type': 'displace', 'rod': 'a', 'vertex': 2, 'value': "
+          "[0, 0, 1]}]"),
      "$.constraints[0].vertex", "belongs to joint \"j\""},
     {"displace a free joint",
-     RODS(J_AB, ", 'constraints': [{'type': 'displace', 'joint': 'j', 'value': [1, 0, 0]}]"),
+     RODS(J_AB,
+          ", 'constraints': [{'type': 'displace', 'joint': 'j', 'value': [1, 0, 0]}]"),
      "$.constraints[0]", "joint \"j\" is not pinned or clamped"},
     {"rotate a pinned joint",
      RODS(J_AB, ", 'constraints': [{'type': 'pin', 'joint': 'j'}, {'type': 'displace', "
@@ -224,21 +240,23 @@ static const bad_case cases[] = {
      RODS(J_AB, ", 'constraints': [{'type': 'fix_theta', 'joint': 'j', 'edge': 0}]"),
      "$.constraints[0].joint", "unknown key \"joint\" (allowed here: type, rod, edge)"},
     {"force on a joint with vertex",
-     RODS(J_AB, ", 'loads': [{'type': 'force', 'joint': 'j', 'vertex': 0, 'value': [1, 0, "
-                "0]}]"),
+     RODS(J_AB,
+          ", 'loads': [{'type': 'force', 'joint': 'j', 'vertex': 0, 'value': [1, 0, "
+          "0]}]"),
      "$.loads[0].vertex", "unknown key \"vertex\""},
     {"moment on a joint without value",
      RODS(J_AB, ", 'loads': [{'type': 'moment', 'joint': 'j'}]"), "$.loads[0]",
      "missing required key \"value\""},
-    {"force without target", RODS(J_AB, ", 'loads': [{'type': 'force', 'value': [1, 0, 0]}]"),
-     "$.loads[0]", "missing required key \"rod\" (or \"joint\")"},
+    {"force without target",
+     RODS(J_AB, ", 'loads': [{'type': 'force', 'value': [1, 0, 0]}]"), "$.loads[0]",
+     "missing required key \"rod\" (or \"joint\")"},
     /* the graph block */
     {"neither rods nor graph", "{" MS "}", "$",
      "missing required key \"rods\" (or \"graph\""},
     {"missing obj file", "{" MS ", " GRAPH("none.obj", "") "}", "$.graph.obj",
      "%s/none.obj: cannot open"},
-    {"not a regular file", "{" MS ", " GRAPH("/dev/null", "") "}", "$.graph.obj",
-     "/dev/null: not a regular file"},
+    {"not a regular file", "{" MS ", " GRAPH(".", "") "}", "$.graph.obj",
+     "%s/.: not a regular file"},
     {"empty obj name", "{" MS ", " GRAPH("", "") "}", "$.graph.obj",
      "expected a non-empty file name"},
     {"bad OBJ", "{" MS ", " GRAPH("bad_index.obj", "") "}", "$.graph.obj",
@@ -250,21 +268,23 @@ static const bad_case cases[] = {
     {"graph without material",
      "{" MS ", 'graph': {'obj': 'tripod.obj', 'edges_per_rod': 2, 'section': 's'}}",
      "$.graph", "missing required key \"material\""},
-    {"graph unknown section", "{" MS ", 'graph': {'obj': 'tripod.obj', 'edges_per_rod': 2, "
-                              "'material': 'm', 'section': 'x'}}",
+    {"graph unknown section",
+     "{" MS ", 'graph': {'obj': 'tripod.obj', 'edges_per_rod': 2, "
+     "'material': 'm', 'section': 'x'}}",
      "$.graph.section", "unknown section \"x\""},
-    {"graph unknown key",
-     "{" MS ", " GRAPH("tripod.obj", ", 'scale': 2") "}", "$.graph.scale",
-     "unknown key \"scale\""},
-    {"graph bad joint model", "{" MS ", " GRAPH("tripod.obj", ", 'joint_model': 'glue'") "}",
+    {"graph unknown key", "{" MS ", " GRAPH("tripod.obj", ", 'scale': 2") "}",
+     "$.graph.scale", "unknown key \"scale\""},
+    {"graph bad joint model",
+     "{" MS ", " GRAPH("tripod.obj", ", 'joint_model': 'glue'") "}",
      "$.graph.joint_model", "unknown joint model \"glue\""},
     {"d1 parallel to a segment",
      "{" MS ", " GRAPH("square_2x2.obj", ", 'd1': [1, 0, 0]") "}", "$.graph.d1",
      "%s/square_2x2.obj:14: segment e1: the material axis d1 is parallel"},
     {"d1 zero", "{" MS ", " GRAPH("tripod.obj", ", 'd1': [0, 0, 0]") "}", "$.graph.d1",
      "zero vector"},
-    {"graph rod name clash", TRIPOD(", 'rods': [{'name': 'e2', 'material': 'm', 'section': "
-                                    "'s', 'vertices': [[5, 0, 0], [6, 0, 0]]}]"),
+    {"graph rod name clash",
+     TRIPOD(", 'rods': [{'name': 'e2', 'material': 'm', 'section': "
+            "'s', 'vertices': [[5, 0, 0], [6, 0, 0]]}]"),
      "$.rods[0].name", "duplicate rod name \"e2\""},
     {"graph joint name clash",
      TRIPOD(", 'joints': [{'name': 'v1', 'ends': [{'rod': 'e1', 'end': 'end'}]}]"),

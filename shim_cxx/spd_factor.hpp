@@ -1,0 +1,53 @@
+// spd_factor.hpp - the factorisation behind the trust region and the SPD
+// preconditioners: A = H + shift M (H the problem's assembled Hessian, M an SPD
+// matrix given by its CSR values on the Hessian's pattern) is factored by Cholesky;
+// factor() says whether A is positive definite, and solve() applies A^{-1}.
+//
+// Two implementations, chosen by choose_factor_kind():
+//  - BandedSpd (banded.hpp): LAPACK dpbtrf on the band; exact and fastest for single
+//    rods and networks without joints (half bandwidth <= kBandedMaxBandwidth);
+//  - SparseSpd: supernodal multifrontal Cholesky with a METIS nested-dissection
+//    ordering (sparse_cholesky.hpp) for networks with joints, whose joint DOFs come
+//    after all rods (half bandwidth ~ n).  The symbolic analysis is done once per
+//    Problem and shared by every factorisation.
+// No Trilinos here.
+#ifndef RODNET_SHIM_SPD_FACTOR_HPP
+#define RODNET_SHIM_SPD_FACTOR_HPP
+
+#include <cstddef>
+#include <memory>
+
+#include "problem.hpp"
+#include "rodnet_solve.h"
+
+namespace rodnet {
+
+class SpdFactor {
+public:
+  virtual ~SpdFactor() = default;
+  // Factor H + shift M (m: CSR values of M on the Hessian's pattern, NULL: H alone);
+  // true if the matrix is positive definite.
+  virtual bool factor(const Problem &p, double shift, const double *m) = 0;
+  // x <- A^{-1} x with the last successful factorisation (throws Error otherwise).
+  virtual void solve(double *x) const = 0;
+  virtual bool factored() const = 0;
+};
+
+// Largest half bandwidth for which the automatic choice is the banded factorisation.
+constexpr size_t kBandedMaxBandwidth = 64;
+
+// RN_FACTOR_AUTO: banded if the half bandwidth is at most kBandedMaxBandwidth,
+// sparse otherwise; the other values force one.
+rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested);
+// A factorisation of the chosen kind.  Throws Error (RN_ERR_ARG) for a forced banded
+// factorisation whose band would need more than 4 GiB.
+std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested);
+
+// Factor H + (shift + sigma) M with the smallest sigma in {0, 1e-10, 1e-9, ...} that
+// gives a positive definite matrix; returns sigma.  Throws Error (RN_ERR_LAPACK) if
+// no shift up to 1e10 works (e.g. non-finite entries).
+double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m);
+
+} // namespace rodnet
+
+#endif
