@@ -52,7 +52,7 @@ def plot_kernels(rows, ax):
     ax.set_xlabel("vertices")
     ax.set_ylabel("median time per vertex [s]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize="small")
+    ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.01, 0.5))
 
 
 def plot_solve(rows, axes):
@@ -91,7 +91,7 @@ def main():
         sys.exit(f"plot.py: one benchmark per CSV, found {sorted(kinds)}")
     kind = kinds.pop()
     if kind == "kernels":
-        fig, ax = plt.subplots(figsize=(8, 5.5))
+        fig, ax = plt.subplots(figsize=(10, 5.5))
         plot_kernels(rows, ax)
     elif kind == "solve":
         fig, axes = plt.subplots(1, 2, figsize=(11, 5))

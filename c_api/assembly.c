@@ -247,6 +247,16 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
                         net->moments[im].vertex);
   for (int ij = 0; ij < net->njoints; ++ij)
     if ((st = joint_eval(net, ij, a))) return st;
+  /* Finite inputs can still overflow (huge stiffness times strain, huge
+   * loads): never hand back NaN or inf with RN_OK.  Recoverable, so a solver
+   * rejects such a trial point. */
+  int finite = rn_all_finite(RN_TERM_COUNT, a->E);
+  if (finite && a->op == OP_GRAD) finite = rn_all_finite(net->nred, a->g);
+  if (finite && a->op == OP_HVP) finite = rn_all_finite(net->nred, a->Hv);
+  if (finite && a->op == OP_HESS) finite = rn_all_finite(net->nnz, a->vals);
+  if (!finite)
+    return rn_fail(net->ctx, RN_DEGENERATE, a->where,
+                   "the energy or its derivatives overflow (not finite) at this state");
   return RN_OK;
 }
 

@@ -155,10 +155,14 @@ void rn_runtime_finalize(void);
  * at once (iterations 0). */
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep);
 
-/* Smallest eigenvalue of the reduced Hessian at the current state (LAPACK
- * dsbevx on the banded Hessian: exact up to round-off; memory n (kd + 1) with
- * kd = rn_network_hessian_bandwidth); used by stability checks (e.g.
- * buckling).  Needs no runtime initialisation (pure LAPACK). */
+/* Smallest eigenvalue of the reduced Hessian at the current state; used by
+ * stability checks (e.g. buckling).  Half bandwidth kd =
+ * rn_network_hessian_bandwidth <= 64 (no joints): LAPACK dsbevx on the banded
+ * Hessian, exact up to round-off, memory n (kd + 1).  Otherwise (joints):
+ * bisection on the inertia (sparse Cholesky of H - sigma I) to 5 %, then
+ * inverse iteration; the Rayleigh quotient is exact up to round-off when the
+ * lowest eigenvalue is separated from the next one.  Needs no runtime
+ * initialisation (no Tpetra). */
 rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
 
 #ifdef __cplusplus

@@ -397,7 +397,9 @@ rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min) {
     std::vector<double> x(p.size());
     rodnet::check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
     p.assemble_hessian(x.data());
-    *lambda_min = rodnet::banded_min_eigenvalue(p);
+    *lambda_min = rodnet::choose_factor_kind(p, RN_FACTOR_AUTO) == RN_FACTOR_BANDED
+                      ? rodnet::banded_min_eigenvalue(p)
+                      : rodnet::sparse_min_eigenvalue(p);
   });
 }
 

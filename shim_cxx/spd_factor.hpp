@@ -48,6 +48,10 @@ std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requeste
 // no shift up to 1e10 works (e.g. non-finite entries).
 double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m);
 
+// Smallest eigenvalue of the assembled Hessian by bisection on the inertia (sparse
+// Cholesky of H - sigma I) and inverse iteration (min_eigenvalue.cpp).  Throws Error.
+double sparse_min_eigenvalue(Problem &p);
+
 } // namespace rodnet
 
 #endif

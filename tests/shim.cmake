@@ -17,4 +17,7 @@ if(MPIEXEC_EXECUTABLE)
 endif()
 # Networks with joints: the three solver kinds agree (rigid rotation reset on every
 # path), sparse vs banded factorisation, continuation with cut-backs.
-rn_add_test(shim_networks SOURCES unit/shim_networks.c LIBS rodnet m LABELS unit)
+rn_add_test(shim_networks SOURCES unit/shim_networks.c
+            LIBS rodnet ${LAPACK_LIBRARIES} m LABELS unit)
+# State snapshots: bit-identical evaluations after solving away and restoring.
+rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
