@@ -135,6 +135,20 @@ static int phi_jets(const double M[9], int ord, jet phi[3], double Q0[9]) {
   return RNK_OK;
 }
 
+int rnk_polar_rotvec_derivs(const double M[9], double R0[9], double dphi[27],
+                            double d2phi[243]) {
+  jet phi[3];
+  int st = phi_jets(M, 2, phi, R0);
+  if (st) return st;
+  for (int a = 0; a < 3; ++a)
+    for (int m = 0; m < 9; ++m) {
+      dphi[9 * a + m] = phi[a].g[m];
+      for (int n = 0; n < 9; ++n)
+        d2phi[81 * a + 9 * m + n] = m <= n ? phi[a].h[m][n] : phi[a].h[n][m];
+    }
+  return RNK_OK;
+}
+
 /* End k's terminal edge vector and the sign s with e = s (x_J - x_n). */
 static double end_edge(const double *q, int base, int side, double e[3]) {
   double s = side == 0 ? 1.0 : -1.0;

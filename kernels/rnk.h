@@ -252,6 +252,13 @@ int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha);
  * iteration; RNK_DEGENERATE if M is (nearly) singular or det M <= 0. */
 int rnk_polar(const double M[9], double R[9]);
 
+/* Derivatives of the elastic joint's rotation vector: phi(M') is defined by
+ * exp([phi]) R0 = polar(M') with R0 = polar(M), so phi(M) = 0.  Returns R0,
+ * dphi[9 a + m] = d phi_a / d M_m and d2phi[81 a + 9 m + n] =
+ * d2 phi_a / d M_m d M_n at M (M row-major, m = 3 i + j). */
+int rnk_polar_rotvec_derivs(const double M[9], double R0[9], double dphi[27],
+                            double d2phi[243]);
+
 /* Rotation matrix exp([w]) (row-major) of a rotation vector w, accurate for
  * small |w| (series for the Rodrigues coefficients). */
 void rnk_rotation_exp(const double w[3], double R[9]);

@@ -184,6 +184,85 @@ static void test_polar(void) {
   CHECK_STATUS(rnk_polar(Ref, P), RNK_DEGENERATE);
 }
 
+/* rotation vector of a rotation matrix near the identity (numeric log) */
+static void rotvec(const double P[9], double w[3]) {
+  double c = 0.5 * (P[0] + P[4] + P[8] - 1.0);
+  double ax[3] = {0.5 * (P[7] - P[5]), 0.5 * (P[2] - P[6]), 0.5 * (P[3] - P[1])};
+  double s = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+  double th = atan2(s, c), f = s > 1e-300 ? th / s : 1.0;
+  for (int k = 0; k < 3; ++k) w[k] = f * ax[k];
+}
+
+/* phi(M + h E) relative to R0: exp([phi]) R0 = polar(M + h E) */
+static void phi_num(const double M[9], const double E[9], double h, const double R0[9],
+                    double phi[3]) {
+  double Mh[9], R[9], P[9];
+  for (int i = 0; i < 9; ++i) Mh[i] = M[i] + h * E[i];
+  CHECK_STATUS(rnk_polar(Mh, R), RNK_OK);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      double sum = 0;
+      for (int l = 0; l < 3; ++l) sum += R[3 * i + l] * R0[3 * k + l];
+      P[3 * i + k] = sum;
+    }
+  rotvec(P, phi);
+}
+
+/* The polar factor's first and second derivatives on their own: central
+ * differences of phi(M + h E) against dphi . E and of the second difference
+ * against E^T d2phi E, over an h-sweep (second order). */
+static void test_polar_derivatives(void) {
+  for (int trial = 0; trial < 10; ++trial) {
+    double w[3] = {rnd(), rnd(), rnd()}, R[9], A[9], S[9], M[9];
+    rnk_rotation_exp(w, R);
+    for (int i = 0; i < 9; ++i) A[i] = 0.5 * rnd();
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        double s = (i == k) ? 1.0 : 0.0;
+        for (int l = 0; l < 3; ++l) s += A[3 * i + l] * A[3 * k + l];
+        S[3 * i + k] = s;
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        double s = 0;
+        for (int l = 0; l < 3; ++l) s += R[3 * i + l] * S[3 * l + k];
+        M[3 * i + k] = s;
+      }
+    double R0[9], d1[27], d2[243], E[9];
+    CHECK_STATUS(rnk_polar_rotvec_derivs(M, R0, d1, d2), RNK_OK);
+    for (int i = 0; i < 9; ++i) CHECK_NEAR(R0[i], R[i], 1e-13);
+    for (int i = 0; i < 9; ++i) E[i] = rnd();
+    double hs[4], e1[4], e2[4], lin[3], quad[3];
+    for (int a = 0; a < 3; ++a) {
+      lin[a] = quad[a] = 0;
+      for (int m = 0; m < 9; ++m) {
+        lin[a] += d1[9 * a + m] * E[m];
+        for (int n = 0; n < 9; ++n) quad[a] += E[m] * d2[81 * a + 9 * m + n] * E[n];
+      }
+    }
+    for (int st = 0; st < 4; ++st) {
+      double h = 1e-2 / pow(2.0, st), pp[3], pm[3], err1 = 0, err2 = 0;
+      phi_num(M, E, h, R0, pp);
+      phi_num(M, E, -h, R0, pm);
+      for (int a = 0; a < 3; ++a) {
+        err1 += pow((pp[a] - pm[a]) / (2 * h) - lin[a], 2);
+        err2 += pow((pp[a] + pm[a]) / (h * h) - quad[a], 2);
+      }
+      hs[st] = h;
+      e1[st] = sqrt(err1) / (norm(3, lin) + 1e-300);
+      e2[st] = sqrt(err2) / (norm(3, quad) + 1e-300);
+    }
+    double o1 = rn_test_loglog_slope(4, hs, e1), o2 = rn_test_loglog_slope(4, hs, e2);
+    if (trial == 0)
+      printf("polar: first-derivative FD error %.2e (order %.2f), second %.2e (order "
+             "%.2f)\n",
+             e1[3], o1, e2[3], o2);
+    CHECK(e1[3] < 1e-5 && e2[3] < 1e-4);
+    CHECK(o1 > 1.8 && o1 < 2.3);
+    CHECK(o2 > 1.8 && o2 < 2.3);
+  }
+}
+
 static void test_rest_and_invariance(void) {
   for (int rigid = 0; rigid < 2; ++rigid)
     for (int v = 1; v <= 8; ++v) {
@@ -236,6 +315,7 @@ static void test_rest_and_invariance(void) {
 
 int main(void) {
   test_polar();
+  test_polar_derivatives();
   test_rest_and_invariance();
   printf("model    valence  worst grad err  order   worst HVP err  order\n");
   for (int rigid = 0; rigid < 2; ++rigid)
