@@ -255,7 +255,7 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
   if (finite && a->op == OP_HVP) finite = rn_all_finite(net->nred, a->Hv);
   if (finite && a->op == OP_HESS) finite = rn_all_finite(net->nnz, a->vals);
   if (!finite)
-    return rn_fail(net->ctx, RN_DEGENERATE, a->where,
+    return rn_fail(net->ctx, RN_OVERFLOW, a->where,
                    "the energy or its derivatives overflow (not finite) at this state");
   return RN_OK;
 }

@@ -40,22 +40,23 @@ extern "C" {
 #define RODNET_VERSION_STRING "0.1.0"
 
 /* ---- status codes (one list: codes, names and messages) ----------------- */
-#define RN_STATUS_LIST(X)                                                    \
-  X(RN_OK, 0, "ok")                                                          \
-  X(RN_DEGENERATE, 1, "degenerate configuration at a trial point")           \
-  X(RN_ERR_ALLOC, -1, "out of memory")                                       \
-  X(RN_ERR_ARG, -2, "invalid argument")                                      \
-  X(RN_ERR_STATE, -3, "operation not allowed in the object's current state") \
-  X(RN_ERR_RANGE, -4, "index out of range")                                  \
-  X(RN_ERR_GEOMETRY, -5, "degenerate geometry")                              \
-  X(RN_ERR_BC, -6, "inconsistent boundary conditions")                       \
-  X(RN_ERR_NOT_FINITE, -7, "value is not finite")                            \
-  X(RN_ERR_LAPACK, -8, "dense/banded factorisation failed")                  \
-  X(RN_ERR_SOLVER, -9, "solver failure")                                     \
-  X(RN_ERR_TRILINOS, -10, "Trilinos error")                                  \
-  X(RN_ERR_IO, -11, "input/output error")                                    \
-  X(RN_ERR_PARSE, -12, "malformed input")                                    \
-  X(RN_ERR_CHECK, -13, "derivative self-test failed")                        \
+#define RN_STATUS_LIST(X)                                                        \
+  X(RN_OK, 0, "ok")                                                              \
+  X(RN_DEGENERATE, 1, "degenerate configuration at a trial point")               \
+  X(RN_OVERFLOW, 2, "energy or derivatives overflow (not finite) at this state") \
+  X(RN_ERR_ALLOC, -1, "out of memory")                                           \
+  X(RN_ERR_ARG, -2, "invalid argument")                                          \
+  X(RN_ERR_STATE, -3, "operation not allowed in the object's current state")     \
+  X(RN_ERR_RANGE, -4, "index out of range")                                      \
+  X(RN_ERR_GEOMETRY, -5, "degenerate geometry")                                  \
+  X(RN_ERR_BC, -6, "inconsistent boundary conditions")                           \
+  X(RN_ERR_NOT_FINITE, -7, "value is not finite")                                \
+  X(RN_ERR_LAPACK, -8, "dense/banded factorisation failed")                      \
+  X(RN_ERR_SOLVER, -9, "solver failure")                                         \
+  X(RN_ERR_TRILINOS, -10, "Trilinos error")                                      \
+  X(RN_ERR_IO, -11, "input/output error")                                        \
+  X(RN_ERR_PARSE, -12, "malformed input")                                        \
+  X(RN_ERR_CHECK, -13, "derivative self-test failed")                            \
   X(RN_ERR_INTERNAL, -14, "internal error")
 
 typedef enum rn_status {

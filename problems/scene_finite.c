@@ -32,6 +32,7 @@ static rn_status overflow(rn_scene_parser *p, const char *what) {
  * degenerate (left to the solver), or an error. */
 static rn_status judge(rn_scene_parser *p, rn_status st, const double *v, size_t n,
                        const char *what) {
+  if (st == RN_OVERFLOW) return overflow(p, what);
   if (st > 0) return RN_OK;
   if (st < 0) return rn_jwalk_lib_error(&p->w, st);
   return all_finite(v, n) ? RN_OK : overflow(p, what);

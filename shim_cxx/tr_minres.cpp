@@ -31,6 +31,8 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+static int g_dbg_fact = 0, g_dbg_inv = 0;
 #include <memory>
 
 #include <ROL_TypeU_Algorithm.hpp>
@@ -176,6 +178,7 @@ void TrustRegionMinres::lowest_eigenpair(double sigma) {
     for (size_t i = 0; i < n_; ++i) v_[i] = w_[i] / nv;
     p_.hessian_apply(v_.data(), hs_.data());
     mu_ = dot(n_, v_.data(), hs_.data());
+    ++g_dbg_inv;
     if (std::fabs(mu_ - mu_old) <= 1e-13 * (std::fabs(mu_) + sigma)) break;
     mu_old = mu_;
   }
@@ -205,6 +208,7 @@ double TrustRegionMinres::gradient_radius(const double *g) const {
 // false if H + lambda M is not positive definite.
 bool TrustRegionMinres::trial_step(const double *g, double lambda, double *ns) {
   fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+  ++g_dbg_fact;
   if (!fl_->factor(p_, lambda, m_.data())) return false;
   fl_lambda_ = lambda;
   for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
@@ -344,7 +348,9 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
       radius = sigma0_ == 0.0 ? std::numeric_limits<double>::max()
                               : std::max(gradient_radius(gp), 1e-8);
+    g_dbg_fact = 0; g_dbg_inv = 0;
     Step st = solve_subproblem(gp, radius);
+    std::fprintf(stderr, "DBG it %d sigma0 %.3e mu %.6e negcurv %d lambda %.6e trial-factors %d inv-its %d boundary %d\n", state_->iter, sigma0_, mu_, (int)negcurv_, st.lambda, g_dbg_fact, g_dbg_inv, (int)st.boundary);
     const double snorm = mnorm(st.s.data());
     if (radius == std::numeric_limits<double>::max()) radius = std::max(snorm, 1e-300);
     const double pred = -model(gp, st.s.data());

@@ -1,6 +1,6 @@
 /* api_overflow.c - finite inputs whose products overflow must not come back
  * as NaN or inf with RN_OK: evaluations return the recoverable
- * RN_DEGENERATE with a message (a solver then rejects the trial point). */
+ * RN_OVERFLOW with a message (a solver then rejects the trial point). */
 #include <math.h>
 #include <string.h>
 
@@ -26,12 +26,12 @@ int main(void) {
   CHECK(n == 11);
   CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
   for (size_t i = 0; i < n; ++i) x[i] *= 1e10, v[i] = 1.0; /* stretch enormously */
-  CHECK_STATUS(rn_network_energy(net, x, &E), RN_DEGENERATE);
+  CHECK_STATUS(rn_network_energy(net, x, &E), RN_OVERFLOW);
   CHECK(strstr(rn_context_last_error(ctx), "not finite") != NULL);
-  CHECK_STATUS(rn_network_gradient(net, x, &E, g), RN_DEGENERATE);
+  CHECK_STATUS(rn_network_gradient(net, x, &E, g), RN_OVERFLOW);
   /* the Hessian there is ~E A / lbar, finite: the HVP must then be finite */
   rn_status hs = rn_network_hvp(net, x, v, Hv);
-  CHECK(hs == RN_DEGENERATE || (hs == RN_OK && isfinite(Hv[0])));
+  CHECK(hs == RN_OVERFLOW || (hs == RN_OK && isfinite(Hv[0])));
   /* at the input state everything is finite (zero energy) */
   CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
   CHECK_STATUS(rn_network_energy(net, x, &E), RN_OK);

@@ -124,7 +124,8 @@ static inline rn_network *shimnet_grid(rn_context *ctx, int ne, double P) {
   {
     const double fz[3] = {0, 0, P}, fx[3] = {P, 0, 0}, m[3] = {0, 0.02, 0};
     const int corners[4] = {0, N - 1, N * (N - 1), N * N - 1};
-    for (int c = 0; c < 4; ++c) CHECK_STATUS(rn_network_clamp_joint(net, jid[corners[c]]), RN_OK);
+    for (int c = 0; c < 4; ++c)
+      CHECK_STATUS(rn_network_clamp_joint(net, jid[corners[c]]), RN_OK);
     for (int j = 1; j < N - 1; ++j)
       for (int i = 1; i < N - 1; ++i)
         CHECK_STATUS(rn_network_add_joint_force(net, jid[j * N + i], fz), RN_OK);

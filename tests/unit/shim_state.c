@@ -114,7 +114,8 @@ static double transport_restore_error(rn_network *net, const record *saved) {
   phys = shimnet_physical_state(net, &np);
   for (int j = 0; j < rn_network_num_joints(net); ++j)
     for (int c = 0; c < 9; ++c) {
-      const size_t at = np - 12 * (size_t)(rn_network_num_joints(net) - j) + 3 + (size_t)c;
+      const size_t at =
+          np - 12 * (size_t)(rn_network_num_joints(net) - j) + 3 + (size_t)c;
       err = fmax(err, fabs(phys[at] - saved->phys[at]));
     }
   free(phys);
