@@ -95,6 +95,8 @@ typedef struct rn_solve_report {
   double time_s;
   rn_factorization factorization; /* the one used (never RN_FACTOR_AUTO once
                                      the solver ran) */
+  long factorizations; /* numeric Cholesky factorisations of H + sigma D, failed
+                          ones included (the main cost on large networks) */
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",

@@ -19,11 +19,11 @@ struct rn_state {
   size_t nfull, nedges, ninterior, nends;
   int nrods, nmom, njoints;
   double lambda;
-  double *xfull;     /* [nfull] */
-  rnk_frame *frames; /* reference frames, rods concatenated [nedges] */
-  double *twists;    /* reference twists, rods concatenated [ninterior] */
-  double *moments;   /* [MOMENT_DOUBLES nmom] */
-  double *joints;    /* [JOINT_DOUBLES njoints] */
+  double *xfull;      /* [nfull] */
+  rnk_frame *frames;  /* reference frames, rods concatenated [nedges] */
+  double *twists;     /* reference twists, rods concatenated [ninterior] */
+  double *moments;    /* [MOMENT_DOUBLES nmom] */
+  double *joints;     /* [JOINT_DOUBLES njoints] */
   double *end_twists; /* joint end reference twists, joints concatenated [nends] */
 };
 
@@ -157,7 +157,8 @@ rn_status rn_network_state_restore(rn_network *net, const rn_state *s) {
   if (!s) return rn_fail(net->ctx, RN_ERR_ARG, where, "state is NULL");
   if ((st = rn_net_check_final(net, where))) return st;
   if (!state_matches(net, s))
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "the state was saved from another network");
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "the state was saved from another network");
   net->lambda = s->lambda;
   memcpy(net->xfull, s->xfull, net->nfull * sizeof(double));
   copy_rods_in(net, s);

@@ -58,6 +58,7 @@ BandedSpd::BandedSpd(size_t n, size_t kd) : n_(n), kd_(kd) {
 }
 
 bool BandedSpd::factor(const Problem &p, double shift, const double *m) {
+  ++p.counters.factorizations;
   load_band(p, shift, m, kd_, ab_);
   const int n = static_cast<int>(n_), kd = static_cast<int>(kd_), ld = kd + 1;
   int info = 0;

@@ -58,15 +58,16 @@ double sparse_min_eigenvalue(Problem &p) {
     throw Error(RN_ERR_SOLVER, "rn_hessian_min_eigenvalue: the Gershgorin shift does "
                                "not factor");
   if (f->factor(p, -above, ident.data())) below = above; // lambda_min = min diagonal
-  while (above - below > std::max(0.05 * std::max(std::fabs(below), std::fabs(above)),
-                                  1e-12 * scale)) {
+  while (above - below >
+         std::max(0.05 * std::max(std::fabs(below), std::fabs(above)), 1e-12 * scale)) {
     const double mid = 0.5 * (below + above);
     (f->factor(p, -mid, ident.data()) ? below : above) = mid;
   }
   if (!f->factor(p, -below, ident.data()))
     throw Error(RN_ERR_SOLVER, "rn_hessian_min_eigenvalue: factorisation failed");
   std::vector<double> v(n), hv(n);
-  for (size_t i = 0; i < n; ++i) v[i] = 1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i));
+  for (size_t i = 0; i < n; ++i)
+    v[i] = 1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i));
   double mu = std::numeric_limits<double>::max();
   for (int it = 0; it < 300; ++it) {
     f->solve(v.data());

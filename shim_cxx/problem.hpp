@@ -21,6 +21,7 @@ class SparseAnalysis;
 
 struct Counters {
   long energy = 0, gradient = 0, hvp = 0, hessian = 0, krylov = 0;
+  long factorizations = 0; // numeric Cholesky factorisations (SpdFactor::factor)
 };
 
 class Problem {
@@ -58,7 +59,7 @@ public:
   // (rigid-joint rotation DOFs move into the reference; the energy is unchanged).
   void accept(double *x);
 
-  Counters counters;
+  mutable Counters counters; // counted by const users too (factorisations)
 
 private:
   rn_network *net_;

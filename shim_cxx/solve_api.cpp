@@ -183,6 +183,7 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->gradient_evals = p.counters.gradient;
   rep->hvp_evals = p.counters.hvp;
   rep->hessian_evals = p.counters.hessian;
+  rep->factorizations = p.counters.factorizations;
   rep->krylov_iterations = tot.krylov;
   rep->load_steps = tot.load_steps;
   rep->energy = tot.energy;

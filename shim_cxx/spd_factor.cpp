@@ -2,6 +2,7 @@
 // SpdFactor, and the shifted factorisation (see spd_factor.hpp).
 #include "spd_factor.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "banded.hpp"
@@ -16,6 +17,7 @@ class SparseSpd : public SpdFactor {
 public:
   explicit SparseSpd(Problem &p) : chol_(p.sparse_analysis()) {}
   bool factor(const Problem &p, double shift, const double *m) override {
+    ++p.counters.factorizations;
     return chol_.factor(p.values(), shift, m);
   }
   void solve(double *x) const override { chol_.solve(x); }
@@ -47,11 +49,23 @@ std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requeste
 
 double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m) {
   if (f.factor(p, shift, m)) return 0.0;
-  for (double sigma = 1e-10; sigma <= 1e10; sigma *= 10.0)
-    if (f.factor(p, shift + sigma, m)) return sigma;
-  throw Error(RN_ERR_LAPACK,
-              "rn_solve: no diagonal shift makes the Hessian positive definite "
-              "(non-finite Hessian?)");
+  // Smallest k in [-10, 10] with H + (shift + 10^k) M positive definite: bisection on
+  // k (positive definiteness is monotone in the shift), then factor there.
+  int lo = -11, hi = 11; // 10^lo fails (-11 stands for 0), 10^hi works (11: unknown)
+  bool holds_hi = false; // f holds the factorisation at 10^hi
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    holds_hi = f.factor(p, shift + std::pow(10.0, mid), m);
+    (holds_hi ? hi : lo) = mid;
+  }
+  if (hi > 10)
+    throw Error(RN_ERR_LAPACK,
+                "rn_solve: no diagonal shift makes the Hessian positive definite "
+                "(non-finite Hessian?)");
+  const double sigma = std::pow(10.0, hi);
+  if (!holds_hi && !f.factor(p, shift + sigma, m))
+    throw Error(RN_ERR_LAPACK, "rn_solve: shifted factorisation failed");
+  return sigma;
 }
 
 } // namespace rodnet

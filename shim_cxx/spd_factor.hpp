@@ -26,7 +26,7 @@ class SpdFactor {
 public:
   virtual ~SpdFactor() = default;
   // Factor H + shift M (m: CSR values of M on the Hessian's pattern, NULL: H alone);
-  // true if the matrix is positive definite.
+  // true if the matrix is positive definite.  Counted in p.counters.factorizations.
   virtual bool factor(const Problem &p, double shift, const double *m) = 0;
   // x <- A^{-1} x with the last successful factorisation (throws Error otherwise).
   virtual void solve(double *x) const = 0;
@@ -43,9 +43,10 @@ rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested
 // factorisation whose band would need more than 4 GiB.
 std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested);
 
-// Factor H + (shift + sigma) M with the smallest sigma in {0, 1e-10, 1e-9, ...} that
-// gives a positive definite matrix; returns sigma.  Throws Error (RN_ERR_LAPACK) if
-// no shift up to 1e10 works (e.g. non-finite entries).
+// Factor H + (shift + sigma) M with the smallest sigma in {0, 1e-10, 1e-9, ..., 1e10}
+// that gives a positive definite matrix (bisection on the exponent: at most 7
+// factorisations); returns sigma.  Throws Error (RN_ERR_LAPACK) if no shift up to
+// 1e10 works (e.g. non-finite entries).
 double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m);
 
 // Smallest eigenvalue of the assembled Hessian by bisection on the inertia (sparse

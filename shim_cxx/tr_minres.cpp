@@ -6,12 +6,17 @@
 //     (floored), fixed for the load step; trust-region norm ||s||_D = sqrt(s' D s).
 //  2. Factor H (Cholesky: banded for single rods, sparse with a nested-dissection
 //     ordering for networks with joints; spd_factor.hpp).  If it fails, the smallest
-//     sigma that factors H + sigma D is found and inverse iteration with that
-//     factorisation gives the lowest eigenpair (mu, v) of the pencil (H, D).
+//     sigma that factors H + sigma D is found and shift-and-invert Lanczos with that
+//     factorisation (lanczos.hpp, at most kLanczosSteps solves) gives the lowest
+//     eigenpair (mu, v) of the pencil (H, D) (mu >= the lowest eigenvalue).
 //  3. Multiplier lambda >= max(0, -mu): lambda = 0 if H is positive definite and the
 //     Newton step fits the radius; otherwise a More-Sorensen iteration on lambda
 //     (Newton on 1/||s(lambda)||_D - 1/radius, safeguarded, with factorisations of
-//     H + lambda D) until ||s||_D is within 5 % of the radius.  Hard case (H
+//     H + lambda D) until ||s||_D is within 5 % of the radius.  A factorisation that
+//     fails raises the lower bound to that lambda, and the next trial lies above it
+//     by a gap that grows tenfold with each consecutive failure.  After a rejected
+//     step (same H and g, smaller radius) the search starts from the last multiplier,
+//     a lower bound of the new one whose factorisation is kept.  Hard case (H
 //     indefinite, step too short even at lambda ~ -mu, e.g. at a symmetric saddle
 //     where g is orthogonal to v): s(lambda) + tau v on the boundary, with the sign of
 //     tau that lowers the model, so the iteration leaves saddles.
@@ -31,13 +36,12 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-static int g_dbg_fact = 0, g_dbg_inv = 0;
 #include <memory>
 
 #include <ROL_TypeU_Algorithm.hpp>
 #include <Teuchos_oblackholestream.hpp>
 
+#include "lanczos.hpp"
 #include "minres.hpp"
 #include "monitor.hpp"
 #include "problem.hpp"
@@ -54,6 +58,10 @@ constexpr double kAccept = 1e-4;               // accept a step if rho > kAccept
 constexpr double kCurvTol = 1e3 * DBL_EPSILON; // significant negative pencil eigenvalue
 constexpr double kBoundaryTol = 0.05; // |  ||s||_D - radius | <= kBoundaryTol radius
 constexpr int kMaxMultiplierIts = 60;
+// Lanczos steps (solves, and vectors kept) for the lowest eigenpair at most.  It need
+// not be exact: mu (>= the lowest eigenvalue) starts the multiplier search from
+// below, and v has to be a direction of negative curvature.
+constexpr int kLanczosSteps = 30;
 
 // y = (H + shift M) x with the assembled Hessian and the metric's CSR values m.
 class ShiftedHessian : public VectorOperator {
@@ -129,6 +137,9 @@ private:
   // NaN when fl_ holds no factorisation of the current H at a known multiplier).
   std::unique_ptr<SpdFactor> f0_, fl_;
   double sigma0_ = 0.0, fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+  // The multiplier of the last subproblem at the current H and g (0: none): a
+  // lower bound of the next one, whose radius is smaller after a rejected step.
+  double lambda_floor_ = 0.0;
   bool negcurv_ = false;
   double mu_ = 0.0;       // lowest eigenvalue estimate of the pencil (H, M)
   std::vector<double> v_; // its eigenvector, ||v||_M = 1
@@ -151,6 +162,7 @@ void TrustRegionMinres::analyse_hessian(const double *x) {
   negcurv_ = false;
   mu_ = 0.0;
   fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+  lambda_floor_ = 0.0;
   sigma0_ = factor_shifted(*f0_, p_, 0.0, m_.data());
   if (sigma0_ > 0.0) {
     lowest_eigenpair(sigma0_);
@@ -163,25 +175,16 @@ double TrustRegionMinres::mdot(const double *a, const double *b) {
   return dot(n_, ms_.data(), b);
 }
 
-// Inverse iteration with the factorisation of H + sigma M (in f0_): converges to the
-// lowest eigenpair of the pencil (H, M); mu_ is the Rayleigh quotient.
-void TrustRegionMinres::lowest_eigenpair(double sigma) {
+// Shift-and-invert Lanczos with the factorisation of H + sigma M (in f0_) gives the
+// lowest eigenpair of the pencil (H, M); mu_ is the Rayleigh quotient of the Ritz
+// vector (>= the lowest eigenvalue).
+void TrustRegionMinres::lowest_eigenpair(double /*sigma*/) {
   v_.assign(n_, 0.0);
   for (size_t i = 0; i < n_; ++i)
     v_[i] = (1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 0.3)) / std::sqrt(d_[i]);
-  double nv = mnorm(v_.data()), mu_old = std::numeric_limits<double>::max();
-  for (double &e : v_) e /= nv;
-  for (int k = 0; k < 100; ++k) {
-    p_.pattern_apply(m_.data(), v_.data(), w_.data());
-    f0_->solve(w_.data());
-    nv = mnorm(w_.data());
-    for (size_t i = 0; i < n_; ++i) v_[i] = w_[i] / nv;
-    p_.hessian_apply(v_.data(), hs_.data());
-    mu_ = dot(n_, v_.data(), hs_.data());
-    ++g_dbg_inv;
-    if (std::fabs(mu_ - mu_old) <= 1e-13 * (std::fabs(mu_) + sigma)) break;
-    mu_old = mu_;
-  }
+  lanczos_largest(*f0_, d_, kLanczosSteps, 1e-8, v_);
+  p_.hessian_apply(v_.data(), hs_.data());
+  mu_ = dot(n_, v_.data(), hs_.data()); // ||v||_M = 1
 }
 
 // Initial upper bound of the multiplier (enlarged in the iteration if too small):
@@ -207,10 +210,11 @@ double TrustRegionMinres::gradient_radius(const double *g) const {
 // Factor H + lambda M into fl_ and put s(lambda) = -(H + lambda M)^{-1} g in w_;
 // false if H + lambda M is not positive definite.
 bool TrustRegionMinres::trial_step(const double *g, double lambda, double *ns) {
-  fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
-  ++g_dbg_fact;
-  if (!fl_->factor(p_, lambda, m_.data())) return false;
-  fl_lambda_ = lambda;
+  if (!(fl_lambda_ == lambda && fl_->factored())) { // else: factored there already
+    fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
+    if (!fl_->factor(p_, lambda, m_.data())) return false;
+    fl_lambda_ = lambda;
+  }
   for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
   fl_->solve(w_.data());
   *ns = mnorm(w_.data());
@@ -268,7 +272,11 @@ void TrustRegionMinres::add_curvature_direction(const double *g, double radius,
 Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
   Step st;
   double lo = 0.0, lambda = 0.0, ns = 0.0;
-  if (sigma0_ == 0.0) { // H positive definite: try the Newton step
+  bool lo_ok = false;        // H + lo M is known to be positive definite
+  if (lambda_floor_ > 0.0) { // same H and g, smaller radius: lambda >= the last one
+    lo = lambda = lambda_floor_;
+    lo_ok = true;
+  } else if (sigma0_ == 0.0) { // H positive definite: try the Newton step
     for (size_t i = 0; i < n_; ++i) w_[i] = -g[i];
     f0_->solve(w_.data());
     ns = mnorm(w_.data());
@@ -276,23 +284,28 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
       minres_step(g, 0.0, st);
       return st;
     }
+    lo_ok = true;
   } else {
     lo = std::max(0.0, -mu_);
     lambda = lo * (1.0 + 1e-6) + 1e-14;
   }
   double hi = upper_multiplier(g, radius) + lo;
-  bool hard = false, ok = (sigma0_ == 0.0);
+  bool hard = false, ok = (sigma0_ == 0.0 && lambda_floor_ == 0.0);
+  double gap = 0.0; // lambda - lo after the last failed factorisation
   for (int it = 0; it < kMaxMultiplierIts; ++it) {
     if (it > 0 || !ok) {
-      if (!(lambda > lo && lambda < hi))
+      if (!((lambda > lo || (lambda == lo && lo_ok)) && lambda < hi))
         lambda = std::max(std::sqrt(lo * hi), lo + 1e-2 * (hi - lo));
       ok = trial_step(g, lambda, &ns);
-      if (!ok) { // below the lowest eigenvalue: raise the lower bound
-        lo = lambda;
-        lambda = lo + std::max(10.0 * (lambda - lo), 1e-6 * lo + 1e-14);
+      if (!ok) {     // below the lowest eigenvalue: raise the lower bound, and the gap
+        lo = lambda; // above it tenfold on every consecutive failure
+        lo_ok = false;
+        gap = std::max(10.0 * gap, 1e-6 * lo + 1e-14);
+        lambda = lo + gap;
         if (lo >= hi) hi = 10.0 * lo;
         continue;
       }
+      gap = 0.0;
     }
     if (std::fabs(ns - radius) <= kBoundaryTol * radius) break;
     if (ns < radius) {
@@ -301,8 +314,10 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
         hard = negcurv_;
         break;
       }
+      if (lambda <= lo) break; // at an admissible lower bound: no smaller multiplier
     } else {
       lo = lambda;
+      lo_ok = true;
       if (lo >= hi) hi = 10.0 * lo;
     }
     // Newton step on 1/||s(lambda)||_M - 1/radius: q = (H + lambda M)^{-1} M s.
@@ -311,6 +326,7 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
     lambda += (ns / radius - 1.0) * ns * ns / mdot(w_.data(), q_.data());
   }
   minres_step(g, lambda, st);
+  lambda_floor_ = fl_lambda_ == lambda ? lambda : 0.0;
   st.boundary = !(hard || (sigma0_ > 0.0 && !negcurv_ && ns < radius));
   if (hard) add_curvature_direction(g, radius, st);
   const double sn = mnorm(st.s.data());
@@ -348,9 +364,7 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
       radius = sigma0_ == 0.0 ? std::numeric_limits<double>::max()
                               : std::max(gradient_radius(gp), 1e-8);
-    g_dbg_fact = 0; g_dbg_inv = 0;
     Step st = solve_subproblem(gp, radius);
-    std::fprintf(stderr, "DBG it %d sigma0 %.3e mu %.6e negcurv %d lambda %.6e trial-factors %d inv-its %d boundary %d\n", state_->iter, sigma0_, mu_, (int)negcurv_, st.lambda, g_dbg_fact, g_dbg_inv, (int)st.boundary);
     const double snorm = mnorm(st.s.data());
     if (radius == std::numeric_limits<double>::max()) radius = std::max(snorm, 1e-300);
     const double pred = -model(gp, st.s.data());

@@ -1,0 +1,353 @@
+/* bench_lattice.c - rn_solve on the lattices of `rodnet generate` (problems/lattice.h):
+ * by default hexagonal honeycombs of 10x10, 30x30 and 100x100 cells (period 1,
+ * 8 edges per rod, E = 1, nu = 0.3, circle r = 1/50) under a uniaxial stretch of
+ * 1e-3 (both faces normal to x pinned, the max face displaced), with rigid and with
+ * elastic joints; `--kind octet --cells 3 --load compress-z:1e-3` gives the 3D
+ * octet block under compression.
+ *
+ * Each repeat writes the scene (next to the CSV, removed afterwards), loads it
+ * with the scene reader, and times rn_solve alone.  Per Newton step the MINRES
+ * iterations come from the progress callback.  A solve that does not converge
+ * makes the program fail (exit 1); timings are never asserted.
+ *
+ *   bench_lattice [--kind honeycomb] [--cells 10,30,100] [--models rigid,elastic]
+ *                 [--edges-per-rod 8] [--load stretch-x:1e-3] [--repeats N]
+ *                 [--solver NAME] [--factorization auto|banded|sparse]
+ *                 [--dump-system PREFIX] [--out FILE.csv]
+ *
+ * --dump-system writes, for each case, the Newton system at the initial state to
+ * PREFIX-<case>-<cells>.bin for shim_cxx/study/precond_study.cpp (dump_system).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_util.h"
+#include "lattice.h"
+#include "lattice_scene.h"
+#include "rodnet_solve.h"
+#include "scene.h"
+
+#define MAX_LIST 16
+
+typedef struct bench_opts {
+  rn_lattice_kind kind;
+  long cells[MAX_LIST];
+  int n_cells;
+  int models[2], n_models;
+  int edges_per_rod, repeats;
+  rn_lattice_load_kind load;
+  int load_axis;
+  double load_value;
+  const char *load_text;
+  rn_solver_kind solver;
+  rn_factorization factorization;
+  const char *out, *dump;
+} bench_opts;
+
+/* MINRES iterations per Newton step, from the progress callback.  The first call
+ * of each load step reports its starting point (no Krylov work) under the
+ * iteration number of the previous call. */
+typedef struct krylov_log {
+  long steps, total;
+  int max, calls, last;
+} krylov_log;
+
+static void on_progress(void *user, const rn_iteration_info *info) {
+  krylov_log *log = user;
+  const int start = log->calls == 0 || info->iteration == log->last;
+  log->calls++;
+  log->last = info->iteration;
+  if (start) return;
+  log->steps++;
+  log->total += info->krylov_iterations;
+  if (info->krylov_iterations > log->max) log->max = info->krylov_iterations;
+}
+
+typedef struct run_result {
+  rn_solve_report rep;
+  krylov_log log;
+  size_t dofs;
+  int rods, joints;
+} run_result;
+
+/* Writes the lattice scene to path; 0 if ok. */
+static int write_scene(rn_context *ctx, const bench_opts *o, long cells, int model,
+                       const char *path) {
+  const int c[3] = {(int)cells, (int)cells, (int)cells};
+  rn_lattice *lat = NULL;
+  rn_lattice_scene sc;
+  rn_status s = rn_lattice_build(ctx, o->kind, c, 1.0, &lat);
+  memset(&sc, 0, sizeof sc);
+  sc.description = "bench_lattice";
+  sc.edges_per_rod = o->edges_per_rod;
+  sc.joint_model = model;
+  sc.E = 1.0;
+  sc.nu = 0.3;
+  sc.shape = RN_LSEC_CIRCLE;
+  sc.section[0] = 1.0 / 50.0;
+  sc.load = o->load;
+  sc.load_axis = o->load_axis;
+  sc.load_value = o->load_value;
+  if (!s) s = rn_lattice_write_scene(ctx, path, lat, &sc);
+  rn_lattice_destroy(&lat);
+  if (s) rn_bench_report_error("lattice", ctx, s);
+  return s ? -1 : 0;
+}
+
+/* Native binary dump of the Newton system at the current state: "RNSYS1\0\0", n,
+ * nnz, rods (int64), rowptr[n + 1] (int64), col[nnz] (int32), H values[nnz], the
+ * gradient[n] and the reduced DOFs of each rod (int64; rods come first in the
+ * reduced vector).  A lattice rod has both ends at joints and no constraint of its
+ * own: 4 nv - 7 reduced DOFs (checked: the joints' valences add up to twice the
+ * rods).  0 if written. */
+static int dump_system(const rn_network *net, const char *path) {
+  const size_t n = rn_network_num_dofs(net);
+  const int nr = rn_network_num_rods(net);
+  size_t nnz = 0;
+  const int64_t *rowptr = NULL;
+  const int32_t *col = NULL;
+  int64_t head[3], valence = 0;
+  double *x = malloc((n + 1) * sizeof *x), *g = malloc((n + 1) * sizeof *g), *vals = NULL;
+  int64_t *rod = malloc(((size_t)nr + 1) * sizeof *rod);
+  FILE *f = NULL;
+  int rc = -1;
+  for (int j = 0; j < rn_network_num_joints(net); ++j)
+    valence += rn_network_joint_valence(net, j);
+  if (!x || !g || !rod || valence != 2 * (int64_t)nr ||
+      rn_network_hessian_pattern(net, &nnz, &rowptr, &col))
+    goto done;
+  vals = malloc((nnz + 1) * sizeof *vals);
+  if (!vals || rn_network_get_dofs(net, x) || rn_network_gradient(net, x, NULL, g) ||
+      rn_network_hessian_values(net, x, vals))
+    goto done;
+  for (int r = 0; r < nr; ++r)
+    rod[r] = 4 * (int64_t)rn_network_rod_num_vertices(net, r) - 7;
+  head[0] = (int64_t)n;
+  head[1] = (int64_t)nnz;
+  head[2] = nr;
+  f = fopen(path, "wb");
+  if (f && fwrite("RNSYS1\0\0", 1, 8, f) == 8 && fwrite(head, sizeof *head, 3, f) == 3 &&
+      fwrite(rowptr, sizeof *rowptr, n + 1, f) == n + 1 &&
+      fwrite(col, sizeof *col, nnz, f) == nnz &&
+      fwrite(vals, sizeof *vals, nnz, f) == nnz && fwrite(g, sizeof *g, n, f) == n &&
+      fwrite(rod, sizeof *rod, (size_t)nr, f) == (size_t)nr)
+    rc = 0;
+  if (f && fclose(f) != 0) rc = -1;
+done:
+  if (rc) fprintf(stderr, "bench_lattice: cannot dump the system to %s\n", path);
+  free(x);
+  free(g);
+  free(vals);
+  free(rod);
+  return rc;
+}
+
+/* One solve; returns the wall time of rn_solve or a negative value on failure. */
+static double solve_once(rn_context *ctx, const bench_opts *o, long cells, int model,
+                         const char *path, run_result *res) {
+  rn_scene *scene = NULL;
+  rn_solve_options opt;
+  rn_status s;
+  double t0, t;
+  if (write_scene(ctx, o, cells, model, path)) return -1.0;
+  s = rn_scene_load(ctx, path, &scene);
+  remove(path);
+  if (s) {
+    rn_bench_report_error("rn_scene_load", ctx, s);
+    return -1.0;
+  }
+  rn_network *net = rn_scene_network(scene);
+  if (o->dump) {
+    char dump[4096];
+    snprintf(dump, sizeof dump, "%s-%s-%s-%ld.bin", o->dump,
+             rn_lattice_kind_name(o->kind), model == RN_JOINT_RIGID ? "rigid" : "elastic",
+             cells);
+    if (dump_system(net, dump)) {
+      rn_scene_destroy(&scene);
+      return -1.0;
+    }
+  }
+  res->dofs = rn_network_num_dofs(net);
+  res->rods = rn_network_num_rods(net);
+  res->joints = rn_network_num_joints(net);
+  memset(&res->log, 0, sizeof res->log);
+  rn_solve_options_default(&opt);
+  opt.solver = o->solver;
+  opt.factorization = o->factorization;
+  opt.progress = on_progress;
+  opt.progress_user = &res->log;
+  t0 = rn_bench_now();
+  s = rn_solve(net, &opt, &res->rep);
+  t = rn_bench_now() - t0;
+  rn_scene_destroy(&scene);
+  if (s) {
+    rn_bench_report_error("rn_solve", ctx, s);
+    return -1.0;
+  }
+  if (!res->rep.converged) {
+    fprintf(stderr, "bench_lattice: %ld cells: not converged (stop: %s, |g| = %.3e)\n",
+            cells, rn_solve_stop_name(res->rep.stop), res->rep.gradient_norm);
+    return -1.0;
+  }
+  return t;
+}
+
+static const char *model_name(int model) {
+  return model == RN_JOINT_RIGID ? "rigid" : "elastic";
+}
+
+static int bench_case(rn_context *ctx, const bench_opts *o, long cells, int model,
+                      const char *path, FILE *out) {
+  double *t = malloc((size_t)o->repeats * sizeof *t), med, mn;
+  run_result res;
+  char case_name[64];
+  memset(&res, 0, sizeof res);
+  if (!t) return 1;
+  for (int r = 0; r < o->repeats; ++r) {
+    t[r] = solve_once(ctx, o, cells, model, path, &res);
+    if (t[r] < 0.0) {
+      free(t);
+      return 1;
+    }
+  }
+  rn_bench_stats(t, o->repeats, &med, &mn);
+  free(t);
+  snprintf(case_name, sizeof case_name, "%s-%s", rn_lattice_kind_name(o->kind),
+           model_name(model));
+  /* Iteration counts are deterministic: those of the last repeat. */
+  rn_bench_csv_begin(out, "lattice", case_name, (long)res.dofs, o->repeats, med, mn);
+  fprintf(out, ",%s,%ld,%s,%d,%s,%d,%d,%s,%s,%d,%ld,%.4f,%d,%ld,%d,%s,%.6e,%.10e\n",
+          rn_lattice_kind_name(o->kind), cells, model_name(model), o->edges_per_rod,
+          o->load_text, res.rods, res.joints, rn_solver_name(o->solver),
+          rn_factorization_name(res.rep.factorization), res.rep.iterations,
+          res.rep.krylov_iterations,
+          res.log.steps ? (double)res.log.total / (double)res.log.steps : 0.0,
+          res.log.max, res.rep.factorizations, res.rep.load_steps,
+          rn_solve_stop_name(res.rep.stop), res.rep.gradient_norm, res.rep.energy);
+  fflush(out);
+  fprintf(stderr,
+          "bench_lattice: %s %ldx%ld %-7s %8zu DOFs  %9.3f s (min %.3f)  %d Newton, "
+          "%ld MINRES (%.2f per step, max %d), %ld factorisations\n",
+          rn_lattice_kind_name(o->kind), cells, cells, model_name(model), res.dofs, med,
+          mn, res.rep.iterations, res.rep.krylov_iterations,
+          res.log.steps ? (double)res.log.total / (double)res.log.steps : 0.0,
+          res.log.max, res.rep.factorizations);
+  return 0;
+}
+
+static int usage(const char *msg) {
+  fprintf(stderr,
+          "bench_lattice: %s\n"
+          "usage: bench_lattice [--kind honeycomb] [--cells 10,30,100]\n"
+          "                     [--models rigid,elastic] [--edges-per-rod 8]\n"
+          "                     [--load stretch-x:1e-3] [--repeats N] [--solver NAME]\n"
+          "                     [--factorization auto|banded|sparse]\n"
+          "                     [--dump-system PREFIX] [--out FILE.csv]\n",
+          msg);
+  return 2;
+}
+
+/* "stretch-x:1e-3", "compress-z:1e-3", "pull-y:0.1"; 0 if ok. */
+static int parse_load(const char *v, bench_opts *o) {
+  static const char *kinds[3] = {"stretch-", "compress-", "pull-"};
+  for (int k = 0; k < 3; ++k) {
+    const size_t len = strlen(kinds[k]);
+    char *end = NULL;
+    double x;
+    if (strncmp(v, kinds[k], len) != 0) continue;
+    if (v[len] < 'x' || v[len] > 'z' || v[len + 1] != ':') return -1;
+    x = strtod(v + len + 2, &end);
+    if (end == v + len + 2 || *end || !isfinite(x)) return -1;
+    o->load = k == 2 ? RN_LLOAD_PULL : RN_LLOAD_STRETCH;
+    o->load_axis = v[len] - 'x';
+    o->load_value = k == 1 ? -x : x;
+    o->load_text = v;
+    return 0;
+  }
+  return -1;
+}
+
+static int parse_models(const char *v, bench_opts *o) {
+  o->n_models = 0;
+  if (!strcmp(v, "rigid") || !strcmp(v, "rigid,elastic") || !strcmp(v, "elastic,rigid"))
+    o->models[o->n_models++] = RN_JOINT_RIGID;
+  if (!strcmp(v, "elastic") || !strcmp(v, "rigid,elastic"))
+    o->models[o->n_models++] = RN_JOINT_ELASTIC;
+  if (!strcmp(v, "elastic,rigid")) {
+    o->models[0] = RN_JOINT_ELASTIC;
+    o->models[o->n_models++] = RN_JOINT_RIGID;
+  }
+  return o->n_models > 0 ? 0 : -1;
+}
+
+static int parse_args(int argc, char **argv, bench_opts *o) {
+  memset(o, 0, sizeof *o);
+  o->kind = RN_LATTICE_HONEYCOMB;
+  o->n_cells = rn_bench_parse_list("10,30,100", o->cells, MAX_LIST);
+  parse_models("rigid,elastic", o);
+  o->edges_per_rod = 8;
+  o->repeats = 1;
+  parse_load("stretch-x:1e-3", o);
+  o->solver = RN_SOLVER_TR_MINRES;
+  o->factorization = RN_FACTOR_AUTO;
+  for (int i = 1; i < argc; ++i) {
+    const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("lattice solve"), 1;
+    if (!val) return usage("missing value after an option"), -1;
+    if (!strcmp(a, "--kind")) {
+      if (rn_lattice_kind_from_name(val, &o->kind)) return usage("unknown --kind"), -1;
+    } else if (!strcmp(a, "--cells"))
+      o->n_cells = rn_bench_parse_list(val, o->cells, MAX_LIST);
+    else if (!strcmp(a, "--models")) {
+      if (parse_models(val, o)) return usage("bad --models"), -1;
+    } else if (!strcmp(a, "--edges-per-rod"))
+      o->edges_per_rod = atoi(val);
+    else if (!strcmp(a, "--load")) {
+      if (parse_load(val, o)) return usage("bad --load"), -1;
+    } else if (!strcmp(a, "--repeats"))
+      o->repeats = atoi(val);
+    else if (!strcmp(a, "--solver")) {
+      if (rn_solver_from_name(val, &o->solver)) return usage("unknown --solver"), -1;
+    } else if (!strcmp(a, "--factorization")) {
+      if (rn_factorization_from_name(val, &o->factorization))
+        return usage("unknown --factorization"), -1;
+    } else if (!strcmp(a, "--dump-system"))
+      o->dump = val;
+    else if (!strcmp(a, "--out"))
+      o->out = val;
+    else
+      return usage("unknown option"), -1;
+    ++i;
+  }
+  if (o->n_cells < 0) return usage("bad --cells"), -1;
+  if (o->repeats < 1 || o->edges_per_rod < 1) return usage("bad --repeats/--edges"), -1;
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  bench_opts o;
+  int rc = parse_args(argc, argv, &o);
+  char path[4096];
+  if (rc) return rc > 0 ? 0 : 2;
+  snprintf(path, sizeof path, "%s.scene.json", o.out ? o.out : "bench_lattice");
+  FILE *out = o.out ? fopen(o.out, "w") : stdout;
+  if (!out) {
+    perror(o.out);
+    return 1;
+  }
+  rn_context *ctx = NULL;
+  if (rn_runtime_initialize(&argc, &argv) || rn_context_create(&ctx)) return 1;
+  rn_bench_csv_header(out, "lattice,cells,joint_model,edges_per_rod,load,rods,joints,"
+                           "solver,factorization,newton_iterations,minres_iterations,"
+                           "minres_per_newton,minres_max,factorizations,load_steps,"
+                           "stop,gradient_norm,energy");
+  for (int k = 0; k < o.n_cells && !rc; ++k)
+    for (int m = 0; m < o.n_models && !rc; ++m)
+      rc = bench_case(ctx, &o, o.cells[k], o.models[m], path, out);
+  rn_context_destroy(&ctx);
+  if (out != stdout && fclose(out) != 0) rc = 1;
+  rn_runtime_finalize();
+  return rc ? 1 : 0;
+}
