@@ -43,3 +43,14 @@ double rn_test_loglog_slope(int n, const double *h, const double *err) {
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
+
+void rn_test_normalize3(double v[3]) {
+  double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  for (int k = 0; k < 3; ++k) v[k] /= n;
+}
+
+void rn_test_cross3(const double a[3], const double b[3], double r[3]) {
+  double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0]};
+  r[0] = t[0], r[1] = t[1], r[2] = t[2];
+}

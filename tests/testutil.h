@@ -54,6 +54,10 @@ int rn_test_finish(const char *name);
 /* Deterministic uniform random numbers in [-1, 1). */
 double rn_test_rand(uint64_t *state);
 
+/* 3-vector helpers shared by the kernel tests. */
+void rn_test_normalize3(double v[3]);
+void rn_test_cross3(const double a[3], const double b[3], double r[3]);
+
 /* Least-squares slope of log(err) against log(h) over n points. */
 double rn_test_loglog_slope(int n, const double *h, const double *err);
 

@@ -99,26 +99,16 @@ static int bt_v(const term *t, const double *q, const double *v, double *Hv) {
 static uint64_t rng = 12345;
 static double rnd(void) { return rn_test_rand(&rng); }
 
-static void normalize(double v[3]) {
-  double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  for (int k = 0; k < 3; ++k) v[k] /= n;
-}
-static void cross(const double a[3], const double b[3], double r[3]) {
-  r[0] = a[1] * b[2] - a[2] * b[1];
-  r[1] = a[2] * b[0] - a[0] * b[2];
-  r[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* A reference frame near (not at) the tangent of edge vector e. */
 static void near_frame(const double e[3], double spread, rnk_frame *f) {
   double t[3], a[3];
   for (int k = 0; k < 3; ++k)
     t[k] = e[k] + spread * rnd() * sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-  normalize(t);
+  rn_test_normalize3(t);
   for (int k = 0; k < 3; ++k) a[k] = rnd();
   double d = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
   for (int k = 0; k < 3; ++k) a[k] -= d * t[k];
-  normalize(a);
+  rn_test_normalize3(a);
   memcpy(f->t, t, sizeof t);
   memcpy(f->a1, a, sizeof a);
 }
@@ -242,11 +232,11 @@ static void rigid(const term *t, const double *q, const double R[9], const doubl
 
 static void random_rotation(double R[9]) {
   double a[3] = {rnd(), rnd(), rnd()}, b[3] = {rnd(), rnd(), rnd()}, c[3];
-  normalize(a);
+  rn_test_normalize3(a);
   double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
   for (int k = 0; k < 3; ++k) b[k] -= d * a[k];
-  normalize(b);
-  cross(a, b, c);
+  rn_test_normalize3(b);
+  rn_test_cross3(a, b, c);
   for (int k = 0; k < 3; ++k) {
     R[k] = a[k];
     R[3 + k] = b[k];
@@ -377,15 +367,15 @@ static void test_rest(void) {
  * ones (norm and orthogonality preserved), rejects opposite tangents. */
 static void test_transport(void) {
   double t[3] = {0.3, -0.4, 0.866}, v[3] = {0.8, 0.6, 0.0}, out[3];
-  normalize(t);
+  rn_test_normalize3(t);
   double d = v[0] * t[0] + v[1] * t[1] + v[2] * t[2];
   for (int k = 0; k < 3; ++k) v[k] -= d * t[k];
-  normalize(v);
+  rn_test_normalize3(v);
   CHECK_STATUS(rnk_transport(t, t, v, out), RNK_OK);
   for (int k = 0; k < 3; ++k) CHECK_NEAR(out[k], v[k], 4e-16);
   for (int p = 4; p <= 15; ++p) {
     double tb[3] = {t[0] + pow(10.0, -p), t[1] - pow(10.0, -p), t[2]};
-    normalize(tb);
+    rn_test_normalize3(tb);
     CHECK_STATUS(rnk_transport(t, tb, v, out), RNK_OK);
     CHECK_NEAR(out[0] * out[0] + out[1] * out[1] + out[2] * out[2], 1.0, 1e-15);
     CHECK_NEAR(out[0] * tb[0] + out[1] * tb[1] + out[2] * tb[2], 0.0, 1e-15);

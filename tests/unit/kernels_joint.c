@@ -15,15 +15,6 @@
 static uint64_t rng = 777;
 static double rnd(void) { return rn_test_rand(&rng); }
 
-static void normalize(double v[3]) {
-  double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  for (int k = 0; k < 3; ++k) v[k] /= n;
-}
-static void cross(const double a[3], const double b[3], double r[3]) {
-  r[0] = a[1] * b[2] - a[2] * b[1];
-  r[1] = a[2] * b[0] - a[0] * b[2];
-  r[2] = a[0] * b[1] - a[1] * b[0];
-}
 static void mat_vec(const double R[9], const double v[3], double out[3]) {
   for (int i = 0; i < 3; ++i)
     out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
@@ -38,14 +29,14 @@ static double norm(int n, const double *v) {
 static void frame_near(const double t0[3], double spread, double f[9]) {
   double t[3], a[3];
   for (int k = 0; k < 3; ++k) t[k] = t0[k] + spread * rnd();
-  normalize(t);
+  rn_test_normalize3(t);
   for (int k = 0; k < 3; ++k) a[k] = rnd();
   double d = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
   for (int k = 0; k < 3; ++k) a[k] -= d * t[k];
-  normalize(a);
+  rn_test_normalize3(a);
   memcpy(f, t, sizeof t);
   memcpy(f + 3, a, sizeof a);
-  cross(t, a, f + 6);
+  rn_test_cross3(t, a, f + 6);
 }
 
 static void random_joint(int side, double wmag, double q[10], rnk_frame *ref,
@@ -55,7 +46,7 @@ static void random_joint(int side, double wmag, double q[10], rnk_frame *ref,
   if (side == 1) /* terminal edge from x_J to x_n: put x_n after x_J */
     for (int k = 0; k < 3; ++k) xn[k] = 2 * xj[k] - xn[k];
   double w[3] = {rnd(), rnd(), rnd()};
-  normalize(w);
+  rn_test_normalize3(w);
   for (int k = 0; k < 3; ++k) {
     q[k] = xn[k];
     q[4 + k] = xj[k];
@@ -128,7 +119,7 @@ static void test_rotation_exp(void) {
   double mags[6] = {0.0, 1e-8, 0.3, 1.99999, 2.00001, 3.0};
   for (int m = 0; m < 6; ++m) {
     double w[3] = {0.3, -0.5, 0.8}, R[9];
-    normalize(w);
+    rn_test_normalize3(w);
     for (int k = 0; k < 3; ++k) w[k] *= mags[m];
     rnk_rotation_exp(w, R);
     /* orthogonal, det 1, axis fixed, rotation angle |w| */

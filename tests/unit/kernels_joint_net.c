@@ -15,15 +15,6 @@
 static uint64_t rng = 4242;
 static double rnd(void) { return rn_test_rand(&rng); }
 
-static void normalize(double v[3]) {
-  double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  for (int k = 0; k < 3; ++k) v[k] /= n;
-}
-static void cross(const double a[3], const double b[3], double r[3]) {
-  r[0] = a[1] * b[2] - a[2] * b[1];
-  r[1] = a[2] * b[0] - a[0] * b[2];
-  r[2] = a[0] * b[1] - a[1] * b[0];
-}
 static void mat_vec(const double R[9], const double v[3], double out[3]) {
   double t[3];
   for (int i = 0; i < 3; ++i)
@@ -51,7 +42,7 @@ static void make_star(star *s, int v, int rigid, double amp) {
   int off = rigid ? 6 : 3;
   for (int k = 0; k < v; ++k) {
     double dir[3] = {rnd(), rnd(), rnd()}, a[3] = {rnd(), rnd(), rnd()};
-    normalize(dir);
+    rn_test_normalize3(dir);
     int side = k % 2;
     double len = 0.5 + 0.3 * fabs(rnd());
     /* rest: x_n = -side-dependent along dir; t points from x_n to x_J (side 0)
@@ -62,12 +53,12 @@ static void make_star(star *s, int v, int rigid, double amp) {
     for (int c = 0; c < 3; ++c) t[c] = side == 0 ? -dir[c] : dir[c];
     double d = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
     for (int c = 0; c < 3; ++c) a[c] -= d * t[c];
-    normalize(a);
+    rn_test_normalize3(a);
     rnk_joint_end *e = &s->ends[k];
     e->side = side;
     memcpy(e->cbar, t, sizeof t);
     memcpy(e->cbar + 3, a, sizeof a);
-    cross(t, a, e->cbar + 6);
+    rn_test_cross3(t, a, e->cbar + 6);
     double B11 = 1 + fabs(rnd()), B22 = 1 + fabs(rnd()), B12 = 0.3 * rnd();
     e->bend = (rnk_bend_param){.B = {B11, B12, B22}, .kbar = {0, 0}, .vlen = 0.5 * len};
     e->twist =
@@ -82,11 +73,11 @@ static void make_star(star *s, int v, int rigid, double amp) {
   for (int i = 0; i < s->n; ++i) s->q[i] += amp * rnd();
   for (int k = 0; k < v && amp > 0; ++k) {
     for (int c = 0; c < 3; ++c) s->refs[k].t[c] += 0.1 * amp * rnd();
-    normalize(s->refs[k].t);
+    rn_test_normalize3(s->refs[k].t);
     double *a = s->refs[k].a1, *t = s->refs[k].t;
     double d = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
     for (int c = 0; c < 3; ++c) a[c] -= d * t[c];
-    normalize(a);
+    rn_test_normalize3(a);
   }
 }
 
