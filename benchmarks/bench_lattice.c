@@ -228,10 +228,11 @@ static int bench_case(rn_context *ctx, const bench_opts *o, long cells, int mode
           rn_solve_stop_name(res.rep.stop), res.rep.gradient_norm, res.rep.energy);
   fflush(out);
   fprintf(stderr,
-          "bench_lattice: %s %ldx%ld %-7s %8zu DOFs  %9.3f s (min %.3f)  %d Newton, "
-          "%ld MINRES (%.2f per step, max %d), %ld factorisations\n",
-          rn_lattice_kind_name(o->kind), cells, cells, model_name(model), res.dofs, med,
-          mn, res.rep.iterations, res.rep.krylov_iterations,
+          "bench_lattice: %s %ld^%d cells %-7s %8zu DOFs  %9.3f s (min %.3f)  %d "
+          "Newton, %ld MINRES (%.2f per step, max %d), %ld factorisations\n",
+          rn_lattice_kind_name(o->kind), cells, rn_lattice_kind_dimension(o->kind),
+          model_name(model), res.dofs, med, mn, res.rep.iterations,
+          res.rep.krylov_iterations,
           res.log.steps ? (double)res.log.total / (double)res.log.steps : 0.0,
           res.log.max, res.rep.factorizations);
   return 0;

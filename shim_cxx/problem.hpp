@@ -32,8 +32,9 @@ public:
   size_t size() const { return n_; }
   size_t bandwidth() const { return kd_; }
 
-  // Pure evaluations.  Return RN_OK or RN_DEGENERATE (trial point to reject);
-  // throw Error on any error status.  E may be NULL for gradient().
+  // Pure evaluations.  Return RN_OK or a positive, recoverable status (RN_DEGENERATE,
+  // RN_OVERFLOW: a trial point to reject); throw Error on any error status.  E may be
+  // NULL for gradient().
   rn_status energy(const double *x, double *E);
   rn_status gradient(const double *x, double *E, double *g);
   void hvp(const double *x, const double *v, double *Hv);

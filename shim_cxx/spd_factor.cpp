@@ -47,8 +47,9 @@ std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requeste
   return std::make_unique<BandedSpd>(p.size(), p.bandwidth());
 }
 
-double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m) {
-  if (f.factor(p, shift, m)) return 0.0;
+double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m,
+                      bool try_zero) {
+  if (try_zero && f.factor(p, shift, m)) return 0.0;
   // Smallest k in [-10, 10] with H + (shift + 10^k) M positive definite: bisection on
   // k (positive definiteness is monotone in the shift), then factor there.
   int lo = -11, hi = 11; // 10^lo fails (-11 stands for 0), 10^hi works (11: unknown)

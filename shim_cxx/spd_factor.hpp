@@ -47,7 +47,9 @@ std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requeste
 // that gives a positive definite matrix (bisection on the exponent: at most 7
 // factorisations); returns sigma.  Throws Error (RN_ERR_LAPACK) if no shift up to
 // 1e10 works (e.g. non-finite entries).
-double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m);
+// try_zero = false: the caller knows that sigma = 0 fails (skips that factorisation).
+double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m,
+                      bool try_zero = true);
 
 // Smallest eigenvalue of the assembled Hessian by bisection on the inertia (sparse
 // Cholesky of H - sigma I) and inverse iteration (min_eigenvalue.cpp).  Throws Error.

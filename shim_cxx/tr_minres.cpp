@@ -5,8 +5,9 @@
 //  1. gradient g and CSR Hessian H at x; metric D = |diag H| of the first iteration
 //     (floored), fixed for the load step; trust-region norm ||s||_D = sqrt(s' D s).
 //  2. Factor H (Cholesky: banded for single rods, sparse with a nested-dissection
-//     ordering for networks with joints; spd_factor.hpp).  If it fails, the smallest
-//     sigma that factors H + sigma D is found and shift-and-invert Lanczos with that
+//     ordering for networks with joints; spd_factor.hpp).  If it fails, H + sigma D is
+//     factored with sigma = 1.5 |mu| of the last indefinite Hessian if that works,
+//     else the smallest decade that does, and shift-and-invert Lanczos with that
 //     factorisation (lanczos.hpp, at most kLanczosSteps solves) gives the lowest
 //     eigenpair (mu, v) of the pencil (H, D) (mu >= the lowest eigenvalue).
 //  3. Multiplier lambda >= max(0, -mu): lambda = 0 if H is positive definite and the
@@ -116,7 +117,7 @@ public:
 
 private:
   void analyse_hessian(const double *x);
-  void lowest_eigenpair(double sigma);
+  void lowest_eigenpair();
   Step solve_subproblem(const double *g, double radius);
   double upper_multiplier(const double *g, double radius) const;
   double gradient_radius(const double *g) const;
@@ -142,6 +143,7 @@ private:
   double lambda_floor_ = 0.0;
   bool negcurv_ = false;
   double mu_ = 0.0;       // lowest eigenvalue estimate of the pencil (H, M)
+  double mu_last_ = 0.0;  // mu_ of the last indefinite Hessian (0: none yet)
   std::vector<double> v_; // its eigenvector, ||v||_M = 1
   MinresSolver minres_;
   MV rhs_, sol_;
@@ -163,11 +165,19 @@ void TrustRegionMinres::analyse_hessian(const double *x) {
   mu_ = 0.0;
   fl_lambda_ = std::numeric_limits<double>::quiet_NaN();
   lambda_floor_ = 0.0;
-  sigma0_ = factor_shifted(*f0_, p_, 0.0, m_.data());
-  if (sigma0_ > 0.0) {
-    lowest_eigenpair(sigma0_);
-    negcurv_ = mu_ < -kCurvTol;
-  }
+  sigma0_ = 0.0;
+  if (f0_->factor(p_, 0.0, m_.data())) return;
+  // Not positive definite.  A shift of 1.5 |mu| of the last indefinite Hessian is
+  // tried first (H changes little between iterations: one factorisation, and a shift
+  // close to the lowest eigenvalue speeds up Lanczos), then the smallest decade.
+  const double guess = -1.5 * mu_last_;
+  if (guess > 0.0 && f0_->factor(p_, guess, m_.data()))
+    sigma0_ = guess;
+  else
+    sigma0_ = factor_shifted(*f0_, p_, 0.0, m_.data(), false);
+  lowest_eigenpair();
+  negcurv_ = mu_ < -kCurvTol;
+  mu_last_ = std::min(mu_, 0.0);
 }
 
 double TrustRegionMinres::mdot(const double *a, const double *b) {
@@ -178,7 +188,7 @@ double TrustRegionMinres::mdot(const double *a, const double *b) {
 // Shift-and-invert Lanczos with the factorisation of H + sigma M (in f0_) gives the
 // lowest eigenpair of the pencil (H, M); mu_ is the Rayleigh quotient of the Ritz
 // vector (>= the lowest eigenvalue).
-void TrustRegionMinres::lowest_eigenpair(double /*sigma*/) {
+void TrustRegionMinres::lowest_eigenpair() {
   v_.assign(n_, 0.0);
   for (size_t i = 0; i < n_; ++i)
     v_[i] = (1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 0.3)) / std::sqrt(d_[i]);

@@ -21,3 +21,8 @@ rn_add_test(shim_networks SOURCES unit/shim_networks.c
             LIBS rodnet ${LAPACK_LIBRARIES} m LABELS unit)
 # State snapshots: bit-identical evaluations after solving away and restoring.
 rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
+# The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests
+# an internal class of the shim through the shared library).
+rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
+            LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
+target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
