@@ -37,13 +37,52 @@ rn_status rn_network_clamp(rn_network *net, int rod, int end) {
   return RN_OK;
 }
 
-rn_status rn_network_pin(rn_network *net, int rod, int vertex) {
+/* Pins the components of vertex (union with earlier pins). */
+static rn_status pin_vertex(rn_network *net, const char *where, int rod, int vertex,
+                            int components) {
   rn_status st;
   int v;
-  if (!net) return RN_ERR_ARG;
-  if ((st = resolve_vertex(net, "rn_network_pin", rod, vertex, &v))) return st;
-  net->rods[rod].pinned[v] = 1;
+  if ((st = resolve_vertex(net, where, rod, vertex, &v))) return st;
+  if (components < 1 || components > RN_FIX_XYZ)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "rod %d vertex %d: components must be a non-empty RN_FIX_X | "
+                   "RN_FIX_Y | RN_FIX_Z bitmask (1 .. 7), got %d",
+                   rod, v, components);
+  net->rods[rod].pinned[v] |= (unsigned char)components;
   return RN_OK;
+}
+
+rn_status rn_network_pin(rn_network *net, int rod, int vertex) {
+  if (!net) return RN_ERR_ARG;
+  return pin_vertex(net, "rn_network_pin", rod, vertex, RN_FIX_XYZ);
+}
+
+rn_status rn_network_pin_components(rn_network *net, int rod, int vertex,
+                                    int components) {
+  if (!net) return RN_ERR_ARG;
+  return pin_vertex(net, "rn_network_pin_components", rod, vertex, components);
+}
+
+int rn_rod_in_clamp(const rn_rod *r, int v) {
+  return (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
+}
+
+int rn_rod_fixed_components(const rn_rod *r, int v) {
+  return rn_rod_in_clamp(r, v) ? RN_FIX_XYZ : r->pinned[v];
+}
+
+int rn_free_displaced_component(int mask, const double disp[3]) {
+  for (int k = 0; k < 3; ++k)
+    if (disp[k] != 0.0 && !rn_component_fixed(mask, k)) return k;
+  return -1;
+}
+
+const char *rn_components_name(int mask, char buf[4]) {
+  int n = 0;
+  for (int k = 0; k < 3; ++k)
+    if (rn_component_fixed(mask, k)) buf[n++] = "xyz"[k];
+  buf[n] = '\0';
+  return buf;
 }
 
 rn_status rn_network_fix_theta(rn_network *net, int rod, int edge) {
@@ -103,12 +142,13 @@ static int clamp_edge(const rn_rod *r, int end) {
   return end == RN_START ? 0 : r->ne - 1;
 }
 
+/* The fixed components of pinned vertices (free ones keep the state). */
 static void place_pins(rn_network *net, rn_rod *r) {
   for (int v = 0; v < r->nv; ++v) {
     double *x = net->xfull + rn_dof_vertex(r->off, v);
-    if (!r->pinned[v]) continue;
     for (int k = 0; k < 3; ++k)
-      x[k] = r->x0[3 * v + k] + net->lambda * r->vdisp[3 * v + k];
+      if (rn_component_fixed(r->pinned[v], k))
+        x[k] = r->x0[3 * v + k] + net->lambda * r->vdisp[3 * v + k];
   }
 }
 

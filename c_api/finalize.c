@@ -24,14 +24,22 @@ static rn_status validate_rod(const rn_network *net, int ir) {
           "rod %d ('%s'): prescribed motion of the %s end, which is not clamped", ir,
           rn_network_rod_name(net, ir), end == RN_START ? "start" : "end");
   for (int v = 0; v < r->nv; ++v) {
-    int in_clamp =
-        (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
-    if (r->has_vdisp[v] && !r->pinned[v] && !in_clamp)
+    int fixed = rn_rod_fixed_components(r, v), k;
+    char buf[4];
+    if (!r->has_vdisp[v]) continue;
+    if (!fixed)
       return rn_fail(
           net->ctx, RN_ERR_BC, where,
           "rod %d ('%s') vertex %d: prescribed displacement of a vertex that is "
           "neither pinned nor clamped",
           ir, rn_network_rod_name(net, ir), v);
+    if ((k = rn_free_displaced_component(fixed, r->vdisp + 3 * v)) >= 0)
+      return rn_fail(net->ctx, RN_ERR_BC, where,
+                     "rod %d ('%s') vertex %d: prescribed displacement %g along %c, "
+                     "which is free (the vertex is pinned in %s only); pin that "
+                     "component too or make it 0",
+                     ir, rn_network_rod_name(net, ir), v, r->vdisp[3 * v + k], "xyz"[k],
+                     rn_components_name(fixed, buf));
   }
   return RN_OK;
 }
@@ -69,9 +77,9 @@ static rn_status build_params(rn_rod *r) {
 static void mark_fixed(rn_network *net, const rn_rod *r) {
   int64_t *m = net->map;
   for (int v = 0; v < r->nv; ++v) {
-    int fixed = r->pinned[v] || (r->clamped[RN_START] && v <= 1) ||
-                (r->clamped[RN_END] && v >= r->nv - 2);
-    for (int k = 0; k < 3; ++k) m[rn_dof_vertex(r->off, v) + (size_t)k] = fixed ? -1 : 0;
+    int fixed = rn_rod_fixed_components(r, v);
+    for (int k = 0; k < 3; ++k)
+      m[rn_dof_vertex(r->off, v) + (size_t)k] = rn_component_fixed(fixed, k) ? -1 : 0;
   }
   for (int j = 0; j < r->ne; ++j) {
     int fixed = r->theta_fixed[j] || (r->clamped[RN_START] && j == 0) ||
@@ -80,12 +88,14 @@ static void mark_fixed(rn_network *net, const rn_rod *r) {
   }
 }
 
-/* Joint DOFs: position fixed if pinned or clamped, rotation (present for
- * rigid or clamped joints) fixed if clamped; initial position, w = 0. */
+/* Joint DOFs: position components fixed if pinned or clamped, rotation
+ * (present for rigid or clamped joints) fixed if clamped; initial position,
+ * w = 0. */
 static void mark_joint(rn_network *net, const rn_joint *J) {
   size_t p = rn_dof_joint_position(J->off), w = rn_dof_joint_rotation(J->off);
+  int fixed = rn_joint_fixed_components(J);
   for (int k = 0; k < 3; ++k) {
-    net->map[p + (size_t)k] = (J->pinned || J->clamped) ? -1 : 0;
+    net->map[p + (size_t)k] = rn_component_fixed(fixed, k) ? -1 : 0;
     net->xfull[p + (size_t)k] = J->x0[k];
     if (!rn_joint_has_rotation(J)) continue;
     net->map[w + (size_t)k] = J->clamped ? -1 : 0;

@@ -15,8 +15,7 @@ static rn_status check_end_bcs(const rn_network *net, const char *where, int ij,
   const rn_joint *J = &net->joints[ij];
   const rn_rod *r = &net->rods[J->rod[k]];
   int v = rn_end_vertex(r->nv, J->end[k]);
-  int in_clamp =
-      (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
+  int in_clamp = rn_rod_in_clamp(r, v);
   if (r->pinned[v] || r->has_vdisp[v] || in_clamp)
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "rod %d ('%s') vertex %d belongs to joint %d ('%s') but is %s; "
@@ -32,15 +31,25 @@ static rn_status check_end_bcs(const rn_network *net, const char *where, int ij,
 static rn_status check_joint_motion(const rn_network *net, const char *where, int ij) {
   const rn_joint *J = &net->joints[ij];
   int rotates = J->rot[0] != 0.0 || J->rot[1] != 0.0 || J->rot[2] != 0.0;
-  if (J->has_motion && !J->pinned && !J->clamped)
+  int fixed = rn_joint_fixed_components(J), k;
+  char buf[4];
+  if (!J->has_motion) return RN_OK;
+  if (!fixed)
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "joint %d ('%s'): prescribed motion of a joint that is neither pinned "
                    "nor clamped",
                    ij, rn_network_joint_name(net, ij));
-  if (J->has_motion && rotates && !J->clamped)
+  if (rotates && !J->clamped)
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "joint %d ('%s'): prescribed rotation of a joint that is not clamped",
                    ij, rn_network_joint_name(net, ij));
+  if ((k = rn_free_displaced_component(fixed, J->disp)) >= 0)
+    return rn_fail(net->ctx, RN_ERR_BC, where,
+                   "joint %d ('%s'): prescribed displacement %g along %c, which is free "
+                   "(the joint is pinned in %s only); pin that component too or make "
+                   "it 0",
+                   ij, rn_network_joint_name(net, ij), J->disp[k], "xyz"[k],
+                   rn_components_name(fixed, buf));
   return RN_OK;
 }
 
@@ -252,8 +261,9 @@ void rn_joints_place(rn_network *net) {
   for (int ij = 0; ij < net->njoints; ++ij) {
     rn_joint *J = &net->joints[ij];
     double *x = net->xfull + rn_dof_joint_position(J->off), w[3];
-    if (!J->pinned && !J->clamped) continue;
-    for (int c = 0; c < 3; ++c) x[c] = J->x0[c] + net->lambda * J->disp[c];
+    int fixed = rn_joint_fixed_components(J);
+    for (int c = 0; c < 3; ++c)
+      if (rn_component_fixed(fixed, c)) x[c] = J->x0[c] + net->lambda * J->disp[c];
     if (!J->clamped) continue;
     for (int c = 0; c < 3; ++c) {
       w[c] = net->lambda * J->rot[c];

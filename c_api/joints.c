@@ -185,12 +185,28 @@ rn_status rn_network_clamp_joint(rn_network *net, int joint) {
   return RN_OK;
 }
 
-rn_status rn_network_pin_joint(rn_network *net, int joint) {
+/* Pins the components of a joint's position (union with earlier pins). */
+static rn_status pin_joint(rn_network *net, const char *where, int joint,
+                           int components) {
   rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_arg(net, "rn_network_pin_joint", joint))) return st;
-  net->joints[joint].pinned = 1;
+  if ((st = check_joint_arg(net, where, joint))) return st;
+  if (components < 1 || components > RN_FIX_XYZ)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "joint %d: components must be a non-empty RN_FIX_X | RN_FIX_Y | "
+                   "RN_FIX_Z bitmask (1 .. 7), got %d",
+                   joint, components);
+  net->joints[joint].pinned |= components;
   return RN_OK;
+}
+
+rn_status rn_network_pin_joint(rn_network *net, int joint) {
+  if (!net) return RN_ERR_ARG;
+  return pin_joint(net, "rn_network_pin_joint", joint, RN_FIX_XYZ);
+}
+
+rn_status rn_network_pin_joint_components(rn_network *net, int joint, int components) {
+  if (!net) return RN_ERR_ARG;
+  return pin_joint(net, "rn_network_pin_joint_components", joint, components);
 }
 
 rn_status rn_network_displace_joint(rn_network *net, int joint, const double disp[3],

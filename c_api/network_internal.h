@@ -28,7 +28,7 @@ typedef struct rn_rod {
   rnk_frame *ref;         /* current reference frames [ne] */
   double *ref_twist;      /* reference twist at the last update [nv-2] */
   /* boundary conditions */
-  unsigned char *pinned;      /* [nv] */
+  unsigned char *pinned;      /* [nv] fixed components, RN_FIX_* bitmask */
   unsigned char *has_vdisp;   /* [nv] */
   double *vdisp;              /* prescribed vertex displacements [3 nv] */
   unsigned char *theta_fixed; /* [ne] */
@@ -62,13 +62,14 @@ typedef struct rn_moment {
  * reduced indices, and xfull keeps them equal to it). */
 typedef struct rn_joint {
   char *name;
-  int model;           /* rn_joint_model */
-  int valence;         /* >= 1 */
-  int *rod, *end;      /* incident rod ends [valence] */
-  double x0[3];        /* initial position (the first end's vertex) */
-  double lmin;         /* shortest incident terminal edge (input) */
-  size_t off;          /* first full DOF (set at finalize) */
-  int pinned, clamped; /* boundary conditions */
+  int model;      /* rn_joint_model */
+  int valence;    /* >= 1 */
+  int *rod, *end; /* incident rod ends [valence] */
+  double x0[3];   /* initial position (the first end's vertex) */
+  double lmin;    /* shortest incident terminal edge (input) */
+  size_t off;     /* first full DOF (set at finalize) */
+  int pinned;     /* fixed position components, RN_FIX_* bitmask */
+  int clamped;    /* position and rotation fixed */
   int has_motion;
   double disp[3], rot[3]; /* prescribed motion (unscaled) */
   double force[3], M[3];  /* loads (unscaled) */
@@ -120,6 +121,22 @@ int rn_all_finite(size_t n, const double *v);
 /* Resolves a possibly negative index (-1 = last) into [0, n); -1 if out of
  * range. */
 int rn_wrap_index(int i, int n);
+
+/* ---- fixed components (boundary.c) ------------------------------------------ */
+/* Fixed position components (RN_FIX_* bitmask) of rod vertex v: its pins and
+ * the clamps of the rod's ends; of a joint: its pins, all if clamped. */
+int rn_rod_fixed_components(const rn_rod *r, int v);
+/* 1 if rod vertex v belongs to a clamped end edge. */
+int rn_rod_in_clamp(const rn_rod *r, int v);
+static inline int rn_joint_fixed_components(const rn_joint *J) {
+  return J->clamped ? RN_FIX_XYZ : J->pinned;
+}
+/* 1 if component k (0 x, 1 y, 2 z) is in the bitmask. */
+static inline int rn_component_fixed(int mask, int k) { return (mask >> k) & 1; }
+/* The first component k with disp[k] != 0 that mask leaves free, -1 if none. */
+int rn_free_displaced_component(int mask, const double disp[3]);
+/* "x", "xz", ... (the components of mask) into buf[4]; returns buf. */
+const char *rn_components_name(int mask, char buf[4]);
 
 /* ---- state and stencils --------------------------------------------------- */
 /* Local stencil of n DOFs starting at full index s: q[k] = x[map] if free,

@@ -162,13 +162,26 @@ rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *le
 rn_status rn_network_clamp(rn_network *net, int rod, int end);
 rn_status rn_network_pin(rn_network *net, int rod, int vertex);
 rn_status rn_network_fix_theta(rn_network *net, int rod, int edge);
+/* Position components, as a bitmask, of a component pin. */
+enum { RN_FIX_X = 1, RN_FIX_Y = 2, RN_FIX_Z = 4, RN_FIX_XYZ = 7 };
+/* Component pin: fixes the global coordinates of one vertex named by the
+ * bitmask components (RN_FIX_X | RN_FIX_Z: x and z fixed, y free; a roller
+ * or a frictionless grip).  Repeated pins of a vertex, and pins of a vertex
+ * that a clamp or rn_network_pin also fixes, add up (union of the fixed
+ * components); rn_network_pin is the same as components = RN_FIX_XYZ.  The
+ * fixed DOFs leave the reduced vector.  RN_ERR_ARG unless components is in
+ * 1 .. RN_FIX_XYZ. */
+rn_status rn_network_pin_components(rn_network *net, int rod, int vertex, int components);
 /* Prescribed motion of a clamped end: translation disp[3] and rotation
  * rotvec[3] (rotation vector, about the midpoint of the clamped edge, which
  * is where the continuum clamp sits).  Either may be NULL.  Scaled by the
  * load factor.  RN_ERR_BC if that end is not clamped (checked at finalize). */
 rn_status rn_network_displace_end(rn_network *net, int rod, int end, const double disp[3],
                                   const double rotvec[3]);
-/* Prescribed displacement of a pinned (or clamped) vertex. */
+/* Prescribed displacement of a pinned (or clamped) vertex; it acts on the
+ * fixed components only.  For a vertex pinned in some components, every
+ * non-zero component of disp must be a fixed one: RN_ERR_BC otherwise (e.g.
+ * disp = (0, 0.1, 0) on a vertex pinned in x only), checked at finalize. */
 rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
                                      const double disp[3]);
 
@@ -330,10 +343,16 @@ int rn_network_joint_valence(const rn_network *net, int joint);      /* -1 if in
 
 /* Boundary conditions on joints: clamp fixes position and rotation (an elastic
  * joint then holds its connection edges in their rest orientation); pin
- * fixes the position.  Prescribed motion (scaled by the load factor): disp of
- * a pinned or clamped joint, rotvec (about the joint) of a clamped one. */
+ * fixes the position; pin_joint_components fixes the position components
+ * named by the bitmask components (RN_FIX_X, RN_FIX_Y, RN_FIX_Z; RN_ERR_ARG
+ * unless in 1 .. RN_FIX_XYZ), the others stay free.  Pins add up (union of
+ * the fixed components; a clamp fixes all).  Prescribed motion (scaled by the
+ * load factor): disp of a pinned or clamped joint, acting on its fixed
+ * components only (a non-zero component of disp on a free one is RN_ERR_BC
+ * at finalize), and rotvec (about the joint) of a clamped one. */
 rn_status rn_network_clamp_joint(rn_network *net, int joint);
 rn_status rn_network_pin_joint(rn_network *net, int joint);
+rn_status rn_network_pin_joint_components(rn_network *net, int joint, int components);
 rn_status rn_network_displace_joint(rn_network *net, int joint, const double disp[3],
                                     const double rotvec[3]);
 /* Dead force on a joint, and a couple on its rotation (model as for rods:

@@ -1,9 +1,11 @@
 # C API (c_api/): lifecycle and error paths, section constants, network-level
 # conformance of energy, gradient, HVP and CSR Hessian, per-stencil result fields,
-# joints (both models: FD table, reference update, BCs, loads, error paths).
+# joints (both models: FD table, reference update, BCs, loads, error paths),
+# component pins.
 rn_add_test(api_lifecycle SOURCES unit/api_lifecycle.c LIBS rodnet LABELS unit)
 rn_add_test(api_sections SOURCES unit/api_sections.c LIBS rodnet LABELS unit)
 rn_add_test(api_conformance SOURCES unit/api_conformance.c LIBS rodnet LABELS unit)
 rn_add_test(api_fields SOURCES unit/api_fields.c LIBS rodnet LABELS unit)
 rn_add_test(api_joints SOURCES unit/api_joints.c LIBS rodnet LABELS unit)
 rn_add_test(api_overflow SOURCES unit/api_overflow.c LIBS rodnet LABELS unit)
+rn_add_test(api_components SOURCES unit/api_components.c LIBS rodnet m LABELS unit)
