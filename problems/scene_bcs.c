@@ -43,6 +43,14 @@ rn_status rn_scene_end_ref(rn_jwalk *w, const cJSON *obj, int *end) {
   return st;
 }
 
+/* Error msg at obj[key]. */
+static rn_status error_at_key(rn_jwalk *w, const char *key, const char *msg) {
+  size_t mark = rn_jwalk_key(w, key);
+  rn_status st = rn_jwalk_error(w, "%s", msg);
+  rn_jwalk_pop(w, mark);
+  return st;
+}
+
 static rn_status lib(rn_jwalk *w, rn_status st) {
   return st ? rn_jwalk_lib_error(w, st) : RN_OK;
 }
@@ -88,21 +96,108 @@ static rn_status at_joint_error(rn_scene_parser *p, const char *key,
 
 /* ---- constraints ---------------------------------------------------------------- */
 
+/* obj["components"] (optional): a non-empty array of distinct "x", "y", "z";
+ * *mask receives the RN_FIX_* bitmask (RN_FIX_XYZ without the key), *given
+ * whether the key is there. */
+static rn_status read_components(rn_jwalk *w, const cJSON *obj, int *mask, int *given) {
+  const cJSON *list = rn_jm_get(obj, "components");
+  char got[64];
+  rn_status st = RN_OK;
+  *mask = RN_FIX_XYZ;
+  *given = list != NULL;
+  if (!list) return RN_OK;
+  size_t mark = rn_jwalk_key(w, "components");
+  rn_json_describe(list, got, sizeof got);
+  if (!cJSON_IsArray(list) || !list->child)
+    st = rn_jwalk_error(w,
+                        "expected a non-empty array of distinct components \"x\", "
+                        "\"y\", \"z\", got %s",
+                        got);
+  *mask = 0;
+  int i = 0;
+  for (const cJSON *c = st ? NULL : list->child; c && !st; c = c->next, i++) {
+    size_t m = rn_jwalk_index(w, i);
+    const char *s = cJSON_IsString(c) ? c->valuestring : NULL;
+    int k = s && s[0] >= 'x' && s[0] <= 'z' && s[1] == '\0' ? s[0] - 'x' : -1;
+    rn_json_describe(c, got, sizeof got);
+    if (k < 0)
+      st = rn_jwalk_error(w, "expected a component \"x\", \"y\" or \"z\", got %s", got);
+    else if (*mask & (1 << k))
+      st = rn_jwalk_error(w, "component \"%c\" is listed twice", "xyz"[k]);
+    else
+      *mask |= 1 << k;
+    rn_jwalk_pop(w, m);
+  }
+  rn_jwalk_pop(w, mark);
+  return st;
+}
+
+/* "[\"x\", \"z\"]" for a bitmask into buf[16]; returns buf. */
+static const char *components_json(int mask, char *buf) {
+  size_t n = 0;
+  buf[n++] = '[';
+  for (int k = 0; k < 3; k++)
+    if (mask & (1 << k)) {
+      if (n > 1) buf[n++] = ',', buf[n++] = ' ';
+      buf[n++] = '"', buf[n++] = "xyz"[k], buf[n++] = '"';
+    }
+  buf[n++] = ']';
+  buf[n] = '\0';
+  return buf;
+}
+
+/* A displacement d of a point whose fixed components are `fixed`: with
+ * "components" (mask, given) the value is zero outside them, and every
+ * component it prescribes (the listed ones, else the non-zero ones of d) is
+ * fixed.  what: "joint \"v3\"" or "vertex 4 of rod \"a\""; pin: the start of
+ * the pin to suggest ("{\"type\": \"pin\", \"joint\": \"v3\""). */
+static rn_status check_displaced_components(rn_jwalk *w, const double d[3], int mask,
+                                            int given, int fixed, const char *what,
+                                            const char *pin) {
+  int want = 0;
+  char missing[16], pinned[16], sugg[256];
+  for (int k = 0; k < 3; k++) {
+    if (d[k] != 0.0 && !(mask & (1 << k))) {
+      size_t m1 = rn_jwalk_key(w, "value"), m2 = rn_jwalk_index(w, k);
+      rn_status st = rn_jwalk_error(w,
+                                    "the displacement along %c is %g, but \"components\" "
+                                    "does not list \"%c\"",
+                                    "xyz"[k], d[k], "xyz"[k]);
+      rn_jwalk_pop(w, m2);
+      rn_jwalk_pop(w, m1);
+      return st;
+    }
+    if (given ? (mask & (1 << k)) : d[k] != 0.0) want |= 1 << k;
+  }
+  if (!(want & ~fixed)) return RN_OK;
+  components_json(want & ~fixed, missing);
+  components_json(fixed, pinned);
+  snprintf(sugg, sizeof sugg, "%s, \"components\": %s}", pin, missing);
+  return rn_jwalk_error(w,
+                        "%s is not pinned in %s (pinned: %s): add %s to prescribe its "
+                        "displacement there",
+                        what, missing, pinned, sugg);
+}
+
 enum { C_CLAMP = 0, C_PIN, C_FIX_THETA, C_DISPLACE, C_COUNT };
 static const char *const constraint_names[C_COUNT] = {"clamp", "pin", "fix_theta",
                                                       "displace"};
 
-/* {"type": "clamp" | "pin", "joint": name}. */
+/* {"type": "clamp", "joint": name} or {"type": "pin", "joint": name,
+ * "components": [...]}. */
 static rn_status read_joint_support(rn_scene_parser *p, const cJSON *v, int clamp) {
-  static const char *const keys[] = {"type", "joint", NULL};
-  int j = -1;
-  rn_status st = rn_json_check_keys(&p->w, v, keys);
+  static const char *const clamp_keys[] = {"type", "joint", NULL};
+  static const char *const pin_keys[] = {"type", "joint", "components", NULL};
+  int j = -1, mask = RN_FIX_XYZ, given = 0;
+  rn_status st = rn_json_check_keys(&p->w, v, clamp ? clamp_keys : pin_keys);
   if (!st) st = rn_scene_joint_ref(p, v, &j);
+  if (!st) st = read_components(&p->w, v, &mask, &given);
   if (st) return st;
   rn_network *net = p->scene->net;
-  st = lib(&p->w, clamp ? rn_network_clamp_joint(net, j) : rn_network_pin_joint(net, j));
+  st = lib(&p->w, clamp ? rn_network_clamp_joint(net, j)
+                        : rn_network_pin_joint_components(net, j, mask));
   if (!st && clamp) p->scene->joints[j].clamped = 1;
-  if (!st && !clamp) p->scene->joints[j].pinned = 1;
+  if (!st && !clamp) p->scene->joints[j].pinned |= mask;
   return st;
 }
 
@@ -125,19 +220,20 @@ static rn_status read_clamp(rn_scene_parser *p, const cJSON *v) {
 }
 
 static rn_status read_pin(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"type", "rod", "vertex", NULL};
-  int rod = -1, vertex = 0, is_joint = 0;
+  static const char *const keys[] = {"type", "rod", "vertex", "components", NULL};
+  int rod = -1, vertex = 0, is_joint = 0, mask = RN_FIX_XYZ, given = 0;
   rn_status st = read_target(&p->w, v, &is_joint);
   if (st || is_joint) return st ? st : read_joint_support(p, v, 0);
   st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
   if (!st) st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
+  if (!st) st = read_components(&p->w, v, &mask, &given);
   if (st) return st;
   const rn_scene_rod *r = &p->scene->rods[rod];
   int j = joint_at_vertex(r, vertex);
   if (j >= 0) return at_joint_error(p, "vertex", r, vertex, j, "pin");
-  st = lib(&p->w, rn_network_pin(p->scene->net, rod, vertex));
-  if (!st) p->scene->rods[rod].pinned[vertex] = 1;
+  st = lib(&p->w, rn_network_pin_components(p->scene->net, rod, vertex, mask));
+  if (!st) p->scene->rods[rod].pinned[vertex] |= (unsigned char)mask;
   return st;
 }
 
@@ -151,15 +247,21 @@ static rn_status read_fix_theta(rn_scene_parser *p, const cJSON *v) {
   return st;
 }
 
-static int vertex_is_fixed(const rn_scene_rod *r, int vertex) {
-  return r->pinned[vertex] || (r->clamped[RN_START] && vertex <= 1) ||
-         (r->clamped[RN_END] && vertex >= r->nv - 2);
+/* Fixed components of a rod vertex: its pins, all if in a clamped end. */
+static int vertex_fixed(const rn_scene_rod *r, int vertex) {
+  int in_clamp = (r->clamped[RN_START] && vertex <= 1) ||
+                 (r->clamped[RN_END] && vertex >= r->nv - 2);
+  return in_clamp ? RN_FIX_XYZ : r->pinned[vertex];
 }
 
 static rn_status read_displace_end(rn_scene_parser *p, const cJSON *v, int rod) {
   const rn_scene_rod *r = &p->scene->rods[rod];
   double d[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
   int end = 0, has_d = 0, has_rot = 0;
+  if (rn_jm_get(v, "components"))
+    return error_at_key(&p->w, "components",
+                        "\"components\" applies to a pinned vertex or joint; a clamped "
+                        "end moves as a whole");
   rn_status st = rn_scene_end_ref(&p->w, v, &end);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 0, 3, RN_J_ANY, d, &has_d);
   if (!st) st = rn_jm_vec(&p->w, v, "rotation", 0, 3, RN_J_ANY, rot, &has_rot);
@@ -181,35 +283,44 @@ static rn_status read_displace_vertex(rn_scene_parser *p, const cJSON *v, int ro
   const rn_scene_rod *r = &p->scene->rods[rod];
   double d[3];
   int vertex = 0;
-  if (rn_jm_get(v, "rotation")) {
-    size_t mark = rn_jwalk_key(&p->w, "rotation");
-    rn_status st = rn_jwalk_error(&p->w, "a rotation applies to a clamped end; give "
-                                         "\"end\" instead of \"vertex\"");
-    rn_jwalk_pop(&p->w, mark);
-    return st;
-  }
+  if (rn_jm_get(v, "rotation"))
+    return error_at_key(&p->w, "rotation",
+                        "a rotation applies to a clamped end; give \"end\" instead of "
+                        "\"vertex\"");
+  int mask = RN_FIX_XYZ, given = 0;
   rn_status st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, d, NULL);
+  if (!st) st = read_components(&p->w, v, &mask, &given);
   if (st) return st;
   int j = joint_at_vertex(r, vertex);
   if (j >= 0) return at_joint_error(p, "vertex", r, vertex, j, "displace");
-  if (!vertex_is_fixed(r, vertex))
+  if (!vertex_fixed(r, vertex))
     return rn_jwalk_error(&p->w,
                           "vertex %d of rod \"%s\" is free: pin it (or clamp "
                           "its end) to prescribe its displacement",
                           vertex, r->name);
+  char what[160], pin[192];
+  snprintf(what, sizeof what, "vertex %d of rod \"%s\"", vertex, r->name);
+  snprintf(pin, sizeof pin, "{\"type\": \"pin\", \"rod\": \"%s\", \"vertex\": %d",
+           r->name, vertex);
+  st = check_displaced_components(&p->w, d, mask, given, vertex_fixed(r, vertex), what,
+                                  pin);
+  if (st) return st;
   return lib(&p->w, rn_network_displace_vertex(p->scene->net, rod, vertex, d));
 }
 
-/* {"type": "displace", "joint": name, "value": d, "rotation": r}. */
+/* {"type": "displace", "joint": name, "value": d, "rotation": r,
+ * "components": [...]}. */
 static rn_status read_displace_joint(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"type", "joint", "value", "rotation", NULL};
+  static const char *const keys[] = {"type",     "joint",      "value",
+                                     "rotation", "components", NULL};
   double d[3] = {0, 0, 0}, rot[3] = {0, 0, 0};
-  int j = -1, has_d = 0, has_rot = 0;
+  int j = -1, has_d = 0, has_rot = 0, mask = RN_FIX_XYZ, given = 0;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_joint_ref(p, v, &j);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 0, 3, RN_J_ANY, d, &has_d);
   if (!st) st = rn_jm_vec(&p->w, v, "rotation", 0, 3, RN_J_ANY, rot, &has_rot);
+  if (!st) st = read_components(&p->w, v, &mask, &given);
   if (st) return st;
   const rn_scene_joint *J = &p->scene->joints[j];
   if (!has_d && !has_rot)
@@ -222,13 +333,19 @@ static rn_status read_displace_joint(rn_scene_parser *p, const cJSON *v) {
         "\"joint\": \"%s\"}",
         J->name, has_rot ? "clamped (a rotation needs a clamp)" : "pinned or clamped",
         has_rot ? "clamp" : "pin", J->name);
+  char what[160], pin[192];
+  snprintf(what, sizeof what, "joint \"%s\"", J->name);
+  snprintf(pin, sizeof pin, "{\"type\": \"pin\", \"joint\": \"%s\"", J->name);
+  st = check_displaced_components(&p->w, d, mask, given && has_d,
+                                  J->clamped ? RN_FIX_XYZ : J->pinned, what, pin);
+  if (st) return st;
   return lib(&p->w, rn_network_displace_joint(p->scene->net, j, has_d ? d : NULL,
                                               has_rot ? rot : NULL));
 }
 
 static rn_status read_displace(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"type",  "rod",      "end", "vertex",
-                                     "value", "rotation", NULL};
+  static const char *const keys[] = {"type",  "rod",      "end",        "vertex",
+                                     "value", "rotation", "components", NULL};
   int rod = -1, is_joint = 0;
   rn_status st = read_target(&p->w, v, &is_joint);
   if (st || is_joint) return st ? st : read_displace_joint(p, v);

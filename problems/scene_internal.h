@@ -19,7 +19,7 @@ typedef struct rn_scene_rod {
   double end_len[2];     /* lengths of the terminal edges */
   long obj_line;         /* line of its OBJ segment, 0 if not from a graph */
   int json_index;        /* index in the "rods" array, -1 if from a graph */
-  unsigned char *pinned; /* nv flags */
+  unsigned char *pinned; /* nv pinned components (RN_FIX_* bitmasks) */
   double max_density;    /* over its edges (gravity check) */
 } rn_scene_rod;
 
@@ -27,7 +27,8 @@ typedef struct rn_scene_rod {
 typedef struct rn_scene_joint {
   char *name;
   int model; /* rn_joint_model */
-  int clamped, pinned;
+  int clamped;
+  int pinned;     /* pinned components (RN_FIX_* bitmask) */
   double x0[3];   /* initial position (its first rod end) */
   long obj_line;  /* line of its OBJ vertex, 0 if not from a graph */
   int json_index; /* index in the "joints" array, -1 if from a graph */

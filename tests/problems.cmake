@@ -123,6 +123,9 @@ rn_cli_test(problems_cli_bad_scene 3
 rn_cli_test(problems_cli_clamp_missing_rod 3
             "clamp_missing_rod.json: .\\.constraints\\[0\\]\\.rod: no rod named \"bean\""
             STDERR_LINES 1 ARGS check ${RN_BAD}/clamp_missing_rod.json)
+rn_cli_test(problems_cli_bad_components 3
+            "components_twice.json: .\\.constraints\\[1\\]\\.components\\[2\\]: component \"y\" is listed twice"
+            STDERR_LINES 1 ARGS check ${RN_BAD}/components_twice.json)
 rn_cli_test(problems_cli_malformed_scene 3 "malformed.json:4:3: malformed JSON"
             STDERR_LINES 1 ARGS check ${RN_BAD}/malformed.json)
 rn_cli_test(problems_cli_missing_scene 3 "no_such_scene.json: cannot open"

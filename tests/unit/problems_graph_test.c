@@ -135,6 +135,50 @@ static void check_mixed(rn_context *ctx) {
   rn_scene_destroy(&s);
 }
 
+/* Component pins and displacements on joints and rod vertices: the fixed
+ * components leave the reduced vector, the displacement moves the joint. */
+static void check_components(rn_context *ctx) {
+  static const char *const scenes[2] = {
+      "{" MS ", " GRAPH("square_2x2.obj", "") "}",
+      "{" MS ", " GRAPH(
+          "square_2x2.obj",
+          "") ", 'constraints': [{'type': 'pin', "
+              "'joint': 'v9', 'components': ['x']}, {'type': 'displace', 'joint': 'v9', "
+              "'value': [0.25, 0, 0], 'components': ['x']}, {'type': 'pin', 'joint': "
+              "'v1', "
+              "'components': ['y', 'z']}, {'type': 'pin', 'joint': 'v1', 'components': "
+              "['z']}, "
+              "{'type': 'pin', 'joint': 'v5'}, {'type': 'pin', 'joint': 'v5', "
+              "'components': "
+              "['x']}, {'type': 'pin', 'rod': 'e1', 'vertex': 1, 'components': ['z', "
+              "'x']}, "
+              "{'type': 'displace', 'rod': 'e1', 'vertex': 1, 'value': [0, 0, -0.5]}]}"};
+  size_t n[2] = {0, 0};
+  double p[3], p0[3];
+  for (int k = 0; k < 2; k++) {
+    rn_status st;
+    rn_scene *s = parse(ctx, scenes[k], &st);
+    CHECK_STATUS(st, RN_OK);
+    if (!s) {
+      fprintf(stderr, "%s\n", rn_context_last_error(ctx));
+      return;
+    }
+    rn_network *net = rn_scene_network(s);
+    n[k] = rn_network_num_dofs(net);
+    if (k == 1) {
+      double xyz[3 * 5];
+      CHECK_STATUS(rn_network_joint_position(net, 8, p), RN_OK);
+      CHECK_STATUS(rn_scene_joint_initial_position(s, 8, p0), RN_OK);
+      CHECK(p[0] == p0[0] + 0.25 && p[1] == p0[1] && p[2] == p0[2]);
+      CHECK_STATUS(rn_network_rod_vertices(net, 0, xyz), RN_OK);
+      CHECK(xyz[5] == -0.5);
+    }
+    rn_scene_destroy(&s);
+  }
+  /* v9: x; v1: y, z; v5: all; e1 vertex 1: x, z */
+  CHECK(n[1] == n[0] - 1 - 2 - 3 - 2);
+}
+
 typedef struct bad_case {
   const char *what, *scene;
   const char *where;  /* expected path after "LABEL: " */
@@ -236,6 +280,31 @@ static const bad_case cases[] = {
      RODS(J_AB, ", 'constraints': [{'type': 'clamp', 'joint': 'j'}, {'type': 'displace', "
                 "'joint': 'j'}]"),
      "$.constraints[1]", "give \"value\""},
+    {"joint pin with a bad component",
+     RODS(J_AB, ", 'constraints': [{'type': 'pin', 'joint': 'j', 'components': ['q']}]"),
+     "$.constraints[0].components[0]", "expected a component \"x\", \"y\" or \"z\""},
+    {"joint pin with no components",
+     RODS(J_AB, ", 'constraints': [{'type': 'pin', 'joint': 'j', 'components': []}]"),
+     "$.constraints[0].components", "expected a non-empty array"},
+    {"joint pin with a duplicate component",
+     RODS(J_AB,
+          ", 'constraints': [{'type': 'pin', 'joint': 'j', 'components': ['y', 'y']}]"),
+     "$.constraints[0].components[1]", "component \"y\" is listed twice"},
+    {"joint clamp with components",
+     RODS(J_AB,
+          ", 'constraints': [{'type': 'clamp', 'joint': 'j', 'components': ['x']}]"),
+     "$.constraints[0].components",
+     "unknown key \"components\" (allowed here: type, joint)"},
+    {"displace a joint along a free component",
+     RODS(J_AB, ", 'constraints': [{'type': 'pin', 'joint': 'j', 'components': ['x', "
+                "'y']}, {'type': 'displace', 'joint': 'j', 'value': [0, 0, 0.2]}]"),
+     "$.constraints[1]",
+     "joint \"j\" is not pinned in [\"z\"] (pinned: [\"x\", \"y\"]): add {\"type\": "
+     "\"pin\", \"joint\": \"j\", \"components\": [\"z\"]}"},
+    {"displace a joint outside its components",
+     RODS(J_AB, ", 'constraints': [{'type': 'pin', 'joint': 'j'}, {'type': 'displace', "
+                "'joint': 'j', 'value': [0, 0.1, 0.2], 'components': ['y']}]"),
+     "$.constraints[1].value[2]", "does not list \"z\""},
     {"fix_theta on a joint",
      RODS(J_AB, ", 'constraints': [{'type': 'fix_theta', 'joint': 'j', 'edge': 0}]"),
      "$.constraints[0].joint", "unknown key \"joint\" (allowed here: type, rod, edge)"},
@@ -331,6 +400,7 @@ int main(int argc, char **argv) {
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
   check_square(ctx);
   check_mixed(ctx);
+  check_components(ctx);
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_case(ctx, &cases[i]);
   rn_context_destroy(&ctx);
   return rn_test_finish("problems_graph");

@@ -246,6 +246,67 @@ static const bad_case cases[] = {
      SCENE(", 'constraints': [{'type': 'displace', 'rod': 'beam', 'end': 'start', "
            "'vertex': 0, 'value': [0,0,0]}]"),
      ": $.constraints[0]: ", "exactly one of \"end\""},
+/* "components" of a pin / displace on a rod vertex */
+#define PIN5(comp) "{'type': 'pin', 'rod': 'beam', 'vertex': 5, 'components': " comp "}"
+/* A pin of vertex 5 with components comp, an error at components`at`. */
+#define COMP(what, comp, at, reason)                    \
+  {                                                     \
+    what, SCENE(", 'constraints': [" PIN5(comp) "]"),   \
+        ": $.constraints[0].components" at ": ", reason \
+  }
+    COMP("components empty", "[]", "",
+         "expected a non-empty array of distinct components \"x\", \"y\", \"z\", got an "
+         "array of 0"),
+    COMP("components a string", "'x'", "", "expected a non-empty array"),
+    COMP("components an object", "{'x': 1}", "", "expected a non-empty array"),
+    COMP("components null", "null", "", "expected a non-empty array"),
+    COMP("components duplicate", "['x', 'z', 'x']", "[2]",
+         "component \"x\" is listed twice"),
+    COMP("components unknown letter", "['x', 'w']", "[1]",
+         "expected a component \"x\", \"y\" or \"z\", got the string \"w\""),
+    COMP("components upper case", "['X']", "[0]", "expected a component"),
+    COMP("components joined letters", "['xy']", "[0]", "expected a component"),
+    COMP("components empty string", "['']", "[0]", "expected a component"),
+    COMP("components a number", "[0]", "[0]",
+         "expected a component \"x\", \"y\" or \"z\", got 0"),
+#undef COMP
+    {"components on a clamp",
+     SCENE(", 'constraints': [{'type': 'clamp', 'rod': 'beam', 'end': 'start', "
+           "'components': ['x']}]"),
+     ": $.constraints[0].components: ", "unknown key \"components\""},
+    {"components on fix_theta",
+     SCENE(", 'constraints': [{'type': 'fix_theta', 'rod': 'beam', 'edge': 0, "
+           "'components': ['x']}]"),
+     ": $.constraints[0].components: ", "unknown key \"components\""},
+    {"components on a clamped end's motion",
+     SCENE(", 'constraints': [{'type': 'clamp', 'rod': 'beam', 'end': 'start'}, "
+           "{'type': 'displace', 'rod': 'beam', 'end': 'start', 'value': [1, 0, 0], "
+           "'components': ['x']}]"),
+     ": $.constraints[1].components: ",
+     "\"components\" applies to a pinned vertex or joint"},
+    {"displace along a free component",
+     SCENE(", 'constraints': [" PIN5("['x']") ", {'type': 'displace', 'rod': 'beam', "
+                                              "'vertex': 5, 'value': [0.1, 0.5, 0]}]"),
+     ": $.constraints[1]: ",
+     "vertex 5 of rod \"beam\" is not pinned in [\"y\"] (pinned: [\"x\"]): add "
+     "{\"type\": \"pin\", \"rod\": \"beam\", \"vertex\": 5, \"components\": [\"y\"]}"},
+    {"displace components not pinned",
+     SCENE(", 'constraints': [" PIN5(
+         "['x']") ", {'type': 'displace', 'rod': 'beam', "
+                  "'vertex': 5, 'value': [0, 0, 0], 'components': ['x', 'z']}]"),
+     ": $.constraints[1]: ", "is not pinned in [\"z\"] (pinned: [\"x\"])"},
+    {"displace value outside components",
+     SCENE(", 'constraints': [" PIN5("['x', 'y']") ", {'type': 'displace', 'rod': "
+                                                   "'beam', 'vertex': 5, 'value': [0.1, "
+                                                   "0.5, 0], 'components': ['x']}]"),
+     ": $.constraints[1].value[1]: ",
+     "the displacement along y is 0.5, but \"components\" does not list \"y\""},
+    {"displace bad components",
+     SCENE(", 'constraints': [" PIN5(
+         "['x']") ", {'type': 'displace', 'rod': 'beam', "
+                  "'vertex': 5, 'value': [0.1, 0, 0], 'components': ['x', 'x']}]"),
+     ": $.constraints[1].components[1]: ", "listed twice"},
+#undef PIN5
     /* loads */
     {"unknown load", SCENE(", 'loads': [{'type': 'pressure', 'value': 1}]"),
      ": $.loads[0].type: ", "unknown load type \"pressure\""},
