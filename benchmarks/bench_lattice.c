@@ -250,10 +250,13 @@ static int usage(const char *msg) {
   return 2;
 }
 
-/* "stretch-x:1e-3", "compress-z:1e-3", "pull-y:0.1"; 0 if ok. */
+/* "stretch-x:1e-3", "compress-z:1e-3", "grip-x:1e-3", "pull-y:0.1"
+ * (docs/lattices.md); 0 if ok. */
 static int parse_load(const char *v, bench_opts *o) {
-  static const char *kinds[3] = {"stretch-", "compress-", "pull-"};
-  for (int k = 0; k < 3; ++k) {
+  static const char *kinds[4] = {"stretch-", "compress-", "pull-", "grip-"};
+  static const rn_lattice_load_kind load[4] = {RN_LLOAD_STRETCH, RN_LLOAD_STRETCH,
+                                               RN_LLOAD_PULL, RN_LLOAD_GRIP};
+  for (int k = 0; k < 4; ++k) {
     const size_t len = strlen(kinds[k]);
     char *end = NULL;
     double x;
@@ -261,7 +264,7 @@ static int parse_load(const char *v, bench_opts *o) {
     if (v[len] < 'x' || v[len] > 'z' || v[len + 1] != ':') return -1;
     x = strtod(v + len + 2, &end);
     if (end == v + len + 2 || *end || !isfinite(x)) return -1;
-    o->load = k == 2 ? RN_LLOAD_PULL : RN_LLOAD_STRETCH;
+    o->load = load[k];
     o->load_axis = v[len] - 'x';
     o->load_value = k == 1 ? -x : x;
     o->load_text = v;

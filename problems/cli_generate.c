@@ -31,10 +31,16 @@ static const char generate_help[] =
     "                           circle with radius A/50)\n"
     "      --material E,NU      Young's modulus and Poisson's ratio (default 1,0.3)\n"
     "      --joint-model M      elastic (default) or rigid\n"
-    "      --load L:VALUE       stretch-x|y|z:STRAIN  pin the joints of the two\n"
-    "                             faces normal to the axis, displace the max face\n"
-    "                             by STRAIN times the lattice's extent\n"
+    "      --load L:VALUE       stretch-x|y|z:STRAIN  uniaxial, frictionless grips:\n"
+    "                             pin the joints of the two faces normal to the\n"
+    "                             axis along the axis only, displace the max face\n"
+    "                             by STRAIN times the lattice's extent; a few more\n"
+    "                             component pins remove the rigid motions (free\n"
+    "                             lateral contraction)\n"
     "                           compress-x|y|z:STRAIN the same with -STRAIN\n"
+    "                           grip-x|y|z:STRAIN     gripped faces: the same with\n"
+    "                             the face joints pinned in x, y and z (no lateral\n"
+    "                             motion at the faces; STRAIN < 0 compresses)\n"
     "                           pull-x|y|z:FORCE      total FORCE on the max face,\n"
     "                             -FORCE on the min face whose centre joint is\n"
     "                             clamped (free lateral contraction)\n"
@@ -131,15 +137,17 @@ static int parse_material(gen_args *a, const char *v) {
 }
 
 static int parse_load(gen_args *a, const char *v) {
-  static const char *const kinds[] = {"stretch-", "compress-", "pull-"};
-  for (int k = 0; k < 3; k++) {
+  static const char *const kinds[] = {"stretch-", "compress-", "pull-", "grip-"};
+  static const rn_lattice_load_kind load[] = {RN_LLOAD_STRETCH, RN_LLOAD_STRETCH,
+                                              RN_LLOAD_PULL, RN_LLOAD_GRIP};
+  for (int k = 0; k < 4; k++) {
     size_t len = strlen(kinds[k]);
     if (strncmp(v, kinds[k], len) != 0) continue;
     const char *ax = v + len;
     char *end = NULL;
     double x = (ax[0] >= 'x' && ax[0] <= 'z' && ax[1] == ':') ? strtod(ax + 2, &end) : 0;
     if (end && end != ax + 2 && *end == '\0' && isfinite(x) && x != 0) {
-      a->sc.load = k == 2 ? RN_LLOAD_PULL : RN_LLOAD_STRETCH;
+      a->sc.load = load[k];
       a->sc.load_axis = ax[0] - 'x';
       a->sc.load_value = k == 1 ? -x : x;
       a->load = v;
@@ -147,9 +155,9 @@ static int parse_load(gen_args *a, const char *v) {
     }
   }
   return rn_cli_usage_error("generate",
-                            "--load expects stretch-AXIS:STRAIN, compress-AXIS:STRAIN "
-                            "or pull-AXIS:FORCE (AXIS x, y or z; value non-zero), got "
-                            "'%s'",
+                            "--load expects stretch-AXIS:STRAIN, compress-AXIS:STRAIN, "
+                            "grip-AXIS:STRAIN or pull-AXIS:FORCE (AXIS x, y or z; value "
+                            "non-zero), got '%s'",
                             v);
 }
 

@@ -140,25 +140,115 @@ static void next_entry(FILE *f, int *count) {
   (*count)++;
 }
 
-static void put_stretch(scene_out *o) {
+/* Distance of x from the point p (component `skip` ignored, -1: none) or,
+ * when line is set, from the line through p and q. */
+typedef struct node_metric {
+  double p[3], q[3];
+  int skip, line;
+} node_metric;
+
+static double node_distance(const node_metric *m, const double x[3]) {
+  double a[3], b[3], s = 0;
+  for (int d = 0; d < 3; d++) {
+    a[d] = d == m->skip ? 0 : x[d] - m->p[d];
+    b[d] = m->q[d] - m->p[d];
+  }
+  if (!m->line) return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0]};
+  for (int d = 0; d < 3; d++) s += b[d] * b[d];
+  return sqrt((c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / s);
+}
+
+/* The node farthest from m among the face nodes along axis (the first one on
+ * ties), or among all nodes if every face node is at distance 0. */
+static int farthest_node(const rn_lattice *lat, int axis, const node_metric *m) {
+  int nn = rn_lattice_num_nodes(lat), best = -1;
+  for (int all = 0; all < 2 && best < 0; all++) {
+    double dbest = 0;
+    for (int n = 0; n < nn; n++) {
+      double x[3], dist;
+      if (!all && !rn_lattice_face(lat, n, axis)) continue;
+      rn_lattice_node(lat, n, x);
+      dist = node_distance(m, x);
+      if (dist > dbest) {
+        dbest = dist;
+        best = n;
+      }
+    }
+  }
+  return best;
+}
+
+/* Component pins (RN_FIX_* bits in mask[node]) beyond the faces' axis pins
+ * that remove the remaining rigid motions (docs/lattices.md): the centre
+ * joint A of the minimum face is held laterally; a 3D block gets one more
+ * lateral pin at the node B farthest from the axis through A (rotation about
+ * the axis); a planar lattice (z = 0) has z pinned at A, at the node farthest
+ * from A and at the node farthest from the line through those two. */
+static void rigid_motion_pins(const rn_lattice *lat, int axis, int *mask) {
+  int a = face_centre_node(lat, axis), b = (axis + 1) % 3, c = (axis + 2) % 3;
+  node_metric m = {{0, 0, 0}, {0, 0, 0}, axis, 0};
+  rn_lattice_node(lat, a, m.p);
+  if (rn_lattice_kind_dimension(rn_lattice_get_kind(lat)) == 3) {
+    mask[a] |= RN_FIX_X << b | RN_FIX_X << c;
+    int n = farthest_node(lat, axis, &m);
+    double x[3];
+    rn_lattice_node(lat, n, x);
+    mask[n] |= fabs(x[b] - m.p[b]) >= fabs(x[c] - m.p[c]) ? RN_FIX_X << c : RN_FIX_X << b;
+    return;
+  }
+  mask[a] |= RN_FIX_X << (1 - axis) | RN_FIX_Z;
+  m.skip = -1;
+  int n2 = farthest_node(lat, axis, &m);
+  rn_lattice_node(lat, n2, m.q);
+  m.line = 1;
+  mask[n2] |= RN_FIX_Z;
+  mask[farthest_node(lat, axis, &m)] |= RN_FIX_Z;
+}
+
+static void put_components(FILE *f, int mask) {
+  int first = 1;
+  fputs(", \"components\": [", f);
+  for (int k = 0; k < 3; k++)
+    if (mask & (1 << k)) {
+      fprintf(f, "%s\"%c\"", first ? "" : ", ", "xyz"[k]);
+      first = 0;
+    }
+  fputc(']', f);
+}
+
+/* stretch (uniaxial, frictionless grips) and grip (gripped faces). */
+static rn_status put_stretch(scene_out *o, rn_context *ctx) {
   FILE *f = o->f;
   int axis = o->opt->load_axis, nn = rn_lattice_num_nodes(o->lat), count = 0;
+  int grip = o->opt->load == RN_LLOAD_GRIP;
   double d[3] = {0, 0, 0};
+  int *mask = calloc((size_t)nn, sizeof *mask);
+  if (!mask) return rn_context_set_error(ctx, RN_ERR_ALLOC, "generate: out of memory");
   d[axis] = o->opt->load_value * rn_lattice_extent(o->lat, axis);
+  for (int n = 0; n < nn; n++)
+    if (rn_lattice_face(o->lat, n, axis)) mask[n] = grip ? RN_FIX_XYZ : RN_FIX_X << axis;
+  if (!grip) rigid_motion_pins(o->lat, axis, mask);
   fputs(",\n  \"constraints\": [", f);
   for (int n = 0; n < nn; n++)
-    if (rn_lattice_face(o->lat, n, axis)) {
+    if (mask[n]) {
       next_entry(f, &count);
-      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"}", n + 1);
+      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"", n + 1);
+      if (mask[n] != RN_FIX_XYZ) put_components(f, mask[n]);
+      fputc('}', f);
     }
   for (int n = 0; n < nn; n++)
     if (rn_lattice_face(o->lat, n, axis) > 0) {
       next_entry(f, &count);
       fprintf(f, "{\"type\": \"displace\", \"joint\": \"v%d\", \"value\": ", n + 1);
       put_vec(f, d);
+      if (!grip) put_components(f, RN_FIX_X << axis);
       fputc('}', f);
     }
   fputs("\n  ]", f);
+  free(mask);
+  return RN_OK;
 }
 
 static void put_pull(scene_out *o) {
@@ -193,10 +283,12 @@ static rn_status write_scene(FILE *f, void *user, rn_context *ctx) {
   put_header(o);
   put_rods(o);
   put_joints(o);
-  if (o->opt->load == RN_LLOAD_STRETCH) put_stretch(o);
+  rn_status st = RN_OK;
+  if (o->opt->load == RN_LLOAD_STRETCH || o->opt->load == RN_LLOAD_GRIP)
+    st = put_stretch(o, ctx);
   if (o->opt->load == RN_LLOAD_PULL) put_pull(o);
   fputs("\n}\n", f);
-  return RN_OK;
+  return st;
 }
 
 rn_status rn_lattice_write_scene(rn_context *ctx, const char *path, const rn_lattice *lat,

@@ -14,10 +14,16 @@ typedef enum rn_lattice_section_shape {
 
 typedef enum rn_lattice_load_kind {
   RN_LLOAD_NONE = 0,
-  /* Displacement control: the joints of the minimum face along axis are
-   * pinned; those of the maximum face are pinned and displaced by
-   * value * extent along axis (value < 0 compresses). */
+  /* Uniaxial displacement control, frictionless grips: the joints of the two
+   * faces normal to axis are pinned along axis only, those of the maximum
+   * face displaced by value * extent along axis (value < 0 compresses); a
+   * few more component pins remove the other rigid motions (and, for planar
+   * lattices, the out-of-plane ones) without loading the lattice
+   * (docs/lattices.md). */
   RN_LLOAD_STRETCH,
+  /* Displacement control, gripped faces: as RN_LLOAD_STRETCH but the face
+   * joints are pinned in all three components (no lateral motion). */
+  RN_LLOAD_GRIP,
   /* Force control: total force value along axis spread equally over the
    * joints of the maximum face, and -value over those of the minimum face,
    * one of which (the one nearest the face's centre) is clamped instead of

@@ -139,7 +139,7 @@ rn_cli_test(problems_cli_check_fails 1 "FAILED.*FAIL: worst relative error above
 # ---- rodnet generate ------------------------------------------------------------------
 set(gen ${RN_CLI_OUT}/generate)
 rn_cli_test(problems_cli_generate_help 0
-            "Usage: rodnet generate KIND.*--cells NX.*--cell-size A.*--edges-per-rod N.*--section.*--material E,NU.*--joint-model.*--load"
+            "Usage: rodnet generate KIND.*--cells NX.*--cell-size A.*--edges-per-rod N.*--section.*--material E,NU.*--joint-model.*--load.*stretch-x.*compress-x.*grip-x.*pull-x"
             ARGS generate --help)
 rn_cli_test(problems_cli_generate_unknown_kind 2 "unknown lattice 'hexagonal' \\(known: square"
             ARGS generate hexagonal -o ${gen}/x.json)
@@ -198,13 +198,16 @@ if(RN_WITH_TRILINOS)
     rn_e2e_lattice(honeycomb_${model} "--joints 48" honeycomb --cells 4,4
                    --edges-per-rod 4 --joint-model ${model} --load stretch-x:0.001)
   endforeach()
-  # A 3 x 3 square grid under grip stretch: every bar along x carries the
-  # strain exactly, nothing bends (closed form, both joint models).
+  # A 3 x 3 square grid under uniaxial stretch (frictionless grips): every bar
+  # along x carries the strain exactly, nothing bends, no lateral contraction
+  # (closed form, both joint models); and the same under grips.
   foreach(model rigid elastic)
     rn_e2e_lattice(square_${model} "--joints 16 --stretch-energy 12 1 0.02 0.001 1" square
                    --cells 3 --edges-per-rod 4 --joint-model ${model}
                    --load stretch-x:0.001)
   endforeach()
+  rn_e2e_lattice(square_grip "--joints 16 --stretch-energy 12 1 0.02 0.001 1" square
+                 --cells 3 --edges-per-rod 4 --joint-model rigid --load grip-x:0.001)
   # A 2 x 2 x 2 octet block compressed by 0.1 % along z.
   rn_e2e_lattice(octet_rigid "--joints 63" octet --cells 2 --edges-per-rod 2
                  --joint-model rigid --load compress-z:0.001)

@@ -5,4 +5,9 @@ if(RN_WITH_TRILINOS)
   foreach(v val_cantilever val_end_moment val_buckling val_rest_curvature val_ribbon val_networks)
     rn_add_test(${v} SOURCES validation/${v}.c LIBS rn_valutil rodnet m LABELS validation)
   endforeach()
+  # Lattices of `rodnet generate` under stretch (frictionless grips) and grip.
+  file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/val_lattice)
+  rn_add_test(val_lattice_stretch SOURCES validation/val_lattice_stretch.c
+              LIBS rn_valutil rodnet_problems m LABELS validation
+              ARGS ${CMAKE_CURRENT_BINARY_DIR}/val_lattice)
 endif()

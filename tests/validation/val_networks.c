@@ -5,7 +5,8 @@
  *      load against the slope-deflection solution
  *      k = P / Delta = (12 EI_c / h^3) (1 + 6 rho) / (2 + 3 rho),
  *      rho = (EI_b / L) / (EI_c / h);
- *  (3) a square-grid lattice under small uniaxial tension against
+ *  (3) a square-grid lattice under small uniaxial tension (gripped faces:
+ *      face joints pinned, displaced by the exact field) against
  *      E* = E A / a per unit width (a: cell size).
  * Each prints the rigid and elastic results side by side (docs/joints.md
  * reports them). */
@@ -144,10 +145,11 @@ static double grid(rn_context *ctx, int nx, int ny, int ne, int model, double a,
                               ends + 4 * u, &jid[u]),
          "joint");
   }
-  /* x-min column pinned in x only is not expressible; pin it fully at one
-   * corner and let the others slide: use displace on pinned joints with the
-   * exact uniaxial field x -> (1 + eps) x, y -> y (no lateral contraction in a
-   * square grid), which is also the exact solution. */
+  /* Load: grips.  The joints of both x faces are pinned in x, y and z and
+   * displaced by the exact uniaxial field x -> (1 + eps) x, y -> y (a square
+   * grid does not contract laterally), which is also the exact solution.  The
+   * uniaxial load with frictionless grips (component pins, `rodnet generate
+   * --load stretch-x`) gives the same E*: val_lattice_stretch.c. */
   for (int j = 0; j <= ny; ++j) {
     int u0 = j * (nx + 1), u1 = u0 + nx;
     double z[3] = {0, 0, 0}, dx[3] = {eps * nx * a, 0, 0};
@@ -235,12 +237,13 @@ int main(void) {
   CHECK(er[2] < 2e-3);
   CHECK(or > 1.8);
 
-  /* (3) square grid under uniaxial tension */
+  /* (3) square grid under uniaxial tension, gripped faces */
   double a = 0.5, eps = 1e-5;
   double Eg_r = grid(ctx, 4, 3, 4, RN_JOINT_RIGID, a, eps, &m, &s);
   double Eg_e = grid(ctx, 4, 3, 4, RN_JOINT_ELASTIC, a, eps, &m, &s);
-  printf("square grid 4x3, strain %.1e: E* rigid %.10e, elastic %.10e, EA/a %.10e\n", eps,
-         Eg_r, Eg_e, EA / a);
+  printf(
+      "square grid 4x3, grips, strain %.1e: E* rigid %.10e, elastic %.10e, EA/a %.10e\n",
+      eps, Eg_r, Eg_e, EA / a);
   CHECK_REL(Eg_r, EA / a, 1e-4);
   CHECK_REL(Eg_e, EA / a, 1e-4);
   rn_context_destroy(&ctx);
