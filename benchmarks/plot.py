@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""Plot a rodnet benchmark CSV (from bench_kernels or bench_solve) into a PNG.
+"""Plot a rodnet benchmark CSV (from bench_kernels, bench_solve or bench_lattice) into a PNG.
 
     python3 benchmarks/plot.py results/kernels.csv -o results/kernels.png
 
 kernels: median time per vertex against the number of vertices, one line per
 (shape, operation), log-log.  solve: median solve time (left) and Newton and
-Krylov iterations (right) against the number of vertices.  The title carries the commit and
-compiler recorded in the CSV.
+Krylov iterations (right) against the number of vertices.  lattice: median rn_solve time
+(left) and Newton iterations and factorisations (right) against the free DOFs, one line per
+(lattice, joint model).  The title carries the commit and compiler recorded in the CSV.
 """
 import argparse
 import csv
@@ -55,6 +56,16 @@ def plot_kernels(rows, ax):
     ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.01, 0.5))
 
 
+def style_axes(axes, xlabel, ylog):
+    for ax in axes:
+        ax.set_xscale("log")
+        if ylog:
+            ax.set_yscale("log")
+        ax.set_xlabel(xlabel)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize="small")
+
+
 def plot_solve(rows, axes):
     by_solver = defaultdict(list)
     for r in rows:
@@ -69,20 +80,40 @@ def plot_solve(rows, axes):
         ax_t.plot(n, [p[1] for p in pts], "-o", color=color, label=solver)
         ax_i.plot(n, [p[2] for p in pts], "-s", color=color, label=f"Newton ({solver})")
         ax_i.plot(n, [p[3] for p in pts], ":^", color=color, label=f"Krylov ({solver})")
-    for ax in axes:
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("vertices")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize="small")
+    style_axes(axes, "vertices", ylog=True)
     ax_t.set_ylabel("median solve time [s]")
     ax_i.set_ylabel("iterations (all load steps)")
+
+
+def plot_lattice(rows, axes):
+    series = defaultdict(list)
+    for r in rows:
+        series[(r["lattice"], r["joint_model"])].append(
+            (int(r["size"]), float(r["median"]), int(r["newton_iterations"]),
+             int(r["factorizations"]), int(r["cells"])))
+    ax_t, ax_i = axes
+    for i, ((lattice, model), pts) in enumerate(sorted(series.items())):
+        pts.sort()
+        n = [p[0] for p in pts]
+        color = f"C{i}"
+        label = f"{lattice}, {model} joints"
+        ax_t.plot(n, [p[1] for p in pts], "-o", color=color, label=label)
+        for p in pts:
+            ax_t.annotate(f"{p[4]}", (p[0], p[1]), textcoords="offset points",
+                          xytext=(4, -10), fontsize="x-small", color=color)
+        ax_i.plot(n, [p[2] for p in pts], "-s", color=color, label=f"Newton ({label})")
+        ax_i.plot(n, [p[3] for p in pts], ":^", color=color,
+                  label=f"factorisations ({label})")
+    style_axes(axes, "free DOFs", ylog=False)
+    ax_t.set_yscale("log")
+    ax_t.set_ylabel("median rn_solve time [s] (labels: cells per side)")
+    ax_i.set_ylabel("count per solve")
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("csv", help="CSV written by bench_kernels or bench_solve")
+    p.add_argument("csv", help="CSV written by bench_kernels, bench_solve or bench_lattice")
     p.add_argument("-o", "--output", help="PNG to write (default: CSV name with .png)")
     args = p.parse_args()
     rows = read_rows(args.csv)
@@ -96,6 +127,9 @@ def main():
     elif kind == "solve":
         fig, axes = plt.subplots(1, 2, figsize=(11, 5))
         plot_solve(rows, axes)
+    elif kind == "lattice":
+        fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+        plot_lattice(rows, axes)
     else:
         sys.exit(f"plot.py: unknown benchmark '{kind}'")
     fig.suptitle(title(rows, kind), fontsize="medium")

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # bench.sh: build (scripts/setup.sh), run the benchmarks at full size and plot them.
-# Writes benchmarks/results/{kernels,solve}.{csv,png}.
+# Writes benchmarks/results/{kernels,solve,lattice}.{csv,png}.
 #
-#   bash scripts/bench.sh            # full: kernels 1e2..1e5 vertices, solve 101/401/3201
+#   bash scripts/bench.sh            # full: kernels 1e2..1e5 vertices, solve 101/401/3201,
+#                                    # honeycombs 10x10 and 30x30, rigid and elastic joints
 #   RN_BENCH_QUICK=1 bash scripts/bench.sh   # a quick pass with fewer repeats
+#   RN_BENCH_LARGE=1 bash scripts/bench.sh   # adds the 100x100 honeycomb (1e6 DOFs,
+#                                            # ~2 GB and several minutes per solve)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Reconfigure so that the commit recorded in the CSV is the current one.
@@ -14,15 +17,20 @@ py=/usr/bin/python3
 out=benchmarks/results
 mkdir -p "$out"
 if [ "${RN_BENCH_QUICK:-0}" = 1 ]; then
-  kargs=(--repeats 5 --min-time 0.05); sargs=(--repeats 1)
+  kargs=(--repeats 5 --min-time 0.05); sargs=(--repeats 1); lcells=10
 else
-  kargs=(--repeats 11 --min-time 0.3); sargs=(--repeats 3)
+  kargs=(--repeats 11 --min-time 0.3); sargs=(--repeats 3); lcells=10,30
 fi
+[ "${RN_BENCH_LARGE:-0}" = 1 ] && lcells=$lcells,100
 ./build/benchmarks/bench_kernels --sizes 100,1000,10000,100000 "${kargs[@]}" \
   --out "$out/kernels.csv"
 "$py" benchmarks/plot.py "$out/kernels.csv" -o "$out/kernels.png"
 if [ -x ./build/benchmarks/bench_solve ]; then
   ./build/benchmarks/bench_solve --sizes 101,401,3201 "${sargs[@]}" --out "$out/solve.csv"
   "$py" benchmarks/plot.py "$out/solve.csv" -o "$out/solve.png"
+fi
+if [ -x ./build/benchmarks/bench_lattice ]; then
+  ./build/benchmarks/bench_lattice --cells "$lcells" "${sargs[@]}" --out "$out/lattice.csv"
+  "$py" benchmarks/plot.py "$out/lattice.csv" -o "$out/lattice.png"
 fi
 echo "bench.sh: results in $out/"
