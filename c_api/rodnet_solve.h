@@ -37,8 +37,12 @@ typedef enum rn_factorization {
   /* LAPACK banded Cholesky (dpbtrf): memory n (kd + 1), kd the half bandwidth;
    * refused when that exceeds 4 GiB */
   RN_FACTOR_BANDED = 1,
-  /* supernodal sparse Cholesky with a METIS nested-dissection ordering */
-  RN_FACTOR_SPARSE = 2
+  /* rodnet's supernodal multifrontal sparse Cholesky with a METIS
+   * nested-dissection ordering */
+  RN_FACTOR_SPARSE = 2,
+  /* SuiteSparse CHOLMOD's supernodal Cholesky with a METIS ordering: the library
+   * reference for RN_FACTOR_SPARSE (same results to round-off, slower) */
+  RN_FACTOR_CHOLMOD = 3
 } rn_factorization;
 
 /* Why a solve stopped. */

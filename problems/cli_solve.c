@@ -32,6 +32,11 @@ static const char solve_help[] =
     "                        networks; default)\n"
     "                      rol-tr-tcg: ROL trust region with truncated CG\n"
     "                      rol-ls-newton: ROL line-search Newton with MINRES\n"
+    "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
+    "                      auto (default: banded for rods, sparse for networks),\n"
+    "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
+    "                      ordering), cholmod (SuiteSparse CHOLMOD, the library\n"
+    "                      reference for sparse)\n"
     "      --max-iter N    Newton iterations allowed per load step (default 200)\n"
     "      --gtol X        stop when the gradient norm falls below X times its\n"
     "                      scale (initial gradient or force scale; default 1e-9)\n"
@@ -47,7 +52,7 @@ static const char solve_help[] =
     "unwritable output path, 4 solver error or failed write.\n";
 
 typedef struct solve_args {
-  const char *scene, *output, *vtk, *solver;
+  const char *scene, *output, *vtk, *solver, *factorization;
   int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol;
   double gtol;
 } solve_args;
@@ -63,6 +68,9 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
     a->vtk = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--solver", NULL, &v)) != 0)
     a->solver = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--factorization", NULL,
+                                    &v)) != 0)
+    a->factorization = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) !=
            0) {
     if (m > 0)
@@ -137,6 +145,12 @@ static int make_options(const solve_args *a, const rn_scene *scene,
                               "unknown solver '%s' (known: tr-minres, "
                               "rol-tr-tcg, rol-ls-newton)",
                               a->solver);
+  if (a->factorization &&
+      rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
+    return rn_cli_usage_error("solve",
+                              "unknown factorization '%s' (known: auto, banded, "
+                              "sparse, cholmod)",
+                              a->factorization);
   if (a->has_max_iter) opt->max_iterations = a->max_iter;
   if (a->has_gtol) opt->gtol_rel = a->gtol;
   if (a->has_load_steps) opt->load_steps = a->load_steps;
@@ -148,6 +162,7 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   memset(in, 0, sizeof *in);
   in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
   in->solver = rn_solver_name(opt->solver);
+  in->factorization = rn_factorization_name(rep->factorization);
   in->stop = rn_solve_stop_name(rep->stop);
   in->converged = rep->converged;
   in->iterations = rep->iterations;
@@ -168,7 +183,7 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   rn_network *net = rn_scene_network(scene);
   printf("rodnet solve: %s\n", a->scene);
   printf("  status       %s (stopped by: %s)\n", in->status, in->stop);
-  printf("  solver       %s\n", in->solver);
+  printf("  solver       %s (%s factorisation)\n", in->solver, in->factorization);
   printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
          rn_network_num_rods(net), rn_scene_num_vertices(scene),
          rn_network_num_dofs(net));

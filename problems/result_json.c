@@ -72,6 +72,10 @@ static void put_summary(json_out *o, rn_network *net) {
   put_str(f, in->stop);
   fputs(",\n  \"solver\": ", f);
   put_str(f, in->solver);
+  if (in->factorization) {
+    fputs(",\n  \"factorization\": ", f);
+    put_str(f, in->factorization);
+  }
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);

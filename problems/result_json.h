@@ -7,9 +7,10 @@
 
 /* What the solve reports (filled by the caller from rn_solve_report). */
 typedef struct rn_result_info {
-  const char *status; /* "converged" or the reason it stopped */
-  const char *solver; /* solver name ("tr-minres", ...) */
-  const char *stop;   /* stop test ("gradient", "max_iterations", ...) */
+  const char *status;        /* "converged" or the reason it stopped */
+  const char *solver;        /* solver name ("tr-minres", ...) */
+  const char *factorization; /* factorisation used ("banded", "sparse", ...), or NULL */
+  const char *stop;          /* stop test ("gradient", "max_iterations", ...) */
   int converged;
   int iterations, load_steps;
   long energy_evals, gradient_evals, hvp_evals, hessian_evals, krylov_iterations;

@@ -309,6 +309,7 @@ static const solver_field solver_fields[] = {
 };
 enum { N_SOLVER_FIELDS = (int)(sizeof solver_fields / sizeof solver_fields[0]) };
 #define SOLVER_BIT_METHOD (1u << N_SOLVER_FIELDS)
+#define SOLVER_BIT_FACTORIZATION (1u << (N_SOLVER_FIELDS + 1))
 
 /* The option field of solver_fields[i]: *ip for integers, *dp for numbers. */
 static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) {
@@ -348,53 +349,81 @@ static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) 
   }
 }
 
-/* Solver names as in rn_solver_name (parsed here so that a scene can be read
- * by a build without the solver). */
-static int solver_kind_from_name(const char *name, rn_solver_kind *k) {
-  static const struct {
-    const char *name;
-    rn_solver_kind kind;
-  } names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
-               {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
-               {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON}};
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-    if (strcmp(name, names[i].name) == 0) {
-      *k = names[i].kind;
-      return 1;
-    }
-  return 0;
+/* Solver and factorisation names as in rn_solver_name and rn_factorization_name
+ * (parsed here so that a scene can be read by a build without the solver). */
+typedef struct named_value {
+  const char *name;
+  int value;
+} named_value;
+
+static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
+                                           {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
+                                           {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
+                                           {NULL, 0}};
+static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
+                                                  {"banded", RN_FACTOR_BANDED},
+                                                  {"sparse", RN_FACTOR_SPARSE},
+                                                  {"cholmod", RN_FACTOR_CHOLMOD},
+                                                  {NULL, 0}};
+
+/* The value of name in the NULL-terminated table; -1 if absent. */
+static int value_of_name(const named_value *table, const char *name) {
+  for (; table->name; table++)
+    if (strcmp(name, table->name) == 0) return table->value;
+  return -1;
+}
+
+/* Optional string key of the solver block naming one of table's values (what
+ * receives -1 if the key is absent); an error naming the key otherwise. */
+static rn_status read_solver_name(rn_scene_parser *p, const cJSON *v, const char *key,
+                                  const char *what, const named_value *table,
+                                  int *value) {
+  const char *name = NULL;
+  *value = -1;
+  rn_status st = rn_jm_string(&p->w, v, key, 0, &name);
+  if (st || !name) return st;
+  *value = value_of_name(table, name);
+  if (*value >= 0) return RN_OK;
+  char known[128] = "";
+  for (const named_value *t = table; t->name; t++) {
+    if (t != table) strcat(known, ", ");
+    strcat(known, t->name);
+  }
+  size_t mark = rn_jwalk_key(&p->w, key);
+  st = rn_jwalk_error(&p->w, "unknown %s \"%s\" (known: %s)", what, name, known);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
+/* The solver block's string keys "method" and "factorization". */
+static rn_status read_solver_names(rn_scene_parser *p, const cJSON *v) {
+  rn_scene *s = p->scene;
+  int kind, fkind;
+  rn_status st = read_solver_name(p, v, "method", "solver", solver_names, &kind);
+  if (!st)
+    st = read_solver_name(p, v, "factorization", "factorization", factorization_names,
+                          &fkind);
+  if (st) return st;
+  if (kind >= 0) {
+    s->solver_opt.solver = (rn_solver_kind)kind;
+    s->solver_set |= SOLVER_BIT_METHOD;
+  }
+  if (fkind >= 0) {
+    s->solver_opt.factorization = (rn_factorization)fkind;
+    s->solver_set |= SOLVER_BIT_FACTORIZATION;
+  }
+  return RN_OK;
 }
 
 static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"method",
-                                     "max_iterations",
-                                     "gtol",
-                                     "gtol_abs",
-                                     "step_tol",
-                                     "energy_tol",
-                                     "krylov_max_iterations",
-                                     "krylov_tol",
-                                     "initial_radius",
-                                     "load_steps",
-                                     "max_load_cuts",
-                                     NULL};
+  static const char *const keys[] = {
+      "method",     "factorization",  "max_iterations", "gtol",
+      "gtol_abs",   "step_tol",       "energy_tol",     "krylov_max_iterations",
+      "krylov_tol", "initial_radius", "load_steps",     "max_load_cuts",
+      NULL};
   rn_scene *s = p->scene;
-  const char *method = NULL;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
-  if (!st) st = rn_jm_string(&p->w, v, "method", 0, &method);
-  if (st) return st;
-  if (method) {
-    if (!solver_kind_from_name(method, &s->solver_opt.solver)) {
-      size_t mark = rn_jwalk_key(&p->w, "method");
-      st = rn_jwalk_error(&p->w,
-                          "unknown solver \"%s\" (known: tr-minres, "
-                          "rol-tr-tcg, rol-ls-newton)",
-                          method);
-      rn_jwalk_pop(&p->w, mark);
-      return st;
-    }
-    s->solver_set |= SOLVER_BIT_METHOD;
-  }
+  if (!st) st = read_solver_names(p, v);
   for (int i = 0; i < N_SOLVER_FIELDS && !st; i++) {
     const solver_field *f = &solver_fields[i];
     int *ip, present = 0;
@@ -412,6 +441,7 @@ static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
 void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
   rn_solve_options src = s->solver_opt;
   if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = src.solver;
+  if (s->solver_set & SOLVER_BIT_FACTORIZATION) opt->factorization = src.factorization;
   for (int i = 0; i < N_SOLVER_FIELDS; i++) {
     if (!(s->solver_set & (1u << i))) continue;
     int *ip_src, *ip_dst;

@@ -13,7 +13,8 @@ cd "$(dirname "$0")/.."
 # The working Trilinos 13.2 set (shared/design/TRILINOS.md) and the rest of the tools.
 packages=(
   cmake make gcc g++ libopenmpi-dev openmpi-bin
-  libmetis-dev libptscotch-dev liblapack-dev libcjson-dev
+  libmetis-dev libptscotch-dev liblapack-dev libopenblas0-serial libcjson-dev
+  libsuitesparse-dev
   libtrilinos-rol-dev libtrilinos-belos-dev libtrilinos-tpetra-dev libtrilinos-nox-dev
   libtrilinos-teuchos-dev libtrilinos-trilinosss-dev libtrilinos-kokkos-dev
   libtrilinos-kokkos-kernels-dev libtrilinos-epetra-dev libtrilinos-epetraext-dev

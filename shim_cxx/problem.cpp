@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "cholmod_factor.hpp"
 #include "shim_error.hpp"
 #include "sparse_cholesky.hpp"
 
@@ -65,6 +66,12 @@ void Problem::pattern_apply(const double *m, const double *v, double *y) const {
 std::shared_ptr<const SparseAnalysis> Problem::sparse_analysis() {
   if (!analysis_) analysis_ = std::make_shared<SparseAnalysis>(n_, rowptr_, col_);
   return analysis_;
+}
+
+std::shared_ptr<const CholmodAnalysis> Problem::cholmod_analysis() {
+  if (!cholmod_analysis_)
+    cholmod_analysis_ = std::make_shared<CholmodAnalysis>(n_, rowptr_, col_);
+  return cholmod_analysis_;
 }
 
 void Problem::accept(double *x) {

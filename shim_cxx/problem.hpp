@@ -18,6 +18,7 @@
 namespace rodnet {
 
 class SparseAnalysis;
+class CholmodAnalysis;
 
 struct Counters {
   long energy = 0, gradient = 0, hvp = 0, hessian = 0, krylov = 0;
@@ -55,6 +56,8 @@ public:
   // Symbolic analysis of the Hessian's pattern for the sparse Cholesky factorisation
   // (sparse_cholesky.hpp), computed on first use and shared by every factorisation.
   std::shared_ptr<const SparseAnalysis> sparse_analysis();
+  // The same for CHOLMOD (cholmod_factor.hpp).
+  std::shared_ptr<const CholmodAnalysis> cholmod_analysis();
 
   // Accept x as the new state (explicit reference update).  x is updated in place
   // (rigid-joint rotation DOFs move into the reference; the energy is unchanged).
@@ -69,6 +72,7 @@ private:
   const int32_t *col_ = nullptr;
   std::vector<double> vals_;
   std::shared_ptr<const SparseAnalysis> analysis_;
+  std::shared_ptr<const CholmodAnalysis> cholmod_analysis_;
 };
 
 // Small dense vector helpers on host arrays of length n.

@@ -77,7 +77,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "max_load_cuts must be in [0, 60]";
   else if (enum_value(o.factorization) != RN_FACTOR_AUTO &&
            enum_value(o.factorization) != RN_FACTOR_BANDED &&
-           enum_value(o.factorization) != RN_FACTOR_SPARSE)
+           enum_value(o.factorization) != RN_FACTOR_SPARSE &&
+           enum_value(o.factorization) != RN_FACTOR_CHOLMOD)
     bad = "unknown factorization";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -320,13 +321,16 @@ const char *rn_factorization_name(rn_factorization f) {
     return "banded";
   case RN_FACTOR_SPARSE:
     return "sparse";
+  case RN_FACTOR_CHOLMOD:
+    return "cholmod";
   }
   return "unknown";
 }
 
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
   if (!name || !f) return RN_ERR_ARG;
-  const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE};
+  const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
+                                    RN_FACTOR_CHOLMOD};
   for (rn_factorization kind : kinds) {
     if (std::strcmp(name, rn_factorization_name(kind)) == 0) {
       *f = kind;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "banded.hpp"
+#include "cholmod_factor.hpp"
 #include "shim_error.hpp"
 #include "sparse_cholesky.hpp"
 
@@ -13,9 +14,14 @@ namespace rodnet {
 
 namespace {
 
+// SpdFactor on a sparse Cholesky class (SparseCholesky, CholmodCholesky) whose
+// symbolic analysis the Problem computes once and shares.
+template <class Cholesky>
 class SparseSpd : public SpdFactor {
 public:
-  explicit SparseSpd(Problem &p) : chol_(p.sparse_analysis()) {}
+  template <class Analysis>
+  explicit SparseSpd(std::shared_ptr<const Analysis> analysis)
+      : chol_(std::move(analysis)) {}
   bool factor(const Problem &p, double shift, const double *m) override {
     ++p.counters.factorizations;
     return chol_.factor(p.values(), shift, m);
@@ -24,19 +30,24 @@ public:
   bool factored() const override { return chol_.factored(); }
 
 private:
-  SparseCholesky chol_;
+  Cholesky chol_;
 };
 
 } // namespace
 
 rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested) {
-  if (requested == RN_FACTOR_BANDED || requested == RN_FACTOR_SPARSE) return requested;
+  if (requested == RN_FACTOR_BANDED || requested == RN_FACTOR_SPARSE ||
+      requested == RN_FACTOR_CHOLMOD)
+    return requested;
   return p.bandwidth() <= kBandedMaxBandwidth ? RN_FACTOR_BANDED : RN_FACTOR_SPARSE;
 }
 
 std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested) {
-  if (choose_factor_kind(p, requested) == RN_FACTOR_SPARSE)
-    return std::make_unique<SparseSpd>(p);
+  const rn_factorization kind = choose_factor_kind(p, requested);
+  if (kind == RN_FACTOR_SPARSE)
+    return std::make_unique<SparseSpd<SparseCholesky>>(p.sparse_analysis());
+  if (kind == RN_FACTOR_CHOLMOD)
+    return std::make_unique<SparseSpd<CholmodCholesky>>(p.cholmod_analysis());
   const double bytes =
       8.0 * static_cast<double>(p.size()) * static_cast<double>(p.bandwidth() + 1);
   if (bytes > 4.0 * 1024.0 * 1024.0 * 1024.0)

@@ -3,13 +3,16 @@
 // matrix given by its CSR values on the Hessian's pattern) is factored by Cholesky;
 // factor() says whether A is positive definite, and solve() applies A^{-1}.
 //
-// Two implementations, chosen by choose_factor_kind():
+// Three implementations, chosen by choose_factor_kind():
 //  - BandedSpd (banded.hpp): LAPACK dpbtrf on the band; exact and fastest for single
 //    rods and networks without joints (half bandwidth <= kBandedMaxBandwidth);
 //  - SparseSpd: supernodal multifrontal Cholesky with a METIS nested-dissection
 //    ordering (sparse_cholesky.hpp) for networks with joints, whose joint DOFs come
 //    after all rods (half bandwidth ~ n).  The symbolic analysis is done once per
-//    Problem and shared by every factorisation.
+//    Problem and shared by every factorisation;
+//  - CholmodSpd (RN_FACTOR_CHOLMOD only): SuiteSparse CHOLMOD's supernodal
+//    Cholesky with METIS ordering (cholmod_factor.hpp), the library reference for
+//    SparseSpd (about 2x slower on lattices, docs/solvers.md); analysis shared too.
 // No Trilinos here.
 #ifndef RODNET_SHIM_SPD_FACTOR_HPP
 #define RODNET_SHIM_SPD_FACTOR_HPP
@@ -37,7 +40,7 @@ public:
 constexpr size_t kBandedMaxBandwidth = 64;
 
 // RN_FACTOR_AUTO: banded if the half bandwidth is at most kBandedMaxBandwidth,
-// sparse otherwise; the other values force one.
+// sparse otherwise; the other values (banded, sparse, cholmod) force one.
 rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested);
 // A factorisation of the chosen kind.  Throws Error (RN_ERR_ARG) for a forced banded
 // factorisation whose band would need more than 4 GiB.

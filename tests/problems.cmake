@@ -103,7 +103,7 @@ rn_cli_test(problems_cli_help 0 "Usage: rodnet COMMAND.*solve SCENE.json.*check 
             ARGS --help)
 rn_cli_test(problems_cli_version 0 "^rodnet [0-9]+\\.[0-9]+\\.[0-9]+\n" ARGS --version)
 rn_cli_test(problems_cli_solve_help 0
-            "Usage: rodnet solve.*--output FILE.*--vtk FILE.*--solver NAME.*--max-iter N.*--gtol X.*--load-steps N.*--quiet"
+            "Usage: rodnet solve.*--output FILE.*--vtk FILE.*--solver NAME.*--factorization NAME.*--max-iter N.*--gtol X.*--load-steps N.*--quiet"
             ARGS solve --help)
 rn_cli_test(problems_cli_check_help 0 "Usage: rodnet check.*--random N.*--tol X"
             ARGS check --help)
@@ -247,6 +247,13 @@ if(RN_WITH_TRILINOS)
                    --load-steps 1 --quiet)
   rn_cli_test(problems_cli_unknown_solver 2 "unknown solver 'newton'"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --solver newton)
+  rn_cli_test(problems_cli_unknown_factorization 2 "unknown factorization 'lu'"
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --factorization lu)
+  foreach(f banded sparse cholmod)
+    rn_cli_test(problems_cli_factorization_${f} 0 "status +converged.*${f} factorisation"
+                ARGS solve ${cant} -o ${RN_CLI_OUT}/factorization_${f}.json
+                     --factorization ${f} --quiet)
+  endforeach()
   foreach(solver tr-minres rol-tr-tcg rol-ls-newton)
     rn_cli_test(problems_cli_solver_${solver} 0 "status +converged.*solver +${solver}"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/solver_${solver}.json --solver ${solver}

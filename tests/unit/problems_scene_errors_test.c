@@ -335,6 +335,10 @@ static const bad_case cases[] = {
     /* solver block */
     {"unknown solver", SCENE(", 'solver': {'method': 'newton'}"),
      ": $.solver.method: ", "unknown solver \"newton\""},
+    {"unknown factorization", SCENE(", 'solver': {'factorization': 'lu'}"),
+     ": $.solver.factorization: ", "unknown factorization \"lu\""},
+    {"factorization not a string", SCENE(", 'solver': {'factorization': 2}"),
+     ": $.solver.factorization: ", "expected a string"},
     {"zero iterations", SCENE(", 'solver': {'max_iterations': 0}"),
      ": $.solver.max_iterations: ", "expected an integer >= 1, got 0"},
     {"negative gtol", SCENE(", 'solver': {'gtol': -1e-9}"),

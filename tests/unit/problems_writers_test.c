@@ -75,6 +75,7 @@ int main(int argc, char **argv) {
   rn_network *net = rn_scene_network(s);
   rn_result_info info = {"max_iterations",
                          "tr-minres",
+                         "sparse",
                          "max_iterations",
                          0,
                          3,
@@ -96,6 +97,7 @@ int main(int argc, char **argv) {
   if (root) {
     CHECK(strcmp(str(root, "status"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
+    CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "scene"), argv[1]) == 0);
     CHECK(strcmp(str(root, "rodnet_version"), rn_version_string()) == 0);

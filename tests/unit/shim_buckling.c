@@ -11,9 +11,9 @@
  *    whose energy is below that of the straight equilibrium (found by a 1-D
  *    golden-section search over the uniform axial strain), and whose tip has
  *    moved sideways by more than 0.1 L;
- *  - the same with the sparse factorisation forced (its failed factorisations
- *    drive the multiplier search and the inverse iteration): converged, stable,
- *    the same energy to 1e-10. */
+ *  - the same with the sparse factorisations forced, rodnet's and CHOLMOD's
+ *    (their failed factorisations drive the multiplier search and the inverse
+ *    iteration): converged, stable, the same energy to 1e-10. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -115,18 +115,21 @@ int main(int argc, char **argv) {
   CHECK(E_final < E_straight);
   CHECK(side > 0.1);
 
-  rn_network_destroy(&net);
-  net = column(ctx, &P);
-  opt.factorization = RN_FACTOR_SPARSE;
-  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
-  CHECK(rep.converged == 1 && rep.factorization == RN_FACTOR_SPARSE);
-  CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin_final), RN_OK);
-  printf("tr-minres, sparse factorisation: stop=%s its=%d krylov=%ld E=%.10e lowest "
-         "eigenvalue %.6e\n",
-         rn_solve_stop_name(rep.stop), rep.iterations, rep.krylov_iterations, rep.energy,
-         lmin_final);
-  CHECK(lmin_final > 0.0);
-  CHECK_REL(rep.energy, E_final, 1e-10);
+  for (int k = 0; k < 2; ++k) {
+    const rn_factorization f = k == 0 ? RN_FACTOR_SPARSE : RN_FACTOR_CHOLMOD;
+    rn_network_destroy(&net);
+    net = column(ctx, &P);
+    opt.factorization = f;
+    CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+    CHECK(rep.converged == 1 && rep.factorization == f);
+    CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin_final), RN_OK);
+    printf("tr-minres, %s factorisation: stop=%s its=%d krylov=%ld E=%.10e lowest "
+           "eigenvalue %.6e\n",
+           rn_factorization_name(f), rn_solve_stop_name(rep.stop), rep.iterations,
+           rep.krylov_iterations, rep.energy, lmin_final);
+    CHECK(lmin_final > 0.0);
+    CHECK_REL(rep.energy, E_final, 1e-10);
+  }
 
   free(x0);
   free(x);

@@ -11,7 +11,7 @@
  *    vector in a solver's iterate would count the joint's rotation twice);
  *  - after each solve the free rigid joints' rotation DOFs are exactly 0 and
  *    the energy at the network's DOFs is the reported one;
- *  - the banded factorisation (forced) reaches the same state;
+ *  - the banded factorisation and CHOLMOD's (forced) reach the same state;
  *  - automatic load stepping forced to cut back (the snapshot restore of
  *    rn_network_state_restore) reaches the direct solution;
  *  - rn_hessian_min_eigenvalue (sparse path: inertia bisection and inverse
@@ -106,18 +106,20 @@ static void compare_kinds(rn_context *ctx, const char *label, builder build) {
     }
     printf("\n");
   }
-  rn_solve_options_default(&opt);
-  opt.factorization = RN_FACTOR_BANDED;
-  solve_one(ctx, build, &opt, &banded);
-  CHECK(banded.rep.factorization == RN_FACTOR_BANDED);
-  {
+  const rn_factorization forced[2] = {RN_FACTOR_BANDED, RN_FACTOR_CHOLMOD};
+  for (int k = 0; k < 2; ++k) {
+    rn_solve_options_default(&opt);
+    opt.factorization = forced[k];
+    solve_one(ctx, build, &opt, &banded);
+    CHECK(banded.rep.factorization == forced[k]);
     const double d = state_diff(&banded, &s[0], state0);
-    printf("  banded        its %3d, krylov %4ld, difference to sparse %.2e\n",
-           banded.rep.iterations, banded.rep.krylov_iterations, d);
+    printf("  %-13s its %3d, krylov %4ld, difference to sparse %.2e\n",
+           rn_factorization_name(forced[k]), banded.rep.iterations,
+           banded.rep.krylov_iterations, d);
     CHECK(d <= 1e-7);
+    free(banded.state);
   }
   for (int k = 0; k < 3; ++k) free(s[k].state);
-  free(banded.state);
   free(state0);
 }
 

@@ -1,12 +1,16 @@
-// shim_sparse_cholesky.cpp - the shim's supernodal sparse Cholesky factorisation
-// (shim_cxx/sparse_cholesky.hpp) on its own, against dense LAPACK:
+// shim_sparse_cholesky.cpp - the shim's sparse Cholesky factorisations on their own,
+// rodnet's supernodal one (shim_cxx/sparse_cholesky.hpp) and CHOLMOD's
+// (shim_cxx/cholmod_factor.hpp), against dense LAPACK and against each other:
 //  - random sparse symmetric patterns (with and without a dense "joint" block coupled
 //    to everything, disconnected components, n = 1, 2, 3, a diagonal matrix): for
 //    A - s I with s below the lowest eigenvalue (dsyev) by 1e-6 of the spectral
 //    scale, factor() succeeds; with s above it by as much, factor() returns false;
 //    solve() has a backward error below 1e-13;
 //  - the factorisation is reusable: a further factor() with a well-conditioning shift
-//    on the same analysis gives dposv's solution to 1e-10 relative.
+//    on the same analysis, after the failed one, gives dposv's solution to 1e-10
+//    relative;
+//  - a non-finite entry makes factor() return false;
+//  - both implementations give the same solutions to 1e-12 relative.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +19,7 @@
 #include <set>
 #include <vector>
 
+#include "cholmod_factor.hpp"
 #include "sparse_cholesky.hpp"
 
 extern "C" {
@@ -106,8 +111,8 @@ std::vector<double> eigenvalues(const Csr &A) {
 // ||(A - s I) x - b|| <= 1e-13 (||A - s I||_F ||x|| + ||b||), and, when compare is
 // set (a well-conditioned shift), agreement with dposv to 1e-10 relative.  Returns
 // factor()'s result.
-bool factor_and_check(rodnet::SparseCholesky &chol, const Csr &A, double s,
-                      bool compare) {
+template <class Chol>
+bool factor_and_check(Chol &chol, const Csr &A, double s, bool compare) {
   const bool ok = chol.factor(A.val.data(), -s, A.ident.data());
   if (!ok) return false;
   std::vector<double> D = dense(A), b(A.n), x(A.n), r(A.n, 0.0);
@@ -142,23 +147,67 @@ bool factor_and_check(rodnet::SparseCholesky &chol, const Csr &A, double s,
   return true;
 }
 
-void check_case(const char *label, const Csr &A) {
-  auto an =
-      std::make_shared<const rodnet::SparseAnalysis>(A.n, A.rowptr.data(), A.col.data());
-  rodnet::SparseCholesky chol(an);
+// Solution of (A - s I) x = b, b_i = cos(0.3 i), for the comparison.
+template <class Chol>
+std::vector<double> solution(Chol &chol, const Csr &A, double s) {
+  std::vector<double> x(A.n);
+  for (size_t i = 0; i < A.n; ++i) x[i] = std::cos(0.3 * static_cast<double>(i));
+  CHECK(chol.factor(A.val.data(), -s, A.ident.data()));
+  if (chol.factored()) chol.solve(x.data());
+  return x;
+}
+
+template <class Analysis, class Chol>
+void check_case(const char *impl, const char *label, const Csr &A) {
+  auto an = std::make_shared<const Analysis>(A.n, A.rowptr.data(), A.col.data());
+  Chol chol(an);
   const std::vector<double> w = eigenvalues(A);
   const double scale = std::max(std::fabs(w.front()), std::fabs(w.back())),
                gap = 1e-6 * scale;
   const bool below = factor_and_check(chol, A, w.front() - gap, false);
   const bool above = factor_and_check(chol, A, w.front() + gap, false);
   const bool again = factor_and_check(chol, A, w.front() - 0.5 * scale, true);
-  std::printf("%-34s n %4zu, nnz %6zu, supernodes %4zu, nnz(L) %7zu, lowest eigenvalue "
-              "%+.4e: below %s, above %s\n",
-              label, A.n, A.col.size(), an->num_supernodes(), an->factor_entries(),
+  std::printf("%-7s %-34s n %4zu, nnz %6zu, supernodes %4zu, nnz(L) %7zu, lowest "
+              "eigenvalue %+.4e: below %s, above %s\n",
+              impl, label, A.n, A.col.size(), an->num_supernodes(), an->factor_entries(),
               w.front(), below ? "factors" : "FAILS", above ? "FACTORS" : "fails");
   CHECK(below);
   CHECK(!above);
   CHECK(again);
+  // A non-finite entry (both triangles: each implementation reads one of them).
+  std::vector<double> bad = A.val;
+  const size_t kbad = bad.size() / 2;
+  size_t ibad = 0;
+  while (static_cast<size_t>(A.rowptr[ibad + 1]) <= kbad) ++ibad;
+  const int32_t jbad = A.col[kbad];
+  for (int64_t k = A.rowptr[static_cast<size_t>(jbad)];
+       k < A.rowptr[static_cast<size_t>(jbad) + 1]; ++k)
+    if (static_cast<size_t>(A.col[static_cast<size_t>(k)]) == ibad)
+      bad[static_cast<size_t>(k)] = std::nan("");
+  bad[kbad] = std::nan("");
+  CHECK(!chol.factor(bad.data(), 0.0, nullptr));
+  CHECK(!chol.factored());
+}
+
+void check_case(const char *label, const Csr &A) {
+  check_case<rodnet::SparseAnalysis, rodnet::SparseCholesky>("rodnet", label, A);
+  check_case<rodnet::CholmodAnalysis, rodnet::CholmodCholesky>("cholmod", label, A);
+  // The two factorisations agree on a well-conditioned shift.
+  const std::vector<double> w = eigenvalues(A);
+  const double s = w.front() - 0.5 * std::max(std::fabs(w.front()), std::fabs(w.back()));
+  auto a1 =
+      std::make_shared<const rodnet::SparseAnalysis>(A.n, A.rowptr.data(), A.col.data());
+  auto a2 =
+      std::make_shared<const rodnet::CholmodAnalysis>(A.n, A.rowptr.data(), A.col.data());
+  rodnet::SparseCholesky c1(a1);
+  rodnet::CholmodCholesky c2(a2);
+  const std::vector<double> x1 = solution(c1, A, s), x2 = solution(c2, A, s);
+  double num = 0.0, den = 0.0;
+  for (size_t i = 0; i < A.n; ++i) {
+    num += (x1[i] - x2[i]) * (x1[i] - x2[i]);
+    den += x1[i] * x1[i];
+  }
+  CHECK(std::sqrt(num) <= 1e-12 * std::sqrt(den));
 }
 
 } // namespace
