@@ -13,6 +13,11 @@ typedef struct eval_args {
   eval_op op;
   const double *x; /* reduced state */
   const double *v; /* direction (OP_HVP) */
+  /* OP_HVP: if set, the direction is given on the full layout and only its
+   * fixed entries count (free entries read as 0): H_{free,fixed} vfull */
+  const double *vfull;
+  double lambda;  /* scale of the loads (normally the network's load factor) */
+  int loads_only; /* 1: only the load terms (forces, couples) */
   double E[RN_TERM_COUNT];
   double *g;         /* OP_GRAD output, accumulated */
   double *Hv;        /* OP_HVP output, accumulated */
@@ -26,6 +31,15 @@ static rn_status degenerate(const rn_network *net, const eval_args *a, const cha
                  "%s of rod %d ('%s') is degenerate at %s %d (zero-length edge or "
                  "opposite tangents)",
                  term, rod, rn_network_rod_name(net, rod), what, idx);
+}
+
+/* Local direction of a stencil starting at full index s (OP_HVP). */
+static void gather_dir(const rn_network *net, const eval_args *a, size_t s, int n,
+                       double *vl) {
+  if (a->vfull)
+    rn_gather_fixed_dir(net, a->vfull, s, n, vl);
+  else
+    rn_gather_dir(net, a->v, s, n, vl);
 }
 
 /* Accumulates a local gradient / HVP / Hessian block of a stencil. */
@@ -51,7 +65,7 @@ static int stretch_eval(const rn_network *net, const rn_rod *r, int j, eval_args
     rc = rnk_stretch_grad(q, p, &E, loc);
     break;
   case OP_HVP:
-    rn_gather_dir(net, a->v, s, N, vl);
+    gather_dir(net, a, s, N, vl);
     rc = rnk_stretch_hvp(q, p, vl, loc);
     break;
   case OP_HESS:
@@ -84,7 +98,7 @@ static int bendtwist_eval(const rn_network *net, const rn_rod *r, int i, eval_ar
     rc = rnk_bendtwist_grad(q, ref, bp, &tp, &Eb, loc);
     break; /* sum */
   case OP_HVP:
-    rn_gather_dir(net, a->v, s, N, vl);
+    gather_dir(net, a, s, N, vl);
     rc = rnk_bendtwist_hvp(q, ref, bp, &tp, vl, loc);
     break;
   case OP_HESS:
@@ -106,7 +120,7 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
   rnk_moment_param p;
   double q[N], vl[N], loc[N * N], E = 0.0;
   int rc = RNK_OK;
-  for (int k = 0; k < 3; ++k) p.M[k] = net->lambda * mo->M[k];
+  for (int k = 0; k < 3; ++k) p.M[k] = a->lambda * mo->M[k];
   if (p.M[0] == 0.0 && p.M[1] == 0.0 && p.M[2] == 0.0) return RNK_OK;
   memcpy(p.f0, mo->f0, sizeof(p.f0));
   p.angle0 = mo->angle0;
@@ -120,7 +134,7 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
     rc = rnk_moment_grad(q, ref, &p, &E, loc);
     break;
   case OP_HVP:
-    rn_gather_dir(net, a->v, s, N, vl);
+    gather_dir(net, a, s, N, vl);
     rc = rnk_moment_hvp(q, ref, &p, vl, loc);
     break;
   case OP_HESS:
@@ -138,7 +152,7 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
   for (int v = 0; v < r->nv; ++v) {
     size_t s = rn_dof_vertex(r->off, v);
     double f[3], xv[3], gl[3];
-    for (int k = 0; k < 3; ++k) f[k] = net->lambda * r->fvert[3 * v + k];
+    for (int k = 0; k < 3; ++k) f[k] = a->lambda * r->fvert[3 * v + k];
     if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) continue;
     rn_gather(net, a->x, s, RN_DOFS_PER_VERTEX, xv);
     a->E[RN_TERM_LOAD] += rnk_force_energy(xv, f);
@@ -180,7 +194,10 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
     break;
   case OP_HVP: /* dense block times the gathered direction */
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
-    rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
+    if (a->vfull)
+      rn_gather_fixed_dir_idx(net, a->vfull, J->idx, s->n, s->v);
+    else
+      rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
     rnk_block_mv(s->n, s->loc, s->v, s->q);
     rn_scatter_add_idx(net, s->q, J->idx, s->n, a->Hv);
     break;
@@ -190,6 +207,21 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
     break;
   }
   return rc;
+}
+
+/* Gradient of the joint's couple alone (loads_only): the gradient with the
+ * couple minus the one without (the couple term is linear in M). */
+static int joint_couple_grad(const rn_network *net, const rn_joint *J,
+                             rn_joint_scratch *s, rnk_joint *kj, eval_args *a) {
+  double E = 0.0, *g0 = s->loc + s->n; /* loc holds n * n >= 2 n doubles */
+  int rc;
+  if (kj->M[0] == 0.0 && kj->M[1] == 0.0 && kj->M[2] == 0.0) return RNK_OK;
+  if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, s->loc)) != RNK_OK) return rc;
+  memset(kj->M, 0, sizeof(kj->M));
+  if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, g0)) != RNK_OK) return rc;
+  for (int k = 0; k < s->n; ++k) s->loc[k] -= g0[k];
+  rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->g);
+  return RNK_OK;
 }
 
 /* The whole-joint stencil, gathered and scattered by its index list; the
@@ -204,8 +236,10 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   if (rn_joint_scratch_init(J, &s))
     return rn_fail(net->ctx, RN_ERR_ALLOC, a->where, "out of memory");
   rn_joint_kernel(net, ij, s.refs, &kj);
+  for (int k = 0; k < 3; ++k) kj.M[k] = a->lambda * J->M[k];
   rn_gather_idx(net, a->x, J->idx, s.n, s.q);
-  rc = joint_kernel_op(net, J, &s, &kj, a);
+  rc = a->loads_only ? joint_couple_grad(net, J, &s, &kj, a)
+                     : joint_kernel_op(net, J, &s, &kj, a);
   rn_joint_scratch_free(&s);
   if (rc != RNK_OK)
     return rn_fail(
@@ -213,7 +247,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
         "joint %d ('%s') is degenerate (opposite tangents at a connection edge, "
         "a zero-length terminal edge or a singular rotation fit)",
         ij, rn_network_joint_name(net, ij));
-  for (int k = 0; k < 3; ++k) f[k] = net->lambda * J->force[k];
+  for (int k = 0; k < 3; ++k) f[k] = a->lambda * J->force[k];
   if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) return RN_OK;
   rn_gather(net, a->x, p, RN_DOFS_PER_VERTEX, xj);
   a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
@@ -226,6 +260,10 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
 
 static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
   const rn_rod *r = &net->rods[ir];
+  if (a->loads_only) {
+    forces_eval(net, r, a);
+    return RN_OK;
+  }
   for (int j = 0; j < r->ne; ++j)
     if (stretch_eval(net, r, j, a) != RNK_OK)
       return degenerate(net, a, "stretching", ir, "edge", j);
@@ -277,16 +315,31 @@ static rn_status check_eval(const rn_network *net, const char *where, const doub
   return RN_OK;
 }
 
+/* Arguments of one evaluation of op at x, loads at the network's load factor. */
+static void args_init(eval_args *a, const rn_network *net, eval_op op, const char *where,
+                      const double *x) {
+  memset(a, 0, sizeof(*a));
+  a->lambda = net->lambda;
+  a->op = op;
+  a->where = where;
+  a->x = x;
+}
+
+/* Runs an evaluation that accumulates into out[nred] (gradient or HVP). */
+static rn_status eval_into(const rn_network *net, eval_args *a, double *out) {
+  if (a->op == OP_GRAD) a->g = out;
+  if (a->op == OP_HVP) a->Hv = out;
+  if (net->nred) memset(out, 0, net->nred * sizeof(double));
+  return eval_all(net, a);
+}
+
 rn_status rn_network_energy_terms(const rn_network *net, const double *x, double *E) {
   eval_args a;
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if (!E) return rn_fail(net->ctx, RN_ERR_ARG, "rn_network_energy_terms", "E is NULL");
   if ((st = check_eval(net, "rn_network_energy_terms", x, E))) return st;
-  memset(&a, 0, sizeof(a));
-  a.where = "rn_network_energy";
-  a.op = OP_ENERGY;
-  a.x = x;
+  args_init(&a, net, OP_ENERGY, "rn_network_energy", x);
   if ((st = eval_all(net, &a))) return st;
   memcpy(E, a.E, sizeof(a.E));
   return RN_OK;
@@ -308,13 +361,8 @@ rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = check_eval(net, "rn_network_gradient", x, g))) return st;
-  memset(&a, 0, sizeof(a));
-  a.op = OP_GRAD;
-  a.where = "rn_network_gradient";
-  a.x = x;
-  a.g = g;
-  if (net->nred) memset(g, 0, net->nred * sizeof(double));
-  if ((st = eval_all(net, &a))) return st;
+  args_init(&a, net, OP_GRAD, "rn_network_gradient", x);
+  if ((st = eval_into(net, &a, g))) return st;
   if (E) *E = sum_terms(a.E);
   return RN_OK;
 }
@@ -329,14 +377,9 @@ rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v
   if (!v && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "v is NULL");
   if (!rn_all_finite(net->nred, v))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "v has NaN or infinite entries");
-  memset(&a, 0, sizeof(a));
-  a.op = OP_HVP;
-  a.where = where;
-  a.x = x;
+  args_init(&a, net, OP_HVP, where, x);
   a.v = v;
-  a.Hv = Hv;
-  if (net->nred) memset(Hv, 0, net->nred * sizeof(double));
-  return eval_all(net, &a);
+  return eval_into(net, &a, Hv);
 }
 
 rn_status rn_network_hessian_values(const rn_network *net, const double *x,
@@ -345,11 +388,25 @@ rn_status rn_network_hessian_values(const rn_network *net, const double *x,
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = check_eval(net, "rn_network_hessian_values", x, vals))) return st;
-  memset(&a, 0, sizeof(a));
-  a.op = OP_HESS;
-  a.where = "rn_network_hessian_values";
-  a.x = x;
+  args_init(&a, net, OP_HESS, "rn_network_hessian_values", x);
   a.vals = vals;
   if (net->nnz) memset(vals, 0, net->nnz * sizeof(double));
   return eval_all(net, &a);
+}
+
+rn_status rn_eval_fixed_hvp(const rn_network *net, const double *x, const double *vfull,
+                            double *Hv, const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_HVP, where, x);
+  a.vfull = vfull;
+  return eval_into(net, &a, Hv);
+}
+
+rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
+                            const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_GRAD, where, x);
+  a.lambda = 1.0; /* the loads' rate: they are linear in the load factor */
+  a.loads_only = 1;
+  return eval_into(net, &a, g);
 }

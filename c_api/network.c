@@ -353,6 +353,12 @@ void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, doub
   }
 }
 
+void rn_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s, int n,
+                         double *q) {
+  for (int k = 0; k < n; ++k)
+    q[k] = net->map[s + (size_t)k] >= 0 ? 0.0 : vfull[s + (size_t)k];
+}
+
 void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, double *g) {
   for (int k = 0; k < n; ++k) {
     int64_t m = net->map[s + (size_t)k];
@@ -381,6 +387,11 @@ void rn_gather_dir_idx(const rn_network *net, const double *v, const size_t *idx
     int64_t m = net->map[idx[k]];
     q[k] = m >= 0 ? v[m] : 0.0;
   }
+}
+
+void rn_gather_fixed_dir_idx(const rn_network *net, const double *vfull,
+                             const size_t *idx, int n, double *q) {
+  for (int k = 0; k < n; ++k) q[k] = net->map[idx[k]] >= 0 ? 0.0 : vfull[idx[k]];
 }
 
 void rn_scatter_add_idx(const rn_network *net, const double *gl, const size_t *idx, int n,

@@ -144,6 +144,9 @@ const char *rn_components_name(int mask, char buf[4]);
 void rn_gather(const rn_network *net, const double *x, size_t s, int n, double *q);
 /* Local direction: v[map] if free, else 0. */
 void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, double *q);
+/* Local direction from a full-layout vector: vfull[s+k] if fixed, else 0. */
+void rn_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s, int n,
+                         double *q);
 /* g[map[s+k]] += gl[k] for free DOFs. */
 void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, double *g);
 /* Full state from a reduced vector: free entries from x, fixed from xfull. */
@@ -153,8 +156,21 @@ void rn_gather_idx(const rn_network *net, const double *x, const size_t *idx, in
                    double *q);
 void rn_gather_dir_idx(const rn_network *net, const double *v, const size_t *idx, int n,
                        double *q);
+void rn_gather_fixed_dir_idx(const rn_network *net, const double *vfull,
+                             const size_t *idx, int n, double *q);
 void rn_scatter_add_idx(const rn_network *net, const double *gl, const size_t *idx, int n,
                         double *g);
+
+/* ---- load increment (assembly.c) -------------------------------------------- */
+/* Hv[nred] = H_{free,fixed}(x) vfull: every stencil's Hessian block applied to
+ * the fixed entries of the full-layout direction vfull[nfull], free rows only.
+ * No argument checks (where names the caller in messages). */
+rn_status rn_eval_fixed_hvp(const rn_network *net, const double *x, const double *vfull,
+                            double *Hv, const char *where);
+/* g[nred] = gradient of the load terms (forces, couples) at load factor 1: their
+ * derivative with respect to the load factor (loads are linear in it). */
+rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
+                            const char *where);
 
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference

@@ -228,6 +228,20 @@ rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
 /* Hessian-vector product Hv = H(x) v, matrix-free from the stencil blocks. */
 rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v,
                          double *Hv);
+/* Linearised load increment: dg[num_dofs] = the first-order change of the
+ * gradient at fixed free DOFs x when the load factor goes from t_prev to t,
+ *   dg = H_{free,fixed}(x; t_prev) [X_c(t) - X_c(t_prev)]
+ *        + (t - t_prev) d/dlambda (gradient of the loads),
+ * X_c the prescribed (fixed) DOFs: pinned and clamped positions, the material
+ * angles of clamped edges (the angle that turns the reference frame at t_prev
+ * into the prescribed one) and the rotations of clamped joints.  Exact for
+ * prescribed translations and loads; the chord for prescribed rotations.
+ * g(x; t) ~ g(x; t_prev) + dg (the load-step predictor of rn_solve).
+ * Evaluated at t_prev; the network's load factor and state are left as they
+ * were.  t_prev, t in [0, 1] (RN_ERR_ARG), finite (RN_ERR_NOT_FINITE);
+ * RN_DEGENERATE at a degenerate x. */
+rn_status rn_network_load_increment(rn_network *net, const double *x, double t_prev,
+                                    double t, double *dg);
 /* Energy split by term: E[RN_TERM_COUNT].  The bending and twisting energy
  * of joints (between terminal and connection edges) counts as RN_TERM_BEND;
  * forces and couples on joints as RN_TERM_LOAD. */

@@ -83,6 +83,12 @@ typedef struct rn_solve_options {
   void (*progress)(void *user, const rn_iteration_info *info);
   void *progress_user;
   rn_factorization factorization; /* default RN_FACTOR_AUTO */
+  /* 1 (default): each load step from t_prev to t starts with the linearised
+   * load-increment predictor: s = -H^{-1} (g(x; t_prev) + dg), dg from
+   * rn_network_load_increment, H factored like the solver's preconditioner
+   * (shifted if not positive definite); x + s is accepted only if it lowers
+   * the energy at t.  0: off (the step starts at x). */
+  int predictor;
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -101,6 +107,7 @@ typedef struct rn_solve_report {
                                      the solver ran) */
   long factorizations; /* numeric Cholesky factorisations of H + sigma D, failed
                           ones included (the main cost on large networks) */
+  int predictor_steps; /* load steps whose predictor step was accepted */
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",

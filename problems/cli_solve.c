@@ -42,6 +42,9 @@ static const char solve_help[] =
     "                      scale (initial gradient or force scale; default 1e-9)\n"
     "      --load-steps N  apply the loads in N equal continuation steps (default:\n"
     "                      one step, split automatically when a full step fails)\n"
+    "      --no-predictor  start each load step where the last one converged (default:\n"
+    "                      from the linearised load-increment prediction, kept if\n"
+    "                      it lowers the energy; docs/solvers.md)\n"
     "  -q, --quiet         no progress lines\n"
     "  -h, --help          show this help\n"
     "\n"
@@ -53,7 +56,7 @@ static const char solve_help[] =
 
 typedef struct solve_args {
   const char *scene, *output, *vtk, *solver, *factorization;
-  int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol;
+  int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol, no_predictor;
   double gtol;
 } solve_args;
 
@@ -100,6 +103,8 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
       a->quiet = 1;
+    else if (strcmp(s, "--no-predictor") == 0)
+      a->no_predictor = 1;
     else if (parse_value_option(argc, argv, &i, a, &rc)) {
       if (rc) return rc;
     } else if (s[0] == '-' && s[1] != '\0')
@@ -154,6 +159,7 @@ static int make_options(const solve_args *a, const rn_scene *scene,
   if (a->has_max_iter) opt->max_iterations = a->max_iter;
   if (a->has_gtol) opt->gtol_rel = a->gtol;
   if (a->has_load_steps) opt->load_steps = a->load_steps;
+  if (a->no_predictor) opt->predictor = 0;
   return 0;
 }
 
@@ -167,6 +173,7 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->converged = rep->converged;
   in->iterations = rep->iterations;
   in->load_steps = rep->load_steps;
+  in->predictor_steps = rep->predictor_steps;
   in->energy_evals = rep->energy_evals;
   in->gradient_evals = rep->gradient_evals;
   in->hvp_evals = rep->hvp_evals;
@@ -187,9 +194,10 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
          rn_network_num_rods(net), rn_scene_num_vertices(scene),
          rn_network_num_dofs(net));
-  printf("  iterations   %d Newton, %ld Krylov, %d load steps (load factor %g)\n",
+  printf("  iterations   %d Newton, %ld Krylov, %d load steps (load factor %g), %d "
+         "predictor steps\n",
          in->iterations, in->krylov_iterations, in->load_steps,
-         rn_network_load_factor(net));
+         rn_network_load_factor(net), in->predictor_steps);
   printf("  evaluations  %ld energy, %ld gradient, %ld HVP, %ld Hessian\n",
          in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals);
   printf("  energy       %.17g\n", in->energy);

@@ -80,8 +80,8 @@ static void put_summary(json_out *o, rn_network *net) {
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);
   put_key_num(o, "initial_gradient_norm", in->initial_gradient_norm);
-  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n", in->iterations,
-          in->load_steps);
+  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n  \"predictor_steps\": %d,\n",
+          in->iterations, in->load_steps, in->predictor_steps);
   put_key_num(o, "load_factor", rn_network_load_factor(net));
   put_key_num(o, "time_s", in->time_s);
   fprintf(f,

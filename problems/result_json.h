@@ -15,6 +15,7 @@ typedef struct rn_result_info {
   int iterations, load_steps;
   long energy_evals, gradient_evals, hvp_evals, hessian_evals, krylov_iterations;
   double energy, gradient_norm, initial_gradient_norm, time_s;
+  int predictor_steps; /* load steps whose predictor step was accepted */
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info,

@@ -310,6 +310,7 @@ static const solver_field solver_fields[] = {
 enum { N_SOLVER_FIELDS = (int)(sizeof solver_fields / sizeof solver_fields[0]) };
 #define SOLVER_BIT_METHOD (1u << N_SOLVER_FIELDS)
 #define SOLVER_BIT_FACTORIZATION (1u << (N_SOLVER_FIELDS + 1))
+#define SOLVER_BIT_PREDICTOR (1u << (N_SOLVER_FIELDS + 2))
 
 /* The option field of solver_fields[i]: *ip for integers, *dp for numbers. */
 static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) {
@@ -415,15 +416,33 @@ static rn_status read_solver_names(rn_scene_parser *p, const cJSON *v) {
   return RN_OK;
 }
 
+/* The solver block's boolean key "predictor" (optional). */
+static rn_status read_solver_predictor(rn_scene_parser *p, const cJSON *v) {
+  const cJSON *b = cJSON_GetObjectItemCaseSensitive(v, "predictor");
+  if (!b) return RN_OK;
+  if (!cJSON_IsBool(b)) {
+    size_t mark = rn_jwalk_key(&p->w, "predictor");
+    rn_status st = rn_jwalk_error(&p->w, "expected true or false");
+    rn_jwalk_pop(&p->w, mark);
+    return st;
+  }
+  p->scene->solver_opt.predictor = cJSON_IsTrue(b) ? 1 : 0;
+  p->scene->solver_set |= SOLVER_BIT_PREDICTOR;
+  return RN_OK;
+}
+
 static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {
-      "method",     "factorization",  "max_iterations", "gtol",
-      "gtol_abs",   "step_tol",       "energy_tol",     "krylov_max_iterations",
-      "krylov_tol", "initial_radius", "load_steps",     "max_load_cuts",
-      NULL};
+  static const char *const keys[] = {"method",         "factorization",
+                                     "max_iterations", "gtol",
+                                     "gtol_abs",       "step_tol",
+                                     "energy_tol",     "krylov_max_iterations",
+                                     "krylov_tol",     "initial_radius",
+                                     "load_steps",     "max_load_cuts",
+                                     "predictor",      NULL};
   rn_scene *s = p->scene;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = read_solver_names(p, v);
+  if (!st) st = read_solver_predictor(p, v);
   for (int i = 0; i < N_SOLVER_FIELDS && !st; i++) {
     const solver_field *f = &solver_fields[i];
     int *ip, present = 0;
@@ -442,6 +461,7 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
   rn_solve_options src = s->solver_opt;
   if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = src.solver;
   if (s->solver_set & SOLVER_BIT_FACTORIZATION) opt->factorization = src.factorization;
+  if (s->solver_set & SOLVER_BIT_PREDICTOR) opt->predictor = src.predictor;
   for (int i = 0; i < N_SOLVER_FIELDS; i++) {
     if (!(s->solver_set & (1u << i))) continue;
     int *ip_src, *ip_dst;

@@ -14,6 +14,7 @@
 
 #include "banded.hpp"
 #include "monitor.hpp"
+#include "predictor.hpp"
 #include "problem.hpp"
 #include "rodnet_solve.h"
 #include "shim_error.hpp"
@@ -80,22 +81,27 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
            enum_value(o.factorization) != RN_FACTOR_SPARSE &&
            enum_value(o.factorization) != RN_FACTOR_CHOLMOD)
     bad = "unknown factorization";
+  else if (o.predictor != 0 && o.predictor != 1)
+    bad = "predictor must be 0 or 1";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
 }
 
 // Totals over the load steps of one rn_solve.
 struct SolveTotals {
-  int iterations = 0, load_steps = 0;
+  int iterations = 0, load_steps = 0, predictor_steps = 0;
   long krylov = 0;
   rn_solve_stop stop = RN_STOP_FAILED;
   double energy = 0.0, gnorm = 0.0;
   rn_factorization factorization = RN_FACTOR_AUTO;
 };
 
-// One minimisation at load factor t from the current state.
-bool solve_load_step(Problem &p, const rn_solve_options &opt, double t,
+// One minimisation at load factor t from the current state, converged at t_prev
+// (0: the starting state); first the predictor (opt.predictor).
+bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
+  if (opt.predictor && predict_load_step(p, tot.factorization, t_prev, t))
+    ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
   switch (opt.solver) {
@@ -143,7 +149,9 @@ void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
   for (int k = 1; k <= opt.load_steps; ++k) {
     const double t =
         target * static_cast<double>(k) / static_cast<double>(opt.load_steps);
-    if (!solve_load_step(p, opt, t, force_scale, start, tot)) return;
+    const double t_prev =
+        target * static_cast<double>(k - 1) / static_cast<double>(opt.load_steps);
+    if (!solve_load_step(p, opt, t_prev, t, force_scale, start, tot)) return;
   }
 }
 
@@ -159,7 +167,7 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
   int cuts = 0;
   for (;;) {
     const double t = (target - t_done <= inc) ? target : t_done + inc;
-    if (solve_load_step(p, opt, t, force_scale, start, tot)) {
+    if (solve_load_step(p, opt, t_done, t, force_scale, start, tot)) {
       if (t >= target) return;
       t_done = t;
       done.save(p.network());
@@ -192,6 +200,7 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->initial_gradient_norm = g0;
   rep->time_s = seconds;
   rep->factorization = tot.factorization;
+  rep->predictor_steps = tot.predictor_steps;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
@@ -268,6 +277,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->progress = nullptr;
   opt->progress_user = nullptr;
   opt->factorization = RN_FACTOR_AUTO;
+  opt->predictor = 1;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {

@@ -19,6 +19,9 @@ endif()
 # path), sparse vs banded factorisation, continuation with cut-backs.
 rn_add_test(shim_networks SOURCES unit/shim_networks.c
             LIBS rodnet ${LAPACK_LIBRARIES} m LABELS unit)
+# The load-step predictor: lattice under stretch (same state, fewer iterations) and
+# a strongly nonlinear cantilever (same state).
+rn_add_test(shim_predictor SOURCES unit/shim_predictor.c LIBS rodnet m LABELS unit)
 # State snapshots: bit-identical evaluations after solving away and restoring.
 rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 # The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests

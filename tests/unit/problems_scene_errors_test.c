@@ -339,6 +339,8 @@ static const bad_case cases[] = {
      ": $.solver.factorization: ", "unknown factorization \"lu\""},
     {"factorization not a string", SCENE(", 'solver': {'factorization': 2}"),
      ": $.solver.factorization: ", "expected a string"},
+    {"predictor not a boolean", SCENE(", 'solver': {'predictor': 1}"),
+     ": $.solver.predictor: ", "expected true or false"},
     {"zero iterations", SCENE(", 'solver': {'max_iterations': 0}"),
      ": $.solver.max_iterations: ", "expected an integer >= 1, got 0"},
     {"negative gtol", SCENE(", 'solver': {'gtol': -1e-9}"),

@@ -88,7 +88,8 @@ int main(int argc, char **argv) {
                          -0.125,
                          1.0 / 3.0,
                          2.5,
-                         0.75};
+                         0.75,
+                         2};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -108,6 +109,7 @@ int main(int argc, char **argv) {
     CHECK(num(root, "time_s") == 0.75);
     CHECK(num(root, "iterations") == 3);
     CHECK(num(root, "load_steps") == 1);
+    CHECK(num(root, "predictor_steps") == 2);
     CHECK(num(root, "load_factor") == 1.0);
     CHECK(num(root, "num_dofs") == (double)rn_network_num_dofs(net));
     const cJSON *ev = cJSON_GetObjectItemCaseSensitive(root, "evaluations");
