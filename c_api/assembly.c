@@ -235,8 +235,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   int rc;
   if (rn_joint_scratch_init(J, &s))
     return rn_fail(net->ctx, RN_ERR_ALLOC, a->where, "out of memory");
-  rn_joint_kernel(net, ij, s.refs, &kj);
-  for (int k = 0; k < 3; ++k) kj.M[k] = a->lambda * J->M[k];
+  rn_joint_kernel(net, ij, a->lambda, s.refs, &kj);
   rn_gather_idx(net, a->x, J->idx, s.n, s.q);
   rc = a->loads_only ? joint_couple_grad(net, J, &s, &kj, a)
                      : joint_kernel_op(net, J, &s, &kj, a);

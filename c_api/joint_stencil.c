@@ -177,7 +177,8 @@ void rn_joints_unbuild(rn_network *net) {
   }
 }
 
-void rn_joint_kernel(const rn_network *net, int ij, rnk_frame *refs, rnk_joint *kj) {
+void rn_joint_kernel(const rn_network *net, int ij, double load_scale, rnk_frame *refs,
+                     rnk_joint *kj) {
   const rn_joint *J = &net->joints[ij];
   memset(kj, 0, sizeof(*kj));
   kj->rigid = rn_joint_has_rotation(J);
@@ -192,7 +193,7 @@ void rn_joint_kernel(const rn_network *net, int ij, rnk_frame *refs, rnk_joint *
   memcpy(kj->f0, J->f0, sizeof(kj->f0));
   kj->angle0 = J->angle0;
   memcpy(kj->couple_p, J->couple_p, sizeof(kj->couple_p));
-  for (int c = 0; c < 3; ++c) kj->M[c] = net->lambda * J->M[c];
+  for (int c = 0; c < 3; ++c) kj->M[c] = load_scale * J->M[c];
 }
 
 /* ---- scratch ----------------------------------------------------------------- */
@@ -250,7 +251,7 @@ static void continue_joint_twists(rn_network *net, int ij) {
   rn_joint_scratch s;
   rnk_joint kj;
   if (rn_joint_scratch_init(J, &s)) return;
-  rn_joint_kernel(net, ij, s.refs, &kj);
+  rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
   for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
   if (rnk_joint_twists(s.q, &kj, s.v) == RNK_OK)
     for (int k = 0; k < J->valence; ++k) J->ends[k].twist.ref_twist = s.v[k];
@@ -291,7 +292,7 @@ rn_status rn_joints_check_initial(const rn_network *net, const char *where) {
     int rc;
     if (rn_joint_scratch_init(J, &s))
       return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-    rn_joint_kernel(net, ij, s.refs, &kj);
+    rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
     for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
     rc = rnk_joint_rotation(s.q, &kj, R);
     if (rc == RNK_OK) rc = rnk_joint_grad(s.q, &kj, s.work, &E, s.loc);

@@ -223,9 +223,10 @@ void rn_joints_continue_twists(rn_network *net);
 void rn_joints_sync(rn_network *net);
 
 /* Kernel parameters of joint ij: copies the terminal edges' current
- * reference frames to refs[valence] and fills kj (couple scaled by lambda:
- * the caller sets kj->M as needed). */
-void rn_joint_kernel(const rn_network *net, int ij, rnk_frame *refs, rnk_joint *kj);
+ * reference frames to refs[valence] and fills kj, the couple scaled by
+ * load_scale (the network's load factor, or 1 for the load rate). */
+void rn_joint_kernel(const rn_network *net, int ij, double load_scale, rnk_frame *refs,
+                     rnk_joint *kj);
 /* Scratch of one joint evaluation (declared by the caller, on its stack:
  * evaluation stays reentrant): q[n], v[n], loc[n n] (gradient or Hessian
  * block), the kernel workspace and the reference frames; in the embedded

@@ -116,7 +116,7 @@ static rn_status update_joint(const rn_network *net, int ij, const double *full,
   int rc;
   if (rn_joint_scratch_init(J, &s))
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  rn_joint_kernel(net, ij, s.refs, &kj);
+  rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
   memcpy(kj.M, J->M, sizeof(kj.M)); /* its axis (unscaled: lambda may be 0) */
   for (int i = 0; i < s.n; ++i) s.q[i] = full[J->idx[i]];
   rc = rnk_joint_twists(s.q, &kj, tw);

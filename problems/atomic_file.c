@@ -28,20 +28,29 @@ static int is_special(const char *path) {
   return stat(path, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode);
 }
 
+/* Runs write on the open file f and closes it.  On a flush or close failure
+ * the status is RN_ERR_IO and *err the errno (0 otherwise). */
+static rn_status write_and_close(FILE *f, rn_file_writer write, void *user,
+                                 rn_context *ctx, int *err) {
+  rn_status st = write(f, user, ctx);
+  *err = 0;
+  if (!st && (fflush(f) != 0 || ferror(f))) {
+    *err = errno;
+    st = RN_ERR_IO;
+  }
+  if (fclose(f) != 0 && !st) {
+    *err = errno;
+    st = RN_ERR_IO;
+  }
+  return st;
+}
+
 static rn_status write_in_place(rn_context *ctx, const char *path, rn_file_writer write,
                                 void *user) {
   FILE *f = fopen(path, "wb");
   if (!f) return io_error(ctx, path, "cannot open for writing", errno);
-  rn_status st = write(f, user, ctx);
-  int err = 0;
-  if (!st && (fflush(f) != 0 || ferror(f))) {
-    err = errno;
-    st = RN_ERR_IO;
-  }
-  if (fclose(f) != 0 && !st) {
-    err = errno;
-    st = RN_ERR_IO;
-  }
+  int err;
+  rn_status st = write_and_close(f, write, user, ctx, &err);
   if (st == RN_ERR_IO && err) st = io_error(ctx, path, "write failed", err);
   return st;
 }
@@ -58,16 +67,8 @@ rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer
     free(tmp);
     return st;
   }
-  rn_status st = write(f, user, ctx);
-  int err = 0;
-  if (!st && (fflush(f) != 0 || ferror(f))) {
-    err = errno;
-    st = RN_ERR_IO;
-  }
-  if (fclose(f) != 0 && !st) {
-    err = errno;
-    st = RN_ERR_IO;
-  }
+  int err;
+  rn_status st = write_and_close(f, write, user, ctx, &err);
   if (!st && rename(tmp, path) != 0) {
     err = errno;
     st = io_error(ctx, path, "cannot rename the temporary file", err);

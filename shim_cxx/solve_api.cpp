@@ -50,6 +50,19 @@ int enum_value(const Enum &e) {
   return v;
 }
 
+// The enumerator of kinds whose name_of is name (RN_ERR_ARG if none).
+template <class Enum, size_t N>
+rn_status value_of_name(const char *name, const Enum (&kinds)[N],
+                        const char *(*name_of)(Enum), Enum *out) {
+  if (!name || !out) return RN_ERR_ARG;
+  for (Enum kind : kinds)
+    if (std::strcmp(name, name_of(kind)) == 0) {
+      *out = kind;
+      return RN_OK;
+    }
+  return RN_ERR_ARG;
+}
+
 rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
   const int kind = enum_value(o.solver);
@@ -311,16 +324,9 @@ const char *rn_solver_name(rn_solver_kind k) {
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
-  if (!name || !k) return RN_ERR_ARG;
   const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
                                   RN_SOLVER_ROL_LS_NEWTON};
-  for (rn_solver_kind kind : kinds) {
-    if (std::strcmp(name, rn_solver_name(kind)) == 0) {
-      *k = kind;
-      return RN_OK;
-    }
-  }
-  return RN_ERR_ARG;
+  return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 
 const char *rn_factorization_name(rn_factorization f) {
@@ -338,16 +344,9 @@ const char *rn_factorization_name(rn_factorization f) {
 }
 
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
-  if (!name || !f) return RN_ERR_ARG;
   const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
                                     RN_FACTOR_CHOLMOD};
-  for (rn_factorization kind : kinds) {
-    if (std::strcmp(name, rn_factorization_name(kind)) == 0) {
-      *f = kind;
-      return RN_OK;
-    }
-  }
-  return RN_ERR_ARG;
+  return rodnet::value_of_name(name, kinds, rn_factorization_name, f);
 }
 
 rn_status rn_runtime_initialize(int *argc, char ***argv) {

@@ -415,44 +415,56 @@ bool SparseCholesky::factor(const double *vals, double shift, const double *m) {
   return true;
 }
 
+namespace {
+
+// Supernode s of a factor in the solves: columns [c0, c0 + k), rows below them
+// rows[k .. mm), dense block L (leading dimension mm).
+struct SupernodeBlock {
+  size_t c0, k, mu;
+  int ki, mi, mui;
+  const int32_t *rows;
+  const double *L;
+};
+
+} // namespace
+
 void SparseCholesky::solve(double *x) const {
   if (!factored_) throw Error(RN_ERR_INTERNAL, "rn_solve: sparse solve before factor");
   const SparseAnalysis &a = *a_;
   const size_t n = a.n_, ns = a.super_.size() - 1;
+  auto block = [&](size_t s) {
+    SupernodeBlock b;
+    b.c0 = static_cast<size_t>(a.super_[s]);
+    b.k = static_cast<size_t>(a.super_[s + 1]) - b.c0;
+    const size_t mm = static_cast<size_t>(a.rows_ptr_[s + 1] - a.rows_ptr_[s]);
+    b.mu = mm - b.k;
+    b.ki = static_cast<int>(b.k);
+    b.mi = static_cast<int>(mm);
+    b.mui = static_cast<int>(b.mu);
+    b.rows = a.rows_.data() + a.rows_ptr_[s];
+    b.L = lx_.data() + a.lx_ptr_[s];
+    return b;
+  };
   std::vector<double> y(n), t(a.max_front_);
   for (size_t i = 0; i < n; ++i) y[i] = x[a.perm_[i]];
   const int inc = 1;
   const double one = 1.0, minus_one = -1.0, zero = 0.0;
   for (size_t s = 0; s < ns; ++s) { // L y = P b
-    const size_t c0 = static_cast<size_t>(a.super_[s]);
-    const size_t k = static_cast<size_t>(a.super_[s + 1]) - c0;
-    const size_t mm = static_cast<size_t>(a.rows_ptr_[s + 1] - a.rows_ptr_[s]),
-                 mu = mm - k;
-    const int32_t *rows = a.rows_.data() + a.rows_ptr_[s];
-    const double *L = lx_.data() + a.lx_ptr_[s];
-    const int ki = static_cast<int>(k), mi = static_cast<int>(mm),
-              mui = static_cast<int>(mu);
-    dtrsv_("L", "N", "N", &ki, L, &mi, y.data() + c0, &inc, 1, 1, 1);
-    if (mu == 0) continue;
-    dgemv_("N", &mui, &ki, &one, L + k, &mi, y.data() + c0, &inc, &zero, t.data(), &inc,
-           1);
-    for (size_t i = 0; i < mu; ++i) y[static_cast<size_t>(rows[k + i])] -= t[i];
+    const SupernodeBlock b = block(s);
+    dtrsv_("L", "N", "N", &b.ki, b.L, &b.mi, y.data() + b.c0, &inc, 1, 1, 1);
+    if (b.mu == 0) continue;
+    dgemv_("N", &b.mui, &b.ki, &one, b.L + b.k, &b.mi, y.data() + b.c0, &inc, &zero,
+           t.data(), &inc, 1);
+    for (size_t i = 0; i < b.mu; ++i) y[static_cast<size_t>(b.rows[b.k + i])] -= t[i];
   }
   for (size_t s = ns; s-- > 0;) { // L' z = y
-    const size_t c0 = static_cast<size_t>(a.super_[s]);
-    const size_t k = static_cast<size_t>(a.super_[s + 1]) - c0;
-    const size_t mm = static_cast<size_t>(a.rows_ptr_[s + 1] - a.rows_ptr_[s]),
-                 mu = mm - k;
-    const int32_t *rows = a.rows_.data() + a.rows_ptr_[s];
-    const double *L = lx_.data() + a.lx_ptr_[s];
-    const int ki = static_cast<int>(k), mi = static_cast<int>(mm),
-              mui = static_cast<int>(mu);
-    if (mu > 0) {
-      for (size_t i = 0; i < mu; ++i) t[i] = y[static_cast<size_t>(rows[k + i])];
-      dgemv_("T", &mui, &ki, &minus_one, L + k, &mi, t.data(), &inc, &one, y.data() + c0,
-             &inc, 1);
+    const SupernodeBlock b = block(s);
+    if (b.mu > 0) {
+      for (size_t i = 0; i < b.mu; ++i) t[i] = y[static_cast<size_t>(b.rows[b.k + i])];
+      dgemv_("T", &b.mui, &b.ki, &minus_one, b.L + b.k, &b.mi, t.data(), &inc, &one,
+             y.data() + b.c0, &inc, 1);
     }
-    dtrsv_("L", "T", "N", &ki, L, &mi, y.data() + c0, &inc, 1, 1, 1);
+    dtrsv_("L", "T", "N", &b.ki, b.L, &b.mi, y.data() + b.c0, &inc, 1, 1, 1);
   }
   for (size_t i = 0; i < n; ++i) x[a.perm_[i]] = y[i];
 }
