@@ -1,0 +1,100 @@
+// system.hpp - the nonlinear problem as the Newton-Krylov trust region and its
+// preconditioners see it, serial or distributed over MPI ranks (issue 7).
+//
+// A System owns the solver's view of one rn_network (one rank) or of the parts of a
+// partitioned network (several ranks): the Tpetra map of the owned reduced DOFs, the
+// energy and its gradient on Tpetra vectors over that map, the Hessian as a
+// Tpetra::CrsMatrix whose graph is built once, explicit reference updates, and the
+// structure that domain-decomposition preconditioners need (which owned DOFs belong
+// to the interior of which rod, and which are interface DOFs).
+//
+// Every member function is collective over the System's communicator: all ranks call
+// it with the same arguments in the same order.  Recoverable statuses (RN_DEGENERATE,
+// RN_OVERFLOW at a trial point) are the same on every rank (reduced over ranks).
+// Errors throw rodnet::Error on every rank (never on one rank only: an error on one
+// rank is reduced, so that all ranks throw and none hangs).
+//
+// Implementations: SerialSystem (one rn_network, any communicator of size 1) and the
+// distributed one (partitioned network, Import/Export of ghost DOFs).
+#ifndef RODNET_SHIM_SYSTEM_HPP
+#define RODNET_SHIM_SYSTEM_HPP
+
+#include <cstdint>
+#include <vector>
+
+#include <Teuchos_RCP.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Map.hpp>
+#include <Tpetra_MultiVector.hpp>
+
+#include "problem.hpp"
+#include "rodnet.h"
+
+namespace rodnet {
+
+using TMap = Tpetra::Map<>;
+using TMV = Tpetra::MultiVector<>;
+using TCrs = Tpetra::CrsMatrix<>;
+using LO = TMap::local_ordinal_type;
+using GO = TMap::global_ordinal_type;
+
+// What a domain-decomposition preconditioner needs to know about the owned DOFs.
+// Rod-interior DOFs of a rod couple (through the Hessian) only with DOFs of the same
+// rod and with interface DOFs; interface DOFs are the joints' positions and
+// rotations and any rod DOF that a stencil couples with another rod (for example the
+// terminal-edge DOFs of rods meeting at an elastic joint, whose rotation fit couples
+// all of them).  Eliminating every rod interior exactly (static condensation) leaves
+// a problem on the interface DOFs only.
+struct DofBlocks {
+  // block[i] for owned local DOF i: the local index (0 .. num_rods - 1) of the rod
+  // whose interior it belongs to, or -1 for an interface DOF.
+  std::vector<int> block;
+  int num_rods = 0; // rods owned by this rank
+  // Interface DOFs: the point they move (joint or vertex position, for rigid-body
+  // near-null-space vectors) and what they are: 0, 1, 2 a position component,
+  // 3, 4, 5 a rotation-vector component, 6 a material angle.
+  struct Interface {
+    LO local = 0;
+    int kind = 0;
+    double point[3] = {0.0, 0.0, 0.0};
+  };
+  std::vector<Interface> interface;
+};
+
+class System {
+public:
+  virtual ~System() = default;
+
+  // Map of the owned reduced DOFs: the solver's vectors (x, g, steps) live on it.
+  virtual Teuchos::RCP<const TMap> map() const = 0;
+  // Global number of reduced DOFs.
+  GO global_size() const { return static_cast<GO>(map()->getGlobalNumElements()); }
+
+  // The current state of the network(s) (rn_network_get_dofs / set_dofs).
+  virtual void get_state(TMV &x) const = 0;
+  virtual void set_state(const TMV &x) = 0;
+
+  // Energy (reduced over ranks) at x.  RN_OK or a recoverable status.
+  virtual rn_status energy(const TMV &x, double *E) = 0;
+  // Energy (may be NULL) and gradient at x.
+  virtual rn_status gradient(const TMV &x, double *E, TMV &g) = 0;
+  // Assemble the Hessian at x into hessian() (same graph every time); throws if x is
+  // degenerate (call it only at accepted states).
+  virtual void assemble_hessian(const TMV &x) = 0;
+  virtual Teuchos::RCP<const TCrs> hessian() const = 0;
+
+  // Accept x as the new state: explicit reference update (rn_network_update_
+  // reference on every part).  x may change (rigid-joint rotation DOFs move into the
+  // reference rotation; the energy is unchanged).
+  virtual void accept(TMV &x) = 0;
+
+  // Rod / interface structure of the owned DOFs (fixed for the System's life).
+  virtual const DofBlocks &blocks() const = 0;
+
+  // Evaluation counts of this rank (energy, gradient, Hessian, HVP, Krylov).
+  Counters counters;
+};
+
+} // namespace rodnet
+
+#endif
