@@ -29,3 +29,17 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
+# The rod-level domain-decomposition preconditioner (C++: internal classes of the shim
+# through the shared library), on one rank and under mpirun on two.
+rn_add_test(shim_dd SOURCES unit/shim_dd.cpp LIBS rodnet rodnet_problems rodnet_shim_deps
+            LABELS unit)
+target_include_directories(shim_dd PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                           ${PROJECT_SOURCE_DIR}/problems)
+target_include_directories(shim_dd SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                  ${Trilinos_TPL_INCLUDE_DIRS})
+if(MPIEXEC_EXECUTABLE)
+  add_test(NAME shim_dd_2ranks
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:shim_dd>)
+  set_tests_properties(shim_dd_2ranks PROPERTIES LABELS "mpi" TIMEOUT 600 PROCESSORS 2
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+endif()
