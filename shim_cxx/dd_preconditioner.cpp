@@ -23,9 +23,6 @@
 extern "C" {
 void dpbtrf_(const char *uplo, const int *n, const int *kd, double *ab, const int *ldab,
              int *info, size_t uplo_len);
-void dpbtrs_(const char *uplo, const int *n, const int *kd, const int *nrhs,
-             const double *ab, const int *ldab, double *b, const int *ldb, int *info,
-             size_t uplo_len);
 }
 
 namespace rodnet {
@@ -119,10 +116,36 @@ bool factor_rod(Rod &r, const double *vals, std::vector<double> &ab) {
   return r.shift >= 0.0;
 }
 
+// y <- L^-1 y (length n) for y zero before row j0, L the factor of dpbtrf in lower
+// band storage.
+void forward_rod(const Rod &r, double *y, size_t j0) {
+  const size_t n = r.rows.size(), kd = static_cast<size_t>(r.kd), ld = kd + 1;
+  const double *L = r.fac.data();
+  for (size_t j = j0; j < n; ++j) {
+    const double *Lj = L + j * ld;
+    const double yj = (y[j] /= Lj[0]);
+    const size_t m = std::min(kd, n - 1 - j);
+    for (size_t i = 1; i <= m; ++i) y[j + i] -= Lj[i] * yj;
+  }
+}
+
+// z <- (L L^T)^-1 z for nrhs columns of length n (leading dimension n), L the factor
+// of dpbtrf in lower band storage.  Written out: for the small bands of rods (kd ~ 10)
+// LAPACK's dpbtrs spends its time in per-column BLAS calls (dtbsv -> ddot / daxpy).
 void solve_rod(const Rod &r, double *z, int nrhs) {
-  const int n = r.n(), ld = r.kd + 1;
-  int info = 0;
-  dpbtrs_("L", &n, &r.kd, &nrhs, r.fac.data(), &ld, z, &n, &info, 1);
+  const size_t n = r.rows.size(), kd = static_cast<size_t>(r.kd), ld = kd + 1;
+  const double *L = r.fac.data();
+  for (int c = 0; c < nrhs; ++c) {
+    double *y = z + static_cast<size_t>(c) * n;
+    forward_rod(r, y, 0);          // L y = b
+    for (size_t j = n; j-- > 0;) { // L^T x = y
+      const double *Lj = L + j * ld;
+      const size_t m = std::min(kd, n - 1 - j);
+      double t = y[j];
+      for (size_t i = 1; i <= m; ++i) t -= Lj[i] * y[j + i];
+      y[j] = t / Lj[0];
+    }
+  }
 }
 
 // Position of local column lc in row row of a fill-complete local matrix (sorted rows).
@@ -259,12 +282,16 @@ public:
   bool declined() const override { return declined_; }
 
 private:
+  void analyse(const TCrs &S0);
   void factor_on_root(const TCrs &S0, bool &ok);
+  const void *graph_ = nullptr; // the structure analysed
   Teuchos::RCP<const TMap> map0_;
-  Teuchos::RCP<const Tpetra::Import<>> imp0_;
+  Teuchos::RCP<const Tpetra::Import<>> imp0_; // null on one rank
+  Teuchos::RCP<TCrs> S0_;                     // S gathered on rank 0
   mutable Teuchos::RCP<TMV> b0_, y0_;
   std::vector<int64_t> rowptr_;
   std::vector<int32_t> col_;
+  std::vector<size_t> perm_, diag_; // CSR entry -> S0 value; CSR diagonal entries
   std::vector<double> vals_, m_;
   std::shared_ptr<SparseAnalysis> analysis_;
   std::unique_ptr<SparseCholesky> chol_;
@@ -272,74 +299,90 @@ private:
   bool declined_ = false;
 };
 
-void DirectCoarse::factor_on_root(const TCrs &S0, bool &ok) {
+// The CSR arrays (sorted columns) of S0's pattern and where each entry's value is in
+// S0's local matrix, once per pattern; the symbolic analysis with them.
+void DirectCoarse::analyse(const TCrs &S0) {
   auto lcl = S0.getLocalMatrixHost();
   auto colmap = S0.getColMap();
   const size_t n = S0.getNodeNumRows();
-  std::vector<int64_t> rowptr(n + 1, 0);
-  std::vector<int32_t> col;
-  std::vector<std::pair<int32_t, double>> row;
-  vals_.clear();
-  col.reserve(lcl.values.extent(0));
-  vals_.reserve(lcl.values.extent(0));
+  rowptr_.assign(n + 1, 0);
+  col_.clear();
+  perm_.clear();
+  diag_.clear();
+  std::vector<std::pair<int32_t, size_t>> row;
   for (size_t i = 0; i < n; ++i) {
     row.clear();
     for (size_t q = lcl.graph.row_map(i); q < lcl.graph.row_map(i + 1); ++q)
       row.emplace_back(
-          static_cast<int32_t>(colmap->getGlobalElement(lcl.graph.entries(q))),
-          lcl.values(q));
-    std::sort(row.begin(), row.end(),
-              [](const std::pair<int32_t, double> &a,
-                 const std::pair<int32_t, double> &b) { return a.first < b.first; });
+          static_cast<int32_t>(colmap->getGlobalElement(lcl.graph.entries(q))), q);
+    std::sort(row.begin(), row.end());
     for (const auto &e : row) {
-      col.push_back(e.first);
-      vals_.push_back(e.second);
+      if (static_cast<size_t>(e.first) == i) diag_.push_back(col_.size());
+      col_.push_back(e.first);
+      perm_.push_back(e.second);
     }
-    rowptr[i + 1] = static_cast<int64_t>(col.size());
+    rowptr_[i + 1] = static_cast<int64_t>(col_.size());
   }
-  if (!analysis_ || rowptr != rowptr_ || col != col_) {
-    rowptr_.swap(rowptr);
-    col_.swap(col);
-    analysis_ = std::make_shared<SparseAnalysis>(n, rowptr_.data(), col_.data());
-    chol_.reset();
-  }
+  if (diag_.size() != n)
+    throw Error(RN_ERR_INTERNAL, "dd preconditioner: coarse matrix without its diagonal");
+  analysis_ = std::make_shared<SparseAnalysis>(n, rowptr_.data(), col_.data());
+  chol_.reset();
+}
+
+void DirectCoarse::factor_on_root(const TCrs &S0, bool &ok) {
+  if (!analysis_) analyse(S0);
   declined_ = max_flops_ > 0.0 && analysis_->factor_flops() > max_flops_;
   if (declined_) return;
   if (!chol_) chol_.reset(new SparseCholesky(analysis_));
+  auto lcl = S0.getLocalMatrixHost();
+  vals_.resize(perm_.size());
+  for (size_t q = 0; q < perm_.size(); ++q) vals_[q] = lcl.values(perm_[q]);
   // D_S = |diag S| floored, on the pattern.
-  std::vector<double> d(n, 0.0);
-  m_.assign(vals_.size(), 0.0);
-  for (size_t i = 0; i < n; ++i)
-    for (int64_t q = rowptr_[i]; q < rowptr_[i + 1]; ++q)
-      if (static_cast<size_t>(col_[q]) == i) d[i] = vals_[q];
+  std::vector<double> d(diag_.size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = vals_[diag_[i]];
   floored_abs(d);
-  for (size_t i = 0; i < n; ++i)
-    for (int64_t q = rowptr_[i]; q < rowptr_[i + 1]; ++q)
-      if (static_cast<size_t>(col_[q]) == i) m_[q] = d[i];
+  m_.assign(vals_.size(), 0.0);
+  for (size_t i = 0; i < d.size(); ++i) m_[diag_[i]] = d[i];
   shift_ =
       smallest_shift([&](double s) { return chol_->factor(vals_.data(), s, m_.data()); });
   ok = shift_ >= 0.0;
   bytes_ = 8.0 * static_cast<double>(analysis_->factor_entries()) +
-           12.0 * static_cast<double>(vals_.size()) * 2.0;
+           28.0 * static_cast<double>(vals_.size());
 }
 
 void DirectCoarse::setup(const Teuchos::RCP<const TCrs> &S,
                          const Teuchos::RCP<const TMV> &) {
   auto comm = S->getComm();
   const Tpetra::global_size_t N = S->getGlobalNumRows();
-  if (map0_.is_null() || map0_->getGlobalNumElements() != N ||
-      !imp0_->getSourceMap()->isSameAs(*S->getRowMap())) {
-    const size_t nloc = comm->getRank() == 0 ? static_cast<size_t>(N) : 0;
-    map0_ = Teuchos::rcp(new TMap(N, nloc, GO(0), comm));
-    imp0_ = Teuchos::rcp(new Tpetra::Import<>(S->getRowMap(), map0_));
+  if (S0_.is_null() || graph_ != S->getCrsGraph().get()) { // a new structure
+    graph_ = S->getCrsGraph().get();
+    analysis_.reset();
+    if (comm->getSize() == 1) {
+      imp0_ = Teuchos::null; // S lives on this rank already
+      map0_ = S->getRowMap();
+    } else {
+      const size_t nloc = comm->getRank() == 0 ? static_cast<size_t>(N) : 0;
+      map0_ = Teuchos::rcp(new TMap(N, nloc, GO(0), comm));
+      imp0_ = Teuchos::rcp(new Tpetra::Import<>(S->getRowMap(), map0_));
+      auto first = Tpetra::importAndFillCompleteCrsMatrix<TCrs>(S, *imp0_, map0_, map0_);
+      S0_ = Teuchos::rcp(new TCrs(first->getCrsGraph())); // static graph: refilled below
+    }
     b0_ = Teuchos::rcp(new TMV(map0_, 1));
     y0_ = Teuchos::rcp(new TMV(map0_, 1));
   }
-  auto S0 = Tpetra::importAndFillCompleteCrsMatrix<TCrs>(S, *imp0_, map0_, map0_);
+  if (imp0_.is_null()) {
+    S0_ = Teuchos::rcp_const_cast<TCrs>(S);
+  } else {
+    S0_->resumeFill();
+    S0_->setAllToScalar(0.0);
+    S0_->doImport(*S, *imp0_, Tpetra::ADD);
+    S0_->fillComplete(map0_, map0_);
+  }
+  const TCrs &S0 = *S0_;
   bool ok = true;
   if (comm->getRank() == 0) {
     try {
-      factor_on_root(*S0, ok);
+      factor_on_root(S0, ok);
     } catch (const Error &) {
       ok = false;
     }
@@ -360,6 +403,11 @@ void DirectCoarse::solve(const TMV &b, TMV &y) const {
   for (size_t j = 0; j < b.getNumVectors(); ++j) {
     auto bj = b.getVector(j);
     auto yj = y.getVectorNonConst(j);
+    if (imp0_.is_null()) { // one rank
+      yj->assign(*bj);
+      chol_->solve(yj->getLocalViewHost(Tpetra::Access::ReadWrite).data());
+      continue;
+    }
     b0_->doImport(*bj, *imp0_, Tpetra::INSERT);
     if (map0_->getNodeNumElements() > 0) {
       auto v = b0_->getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -627,6 +675,7 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
   long long shifted = 0;
   bool failed = false;
   std::vector<double> ab, Z, C;
+  std::vector<int> first;
   for (Rod &r : rods) {
     r.b_val.resize(r.b_src.size());
     for (size_t e = 0; e < r.b_src.size(); ++e) r.b_val[e] = vals[r.b_src[e]];
@@ -638,18 +687,31 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
     shifted += r.shift > 0.0;
     const int n = r.n(), m = r.m();
     if (m == 0) continue;
-    // Z = H_rr^-1 H_rG, C = H_Gr Z; Sov -= C.
+    // W = L^-1 H_rG (H_rr = L L^T), C = W^T W = H_Gr H_rr^-1 H_rG; Sov -= C.  Each
+    // column's forward sweep starts at its first nonzero (the rows next to the end
+    // the coupled DOF sits at).
     Z.assign(static_cast<size_t>(n) * static_cast<size_t>(m), 0.0);
-    for (size_t e = 0; e < r.b_val.size(); ++e)
-      Z[static_cast<size_t>(r.b_row[e] + r.b_col[e] * n)] = r.b_val[e];
-    solve_rod(r, Z.data(), m);
-    C.assign(static_cast<size_t>(m) * static_cast<size_t>(m), 0.0);
+    first.assign(static_cast<size_t>(m), n);
     for (size_t e = 0; e < r.b_val.size(); ++e) {
-      const int i = r.b_row[e], a = r.b_col[e];
-      for (int b2 = 0; b2 < m; ++b2)
-        C[static_cast<size_t>(a * m + b2)] +=
-            r.b_val[e] * Z[static_cast<size_t>(i + b2 * n)];
+      Z[static_cast<size_t>(r.b_row[e] + r.b_col[e] * n)] = r.b_val[e];
+      int &f = first[static_cast<size_t>(r.b_col[e])];
+      f = std::min(f, r.b_row[e]);
     }
+    for (int a = 0; a < m; ++a)
+      forward_rod(r, Z.data() + static_cast<size_t>(a) * static_cast<size_t>(n),
+                  static_cast<size_t>(first[static_cast<size_t>(a)]));
+    C.assign(static_cast<size_t>(m) * static_cast<size_t>(m), 0.0);
+    for (int a = 0; a < m; ++a)
+      for (int b2 = a; b2 < m; ++b2) {
+        const double *za = Z.data() + static_cast<size_t>(a) * static_cast<size_t>(n);
+        const double *zb = Z.data() + static_cast<size_t>(b2) * static_cast<size_t>(n);
+        double sum = 0.0;
+        for (int i =
+                 std::max(first[static_cast<size_t>(a)], first[static_cast<size_t>(b2)]);
+             i < n; ++i)
+          sum += za[i] * zb[i];
+        C[static_cast<size_t>(a * m + b2)] = C[static_cast<size_t>(b2 * m + a)] = sum;
+      }
     for (size_t e = 0; e < C.size(); ++e) sv(r.s_pos[e]) -= C[e];
   }
   throw_if_any(*comm, failed, RN_ERR_LAPACK,
@@ -661,8 +723,8 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
   if (!S_built) {
     // The graph of the owned rows once; then S on that (static) graph is refilled by
     // summing the exported values into it.
-    auto first = Tpetra::exportAndFillCompleteCrsMatrix<TCrs>(Sov, *exporter, cmap, cmap);
-    S = Teuchos::rcp(new TCrs(first->getCrsGraph()));
+    auto made = Tpetra::exportAndFillCompleteCrsMatrix<TCrs>(Sov, *exporter, cmap, cmap);
+    S = Teuchos::rcp(new TCrs(made->getCrsGraph()));
     S_built = true;
     auto l = S->getLocalMatrixHost();
     sdiag.resize(iface_rows.size());
