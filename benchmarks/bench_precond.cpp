@@ -73,6 +73,7 @@ struct Opts {
   int load_axis = 0;
   double load_value = 1e-3, tol = 1e-8;
   std::string load_text = "stretch-x:1e-3", out, amg_xml;
+  bool newton = false;
   std::vector<std::string> precs{"dd", "muelu", "ifpack2", "factor"};
 };
 
@@ -115,7 +116,7 @@ int usage(const char *msg) {
       "bench_precond: %s\nusage: bench_precond [--kind honeycomb] [--cells 10,30] "
       "[--models rigid,elastic]\n  [--edges-per-rod 8] [--load stretch-x:1e-3] "
       "[--precond dd,dd-direct,dd-amg,muelu,ifpack2,factor]\n  [--tol 1e-8] "
-      "[--max-its 3000] [--repeats 1] [--amg-xml FILE] [--out FILE.csv]\n",
+      "[--max-its 3000] [--repeats 1] [--amg-xml FILE] [--newton] [--out FILE.csv]\n",
       msg);
   return 2;
 }
@@ -123,6 +124,10 @@ int usage(const char *msg) {
 int parse(int argc, char **argv, Opts &o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--newton") {
+      o.newton = true;
+      continue;
+    }
     if (i + 1 >= argc) return usage(("missing value of " + a).c_str());
     const std::string v = argv[++i];
     if (a == "--kind") {
@@ -261,8 +266,8 @@ struct Run {
   std::string coarse = "-";
 };
 
-Run run_one(ReplicatedSystem &sys, const std::string &name, const Opts &o, const TMV &g) {
-  Run r;
+std::unique_ptr<Preconditioner> make_prec(ReplicatedSystem &sys, const std::string &name,
+                                          const Opts &o) {
   std::unique_ptr<Preconditioner> P;
   if (name == "factor") {
     P.reset(new FactorPrec(sys));
@@ -279,6 +284,12 @@ Run run_one(ReplicatedSystem &sys, const std::string &name, const Opts &o, const
     P = make_preconditioner(name);
   }
   if (!P) throw Error(RN_ERR_ARG, "bench_precond: unknown preconditioner " + name);
+  return P;
+}
+
+Run run_one(ReplicatedSystem &sys, const std::string &name, const Opts &o, const TMV &g) {
+  Run r;
+  std::unique_ptr<Preconditioner> P = make_prec(sys, name, o);
   auto t0 = Clock::now();
   P->setup(sys);
   r.setup1 = since(t0);
@@ -311,6 +322,90 @@ Run run_one(ReplicatedSystem &sys, const std::string &name, const Opts &o, const
   sys.hessian()->apply(s, Hs);
   Hs.update(-1.0, b, 1.0);
   r.residual = Hs.getVector(0)->norm2() / b.getVector(0)->norm2();
+  return r;
+}
+
+// A Newton solve to equilibrium with preconditioned MINRES steps (--newton): from the
+// rest state at load factor 0, the linearised load-increment predictor (as rn_solve's,
+// docs/solvers.md) to load factor 1, then Newton steps H s = -g (MINRES to --tol)
+// with a backtracking (Armijo) line search on the energy, until |g| <= 1e-9 of the
+// out-of-balance force of the displaced rest state (rn_solve's default test).  Not
+// rodnet's solver (the Newton-Krylov trust region is): a measurement of what the
+// preconditioners cost in a whole solve.
+struct NewtonRun {
+  int newton = 0, minres = 0;
+  double total = 0, hessian = 0, setup = 0, minres_s = 0, gratio = 0;
+  bool converged = false, predictor = false;
+};
+
+double norm2(const TMV &v) { return v.getVector(0)->norm2(); }
+double dot1(const TMV &a, const TMV &b) {
+  Teuchos::Array<double> d(1);
+  a.dot(b, d());
+  return d[0];
+}
+
+NewtonRun run_newton(ReplicatedSystem &sys, const std::string &name, const Opts &o) {
+  NewtonRun r;
+  const auto t_start = Clock::now();
+  auto map = sys.map();
+  TMV x(map, 1), g(map, 1), dg(map, 1), s(map, 1), b(map, 1), xt(map, 1);
+  std::unique_ptr<Preconditioner> P = make_prec(sys, name, o);
+  MinresSolver solver(map, o.tol, o.max_its);
+  auto step = [&](const TMV &rhs) { // s = H^-1 rhs at the assembled H
+    auto t0 = Clock::now();
+    P->setup(sys);
+    r.setup += since(t0);
+    CrsOp A(sys.hessian()), M(P->inverse());
+    t0 = Clock::now();
+    MinresResult res = solver.solve(A, M, rhs, s);
+    r.minres_s += since(t0);
+    r.minres += res.iterations;
+  };
+  auto assemble = [&]() {
+    const auto t0 = Clock::now();
+    sys.assemble_hessian(x);
+    r.hessian += since(t0);
+  };
+  // Predictor from the rest state.
+  sys.set_load_factor(0.0);
+  sys.get_state(x);
+  double E = 0.0, Et = 0.0;
+  sys.gradient(x, &E, g);
+  assemble();
+  sys.load_increment(x, 0.0, 1.0, dg);
+  sys.set_load_factor(1.0);
+  b.update(-1.0, g, -1.0, dg, 0.0);
+  step(b);
+  sys.gradient(x, &E, g);
+  const double f = norm2(g); // out-of-balance force of the displaced rest state
+  xt.update(1.0, x, 1.0, s, 0.0);
+  if (sys.energy(xt, &Et) == RN_OK && Et < E) {
+    x.assign(xt);
+    sys.accept(x);
+    r.predictor = true;
+  }
+  for (r.newton = 0; r.newton < 50; ++r.newton) {
+    sys.gradient(x, &E, g);
+    r.gratio = norm2(g) / f;
+    if (r.gratio <= 1e-9) {
+      r.converged = true;
+      break;
+    }
+    assemble();
+    b.update(-1.0, g, 0.0);
+    step(b);
+    const double slope = dot1(g, s);
+    double alpha = 1.0;
+    for (int k = 0; k < 40; ++k, alpha *= 0.5) {
+      xt.update(1.0, x, alpha, s, 0.0);
+      if (sys.energy(xt, &Et) == RN_OK && Et <= E + 1e-4 * alpha * std::min(slope, 0.0))
+        break;
+    }
+    x.assign(xt);
+    sys.accept(x);
+  }
+  r.total = since(t_start);
   return r;
 }
 
@@ -354,6 +449,12 @@ int main(int argc, char **argv) {
         }
         rn_network *net = rn_scene_network(scene);
         const long vertices = rn_scene_num_vertices(scene);
+        rn_state *initial = nullptr; // every run starts from the scene's state
+        if (rn_network_state_save(net, &initial)) {
+          rn_scene_destroy(&scene);
+          rc = 1;
+          continue;
+        }
         try {
           ReplicatedSystem sys(net, comm);
           TMV x(sys.map(), 1), g(sys.map(), 1);
@@ -366,6 +467,51 @@ int main(int argc, char **argv) {
           const char *model_name = model == RN_JOINT_RIGID ? "rigid" : "elastic";
           for (const std::string &pname : o.precs) {
             if (pname == "factor" && nranks > 1) continue;
+            if (o.newton) {
+              std::vector<double> totals;
+              NewtonRun r;
+              for (int k = 0; k < o.repeats; ++k) {
+                rn_network_state_restore(net, initial);
+                r = run_newton(sys, pname, o);
+                totals.push_back(r.total);
+              }
+              std::sort(totals.begin(), totals.end());
+              if (!r.converged) rc = 1;
+              const double rss = peak_rss_mb();
+              if (rank == 0) {
+                std::printf(
+                    "%s %ldx %s, %lld DOFs, %ld vertices: %-9s Newton %d (predictor %d), "
+                    "MINRES %d (%.1f per step), total %.2f s (Hessian %.2f, setup %.2f, "
+                    "MINRES %.2f), |g|/f %.1e, peak RSS %.0f MB (%.0f B/vertex)%s\n",
+                    rn_lattice_kind_name(o.kind), cells, model_name,
+                    static_cast<long long>(sys.global_size()), vertices, pname.c_str(),
+                    r.newton, r.predictor ? 1 : 0, r.minres,
+                    static_cast<double>(r.minres) / (r.newton + 1), r.total, r.hessian,
+                    r.setup, r.minres_s, r.gratio, rss,
+                    rss * 1048576.0 / static_cast<double>(vertices),
+                    r.converged ? "" : " NOT CONVERGED");
+                std::fflush(stdout);
+                if (out) {
+                  std::fprintf(
+                      out,
+                      "\"%s\",\"%s\",\"%s\",%d,precond-newton,%s-%s-%s,%lld,%d,%.6e,"
+                      "%.6e,%s,%ld,%s,%d,%s,%ld,%d,%d,%s,-,0,0,%.6e,0,%.6e,%d,%.6e,"
+                      "0,0,%.1f,%.1f,%d,%.3e,%d,%d\n",
+                      RN_BENCH_COMMIT, RN_BENCH_COMPILER, RN_BENCH_FLAGS, nranks,
+                      rn_lattice_kind_name(o.kind), model_name, pname.c_str(),
+                      static_cast<long long>(sys.global_size()), o.repeats,
+                      totals[totals.size() / 2], totals.front(),
+                      rn_lattice_kind_name(o.kind), cells, model_name, o.edges,
+                      o.load_text.c_str(), vertices, rn_network_num_rods(net),
+                      rn_network_num_joints(net), pname.c_str(), r.hessian, r.setup,
+                      r.minres, r.minres_s,
+                      rss * 1048576.0 / static_cast<double>(vertices), rss,
+                      r.converged ? 1 : 0, r.gratio, r.newton, r.predictor ? 1 : 0);
+                  std::fflush(out);
+                }
+              }
+              continue;
+            }
             std::vector<double> totals;
             Run r;
             for (int k = 0; k < o.repeats; ++k) {
@@ -412,6 +558,7 @@ int main(int argc, char **argv) {
           if (rank == 0) std::fprintf(stderr, "bench_precond: %s\n", e.what());
           rc = 1;
         }
+        rn_state_destroy(&initial);
         rn_scene_destroy(&scene);
       }
     rn_context_destroy(&ctx);

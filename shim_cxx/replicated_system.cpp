@@ -130,6 +130,20 @@ Teuchos::RCP<TMV> ReplicatedSystem::rigid_body_modes() const {
   return rodnet::rigid_body_modes(map_, kind_.data(), point_.data(), axis_.data());
 }
 
+void ReplicatedSystem::set_load_factor(double t) {
+  check_status(rn_network_set_load_factor(problem_.network(), t),
+               "rn_network_set_load_factor");
+}
+
+void ReplicatedSystem::load_increment(const TMV &x, double t0, double t1, TMV &dg) {
+  gather(x, full_);
+  if (check_status(rn_network_load_increment(problem_.network(), full_.data(), t0, t1,
+                                             gfull_.data()),
+                   "rn_network_load_increment") != RN_OK)
+    throw Error(RN_ERR_SOLVER, "ReplicatedSystem: load increment at a degenerate state");
+  scatter(gfull_, dg);
+}
+
 void ReplicatedSystem::gather(const TMV &x, std::vector<double> &full) const {
   all_vec_->doImport(x, *import_, Tpetra::INSERT);
   auto v = all_vec_->getLocalViewHost(Tpetra::Access::ReadOnly);

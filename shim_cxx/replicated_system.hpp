@@ -43,6 +43,10 @@ public:
   // fillComplete() after.
   Teuchos::RCP<TCrs> hessian_nonconst() { return H_; }
   Problem &problem() { return problem_; }
+  // The network's load factor (rn_network_set_load_factor on every rank's copy).
+  void set_load_factor(double t);
+  // dg = rn_network_load_increment at x from load factor t0 to t1.
+  void load_increment(const TMV &x, double t0, double t1, TMV &dg);
   // Rigid-body modes of every owned DOF (alt_preconditioners.hpp, rigid_body_modes).
   Teuchos::RCP<TMV> rigid_body_modes() const;
 
