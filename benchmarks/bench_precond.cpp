@@ -259,7 +259,7 @@ rn_scene *load_lattice(rn_context *ctx, const Opts &o, long cells, int model, in
 
 struct Run {
   double setup1 = 0, setup2 = 0, minres_s = 0, apply_s = 0, bytes = 0, residual = 0;
-  double coarse_shift = 0;
+  double coarse_shift = 0, coarse_flops = 0;
   long long coarse_rows = 0;
   int its = 0;
   bool converged = false;
@@ -300,6 +300,7 @@ Run run_one(ReplicatedSystem &sys, const std::string &name, const Opts &o, const
     r.coarse_rows = dd->coarse_rows();
     r.coarse = dd->coarse_solver();
     r.coarse_shift = dd->coarse_shift();
+    r.coarse_flops = dd->coarse_flops();
   }
   auto map = sys.map();
   TMV b(map, 1), s(map, 1), Hs(map, 1);
@@ -496,7 +497,7 @@ int main(int argc, char **argv) {
                       out,
                       "\"%s\",\"%s\",\"%s\",%d,precond-newton,%s-%s-%s,%lld,%d,%.6e,"
                       "%.6e,%s,%ld,%s,%d,%s,%ld,%d,%d,%s,-,0,0,%.6e,0,%.6e,%d,%.6e,"
-                      "0,0,%.1f,%.1f,%d,%.3e,%d,%d\n",
+                      "0,0,%.1f,%.1f,%d,%.3e,%d,%d,0\n",
                       RN_BENCH_COMMIT, RN_BENCH_COMPILER, RN_BENCH_FLAGS, nranks,
                       rn_lattice_kind_name(o.kind), model_name, pname.c_str(),
                       static_cast<long long>(sys.global_size()), o.repeats,
@@ -525,12 +526,12 @@ int main(int argc, char **argv) {
               std::printf(
                   "%s %ldx %s, %lld DOFs, %ld vertices: %-9s setup %.3f / %.3f s, "
                   "MINRES %d its %.3f s (apply %.2e s), %.0f B/vertex, coarse %s %lld "
-                  "(shift %g), residual %.1e%s\n",
+                  "(shift %g, %.1e flops), residual %.1e%s\n",
                   rn_lattice_kind_name(o.kind), cells, model_name,
                   static_cast<long long>(sys.global_size()), vertices, pname.c_str(),
                   r.setup1, r.setup2, r.its, r.minres_s, r.apply_s,
                   r.bytes / static_cast<double>(vertices), r.coarse.c_str(),
-                  r.coarse_rows, r.coarse_shift, r.residual,
+                  r.coarse_rows, r.coarse_shift, r.coarse_flops, r.residual,
                   r.converged ? "" : " NOT CONVERGED");
               std::fflush(stdout);
               if (out) {
@@ -539,7 +540,7 @@ int main(int argc, char **argv) {
                     "\"%s\",\"%s\",\"%s\",%d,precond,%s-%s-%s,%lld,%d,%.6e,%.6e,%s,%ld,%"
                     "s,"
                     "%d,%s,%ld,%d,%d,%s,%s,%lld,%g,%.6e,%.6e,%.6e,%d,%.6e,%.6e,%.6e,%.3f,"
-                    "%.1f,%d,%.3e\n",
+                    "%.1f,%d,%.3e,0,0,%.3e\n",
                     RN_BENCH_COMMIT, RN_BENCH_COMPILER, RN_BENCH_FLAGS, nranks,
                     rn_lattice_kind_name(o.kind), model_name, pname.c_str(),
                     static_cast<long long>(sys.global_size()), o.repeats, median, mn,
@@ -549,7 +550,7 @@ int main(int argc, char **argv) {
                     r.coarse_rows, r.coarse_shift, th, r.setup1, r.setup2, r.its,
                     r.minres_s, r.apply_s, r.bytes,
                     r.bytes / static_cast<double>(vertices), peak_rss_mb(),
-                    r.converged ? 1 : 0, r.residual);
+                    r.converged ? 1 : 0, r.residual, r.coarse_flops);
                 std::fflush(out);
               }
             }

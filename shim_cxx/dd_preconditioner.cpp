@@ -280,6 +280,7 @@ public:
   double bytes() const override { return bytes_; }
   std::string name() const override { return "direct"; }
   bool declined() const override { return declined_; }
+  double flops() const override { return flops_; }
 
 private:
   void analyse(const TCrs &S0);
@@ -295,7 +296,7 @@ private:
   std::vector<double> vals_, m_;
   std::shared_ptr<SparseAnalysis> analysis_;
   std::unique_ptr<SparseCholesky> chol_;
-  double shift_ = 0.0, bytes_ = 0.0, max_flops_ = 0.0;
+  double shift_ = 0.0, bytes_ = 0.0, max_flops_ = 0.0, flops_ = 0.0;
   bool declined_ = false;
 };
 
@@ -331,7 +332,8 @@ void DirectCoarse::analyse(const TCrs &S0) {
 
 void DirectCoarse::factor_on_root(const TCrs &S0, bool &ok) {
   if (!analysis_) analyse(S0);
-  declined_ = max_flops_ > 0.0 && analysis_->factor_flops() > max_flops_;
+  flops_ = analysis_->factor_flops();
+  declined_ = max_flops_ > 0.0 && flops_ > max_flops_;
   if (declined_) return;
   if (!chol_) chol_.reset(new SparseCholesky(analysis_));
   auto lcl = S0.getLocalMatrixHost();
@@ -389,10 +391,11 @@ void DirectCoarse::setup(const Teuchos::RCP<const TCrs> &S,
   } else {
     bytes_ = 0.0;
   }
-  double sh[2] = {shift_, declined_ ? 1.0 : 0.0};
-  Teuchos::broadcast(*comm, 0, 2, sh);
+  double sh[3] = {shift_, declined_ ? 1.0 : 0.0, flops_};
+  Teuchos::broadcast(*comm, 0, 3, sh);
   shift_ = sh[0];
   declined_ = sh[1] != 0.0;
+  flops_ = sh[2];
   throw_if_any(
       *comm, !ok, RN_ERR_LAPACK,
       "dd preconditioner: the coarse matrix has no positive definite shift up to "
@@ -441,6 +444,7 @@ struct DdPreconditioner::Impl {
   Teuchos::RCP<TMV> nullspace;
   std::unique_ptr<CoarseSolver> coarse;
   long long coarse_rows = 0, rods_shifted = 0;
+  double declined_flops = 0.0; // of the direct coarse solve the automatic choice declined
   bool S_built = false;
   // work (apply)
   mutable Teuchos::RCP<TMV> bov, b, y, yov;
@@ -881,6 +885,7 @@ void DdPreconditioner::setup(System &sys) {
   }
   impl_->numeric(*H);
   if (impl_->coarse->declined()) { // Auto: the direct factorisation costs too much
+    impl_->declined_flops = impl_->coarse->flops();
     impl_->coarse = make_amg_coarse_solver(opt_.amg_xml);
     impl_->coarse->setup(impl_->S, impl_->nullspace);
   }
@@ -899,6 +904,11 @@ long long DdPreconditioner::rods_shifted() const { return impl_->rods_shifted; }
 double DdPreconditioner::coarse_shift() const {
   return impl_->coarse ? impl_->coarse->shift() : 0.0;
 }
+double DdPreconditioner::coarse_flops() const {
+  const double f = impl_->coarse ? impl_->coarse->flops() : 0.0;
+  return f > 0.0 ? f : impl_->declined_flops;
+}
+
 std::string DdPreconditioner::coarse_solver() const {
   return impl_->coarse ? impl_->coarse->name() : "none";
 }

@@ -49,6 +49,8 @@ public:
   // True if the last setup declined to solve (the direct solver when its
   // factorisation would cost more than the limit it was made with): use another.
   virtual bool declined() const { return false; }
+  // Floating-point operations of one factorisation (direct solver; 0 otherwise).
+  virtual double flops() const { return 0.0; }
 };
 
 // Sparse Cholesky (rodnet's, METIS ordering) of the coarse matrix gathered to rank 0
@@ -73,7 +75,7 @@ struct DdOptions {
   // Auto: the direct coarse solve unless its sparse Cholesky factorisation would take
   // more floating-point operations than this (measured choice, docs/solvers.md);
   // then the AMG one.
-  double direct_max_flops = 2e10;
+  double direct_max_flops = 5e10;
   // MueLu parameter file overriding the AMG coarse solve's defaults (empty: none).
   std::string amg_xml;
 };
@@ -93,6 +95,8 @@ public:
   long long rods_shifted() const;
   double coarse_shift() const;
   std::string coarse_solver() const;
+  // Factorisation flops of the direct coarse solve (also when it declined), else 0.
+  double coarse_flops() const;
 
   struct Impl;
 
