@@ -86,8 +86,7 @@ void rn_network_destroy(rn_network **net) {
   free(n->map);
   free(n->red2full);
   free(n->xfull);
-  free(n->rowptr);
-  free(n->col);
+  rn_hessian_pattern_free(n);
   free(n);
   *net = NULL;
 }
