@@ -15,10 +15,11 @@ static int stencil_init(const double q[11], const rnk_frame ref[2],
     const double *xa = q + 4 * s, *xb = q + 4 * s + 4;
     double e[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
     rq_edge_init(e, q[4 * s + 3], &ref[s], &E[s]);
+    rq_edge_big_angle(&ref[s], &E[s]);
   }
-  if (E[0].bad || E[1].bad) return RNK_DEGENERATE;
+  if (E[0].bad != 0.0 || E[1].bad != 0.0) return RNK_DEGENERATE;
   rq_vert_eval(&E[0], &E[1], bp, tp, tp->ref_twist, ord, V);
-  return V->bad ? RNK_DEGENERATE : RNK_OK;
+  return V->bad != 0.0 ? RNK_DEGENERATE : RNK_OK;
 }
 
 /* Gradient over y = (t0, theta0, t1, theta1) to the stencil q[11]. */
@@ -103,7 +104,7 @@ int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
 
 /* Hessian of a prepared stencil in the edge variables (e0, theta0, e1,
  * theta1). */
-static void stencil_hess_e(const rq_edge E[2], const rq_vert *V, double He[8][8]) {
+RQ_INLINE void stencil_hess_e(const rq_edge E[2], const rq_vert *V, double He[8][8]) {
   double gy[8];
   rq_grad_y(&E[0], &E[1], V->r, V->mu, gy);
   rq_hess_y(&E[0], &E[1], V, He);
@@ -184,7 +185,8 @@ int rnk_reference_twist(const double q[11], const rnk_frame ref[2], double ref_t
     const double *xa = q + 4 * s, *xb = q + 4 * s + 4;
     double e[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
     rq_edge_init(e, q[4 * s + 3], &ref[s], &E[s]);
-    if (E[s].bad) return RNK_DEGENERATE;
+    rq_edge_big_angle(&ref[s], &E[s]);
+    if (E[s].bad != 0.0) return RNK_DEGENERATE;
   }
   rq_vert_eval(&E[0], &E[1], &unit_bend, &tp, ref_twist_prev, 0, &V);
   *m = V.ref_twist;
@@ -239,69 +241,323 @@ int rnk_twist_hvp(const double q[11], const rnk_frame ref[2], const rnk_twist_pa
   return rnk_bendtwist_hvp(q, ref, &b, p, v, Hv);
 }
 
-/* ---- whole rod segments ---------------------------------------------------- */
-enum { RQ_CHUNK = 64 }; /* edges prepared at a time (on the stack) */
+/* ---- whole rod segments ----------------------------------------------------
+ * Chunks of up to RQ_CHUNK edges, in phases whose loops have no calls and no
+ * branches (they vectorise across stencils): (1) prepare every edge of the
+ * chunk (structure of arrays); (2) every vertex stencil of the chunk reads
+ * its two edges and writes its energy and its gradient / HVP in the edge
+ * variables (e0, theta0, e1, theta1) or its Hessian block; (3) every edge
+ * sums what its two vertices and its stretching give it, and the DOFs get
+ * the differences.  Degeneracy is flagged, never an early exit. */
+enum { RQ_CHUNK = 64 };
+
+/* Loops over stencils: no dependence between iterations.  With GCC, each
+ * function holding one is also compiled for AVX2 and AVX-512 and picked at
+ * run time (the build keeps the baseline architecture). */
+#if defined(__GNUC__) && !defined(__clang__)
+#define RQ_VECTOR_LOOP _Pragma("GCC ivdep")
+#else
+#define RQ_VECTOR_LOOP
+#endif
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    defined(__linux__) && !defined(RN_NO_TARGET_CLONES)
+#define RQ_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define RQ_CLONES
+#endif
 
 typedef enum { SEG_ENERGY, SEG_GRAD, SEG_HVP, SEG_HESS } seg_op;
 
-/* Stretching of edge j (prepared frame E) for op; same values as stretch.c. */
-static void seg_stretch(const rnk_rod_seg *s, int j, const rq_edge *E, seg_op op,
-                        const double *v, double *Es, double *out) {
-  const rnk_stretch_param *p = &s->sp[j];
-  double d = E->l - p->lbar, sk = p->k / p->lbar, *o = out + 4 * j;
-  if (op == SEG_ENERGY || op == SEG_GRAD) *Es += 0.5 * sk * d * d;
-  if (op == SEG_GRAD) {
-    double f = sk * d;
-    for (int k = 0; k < 3; ++k) {
-      o[k] -= f * E->t[k];
-      o[4 + k] += f * E->t[k];
+/* Prepared edges of a chunk (rq_edge, structure of arrays). */
+typedef struct rq_edges {
+  double t[3][RQ_CHUNK], l[RQ_CHUNK], il[RQ_CHUNK], th[3][RQ_CHUNK];
+  double g[4][RQ_CHUNK], q[4][RQ_CHUNK], h[4][RQ_CHUNK];
+  double cs[RQ_CHUNK], sn[RQ_CHUNK], theta[RQ_CHUNK];
+  double shrt[RQ_CHUNK], bad[RQ_CHUNK];
+  /* HVP: the direction's edge vectors, tangent rates and angle rates */
+  double de[3][RQ_CHUNK], dt[3][RQ_CHUNK], dth[RQ_CHUNK];
+} rq_edges;
+
+RQ_INLINE void edges_put(rq_edges *S, int j, const rq_edge *E) {
+  RQ_UNROLL for (int k = 0; k < 3; ++k) {
+    S->t[k][j] = E->t[k];
+    S->th[k][j] = E->th[k];
+  }
+  RQ_UNROLL for (int k = 0; k < 4; ++k) {
+    S->g[k][j] = E->g[k];
+    S->q[k][j] = E->q[k];
+    S->h[k][j] = E->h[k];
+  }
+  S->l[j] = E->l;
+  S->il[j] = E->il;
+  S->cs[j] = E->cs;
+  S->sn[j] = E->sn;
+  S->theta[j] = E->theta;
+  S->shrt[j] = E->short_;
+  S->bad[j] = E->bad;
+}
+
+RQ_INLINE void edges_get(const rq_edges *S, int j, rq_edge *E) {
+  RQ_UNROLL for (int k = 0; k < 3; ++k) {
+    E->t[k] = S->t[k][j];
+    E->th[k] = S->th[k][j];
+  }
+  RQ_UNROLL for (int k = 0; k < 4; ++k) {
+    E->g[k] = S->g[k][j];
+    E->q[k] = S->q[k][j];
+    E->h[k] = S->h[k][j];
+  }
+  E->l = S->l[j];
+  E->il = S->il[j];
+  E->cs = S->cs[j];
+  E->sn = S->sn[j];
+  E->theta = S->theta[j];
+  E->short_ = S->shrt[j];
+  E->bad = S->bad[j];
+}
+
+/* Phase 1: edges j0 .. j0 + n - 1 of the segment (and the direction's rates
+ * for the HVP). */
+/* Inputs of a chunk transposed to structure of arrays, so that the loops
+ * over stencils read unit-stride arrays only. */
+typedef struct rq_in {
+  double e[3][RQ_CHUNK], theta[RQ_CHUNK], th[3][RQ_CHUNK], a1[3][RQ_CHUNK];
+  double ve[3][RQ_CHUNK], vth[RQ_CHUNK]; /* HVP direction */
+  /* vertex k of the chunk at index k - 1 */
+  double B[3][RQ_CHUNK], kbar[2][RQ_CHUNK], vlen[RQ_CHUNK];
+  double beta[RQ_CHUNK], taubar[RQ_CHUNK], tvlen[RQ_CHUNK], m[RQ_CHUNK];
+} rq_in;
+
+/* Phase 1: edges j0 .. j0 + n - 1 of the segment (and the direction's rates
+ * for the HVP); the vertex parameters. */
+RQ_CLONES static void chunk_edges(const rnk_rod_seg *s, int j0, int n, const double *v,
+                                  rq_in *I, rq_edges *S) {
+  const double *x = s->x + 4 * j0;
+  const rnk_frame *ref = s->ref + j0;
+  for (int j = 0; j < n; ++j) {
+    const double *xa = x + 4 * j;
+    RQ_UNROLL for (int k = 0; k < 3; ++k) {
+      I->e[k][j] = xa[4 + k] - xa[k];
+      I->th[k][j] = ref[j].t[k];
+      I->a1[k][j] = ref[j].a1[k];
     }
-  } else if (op == SEG_HVP) {
-    const double *vj = v + 4 * j;
-    double de[3] = {vj[4] - vj[0], vj[5] - vj[1], vj[6] - vj[2]};
-    double r = 1.0 - p->lbar * E->il, td = (1.0 - r) * rq_dot3(E->t, de);
-    for (int k = 0; k < 3; ++k) {
-      double hk = sk * (r * de[k] + td * E->t[k]);
-      o[k] -= hk;
-      o[4 + k] += hk;
+    I->theta[j] = xa[3];
+  }
+  for (int k = 0; k + 1 < n; ++k) {
+    const rnk_bend_param *bp = &s->bp[j0 + k];
+    const rnk_twist_param *tp = &s->tp[j0 + k];
+    RQ_UNROLL for (int c = 0; c < 3; ++c) I->B[c][k] = bp->B[c];
+    I->kbar[0][k] = bp->kbar[0];
+    I->kbar[1][k] = bp->kbar[1];
+    I->vlen[k] = bp->vlen;
+    I->beta[k] = tp->beta;
+    I->taubar[k] = tp->taubar;
+    I->tvlen[k] = tp->vlen;
+    I->m[k] = s->ref_twist[j0 + k];
+  }
+  RQ_VECTOR_LOOP
+  for (int j = 0; j < n; ++j) {
+    rq_edge E;
+    rnk_frame f = {{I->th[0][j], I->th[1][j], I->th[2][j]},
+                   {I->a1[0][j], I->a1[1][j], I->a1[2][j]}};
+    double e[3] = {I->e[0][j], I->e[1][j], I->e[2][j]};
+    rq_edge_init(e, I->theta[j], &f, &E);
+    edges_put(S, j, &E);
+  }
+  for (int j = 0; j < n; ++j) /* rare: angles beyond the polynomial range */
+    if (fabs(0.5 * S->theta[j]) > RQ_TRIG_MAX) {
+      rq_edge E;
+      edges_get(S, j, &E);
+      rq_edge_big_angle(&ref[j], &E);
+      edges_put(S, j, &E);
     }
-  } else if (op == SEG_HESS) {
-    double r = 1.0 - p->lbar * E->il, *M = out + 4 * j * RNK_BAND + RNK_BAND_HALF;
-    const int ld = RNK_BAND - 1; /* M[a * ld + c]: entry (4j + a, 4j + c) */
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        double h = sk * ((1.0 - r) * E->t[a] * E->t[b] + (a == b ? r : 0.0));
-        M[a * ld + b] += h;
-        M[(4 + a) * ld + 4 + b] += h;
-        M[a * ld + 4 + b] -= h;
-        M[(4 + a) * ld + b] -= h;
-      }
+  if (!v) return;
+  v += 4 * j0;
+  for (int j = 0; j < n; ++j) {
+    const double *va = v + 4 * j;
+    RQ_UNROLL for (int k = 0; k < 3; ++k) I->ve[k][j] = va[4 + k] - va[k];
+    I->vth[j] = va[3];
+  }
+  RQ_VECTOR_LOOP
+  for (int j = 0; j < n; ++j) {
+    double de[3] = {I->ve[0][j], I->ve[1][j], I->ve[2][j]};
+    double t[3] = {S->t[0][j], S->t[1][j], S->t[2][j]}, td = rq_dot3(t, de);
+    RQ_UNROLL for (int k = 0; k < 3; ++k) {
+      S->de[k][j] = de[k];
+      S->dt[k][j] = (de[k] - td * t[k]) * S->il[j];
+    }
+    S->dth[j] = I->vth[j];
   }
 }
 
-/* Interior vertex k (edges k-1, k prepared in E[0], E[1]) for op. */
-static void seg_vertex(const rnk_rod_seg *s, int k, const rq_edge E[2], seg_op op,
-                       const double *v, double *Eb, double *Et, double *out, int *bad) {
-  rq_vert V;
-  int o = 4 * (k - 1);
-  rq_vert_eval(&E[0], &E[1], &s->bp[k - 1], &s->tp[k - 1], s->ref_twist[k - 1],
-               op == SEG_ENERGY ? 0 : 1, &V);
-  *bad |= V.bad | E[0].bad | E[1].bad;
-  *Eb += V.Eb;
-  *Et += V.Et;
-  if (op == SEG_GRAD) {
-    double gy[8], g[11];
-    rq_grad_y(&E[0], &E[1], V.r, V.mu, gy);
-    grad_to_q(E, gy, g);
-    for (int i = 0; i < 11; ++i) out[o + i] += g[i];
-  } else if (op == SEG_HVP) {
-    double hv[11];
-    stencil_hvp(E, &V, v + o, hv);
-    for (int i = 0; i < 11; ++i) out[o + i] += hv[i];
-  } else if (op == SEG_HESS) {
+/* Parameters of vertex k of the chunk (1 <= k < n). */
+RQ_INLINE void vertex_params(const rq_in *I, int k, rnk_bend_param *bp,
+                             rnk_twist_param *tp) {
+  RQ_UNROLL for (int c = 0; c < 3; ++c) bp->B[c] = I->B[c][k - 1];
+  bp->kbar[0] = I->kbar[0][k - 1];
+  bp->kbar[1] = I->kbar[1][k - 1];
+  bp->vlen = I->vlen[k - 1];
+  tp->beta = I->beta[k - 1];
+  tp->taubar = I->taubar[k - 1];
+  tp->vlen = I->tvlen[k - 1];
+  tp->ref_twist = I->m[k - 1];
+}
+
+/* Per-vertex results of a chunk: vertex k (1 <= k < n) at index k; indices 0
+ * and n stay zero so that every edge can read both neighbours. */
+typedef struct rq_vout {
+  double a[8][RQ_CHUNK + 1]; /* gradient or HVP in (e0, theta0, e1, theta1) */
+  double H[36][RQ_CHUNK];    /* Hessian in those variables, upper triangle */
+} rq_vout;
+
+/* Phase 2 (energy, gradient, HVP); specialised per op (chunk_* below) so
+ * that the loop body has no branch. */
+RQ_INLINE void chunk_vertices_op(const rq_in *I, int n, seg_op op, const rq_edges *S,
+                                 rq_vout *O, double *Eb, double *Et, double *bad) {
+  double eb = 0.0, et = 0.0, b = 0.0;
+  int ord = op == SEG_ENERGY ? 0 : 1;
+  RQ_VECTOR_LOOP
+  for (int k = 1; k < n; ++k) {
+    rq_edge E[2];
+    rq_vert V;
+    rnk_bend_param bp;
+    rnk_twist_param tp;
+    vertex_params(I, k, &bp, &tp);
+    edges_get(S, k - 1, &E[0]);
+    edges_get(S, k, &E[1]);
+    rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, ord, &V);
+    eb += V.Eb;
+    et += V.Et;
+    b += V.bad + E[0].bad + E[1].bad;
+    if (op == SEG_GRAD) {
+      double gy[8], ge[3];
+      rq_grad_y(&E[0], &E[1], V.r, V.mu, gy);
+      RQ_UNROLL for (int e = 0; e < 2; ++e) {
+        rq_project(&E[e], gy + 4 * e, ge);
+        RQ_UNROLL for (int c = 0; c < 3; ++c) O->a[4 * e + c][k] = ge[c];
+        O->a[4 * e + 3][k] = gy[4 * e + 3];
+      }
+    } else if (op == SEG_HVP) {
+      double gy[8], hy[8], dy[8], he[3];
+      RQ_UNROLL for (int e = 0; e < 2; ++e) {
+        RQ_UNROLL for (int c = 0; c < 3; ++c) dy[4 * e + c] = S->dt[c][k - 1 + e];
+        dy[4 * e + 3] = S->dth[k - 1 + e];
+      }
+      rq_grad_y(&E[0], &E[1], V.r, V.mu, gy);
+      rq_hvp_y(&E[0], &E[1], &V, dy, hy);
+      RQ_UNROLL for (int e = 0; e < 2; ++e) {
+        double de[3] = {S->de[0][k - 1 + e], S->de[1][k - 1 + e], S->de[2][k - 1 + e]};
+        rq_project(&E[e], hy + 4 * e, he);
+        rq_curv_add(&E[e], gy + 4 * e, de, he);
+        RQ_UNROLL for (int c = 0; c < 3; ++c) O->a[4 * e + c][k] = he[c];
+        O->a[4 * e + 3][k] = hy[4 * e + 3];
+      }
+    }
+  }
+  *Eb += eb;
+  *Et += et;
+  *bad += b;
+}
+
+RQ_CLONES static void chunk_vertices_energy(const rq_in *I, int n, const rq_edges *S,
+                                            rq_vout *O, double *Eb, double *Et,
+                                            double *bad) {
+  chunk_vertices_op(I, n, SEG_ENERGY, S, O, Eb, Et, bad);
+}
+RQ_CLONES static void chunk_vertices_grad(const rq_in *I, int n, const rq_edges *S,
+                                          rq_vout *O, double *Eb, double *Et,
+                                          double *bad) {
+  chunk_vertices_op(I, n, SEG_GRAD, S, O, Eb, Et, bad);
+}
+RQ_CLONES static void chunk_vertices_hvp(const rq_in *I, int n, const rq_edges *S,
+                                         rq_vout *O, double *Eb, double *Et,
+                                         double *bad) {
+  chunk_vertices_op(I, n, SEG_HVP, S, O, Eb, Et, bad);
+}
+
+/* Phase 2 for the Hessian: the block of every vertex of the chunk. */
+RQ_CLONES static void chunk_hess(const rq_in *I, int n, const rq_edges *S, rq_vout *O,
+                                 double *bad) {
+  double b = 0.0;
+  RQ_VECTOR_LOOP
+  for (int k = 1; k < n; ++k) {
+    rq_edge E[2];
+    rq_vert V;
+    rnk_bend_param bp;
+    rnk_twist_param tp;
     double He[8][8];
+    vertex_params(I, k, &bp, &tp);
+    edges_get(S, k - 1, &E[0]);
+    edges_get(S, k, &E[1]);
+    rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, 1, &V);
+    b += V.bad + E[0].bad + E[1].bad;
     stencil_hess_e(E, &V, He);
-    add_vertex_block(He, out + o * RNK_BAND + RNK_BAND_HALF, RNK_BAND - 1);
+    RQ_UNROLL for (int r = 0, m = 0; r < 8; ++r)
+        RQ_UNROLL for (int c = r; c < 8; ++c, ++m) O->H[m][k] = He[r][c];
+  }
+  *bad += b;
+}
+
+/* Phase 3: stretching of the counted edges, and what the vertices gave each
+ * edge, into the segment's DOFs: x_j gets -F_j, x_{j+1} gets +F_j. */
+static void chunk_assemble(const rnk_rod_seg *s, int j0, int n, int lo, int hi, seg_op op,
+                           const rq_edges *S, const rq_vout *O, double *Es, double *out,
+                           double *bad) {
+  double es = 0.0, b = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const rnk_stretch_param *p = &s->sp[j0 + j];
+    double w = (j0 + j >= lo && j0 + j < hi) ? 1.0 : 0.0; /* counted here */
+    double d = S->l[j] - p->lbar, sk = w * p->k / p->lbar, F[3], th = 0.0;
+    double t[3] = {S->t[0][j], S->t[1][j], S->t[2][j]};
+    es += 0.5 * sk * d * d;
+    b += w * S->shrt[j];
+    if (op == SEG_GRAD) {
+      RQ_UNROLL for (int c = 0; c < 3; ++c) F[c] =
+          sk * d * t[c] + O->a[c][j + 1] + O->a[4 + c][j];
+      th = O->a[3][j + 1] + O->a[7][j];
+    } else if (op == SEG_HVP) {
+      double de[3] = {S->de[0][j], S->de[1][j], S->de[2][j]};
+      double r = 1.0 - p->lbar * S->il[j], td = (1.0 - r) * rq_dot3(t, de);
+      RQ_UNROLL for (int c = 0; c < 3; ++c) F[c] =
+          sk * (r * de[c] + td * t[c]) + O->a[c][j + 1] + O->a[4 + c][j];
+      th = O->a[3][j + 1] + O->a[7][j];
+    } else {
+      continue;
+    }
+    double *o = out + 4 * (j0 + j);
+    RQ_UNROLL for (int c = 0; c < 3; ++c) {
+      o[c] -= F[c];
+      o[4 + c] += F[c];
+    }
+    o[3] += th;
+  }
+  *Es += es;
+  *bad += b;
+}
+
+/* Phase 3 for the Hessian: stretching and vertex blocks into the band. */
+static void chunk_band(const rnk_rod_seg *s, int j0, int n, int lo, int hi,
+                       const rq_edges *S, const rq_vout *O, double *band) {
+  const int ld = RNK_BAND - 1; /* M[a * ld + c]: entry (a, c) of a stencil */
+  for (int j = 0; j < n; ++j) {
+    if (j0 + j < lo || j0 + j >= hi) continue;
+    const rnk_stretch_param *p = &s->sp[j0 + j];
+    double r = 1.0 - p->lbar * S->il[j], sk = p->k / p->lbar;
+    double t[3] = {S->t[0][j], S->t[1][j], S->t[2][j]};
+    double *M = band + 4 * (j0 + j) * RNK_BAND + RNK_BAND_HALF;
+    RQ_UNROLL for (int a = 0; a < 3; ++a) RQ_UNROLL for (int c = 0; c < 3; ++c) {
+      double h = sk * ((1.0 - r) * t[a] * t[c] + (a == c ? r : 0.0));
+      M[a * ld + c] += h;
+      M[(4 + a) * ld + 4 + c] += h;
+      M[a * ld + 4 + c] -= h;
+      M[(4 + a) * ld + c] -= h;
+    }
+  }
+  for (int k = 1; k < n; ++k) {
+    double He[8][8];
+    RQ_UNROLL for (int r = 0, m = 0; r < 8; ++r)
+        RQ_UNROLL for (int c = r; c < 8; ++c, ++m) He[r][c] = He[c][r] = O->H[m][k];
+    add_vertex_block(He, band + 4 * (j0 + k - 1) * RNK_BAND + RNK_BAND_HALF, ld);
   }
 }
 
@@ -322,27 +578,35 @@ static void seg_find_bad(const rnk_rod_seg *s, int bad[2]) {
 
 static int seg_eval(const rnk_rod_seg *s, seg_op op, const double *v, double E[3],
                     double *out, int bad[2]) {
-  rq_edge Ed[RQ_CHUNK];
-  int ne = s->ne, j0 = 0, anybad = 0;
-  double Es = 0.0, Eb = 0.0, Et = 0.0;
+  rq_in I;
+  rq_edges S;
+  rq_vout O;
+  int ne = s->ne, j0 = 0;
+  double anybad = 0.0, Es = 0.0, Eb = 0.0, Et = 0.0;
   bad[0] = bad[1] = -1;
+  RQ_UNROLL for (int c = 0; c < 8; ++c) O.a[c][0] = 0.0;
   for (;;) {
-    int j1 = j0 + RQ_CHUNK < ne ? j0 + RQ_CHUNK : ne;
-    for (int j = j0; j < j1; ++j) {
-      const double *xa = s->x + 4 * j;
-      double e[3] = {xa[4] - xa[0], xa[5] - xa[1], xa[6] - xa[2]};
-      rq_edge_init(e, xa[3], &s->ref[j], &Ed[j - j0]);
-    }
-    /* stretching of the edges not counted by the previous chunk */
+    int j1 = j0 + RQ_CHUNK < ne ? j0 + RQ_CHUNK : ne, n = j1 - j0;
+    /* stretching of the edges the previous chunk did not count */
     int lo = j0 == 0 ? 0 : j0 + 1, hi = j1;
     if (lo < s->stretch_lo) lo = s->stretch_lo;
     if (hi > s->stretch_hi) hi = s->stretch_hi;
-    for (int j = lo; j < hi; ++j) {
-      anybad |= Ed[j - j0].short_;
-      seg_stretch(s, j, &Ed[j - j0], op, v, &Es, out);
+    chunk_edges(s, j0, n, op == SEG_HVP ? v : NULL, &I, &S);
+    RQ_UNROLL for (int c = 0; c < 8; ++c) O.a[c][n] = 0.0;
+    if (op == SEG_HESS) {
+      chunk_hess(&I, n, &S, &O, &anybad);
+      chunk_band(s, j0, n, lo, hi, &S, &O, out);
+      for (int j = 0; j < n; ++j)
+        anybad += (j0 + j >= lo && j0 + j < hi) ? S.shrt[j] : 0.0;
+    } else {
+      if (op == SEG_ENERGY)
+        chunk_vertices_energy(&I, n, &S, &O, &Eb, &Et, &anybad);
+      else if (op == SEG_GRAD)
+        chunk_vertices_grad(&I, n, &S, &O, &Eb, &Et, &anybad);
+      else
+        chunk_vertices_hvp(&I, n, &S, &O, &Eb, &Et, &anybad);
+      chunk_assemble(s, j0, n, lo, hi, op, &S, &O, &Es, out, &anybad);
     }
-    for (int k = j0 + 1; k < j1; ++k)
-      seg_vertex(s, k, &Ed[k - 1 - j0], op, v, &Eb, &Et, out, &anybad);
     if (j1 == ne) break;
     j0 = j1 - 1;
   }
@@ -351,7 +615,7 @@ static int seg_eval(const rnk_rod_seg *s, seg_op op, const double *v, double E[3
     E[1] = Eb;
     E[2] = Et;
   }
-  if (!anybad) return RNK_OK;
+  if (anybad == 0.0) return RNK_OK;
   seg_find_bad(s, bad);
   return RNK_DEGENERATE;
 }
