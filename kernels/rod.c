@@ -535,6 +535,38 @@ static void chunk_assemble(const rnk_rod_seg *s, int j0, int n, int lo, int hi, 
   *bad += b;
 }
 
+/* The block of vertex k over its stencil q = (x0, theta0, x1, theta1, x2)
+ * from the one in (e0, theta0, e1, theta1), e0 = x1 - x0, e1 = x2 - x1. */
+static void vertex_block_q(const rq_vout *O, int k, double H[11][11]) {
+  double He[8][8];
+  RQ_UNROLL for (int r = 0, m = 0; r < 8; ++r) RQ_UNROLL for (int c = r; c < 8; ++c, ++m)
+      He[r][c] = He[c][r] = O->H[m][k];
+  RQ_UNROLL for (int a = 0; a < 3; ++a) {
+    RQ_UNROLL for (int c = 0; c < 3; ++c) {
+      double A = He[a][c], B = He[a][4 + c], Bt = He[4 + a][c], C = He[4 + a][4 + c];
+      H[a][c] = A;
+      H[a][4 + c] = B - A;
+      H[a][8 + c] = -B;
+      H[4 + a][c] = Bt - A;
+      H[4 + a][4 + c] = A - B - Bt + C;
+      H[4 + a][8 + c] = B - C;
+      H[8 + a][c] = -Bt;
+      H[8 + a][4 + c] = Bt - C;
+      H[8 + a][8 + c] = C;
+    }
+    RQ_UNROLL for (int t = 0; t < 2; ++t) { /* angle columns 3, 7 */
+      double u = He[a][4 * t + 3], w = He[4 + a][4 * t + 3];
+      H[a][4 * t + 3] = H[4 * t + 3][a] = -u;
+      H[4 + a][4 * t + 3] = H[4 * t + 3][4 + a] = u - w;
+      H[8 + a][4 * t + 3] = H[4 * t + 3][8 + a] = w;
+    }
+  }
+  H[3][3] = He[3][3];
+  H[3][7] = He[3][7];
+  H[7][3] = He[7][3];
+  H[7][7] = He[7][7];
+}
+
 /* Phase 3 for the Hessian: stretching and vertex blocks into the band. */
 static void chunk_band(const rnk_rod_seg *s, int j0, int n, int lo, int hi,
                        const rq_edges *S, const rq_vout *O, double *band) {
@@ -554,10 +586,11 @@ static void chunk_band(const rnk_rod_seg *s, int j0, int n, int lo, int hi,
     }
   }
   for (int k = 1; k < n; ++k) {
-    double He[8][8];
-    RQ_UNROLL for (int r = 0, m = 0; r < 8; ++r)
-        RQ_UNROLL for (int c = r; c < 8; ++c, ++m) He[r][c] = He[c][r] = O->H[m][k];
-    add_vertex_block(He, band + 4 * (j0 + k - 1) * RNK_BAND + RNK_BAND_HALF, ld);
+    double H[11][11];
+    vertex_block_q(O, k, H);
+    double *b = band + 4 * (j0 + k - 1) * RNK_BAND + RNK_BAND_HALF;
+    for (int r = 0; r < 11; ++r) /* row r: columns 0..10 of the stencil */
+      RQ_UNROLL for (int c = 0; c < 11; ++c) b[r * ld + c] += H[r][c];
   }
 }
 
