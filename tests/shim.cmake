@@ -56,3 +56,6 @@ if(MPIEXEC_EXECUTABLE)
   set_tests_properties(shim_runtime_mpirun shim_runtime_mpirun_forced_serial PROPERTIES
     LABELS "unit;mpi" TIMEOUT 120)
 endif()
+# Translating a whole scene leaves energies, gradient and solve unchanged (load
+# potentials measured from the initial state).
+rn_add_test(shim_translation SOURCES unit/shim_translation.c LIBS rodnet m LABELS unit)
