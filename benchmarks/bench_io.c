@@ -27,8 +27,10 @@
 #include "lattice.h"
 #include "lattice_scene.h"
 #include "result_json.h"
-#include "rodnet_solve.h"
 #include "scene.h"
+#ifdef RN_HAVE_SOLVER
+#include "rodnet_solve.h"
+#endif
 #include "vtk.h"
 
 #define MAX_LIST 32
@@ -123,7 +125,9 @@ static int time_step(rn_context *ctx, const bench_opts *o, const io_case *c, int
 }
 
 static int solve_step(rn_context *ctx, const io_case *c, rn_scene *scene,
-                      rn_result_info *info, rn_solve_report *rep, double *t) {
+                      rn_result_info *info, int *iterations, double *t) {
+#ifdef RN_HAVE_SOLVER
+  rn_solve_report report, *rep = &report;
   rn_solve_options opt;
   rn_solve_options_default(&opt);
   rn_scene_apply_solver(scene, &opt);
@@ -151,7 +155,13 @@ static int solve_step(rn_context *ctx, const io_case *c, rn_scene *scene,
   info->gradient_norm = rep->gradient_norm;
   info->initial_gradient_norm = rep->initial_gradient_norm;
   info->time_s = rep->time_s;
+  *iterations = rep->iterations;
   return 0;
+#else
+  (void)ctx, (void)c, (void)scene, (void)info, (void)iterations, (void)t;
+  fprintf(stderr, "bench_io: --solve needs a build with the solver (RN_WITH_TRILINOS)\n");
+  return 1;
+#endif
 }
 
 static int bench_size(rn_context *ctx, const bench_opts *o, long cells, FILE *out) {
@@ -182,10 +192,10 @@ static int bench_size(rn_context *ctx, const bench_opts *o, long cells, FILE *ou
               0);
   }
   if (!rc && o->solve) {
-    rn_solve_report rep;
     double t = 0.0;
-    rc = solve_step(ctx, &c, scene, &info, &rep, &t);
-    if (!rc) csv_row(out, o, &c, "solve", 1, t, t, 0, rep.iterations);
+    int iterations = 0;
+    rc = solve_step(ctx, &c, scene, &info, &iterations, &t);
+    if (!rc) csv_row(out, o, &c, "solve", 1, t, t, 0, iterations);
   }
   for (int k = 2; k < 4 && !rc; ++k) {
     rc = time_step(ctx, o, &c, k, &scene, &info, &med[k], &mn[k]);
@@ -261,6 +271,8 @@ int main(int argc, char **argv) {
   for (int k = 0; k < o.n_cells && !rc; ++k) rc = bench_size(ctx, &o, o.cells[k], out);
   rn_context_destroy(&ctx);
   if (out != stdout && fclose(out) != 0) rc = 1;
+#ifdef RN_HAVE_SOLVER
   rn_runtime_finalize();
+#endif
   return rc ? 1 : 0;
 }
