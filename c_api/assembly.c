@@ -139,7 +139,8 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
   return RNK_OK;
 }
 
-/* Dead vertex forces: E = -lambda f . x (Hessian zero). */
+/* Dead vertex forces: E = -lambda f . (x - x0), the potential measured from the
+ * initial state x0 (so it does not depend on where the origin is); Hessian zero. */
 static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
   for (int v = 0; v < r->nv; ++v) {
     size_t s = rn_dof_vertex(r->off, v);
@@ -147,6 +148,7 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
     for (int k = 0; k < 3; ++k) f[k] = a->lambda * r->fvert[3 * v + k];
     if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) continue;
     rn_gather(net, a->x, s, RN_DOFS_PER_VERTEX, xv);
+    for (int k = 0; k < 3; ++k) xv[k] -= r->x0[3 * v + k];
     a->E[RN_TERM_LOAD] += rnk_force_energy(xv, f);
     if (a->op == OP_GRAD) {
       rnk_force_grad(f, gl);
@@ -217,7 +219,8 @@ static int joint_couple_grad(const rn_network *net, const rn_joint *J,
 }
 
 /* The whole-joint stencil, gathered and scattered by its index list; the
- * dead force on the joint position. */
+ * dead force on the joint position, E = -lambda F . (x_J - x_J0) (from the initial
+ * position, as forces_eval). */
 static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   const rn_joint *J = &net->joints[ij];
   rn_joint_scratch s;
@@ -241,6 +244,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   for (int k = 0; k < 3; ++k) f[k] = a->lambda * J->force[k];
   if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) return RN_OK;
   rn_gather(net, a->x, p, RN_DOFS_PER_VERTEX, xj);
+  for (int k = 0; k < 3; ++k) xj[k] -= J->x0[k];
   a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
   if (a->op == OP_GRAD) {
     rnk_force_grad(f, gl);
