@@ -125,9 +125,10 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   put_str(f, rn_network_rod_name(net, rod));
   fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
   char row[3 * RN_NUM_BUF + 16];
+  static const char sep[] = ",\n       "; /* the first row has no comma */
   for (int i = 0; i < nv; i++) {
     size_t n = i ? 9 : 8;
-    memcpy(row, ",\n       " + (i ? 0 : 1), n);
+    memcpy(row, i ? sep : sep + 1, n);
     n += vec_text(o, &buf[3 * i], row + n);
     fwrite(row, 1, n, f);
   }
