@@ -65,7 +65,8 @@ static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int i
 }
 
 /* The stretching, bending and twisting of edges [j0, j0 + ne) of rod r and of
- * the interior vertices between them. */
+ * the interior vertices between them, through a copy of the segment's DOFs
+ * on the stack (ne <= RN_ROD_SEGMENT). */
 static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
                                   eval_args *a) {
   const rn_rod *r = &net->rods[ir];
@@ -102,6 +103,61 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
   a->E[RN_TERM_BEND] += E[1];
   a->E[RN_TERM_TWIST] += E[2];
   return RN_OK;
+}
+
+/* The same for edges whose DOFs are free, distinct and consecutive in the
+ * reduced vector (rn_rod_direct_edges): the kernels read x (and v) and
+ * accumulate into g (Hv) in place, with no copy, however long the run. */
+static rn_status rod_direct_eval(const rn_network *net, int ir, int j0, int ne,
+                                 eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  size_t m = (size_t)net->map[rn_dof_edge_stencil(r->off, j0)];
+  int bad[2], rc = RNK_OK;
+  double E[3] = {0.0, 0.0, 0.0};
+  rnk_rod_seg seg = {ne, a->x + m,   r->ref + j0, r->sp + j0,       j0 ? 1 : 0,
+                     ne, r->bp + j0, r->tp + j0,  r->ref_twist + j0};
+  switch (a->op) {
+  case OP_ENERGY:
+    rc = rnk_rod_energy(&seg, E, bad);
+    break;
+  case OP_GRAD:
+    rc = rnk_rod_grad(&seg, E, a->g + m, bad);
+    break;
+  case OP_HVP: /* (a direction on the fixed DOFs only is zero here) */
+    if (!a->vfull) rc = rnk_rod_hvp(&seg, a->v + m, a->Hv + m, bad);
+    break;
+  case OP_HESS:
+    return rod_segment_eval(net, ir, j0, ne, a); /* (not reached) */
+  }
+  if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
+  a->E[RN_TERM_STRETCH] += E[0];
+  a->E[RN_TERM_BEND] += E[1];
+  a->E[RN_TERM_TWIST] += E[2];
+  return RN_OK;
+}
+
+/* All of rod ir's stretching, bending and twisting: segments that share one
+ * edge with the next (its stretching counted once), copied ones of at most
+ * RN_ROD_SEGMENT edges and, for the energy, gradient and HVP, one in-place
+ * segment over the rod's run of free consecutive DOFs. */
+static rn_status rod_stencils_eval(const rn_network *net, int ir, eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  int lo = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir];
+  int hi = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir + 1];
+  for (int j0 = 0;;) {
+    int j1, direct = j0 >= lo && hi - j0 >= 2;
+    if (direct)
+      j1 = hi;
+    else {
+      j1 = j0 + RN_ROD_SEGMENT < r->ne ? j0 + RN_ROD_SEGMENT : r->ne;
+      if (j0 < lo && j1 > lo + 1) j1 = lo + 1; /* the next starts the run */
+    }
+    rn_status st = direct ? rod_direct_eval(net, ir, j0, j1 - j0, a)
+                          : rod_segment_eval(net, ir, j0, j1 - j0, a);
+    if (st) return st;
+    if (j1 == r->ne) return RN_OK;
+    j0 = j1 - 1;
+  }
 }
 
 static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a) {
@@ -255,13 +311,8 @@ static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
     forces_eval(net, r, a);
     return RN_OK;
   }
-  for (int j0 = 0;;) {
-    int ne = r->ne - j0 < RN_ROD_SEGMENT ? r->ne - j0 : RN_ROD_SEGMENT;
-    rn_status st = rod_segment_eval(net, ir, j0, ne, a);
-    if (st) return st;
-    if (j0 + ne == r->ne) break;
-    j0 += ne - 1;
-  }
+  rn_status st = rod_stencils_eval(net, ir, a);
+  if (st) return st;
   forces_eval(net, r, a);
   return RN_OK;
 }

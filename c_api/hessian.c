@@ -189,9 +189,42 @@ void rn_hessian_pattern_free(rn_network *net) {
   free(net->rowptr);
   free(net->col);
   free(net->band);
+  free(net->rod_direct);
   net->rowptr = NULL;
   net->col = NULL;
   net->band = NULL;
+  net->rod_direct = NULL;
+}
+
+/* For each rod the longest run of edges [lo, hi) whose stencils read DOFs
+ * that are free and consecutive in the reduced vector, in order (the
+ * assembly evaluates them in place); none of an aliased joint end. */
+static rn_status build_rod_direct(rn_network *net) {
+  net->rod_direct = malloc(2 * (size_t)(net->nrods ? net->nrods : 1) * sizeof(int));
+  if (!net->rod_direct) return RN_ERR_ALLOC;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    size_t n = rn_dof_rod_count(r->nv);
+    size_t best_a = 0, best_b = 0, a = 0; /* runs [a, b) of the full slice */
+    for (size_t i = 0; i <= n; ++i) {
+      int64_t mi = i < n ? net->map[r->off + i] : -1;
+      int joins = i > a && mi >= 0 && mi == net->map[r->off + i - 1] + 1;
+      if (i == a && mi >= 0) continue; /* a run starts */
+      if (joins) continue;
+      if (i - a > best_b - best_a) {
+        best_a = a;
+        best_b = i;
+      }
+      a = mi >= 0 ? i : i + 1;
+    }
+    /* edges j with 4j >= best_a and 4j + 6 < best_b */
+    int lo = (int)((best_a + 3) / 4), hi = best_b >= 3 ? (int)((best_b - 3) / 4) : 0;
+    if (hi > r->ne) hi = r->ne;
+    if (hi < lo) hi = lo;
+    net->rod_direct[2 * ir] = lo;
+    net->rod_direct[2 * ir + 1] = hi;
+  }
+  return RN_OK;
 }
 
 rn_status rn_build_hessian_pattern(rn_network *net) {
@@ -213,6 +246,7 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   net->col = b.c;
   b.c = NULL;
   st = net->col ? build_band_rows(net, lo, hi) : RN_ERR_ALLOC;
+  if (st == RN_OK) st = build_rod_direct(net);
 done:
   free(b.c);
   free(lo);

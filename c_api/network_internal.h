@@ -113,6 +113,8 @@ struct rn_network {
   int64_t *rowptr;   /* Hessian pattern [nred + 1] */
   int32_t *col;      /* [nnz] */
   rn_band_row *band; /* rod rows of the full layout into the CSR values [nfull] */
+  int *rod_direct;   /* [2 nrods]: rod edges [lo, hi) whose stencils' DOFs are free,
+                        distinct and consecutive in the reduced vector */
   size_t nnz;
   size_t bandwidth;
 };
@@ -207,7 +209,8 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
  * stencils only) into CSR values. */
 void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
                      double *vals);
-/* Frees the Hessian pattern (rowptr, col, band) and sets the pointers NULL. */
+/* Frees the Hessian pattern (rowptr, col, band, rod_direct) and sets the
+ * pointers NULL. */
 void rn_hessian_pattern_free(rn_network *net);
 /* The same for a stencil gathered by the full index list idx[n]. */
 void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
