@@ -334,27 +334,35 @@ RQ_CLONES static void chunk_edges(const rnk_rod_seg *s, int j0, int n, const dou
                                   rq_in *I, rq_edges *S) {
   const double *x = s->x + 4 * j0;
   const rnk_frame *ref = s->ref + j0;
+  RQ_VECTOR_LOOP
   for (int j = 0; j < n; ++j) {
     const double *xa = x + 4 * j;
-    RQ_UNROLL for (int k = 0; k < 3; ++k) {
-      I->e[k][j] = xa[4 + k] - xa[k];
-      I->th[k][j] = ref[j].t[k];
-      I->a1[k][j] = ref[j].a1[k];
-    }
+    RQ_UNROLL for (int k = 0; k < 3; ++k) I->e[k][j] = xa[4 + k] - xa[k];
     I->theta[j] = xa[3];
   }
-  for (int k = 0; k + 1 < n; ++k) {
-    const rnk_bend_param *bp = &s->bp[j0 + k];
-    const rnk_twist_param *tp = &s->tp[j0 + k];
-    RQ_UNROLL for (int c = 0; c < 3; ++c) I->B[c][k] = bp->B[c];
-    I->kbar[0][k] = bp->kbar[0];
-    I->kbar[1][k] = bp->kbar[1];
-    I->vlen[k] = bp->vlen;
-    I->beta[k] = tp->beta;
-    I->taubar[k] = tp->taubar;
-    I->tvlen[k] = tp->vlen;
-    I->m[k] = s->ref_twist[j0 + k];
-  }
+  /* one member per loop: GCC vectorises strided copies of single members, not
+   * of whole structs (groups of 6 or 4 doubles) */
+#define RQ_COPY(dst, src, count) \
+  RQ_VECTOR_LOOP for (int j = 0; j < (count); ++j) { (dst)[j] = src; }
+  RQ_COPY(I->th[0], ref[j].t[0], n)
+  RQ_COPY(I->th[1], ref[j].t[1], n)
+  RQ_COPY(I->th[2], ref[j].t[2], n)
+  RQ_COPY(I->a1[0], ref[j].a1[0], n)
+  RQ_COPY(I->a1[1], ref[j].a1[1], n)
+  RQ_COPY(I->a1[2], ref[j].a1[2], n)
+  const rnk_bend_param *bp = s->bp + j0;
+  const rnk_twist_param *tp = s->tp + j0;
+  RQ_COPY(I->B[0], bp[j].B[0], n - 1)
+  RQ_COPY(I->B[1], bp[j].B[1], n - 1)
+  RQ_COPY(I->B[2], bp[j].B[2], n - 1)
+  RQ_COPY(I->kbar[0], bp[j].kbar[0], n - 1)
+  RQ_COPY(I->kbar[1], bp[j].kbar[1], n - 1)
+  RQ_COPY(I->vlen, bp[j].vlen, n - 1)
+  RQ_COPY(I->beta, tp[j].beta, n - 1)
+  RQ_COPY(I->taubar, tp[j].taubar, n - 1)
+  RQ_COPY(I->tvlen, tp[j].vlen, n - 1)
+  RQ_COPY(I->m, s->ref_twist[j0 + j], n - 1)
+#undef RQ_COPY
   RQ_VECTOR_LOOP
   for (int j = 0; j < n; ++j) {
     rq_edge E;
@@ -373,6 +381,7 @@ RQ_CLONES static void chunk_edges(const rnk_rod_seg *s, int j0, int n, const dou
     }
   if (!v) return;
   v += 4 * j0;
+  RQ_VECTOR_LOOP
   for (int j = 0; j < n; ++j) {
     const double *va = v + 4 * j;
     RQ_UNROLL for (int k = 0; k < 3; ++k) I->ve[k][j] = va[4 + k] - va[k];
