@@ -132,6 +132,10 @@ rn_status rn_net_check_rod(const rn_network *net, const char *where, int rod);
 rn_status rn_net_check_building(const rn_network *net, const char *where);
 rn_status rn_net_check_final(const rn_network *net, const char *where);
 int rn_all_finite(size_t n, const double *v);
+/* 1 if every |v[i]| <= RN_HESS_BOUND (finite): a sum of fewer than 1e7 such
+ * values cannot overflow. */
+#define RN_HESS_BOUND 1e300
+int rn_all_bounded(size_t n, const double *v);
 /* Resolves a possibly negative index (-1 = last) into [0, n); -1 if out of
  * range. */
 int rn_wrap_index(int i, int n);
