@@ -249,7 +249,9 @@ int rnk_twist_hvp(const double q[11], const rnk_frame ref[2], const rnk_twist_pa
  * variables (e0, theta0, e1, theta1) or its Hessian block; (3) every edge
  * sums what its two vertices and its stretching give it, and the DOFs get
  * the differences.  Degeneracy is flagged, never an early exit. */
-enum { RQ_CHUNK = 64 };
+/* 65 edges per chunk: 64 vertex stencils, a whole number of vectors; the
+ * arrays are padded to RQ_DIM. */
+enum { RQ_CHUNK = 65, RQ_DIM = 72 };
 
 /* Loops over stencils: no dependence between iterations.  With GCC, each
  * function holding one is also compiled for AVX2 and AVX-512 and picked at
@@ -270,12 +272,12 @@ typedef enum { SEG_ENERGY, SEG_GRAD, SEG_HVP, SEG_HESS } seg_op;
 
 /* Prepared edges of a chunk (rq_edge, structure of arrays). */
 typedef struct rq_edges {
-  double t[3][RQ_CHUNK], l[RQ_CHUNK], il[RQ_CHUNK], th[3][RQ_CHUNK];
-  double g[4][RQ_CHUNK], q[4][RQ_CHUNK], h[4][RQ_CHUNK];
-  double cs[RQ_CHUNK], sn[RQ_CHUNK], theta[RQ_CHUNK];
-  double shrt[RQ_CHUNK], bad[RQ_CHUNK];
+  double t[3][RQ_DIM], l[RQ_DIM], il[RQ_DIM], th[3][RQ_DIM];
+  double g[4][RQ_DIM], q[4][RQ_DIM], h[4][RQ_DIM];
+  double cs[RQ_DIM], sn[RQ_DIM], theta[RQ_DIM];
+  double shrt[RQ_DIM], bad[RQ_DIM];
   /* HVP: the direction's edge vectors, tangent rates and angle rates */
-  double de[3][RQ_CHUNK], dt[3][RQ_CHUNK], dth[RQ_CHUNK];
+  double de[3][RQ_DIM], dt[3][RQ_DIM], dth[RQ_DIM];
 } rq_edges;
 
 RQ_INLINE void edges_put(rq_edges *S, int j, const rq_edge *E) {
@@ -321,11 +323,11 @@ RQ_INLINE void edges_get(const rq_edges *S, int j, rq_edge *E) {
 /* Inputs of a chunk transposed to structure of arrays, so that the loops
  * over stencils read unit-stride arrays only. */
 typedef struct rq_in {
-  double e[3][RQ_CHUNK], theta[RQ_CHUNK], th[3][RQ_CHUNK], a1[3][RQ_CHUNK];
-  double ve[3][RQ_CHUNK], vth[RQ_CHUNK]; /* HVP direction */
+  double e[3][RQ_DIM], theta[RQ_DIM], th[3][RQ_DIM], a1[3][RQ_DIM];
+  double ve[3][RQ_DIM], vth[RQ_DIM]; /* HVP direction */
   /* vertex k of the chunk at index k - 1 */
-  double B[3][RQ_CHUNK], kbar[2][RQ_CHUNK], vlen[RQ_CHUNK];
-  double beta[RQ_CHUNK], taubar[RQ_CHUNK], tvlen[RQ_CHUNK], m[RQ_CHUNK];
+  double B[3][RQ_DIM], kbar[2][RQ_DIM], vlen[RQ_DIM];
+  double beta[RQ_DIM], taubar[RQ_DIM], tvlen[RQ_DIM], m[RQ_DIM];
 } rq_in;
 
 /* Phase 1: edges j0 .. j0 + n - 1 of the segment (and the direction's rates
@@ -415,8 +417,8 @@ RQ_INLINE void vertex_params(const rq_in *I, int k, rnk_bend_param *bp,
 /* Per-vertex results of a chunk: vertex k (1 <= k < n) at index k; indices 0
  * and n stay zero so that every edge can read both neighbours. */
 typedef struct rq_vout {
-  double a[8][RQ_CHUNK + 1]; /* gradient or HVP in (e0, theta0, e1, theta1) */
-  double H[36][RQ_CHUNK];    /* Hessian in those variables, upper triangle */
+  double a[8][RQ_DIM];  /* gradient or HVP in (e0, theta0, e1, theta1) */
+  double H[36][RQ_DIM]; /* Hessian in those variables, upper triangle */
 } rq_vout;
 
 /* Phase 2 (energy, gradient, HVP); specialised per op (chunk_* below) so
