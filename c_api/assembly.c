@@ -61,7 +61,7 @@ static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
  * vertices, and the result is scattered back (the Hessian as band rows, by
  * the positions computed at finalize).  Consecutive segments share one edge;
  * its stretching is counted by the first. */
-enum { RN_ROD_SEGMENT = 33, RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
+enum { RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
 
 static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int ir, int j0,
                                 const int bad[2]) {
@@ -444,7 +444,7 @@ rn_status rn_network_hessian_values(const rn_network *net, const double *x,
   if ((st = check_eval(net, "rn_network_hessian_values", x, vals))) return st;
   args_init(&a, net, OP_HESS, "rn_network_hessian_values", x);
   a.vals = vals;
-  if (net->nnz) memset(vals, 0, net->nnz * sizeof(double));
+  rn_hessian_zero(net, vals); /* the rest is stored by the rods first */
   return eval_all(net, &a);
 }
 

@@ -93,7 +93,14 @@ enum { RN_BAND_SEARCH = -1, RN_BAND_NONE = -2 };
 typedef struct rn_band_row {
   int64_t pos;
   signed char lo, hi;
+  signed char assign; /* the row's run is only this row's rod band, complete in
+                         one assembly segment: stored, not added (no zeroing) */
 } rn_band_row;
+
+/* Edges per rod segment of the Hessian assembly (assembly.c); consecutive
+ * segments share one edge.  hessian.c mirrors the segmentation to know which
+ * rows a single segment completes. */
+enum { RN_ROD_SEGMENT = 33 };
 
 struct rn_network {
   rn_context *ctx;
@@ -115,6 +122,9 @@ struct rn_network {
   rn_band_row *band; /* rod rows of the full layout into the CSR values [nfull] */
   int *rod_direct;   /* [2 nrods]: rod edges [lo, hi) whose stencils' DOFs are free,
                         distinct and consecutive in the reduced vector */
+  int64_t *hzero;    /* [2 nhzero]: (first, count) of the CSR values no rod band
+                        stores: zeroed before each assembly */
+  size_t nhzero;
   size_t nnz;
   size_t bandwidth;
 };
@@ -213,8 +223,10 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
  * stencils only) into CSR values. */
 void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
                      double *vals);
-/* Frees the Hessian pattern (rowptr, col, band, rod_direct) and sets the
- * pointers NULL. */
+/* Zeroes the CSR values that the rod bands do not store (net->hzero). */
+void rn_hessian_zero(const rn_network *net, double *vals);
+/* Frees the Hessian pattern (rowptr, col, band, rod_direct, hzero) and sets
+ * the pointers NULL. */
 void rn_hessian_pattern_free(rn_network *net);
 /* The same for a stencil gathered by the full index list idx[n]. */
 void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
