@@ -414,6 +414,18 @@ RQ_INLINE void vertex_params(const rq_in *I, int k, rnk_bend_param *bp,
   tp->ref_twist = I->m[k - 1];
 }
 
+/* Vertex k of the chunk: its two edges and its strains, energy and (ord >= 1)
+ * dE/dr. */
+RQ_INLINE void vertex_prepare(const rq_in *I, const rq_edges *S, int k, int ord,
+                              rq_edge E[2], rq_vert *V) {
+  rnk_bend_param bp;
+  rnk_twist_param tp;
+  vertex_params(I, k, &bp, &tp);
+  edges_get(S, k - 1, &E[0]);
+  edges_get(S, k, &E[1]);
+  rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, ord, V);
+}
+
 /* Per-vertex results of a chunk: vertex k (1 <= k < n) at index k; indices 0
  * and n stay zero so that every edge can read both neighbours. */
 typedef struct rq_vout {
@@ -431,12 +443,7 @@ RQ_INLINE void chunk_vertices_op(const rq_in *I, int n, seg_op op, const rq_edge
   for (int k = 1; k < n; ++k) {
     rq_edge E[2];
     rq_vert V;
-    rnk_bend_param bp;
-    rnk_twist_param tp;
-    vertex_params(I, k, &bp, &tp);
-    edges_get(S, k - 1, &E[0]);
-    edges_get(S, k, &E[1]);
-    rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, ord, &V);
+    vertex_prepare(I, S, k, ord, E, &V);
     eb += V.Eb;
     et += V.Et;
     b += V.bad + E[0].bad + E[1].bad;
@@ -494,13 +501,8 @@ RQ_CLONES static void chunk_hess(const rq_in *I, int n, const rq_edges *S, rq_vo
   for (int k = 1; k < n; ++k) {
     rq_edge E[2];
     rq_vert V;
-    rnk_bend_param bp;
-    rnk_twist_param tp;
     double He[8][8];
-    vertex_params(I, k, &bp, &tp);
-    edges_get(S, k - 1, &E[0]);
-    edges_get(S, k, &E[1]);
-    rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, 1, &V);
+    vertex_prepare(I, S, k, 1, E, &V);
     b += V.bad + E[0].bad + E[1].bad;
     stencil_hess_e(E, &V, He);
     RQ_UNROLL for (int r = 0, m = 0; r < 8; ++r)
