@@ -99,10 +99,8 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
     break;
   case OP_HESS:
     memset(band, 0, (size_t)n * RNK_BAND * sizeof(double));
-    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK) {
-      a->unbounded |= !rn_all_bounded((size_t)n * RNK_BAND, band);
-      rn_csr_add_band(net, s, n, band, a->vals);
-    }
+    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK)
+      a->unbounded |= !rn_csr_add_band(net, s, n, band, a->vals);
     break;
   }
   if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);

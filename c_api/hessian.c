@@ -3,6 +3,7 @@
  * stencil touching them: rod stencils as ranges of their rod's full vector,
  * joint stencils by their index lists, through the aliases of joint
  * positions. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -376,28 +377,37 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
   }
 }
 
-void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
-                     double *vals) {
+int rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
+                    double *vals) {
+  double big = 0.0; /* values above RN_HESS_BOUND or not finite */
   for (int i = 0; i < n; ++i) {
     size_t a = s + (size_t)i;
     const rn_band_row *b = &net->band[a];
     /* row[c - a] = entry (a, c) */
     const double *row = band + (size_t)i * RNK_BAND + RNK_BAND_HALF;
-    if (b->pos >= 0 && b->assign) {
+    if (b->pos >= 0) {
       double *v = vals + b->pos - b->lo;
-      for (int d = b->lo; d <= b->hi; ++d) v[d] = row[d];
-    } else if (b->pos >= 0) {
-      double *v = vals + b->pos - b->lo;
-      for (int d = b->lo; d <= b->hi; ++d) v[d] += row[d];
+      if (b->assign)
+        for (int d = b->lo; d <= b->hi; ++d) {
+          v[d] = row[d];
+          big += fabs(row[d]) <= RN_HESS_BOUND ? 0.0 : 1.0;
+        }
+      else
+        for (int d = b->lo; d <= b->hi; ++d) {
+          v[d] += row[d];
+          big += fabs(row[d]) <= RN_HESS_BOUND ? 0.0 : 1.0;
+        }
     } else if (b->pos == RN_BAND_SEARCH) {
       int64_t r = net->map[a];
       for (int d = b->lo; d <= b->hi; ++d) {
         int64_t c = net->map[(size_t)((int64_t)a + d)], pos;
         if (c < 0 || row[d] == 0.0) continue;
+        big += fabs(row[d]) <= RN_HESS_BOUND ? 0.0 : 1.0;
         if ((pos = csr_find(net, r, c)) >= 0) vals[pos] += row[d];
       }
     }
   }
+  return big == 0.0;
 }
 
 void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,

@@ -220,9 +220,10 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
                       double *vals);
 /* Adds rows s .. s + n - 1 of the full layout given in rnk.h band storage
  * (band[i * RNK_BAND + c - (s + i) + RNK_BAND_HALF] = entry (s + i, c); rod
- * stencils only) into CSR values. */
-void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
-                     double *vals);
+ * stencils only) into CSR values.  Returns 1 if every value it added was at
+ * most RN_HESS_BOUND in magnitude (rn_all_bounded). */
+int rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
+                    double *vals);
 /* Zeroes the CSR values that the rod bands do not store (net->hzero). */
 void rn_hessian_zero(const rn_network *net, double *vals);
 /* Frees the Hessian pattern (rowptr, col, band, rod_direct, hzero) and sets
