@@ -22,6 +22,8 @@ typedef struct eval_args {
   double *g;         /* OP_GRAD output, accumulated */
   double *Hv;        /* OP_HVP output, accumulated */
   double *vals;      /* OP_HESS output, accumulated */
+  int unbounded;     /* OP_HESS: a contribution exceeded RN_HESS_BOUND or was not
+                        finite (then the sums may overflow) */
   const char *where; /* public entry point, for messages */
 } eval_args;
 
@@ -47,7 +49,10 @@ static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
                        const double *loc) {
   if (a->op == OP_GRAD) rn_scatter_add(net, loc, s, n, a->g);
   if (a->op == OP_HVP) rn_scatter_add(net, loc, s, n, a->Hv);
-  if (a->op == OP_HESS) rn_csr_add_block(net, s, n, loc, a->vals);
+  if (a->op == OP_HESS) {
+    a->unbounded |= !rn_all_bounded((size_t)n * (size_t)n, loc);
+    rn_csr_add_block(net, s, n, loc, a->vals);
+  }
 }
 
 /* Rods are evaluated by the whole-rod kernels (rnk_rod_*) in segments of up
@@ -56,7 +61,7 @@ static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
  * vertices, and the result is scattered back (the Hessian as band rows, by
  * the positions computed at finalize).  Consecutive segments share one edge;
  * its stretching is counted by the first. */
-enum { RN_ROD_SEGMENT = 32, RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
+enum { RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
 
 static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int ir, int j0,
                                 const int bad[2]) {
@@ -65,7 +70,8 @@ static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int i
 }
 
 /* The stretching, bending and twisting of edges [j0, j0 + ne) of rod r and of
- * the interior vertices between them. */
+ * the interior vertices between them, through a copy of the segment's DOFs
+ * on the stack (ne <= RN_ROD_SEGMENT). */
 static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
                                   eval_args *a) {
   const rn_rod *r = &net->rods[ir];
@@ -94,7 +100,7 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
   case OP_HESS:
     memset(band, 0, (size_t)n * RNK_BAND * sizeof(double));
     if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK)
-      rn_csr_add_band(net, s, n, band, a->vals);
+      a->unbounded |= !rn_csr_add_band(net, s, n, band, a->vals);
     break;
   }
   if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
@@ -102,6 +108,61 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
   a->E[RN_TERM_BEND] += E[1];
   a->E[RN_TERM_TWIST] += E[2];
   return RN_OK;
+}
+
+/* The same for edges whose DOFs are free, distinct and consecutive in the
+ * reduced vector (rn_rod_direct_edges): the kernels read x (and v) and
+ * accumulate into g (Hv) in place, with no copy, however long the run. */
+static rn_status rod_direct_eval(const rn_network *net, int ir, int j0, int ne,
+                                 eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  size_t m = (size_t)net->map[rn_dof_edge_stencil(r->off, j0)];
+  int bad[2], rc = RNK_OK;
+  double E[3] = {0.0, 0.0, 0.0};
+  rnk_rod_seg seg = {ne, a->x + m,   r->ref + j0, r->sp + j0,       j0 ? 1 : 0,
+                     ne, r->bp + j0, r->tp + j0,  r->ref_twist + j0};
+  switch (a->op) {
+  case OP_ENERGY:
+    rc = rnk_rod_energy(&seg, E, bad);
+    break;
+  case OP_GRAD:
+    rc = rnk_rod_grad(&seg, E, a->g + m, bad);
+    break;
+  case OP_HVP: /* (a direction on the fixed DOFs only is zero here) */
+    if (!a->vfull) rc = rnk_rod_hvp(&seg, a->v + m, a->Hv + m, bad);
+    break;
+  case OP_HESS:
+    return rod_segment_eval(net, ir, j0, ne, a); /* (not reached) */
+  }
+  if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
+  a->E[RN_TERM_STRETCH] += E[0];
+  a->E[RN_TERM_BEND] += E[1];
+  a->E[RN_TERM_TWIST] += E[2];
+  return RN_OK;
+}
+
+/* All of rod ir's stretching, bending and twisting: segments that share one
+ * edge with the next (its stretching counted once), copied ones of at most
+ * RN_ROD_SEGMENT edges and, for the energy, gradient and HVP, one in-place
+ * segment over the rod's run of free consecutive DOFs. */
+static rn_status rod_stencils_eval(const rn_network *net, int ir, eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  int lo = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir];
+  int hi = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir + 1];
+  for (int j0 = 0;;) {
+    int j1, direct = j0 >= lo && hi - j0 >= 2;
+    if (direct)
+      j1 = hi;
+    else {
+      j1 = j0 + RN_ROD_SEGMENT < r->ne ? j0 + RN_ROD_SEGMENT : r->ne;
+      if (j0 < lo && j1 > lo + 1) j1 = lo + 1; /* the next starts the run */
+    }
+    rn_status st = direct ? rod_direct_eval(net, ir, j0, j1 - j0, a)
+                          : rod_segment_eval(net, ir, j0, j1 - j0, a);
+    if (st) return st;
+    if (j1 == r->ne) return RN_OK;
+    j0 = j1 - 1;
+  }
 }
 
 static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a) {
@@ -197,6 +258,7 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
     break;
   case OP_HESS:
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
+    a->unbounded |= !rn_all_bounded((size_t)s->n * (size_t)s->n, s->loc);
     rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
     break;
   }
@@ -259,13 +321,8 @@ static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
     forces_eval(net, r, a);
     return RN_OK;
   }
-  for (int j0 = 0;;) {
-    int ne = r->ne - j0 < RN_ROD_SEGMENT ? r->ne - j0 : RN_ROD_SEGMENT;
-    rn_status st = rod_segment_eval(net, ir, j0, ne, a);
-    if (st) return st;
-    if (j0 + ne == r->ne) break;
-    j0 += ne - 1;
-  }
+  rn_status st = rod_stencils_eval(net, ir, a);
+  if (st) return st;
   forces_eval(net, r, a);
   return RN_OK;
 }
@@ -287,7 +344,10 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
   int finite = rn_all_finite(RN_TERM_COUNT, a->E);
   if (finite && a->op == OP_GRAD) finite = rn_all_finite(net->nred, a->g);
   if (finite && a->op == OP_HVP) finite = rn_all_finite(net->nred, a->Hv);
-  if (finite && a->op == OP_HESS) finite = rn_all_finite(net->nnz, a->vals);
+  /* Hessian: every contribution was checked against RN_HESS_BOUND, so the
+   * sums cannot overflow (fewer than 1e7 contributions per entry), without
+   * another pass over the values */
+  if (finite && a->op == OP_HESS) finite = !a->unbounded;
   if (!finite)
     return rn_fail(net->ctx, RN_OVERFLOW, a->where,
                    "the energy or its derivatives overflow (not finite) at this state");
@@ -386,7 +446,7 @@ rn_status rn_network_hessian_values(const rn_network *net, const double *x,
   if ((st = check_eval(net, "rn_network_hessian_values", x, vals))) return st;
   args_init(&a, net, OP_HESS, "rn_network_hessian_values", x);
   a.vals = vals;
-  if (net->nnz) memset(vals, 0, net->nnz * sizeof(double));
+  rn_hessian_zero(net, vals); /* the rest is stored by the rods first */
   return eval_all(net, &a);
 }
 
