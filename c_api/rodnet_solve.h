@@ -47,9 +47,12 @@ typedef enum rn_factorization {
 
 /* Why a solve stopped. */
 typedef enum rn_solve_stop {
-  RN_STOP_GRADIENT = 0, /* ||g|| <= gtol_rel * g_scale (or gtol_abs) */
+  RN_STOP_GRADIENT = 0, /* equilibrium: force and moment residuals within their
+                           tolerances on the physical scale (and ||g|| <= gtol_abs
+                           if set) */
   RN_STOP_STEP = 1,     /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
-  RN_STOP_ENERGY = 2,   /* |dE| <= energy_tol * (1 + |E|) on an accepted step */
+  RN_STOP_ENERGY = 2,   /* |dE| <= energy_tol * (1 + |E|) on an accepted step
+                           (off by default) */
   RN_STOP_MAX_ITER = 3, /* iteration limit: not converged */
   RN_STOP_RADIUS = 4,   /* trust radius collapsed: not converged */
   RN_STOP_FAILED = 5    /* error (see status / context) */
@@ -69,10 +72,14 @@ typedef struct rn_iteration_info {
 typedef struct rn_solve_options {
   rn_solver_kind solver;
   int max_iterations;        /* Newton iterations per load step (default 200) */
-  double gtol_rel;           /* default 1e-9, relative to max(||g_0||, force scale) */
-  double gtol_abs;           /* default 0 (off) */
+  double gtol_rel;           /* default 1e-9: the force (moment) residual relative
+                                to the force (moment) scale of the applied loads and
+                                reactions (see rn_solve) */
+  double gtol_abs;           /* default 0 (off); > 0: ||g|| <= gtol_abs is required
+                                as well (not an alternative) */
   double step_tol;           /* default 1e-12 */
-  double energy_tol;         /* default 1e-15 */
+  double energy_tol;         /* default 0 (off): a tiny energy change does not
+                                certify equilibrium */
   int krylov_max_iterations; /* default 500 */
   double krylov_tol;         /* relative MINRES residual, default 1e-10 */
   double initial_radius;     /* default 0: automatic */
@@ -108,6 +115,16 @@ typedef struct rn_solve_report {
   long factorizations; /* numeric Cholesky factorisations of H + sigma D, failed
                           ones included (the main cost on large networks) */
   int predictor_steps; /* load steps whose predictor step was accepted */
+  /* Equilibrium at the last iterate on the physical scale (the gradient test;
+   * docs/solvers.md "Stopping tests"): the largest |g_i| over position DOFs (a
+   * force) and over material angles and joint rotations (a moment), the force
+   * and moment scales they are measured against (applied loads and support
+   * reactions, rn_network_reactions) and the tolerances the gradient test
+   * required, max(gtol_rel * scale, 10 * round-off floor).  All 0 when no
+   * iteration was checked (no free DOFs). */
+  double force_residual, moment_residual;
+  double force_scale, moment_scale;
+  double force_tolerance, moment_tolerance;
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
@@ -151,15 +168,19 @@ void rn_runtime_finalize(void);
  * solve does not converge the network is left at the last iterate of the last
  * attempt, at that attempt's load factor (rn_network_load_factor tells).
  *
- * Stopping (per load step; rep->stop says which test fired): gradient when
- * ||g|| <= gtol_rel * max(||g_0||, f) with g_0 the gradient at the start of the
- * load step and f = rep->initial_gradient_norm, the norm of the gradient at the
- * solve's starting state at the target load factor (the out-of-balance force to
- * remove), or ||g|| <= gtol_abs when gtol_abs > 0; step and energy only after an
- * accepted step the globalisation did not shorten (full Newton step: interior
- * trust-region step / unit line-search step).  TR-MINRES applies no convergence
- * test while the Hessian has significant negative curvature (a saddle is not a
- * solution).  rep->krylov_iterations counts MINRES iterations (TR-MINRES,
+ * Stopping (per load step; rep->stop says which test fired): gradient
+ * (equilibrium) when the largest force residual (|g_i| over position DOFs) is
+ * at most max(gtol_rel F, 10 f_F) and the largest moment residual (material
+ * angles, joint rotations) at most max(gtol_rel M, 10 f_M), where F = max(F0,
+ * M0 / L) and M = max(M0, F0 L), F0 and M0 the largest applied force / couple
+ * or support reaction force / moment at the iterate, L the size of the
+ * structure (bounding-box diagonal), and f_F, f_M the round-off floor of the
+ * gradient there; and ||g|| <= gtol_abs if gtol_abs > 0 (rep->force_residual
+ * and the fields after it report the values); step and energy (energy off by
+ * default) only after an accepted step the globalisation did not shorten (full
+ * Newton step: interior trust-region step / unit line-search step).  TR-MINRES applies no
+ * convergence test while the Hessian has significant negative curvature (a saddle is not
+ * a solution).  rep->krylov_iterations counts MINRES iterations (TR-MINRES,
  * ROL-LS-Newton) or truncated-CG iterations (ROL-TR-TCG, counted as Hessian-
  * vector products); rep->hvp_evals counts matrix-free and CSR Hessian-vector
  * products; rep->load_steps counts load steps attempted (including those cut

@@ -38,8 +38,10 @@ static const char solve_help[] =
     "                      ordering), cholmod (SuiteSparse CHOLMOD, the library\n"
     "                      reference for sparse)\n"
     "      --max-iter N    Newton iterations allowed per load step (default 200)\n"
-    "      --gtol X        stop when the gradient norm falls below X times its\n"
-    "                      scale (initial gradient or force scale; default 1e-9)\n"
+    "      --gtol X        equilibrium test: stop when the largest force (moment)\n"
+    "                      residual is below X times the force (moment) scale of\n"
+    "                      the applied loads and support reactions, or at the\n"
+    "                      round-off floor (default 1e-9; docs/solvers.md)\n"
     "      --load-steps N  apply the loads in N equal continuation steps (default:\n"
     "                      one step, split automatically when a full step fails)\n"
     "      --no-predictor  start each load step where the last one converged (default:\n"
@@ -183,6 +185,12 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->gradient_norm = rep->gradient_norm;
   in->initial_gradient_norm = rep->initial_gradient_norm;
   in->time_s = rep->time_s;
+  in->force_residual = rep->force_residual;
+  in->force_scale = rep->force_scale;
+  in->force_tolerance = rep->force_tolerance;
+  in->moment_residual = rep->moment_residual;
+  in->moment_scale = rep->moment_scale;
+  in->moment_tolerance = rep->moment_tolerance;
 }
 
 static void print_summary(const solve_args *a, const rn_scene *scene,
@@ -203,6 +211,10 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   printf("  energy       %.17g\n", in->energy);
   printf("  |gradient|   %.3e (initial %.3e)\n", in->gradient_norm,
          in->initial_gradient_norm);
+  printf("  residual     force %.3e (scale %.3e, tolerance %.3e), moment %.3e (scale "
+         "%.3e, tolerance %.3e)\n",
+         in->force_residual, in->force_scale, in->force_tolerance, in->moment_residual,
+         in->moment_scale, in->moment_tolerance);
   printf("  time         %.3f s\n", in->time_s);
   printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");
 }

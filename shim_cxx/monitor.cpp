@@ -38,8 +38,19 @@ bool Monitor::check(const IterationView &it) {
     info.load_factor = load_factor_;
     opt_.progress(opt_.progress_user, &info);
   }
-  const bool small_gradient = it.gnorm <= opt_.gtol_rel * g_scale_ ||
-                              (opt_.gtol_abs > 0.0 && it.gnorm <= opt_.gtol_abs);
+  bool small_gradient = false;
+  if (it.eq.valid) {
+    force_tol_ =
+        std::max(opt_.gtol_rel * it.eq.force_scale, kFloorFactor * it.eq.force_floor);
+    moment_tol_ =
+        std::max(opt_.gtol_rel * it.eq.moment_scale, kFloorFactor * it.eq.moment_floor);
+    small_gradient = it.eq.force_residual <= force_tol_ &&
+                     it.eq.moment_residual <= moment_tol_ &&
+                     (opt_.gtol_abs == 0.0 || it.gnorm <= opt_.gtol_abs);
+  } else {
+    small_gradient = it.gnorm <= opt_.gtol_rel * g_scale_ &&
+                     (opt_.gtol_abs == 0.0 || it.gnorm <= opt_.gtol_abs);
+  }
   const bool newton_step = it.iteration > 0 && it.accepted && it.unconstrained;
   if (!std::isfinite(it.energy) || !std::isfinite(it.gnorm)) {
     reason_ = RN_STOP_FAILED;
@@ -48,7 +59,7 @@ bool Monitor::check(const IterationView &it) {
   } else if (newton_step && !it.negative_curvature &&
              it.step_norm <= opt_.step_tol * (1.0 + it.x_norm)) {
     reason_ = RN_STOP_STEP;
-  } else if (newton_step && !it.negative_curvature &&
+  } else if (opt_.energy_tol > 0.0 && newton_step && !it.negative_curvature &&
              std::fabs(it.energy_change) <=
                  opt_.energy_tol * (1.0 + std::fabs(it.energy))) {
     reason_ = RN_STOP_ENERGY;

@@ -107,6 +107,8 @@ struct SolveTotals {
   rn_solve_stop stop = RN_STOP_FAILED;
   double energy = 0.0, gnorm = 0.0;
   rn_factorization factorization = RN_FACTOR_AUTO;
+  EquilibriumView eq; // at the last iterate checked
+  double force_tol = 0.0, moment_tol = 0.0;
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
@@ -134,6 +136,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   tot.stop = mon.reason();
   tot.energy = mon.energy();
   tot.gnorm = mon.gradient_norm();
+  tot.eq = mon.equilibrium();
+  tot.force_tol = mon.force_tolerance();
+  tot.moment_tol = mon.moment_tolerance();
   return mon.converged();
 }
 
@@ -214,6 +219,12 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->time_s = seconds;
   rep->factorization = tot.factorization;
   rep->predictor_steps = tot.predictor_steps;
+  rep->force_residual = tot.eq.force_residual;
+  rep->moment_residual = tot.eq.moment_residual;
+  rep->force_scale = tot.eq.force_scale;
+  rep->moment_scale = tot.eq.moment_scale;
+  rep->force_tolerance = tot.force_tol;
+  rep->moment_tolerance = tot.moment_tol;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
@@ -281,7 +292,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->gtol_rel = 1e-9;
   opt->gtol_abs = 0.0;
   opt->step_tol = 1e-12;
-  opt->energy_tol = 1e-15;
+  opt->energy_tol = 0.0; // off: a tiny energy change does not certify equilibrium
   opt->krylov_max_iterations = 500;
   opt->krylov_tol = 1e-10;
   opt->initial_radius = 0.0;

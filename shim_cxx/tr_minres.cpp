@@ -129,8 +129,8 @@ public:
       : p_(p), mon_(mon), opt_(opt), n_(p.size()),
         f0_(make_spd_factor(p, opt.factorization)),
         fl_(make_spd_factor(p, opt.factorization)),
-        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), rhs_(map, 1),
-        sol_(map, 1), w_(n_), q_(n_), hs_(n_), ms_(n_) {}
+        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), equilibrium_(p),
+        rhs_(map, 1), sol_(map, 1), w_(n_), q_(n_), hs_(n_), ms_(n_) {}
 
   using ROL::TypeU::Algorithm<double>::run;
   void run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
@@ -181,6 +181,7 @@ private:
   double mu_last_ = 0.0;  // mu_ of the last indefinite Hessian (0: none yet)
   std::vector<double> v_; // its eigenvector, ||v||_M = 1
   MinresSolver minres_;
+  Equilibrium equilibrium_;
   MV rhs_, sol_;
   std::vector<double> w_, q_, hs_, ms_;
 };
@@ -411,9 +412,12 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     it.radius = radius;
     it.negative_curvature = negcurv_;
     it.x_norm = norm2(n_, xp);
-    if (check && mon_.check(it)) break;
-    check = true;
     const double *gp = host_data(*gvec);
+    if (check) {
+      it.eq = equilibrium_.measure(xp, gp);
+      if (mon_.check(it)) break;
+    }
+    check = true;
     if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
       radius = sigma0_ == 0.0 ? std::numeric_limits<double>::max()
                               : std::max(gradient_radius(gp), 1e-8);

@@ -22,6 +22,9 @@ rn_add_test(shim_networks SOURCES unit/shim_networks.c
 # The load-step predictor: lattice under stretch (same state, fewer iterations) and
 # a strongly nonlinear cantilever (same state).
 rn_add_test(shim_predictor SOURCES unit/shim_predictor.c LIBS rodnet m LABELS unit)
+# The stopping test certifies equilibrium on a physical scale (strip with a moved
+# clamp: starting gradient 5.5e7; reactions, gtol_abs as a requirement).
+rn_add_test(shim_equilibrium SOURCES unit/shim_equilibrium.c LIBS rodnet m LABELS unit)
 # State snapshots: bit-identical evaluations after solving away and restoring.
 rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 # The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests

@@ -50,7 +50,7 @@ static void test_names_and_options(rn_context *ctx) {
   CHECK(opt.solver == RN_SOLVER_TR_MINRES);
   CHECK(opt.max_iterations == 200 && opt.krylov_max_iterations == 500);
   CHECK(opt.gtol_rel == 1e-9 && opt.gtol_abs == 0.0 && opt.step_tol == 1e-12);
-  CHECK(opt.energy_tol == 1e-15 && opt.krylov_tol == 1e-10);
+  CHECK(opt.energy_tol == 0.0 && opt.krylov_tol == 1e-10);
   CHECK(opt.initial_radius == 0.0 && opt.load_steps == 0 && opt.max_load_cuts == 8);
   CHECK(opt.progress == NULL);
 
