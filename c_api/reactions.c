@@ -40,6 +40,38 @@ rn_status rn_network_dof_kinds(const rn_network *net, int *kind) {
   return RN_OK;
 }
 
+rn_status rn_network_dof_info(const rn_network *net, rn_dof_info *info) {
+  static const char *where = "rn_network_dof_info";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!info && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "info is NULL");
+  for (int ir = 0; ir < net->nrods; ++ir) { /* rods first: joints overwrite aliases */
+    const rn_rod *r = &net->rods[ir];
+    for (int v = 0; v < r->nv; ++v)
+      for (int k = 0; k < RN_DOFS_PER_VERTEX; ++k) {
+        const int64_t m = net->map[rn_dof_vertex(r->off, v) + (size_t)k];
+        if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, ir, -1, v, k};
+      }
+    for (int j = 0; j < r->ne; ++j) {
+      const int64_t m = net->map[rn_dof_theta(r->off, j)];
+      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_THETA, ir, -1, j, 0};
+    }
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    for (int k = 0; k < 3; ++k) {
+      const int64_t m = net->map[rn_dof_joint_position(J->off) + (size_t)k];
+      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, -1, ij, 0, k};
+      const int64_t w = rn_joint_has_rotation(J)
+                            ? net->map[rn_dof_joint_rotation(J->off) + (size_t)k]
+                            : -1;
+      if (w >= 0) info[w] = (rn_dof_info){RN_DOF_ROTATION, -1, ij, 0, k};
+    }
+  }
+  return RN_OK;
+}
+
 rn_status rn_network_gradient_full(const rn_network *net, const double *x,
                                    double *gfull) {
   static const char *where = "rn_network_gradient_full";

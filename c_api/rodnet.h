@@ -394,6 +394,17 @@ enum {
 };
 /* kind[num_dofs]: the RN_DOF_* kind of every reduced DOF. */
 rn_status rn_network_dof_kinds(const rn_network *net, int *kind);
+/* What a reduced DOF is: its kind, its owner (a rod, or a joint: a rod end
+ * vertex at a joint is the joint's position) and where in it. */
+typedef struct rn_dof_info {
+  int kind;      /* RN_DOF_* */
+  int rod;       /* owning rod, -1 for a joint's DOF */
+  int joint;     /* owning joint, -1 for a rod's DOF */
+  int index;     /* rod vertex (position) or edge (angle); 0 for joints */
+  int component; /* coordinate or rotation component 0, 1, 2; 0 for angles */
+} rn_dof_info;
+/* info[num_dofs] for every reduced DOF. */
+rn_status rn_network_dof_info(const rn_network *net, rn_dof_info *info);
 /* gfull[num_full_dofs]: the gradient with respect to every DOF of the full
  * layout (free and fixed) at the reduced state x.  A rod end vertex at a joint
  * aliases the joint position: its slot holds its rod's contributions and the

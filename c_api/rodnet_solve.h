@@ -24,8 +24,23 @@ typedef enum rn_solver_kind {
   /* ROL trust region with truncated CG (Steihaug-Toint), preconditioned. */
   RN_SOLVER_ROL_TR_TCG = 1,
   /* ROL line-search Newton-Krylov with Belos MINRES as the Krylov solver. */
-  RN_SOLVER_ROL_LS_NEWTON = 2
+  RN_SOLVER_ROL_LS_NEWTON = 2,
+  /* Newton-Krylov trust region (issue 7): the step from preconditioned MINRES
+   * that stops at the trust-region boundary (in the preconditioner's norm), on
+   * nonpositive curvature, or at an inexact-Newton forcing tolerance; any SPD
+   * preconditioner (rn_preconditioner); leaves saddles; scales to large and
+   * distributed problems.  tr-minres stays the exact reference. */
+  RN_SOLVER_TR_KRYLOV = 3
 } rn_solver_kind;
+
+/* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
+ * the trust-region norm (docs/solvers.md). */
+typedef enum rn_preconditioner {
+  RN_PRECOND_AUTO = 0,  /* the default for the problem (factor for now) */
+  RN_PRECOND_FACTOR = 1 /* Cholesky of H + sigma D (rn_factorization), sigma the
+                           smallest shift that factors: exact when H is positive
+                           definite (one MINRES iteration); one rank only */
+} rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
  * search, negative curvature) and as the SPD preconditioner of every solver kind
@@ -96,6 +111,7 @@ typedef struct rn_solve_options {
    * (shifted if not positive definite); x + s is accepted only if it lowers
    * the energy at t.  0: off (the step starts at x). */
   int predictor;
+  rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV; default AUTO */
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -125,11 +141,14 @@ typedef struct rn_solve_report {
   double force_residual, moment_residual;
   double force_scale, moment_scale;
   double force_tolerance, moment_tolerance;
+  /* the preconditioner RN_SOLVER_TR_KRYLOV used (never AUTO once it ran);
+   * RN_PRECOND_AUTO for the other kinds */
+  rn_preconditioner preconditioner;
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
  * "radius", "failed"); name of a solver kind ("tr-minres", "rol-tr-tcg",
- * "rol-ls-newton"); parse a solver name (RN_ERR_ARG if unknown). */
+ * "rol-ls-newton", "tr-krylov"); parse a solver name (RN_ERR_ARG if unknown). */
 const char *rn_solve_stop_name(rn_solve_stop s);
 const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
@@ -137,6 +156,10 @@ rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
  * (RN_ERR_ARG if unknown). */
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
+/* Name of a preconditioner ("auto", "factor") and its parse (RN_ERR_ARG if
+ * unknown). */
+const char *rn_preconditioner_name(rn_preconditioner p);
+rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p);
 
 /* ---- runtime (Tpetra / Kokkos / MPI) --------------------------------------
  * The solvers run on Tpetra, whose runtime (Kokkos and, if not yet initialised,

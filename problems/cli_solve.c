@@ -32,6 +32,13 @@ static const char solve_help[] =
     "                        networks; default)\n"
     "                      rol-tr-tcg: ROL trust region with truncated CG\n"
     "                      rol-ls-newton: ROL line-search Newton with MINRES\n"
+    "                      tr-krylov: Newton-Krylov trust region: preconditioned\n"
+    "                        MINRES stopped at the trust-region boundary, on\n"
+    "                        nonpositive curvature or at an inexact-Newton\n"
+    "                        tolerance (docs/solvers.md)\n"
+    "      --preconditioner NAME  preconditioner of tr-krylov (it defines the\n"
+    "                      trust-region norm): auto (default), factor (Cholesky\n"
+    "                      of the shifted Hessian, one rank)\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
@@ -57,7 +64,7 @@ static const char solve_help[] =
     "unwritable output path, 4 solver error or failed write.\n";
 
 typedef struct solve_args {
-  const char *scene, *output, *vtk, *solver, *factorization;
+  const char *scene, *output, *vtk, *solver, *factorization, *preconditioner;
   int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol, no_predictor;
   double gtol;
 } solve_args;
@@ -76,6 +83,9 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--factorization", NULL,
                                     &v)) != 0)
     a->factorization = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--preconditioner", NULL,
+                                    &v)) != 0)
+    a->preconditioner = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) !=
            0) {
     if (m > 0)
@@ -150,8 +160,12 @@ static int make_options(const solve_args *a, const rn_scene *scene,
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton)",
+                              "rol-tr-tcg, rol-ls-newton, tr-krylov)",
                               a->solver);
+  if (a->preconditioner &&
+      rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
+    return rn_cli_usage_error(
+        "solve", "unknown preconditioner '%s' (known: auto, factor)", a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
     return rn_cli_usage_error("solve",
@@ -171,6 +185,8 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
   in->solver = rn_solver_name(opt->solver);
   in->factorization = rn_factorization_name(rep->factorization);
+  if (opt->solver == RN_SOLVER_TR_KRYLOV)
+    in->preconditioner = rn_preconditioner_name(rep->preconditioner);
   in->stop = rn_solve_stop_name(rep->stop);
   in->converged = rep->converged;
   in->iterations = rep->iterations;
@@ -198,7 +214,9 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   rn_network *net = rn_scene_network(scene);
   printf("rodnet solve: %s\n", a->scene);
   printf("  status       %s (stopped by: %s)\n", in->status, in->stop);
-  printf("  solver       %s (%s factorisation)\n", in->solver, in->factorization);
+  printf("  solver       %s (%s factorisation%s%s)\n", in->solver, in->factorization,
+         in->preconditioner ? ", preconditioner " : "",
+         in->preconditioner ? in->preconditioner : "");
   printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
          rn_network_num_rods(net), rn_scene_num_vertices(scene),
          rn_network_num_dofs(net));

@@ -95,6 +95,10 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"factorization\": ", f);
     put_str(f, in->factorization);
   }
+  if (in->preconditioner) {
+    fputs(",\n  \"preconditioner\": ", f);
+    put_str(f, in->preconditioner);
+  }
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);

@@ -20,6 +20,7 @@ typedef struct rn_result_info {
    * the tolerances of the gradient test, forces and moments apart */
   double force_residual, force_scale, force_tolerance;
   double moment_residual, moment_scale, moment_tolerance;
+  const char *preconditioner; /* tr-krylov's preconditioner ("factor", ...), or NULL */
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info,

@@ -59,6 +59,9 @@ public:
 
   // Reports progress; returns true when a stopping test fires (see reason()).
   bool check(const IterationView &it);
+  // Whether the gradient (equilibrium) test would pass at it, curvature aside; no
+  // side effects.
+  bool equilibrium_passes(const IterationView &it) const;
 
   rn_solve_stop reason() const { return reason_; }
   bool converged() const;

@@ -67,7 +67,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
   const int kind = enum_value(o.solver);
   if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
-      kind != RN_SOLVER_ROL_LS_NEWTON)
+      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -96,6 +96,9 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "unknown factorization";
   else if (o.predictor != 0 && o.predictor != 1)
     bad = "predictor must be 0 or 1";
+  else if (enum_value(o.preconditioner) != RN_PRECOND_AUTO &&
+           enum_value(o.preconditioner) != RN_PRECOND_FACTOR)
+    bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
 }
@@ -109,6 +112,7 @@ struct SolveTotals {
   rn_factorization factorization = RN_FACTOR_AUTO;
   EquilibriumView eq; // at the last iterate checked
   double force_tol = 0.0, moment_tol = 0.0;
+  rn_preconditioner preconditioner = RN_PRECOND_AUTO;
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
@@ -128,6 +132,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
     break;
   case RN_SOLVER_ROL_LS_NEWTON:
     run_rol_ls_newton(p, mon, opt);
+    break;
+  case RN_SOLVER_TR_KRYLOV:
+    tot.preconditioner = run_tr_krylov(p, mon, opt);
     break;
   }
   tot.iterations += mon.iterations();
@@ -225,6 +232,7 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->moment_scale = tot.eq.moment_scale;
   rep->force_tolerance = tot.force_tol;
   rep->moment_tolerance = tot.moment_tol;
+  rep->preconditioner = tot.preconditioner;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
@@ -302,6 +310,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->progress_user = nullptr;
   opt->factorization = RN_FACTOR_AUTO;
   opt->predictor = 1;
+  opt->preconditioner = RN_PRECOND_AUTO;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -330,13 +339,15 @@ const char *rn_solver_name(rn_solver_kind k) {
     return "rol-tr-tcg";
   case RN_SOLVER_ROL_LS_NEWTON:
     return "rol-ls-newton";
+  case RN_SOLVER_TR_KRYLOV:
+    return "tr-krylov";
   }
   return "unknown";
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
   const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                  RN_SOLVER_ROL_LS_NEWTON};
+                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
   return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 
@@ -358,6 +369,21 @@ rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
   const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
                                     RN_FACTOR_CHOLMOD};
   return rodnet::value_of_name(name, kinds, rn_factorization_name, f);
+}
+
+const char *rn_preconditioner_name(rn_preconditioner p) {
+  switch (rodnet::enum_value(p)) {
+  case RN_PRECOND_AUTO:
+    return "auto";
+  case RN_PRECOND_FACTOR:
+    return "factor";
+  }
+  return "unknown";
+}
+
+rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
+  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR};
+  return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 
 rn_status rn_runtime_initialize(int *argc, char ***argv) {

@@ -32,3 +32,11 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
+# SerialSystem (Tpetra CrsMatrix Hessian, blocks, snapshots) and the factor
+# preconditioner, through the shim's internal classes (C++, Trilinos headers).
+rn_add_test(shim_system SOURCES unit/shim_system.cpp unit/shim_system_nets.c
+            LIBS rodnet rodnet_shim_deps m LABELS unit)
+target_include_directories(shim_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                               ${PROJECT_SOURCE_DIR}/tests/unit)
+target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                      ${Trilinos_TPL_INCLUDE_DIRS})

@@ -118,10 +118,10 @@ int main(int argc, char **argv) {
   rn_network_destroy(&net);
 
   /* every solver kind reports the same scale at a cantilever's equilibrium */
-  const rn_solver_kind kinds[3] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                   RN_SOLVER_ROL_LS_NEWTON};
+  const rn_solver_kind kinds[4] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
+                                   RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
   const double P = 0.3 * 3.0 * shim_cantilever_EI();
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 4; ++i) {
     rn_solve_options_default(&opt);
     opt.solver = kinds[i];
     net = shim_cantilever(ctx, P);
