@@ -40,3 +40,7 @@ target_include_directories(shim_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
                                                ${PROJECT_SOURCE_DIR}/tests/unit)
 target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
                                                       ${Trilinos_TPL_INCLUDE_DIRS})
+# Newton iteration counts of issue 8's scenes (counts, never times).
+rn_add_test(shim_newton_counts SOURCES unit/shim_newton_counts.c
+            LIBS rodnet_problems LABELS unit ARGS ${PROJECT_SOURCE_DIR}/problems/scenes)
+target_include_directories(shim_newton_counts PRIVATE ${PROJECT_SOURCE_DIR}/problems)
