@@ -25,6 +25,11 @@ typedef struct eval_args {
   int unbounded;     /* OP_HESS: a contribution exceeded RN_HESS_BOUND or was not
                         finite (then the sums may overflow) */
   const char *where; /* public entry point, for messages */
+
+  /* OP_GRAD variants (reactions.c): on the full layout instead of g
+   * (rn_eval_gradient_full); |local gradient| into g (rn_eval_gradient_magnitude) */
+  double *gfull;
+  int magnitude;
 } eval_args;
 
 static rn_status degenerate(const rn_network *net, const eval_args *a, const char *term,
@@ -44,10 +49,33 @@ static void gather_dir(const rn_network *net, const eval_args *a, size_t s, int 
     rn_gather_dir(net, a->v, s, n, vl);
 }
 
+/* Accumulates a local gradient of n DOFs at full index s (or by index list idx). */
+static void scatter_grad(const rn_network *net, eval_args *a, const double *gl, size_t s,
+                         const size_t *idx, int n) {
+  double mag[RN_VERTEX_STENCIL];
+  if (a->magnitude) { /* stencils of rods and loads only (joints: by blocks below) */
+    for (int b = 0; b < n; b += RN_VERTEX_STENCIL) {
+      const int m = n - b < RN_VERTEX_STENCIL ? n - b : RN_VERTEX_STENCIL;
+      for (int k = 0; k < m; ++k) mag[k] = fabs(gl[b + k]);
+      if (idx)
+        rn_scatter_add_idx(net, mag, idx + b, m, a->g);
+      else
+        rn_scatter_add(net, mag, s + (size_t)b, m, a->g);
+    }
+    return;
+  }
+  if (a->gfull)
+    for (int k = 0; k < n; ++k) a->gfull[idx ? idx[k] : s + (size_t)k] += gl[k];
+  else if (idx)
+    rn_scatter_add_idx(net, gl, idx, n, a->g);
+  else
+    rn_scatter_add(net, gl, s, n, a->g);
+}
+
 /* Accumulates a local gradient / HVP / Hessian block of a stencil. */
 static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
                        const double *loc) {
-  if (a->op == OP_GRAD) rn_scatter_add(net, loc, s, n, a->g);
+  if (a->op == OP_GRAD) scatter_grad(net, a, loc, s, NULL, n);
   if (a->op == OP_HVP) rn_scatter_add(net, loc, s, n, a->Hv);
   if (a->op == OP_HESS) {
     a->unbounded |= !rn_all_bounded((size_t)n * (size_t)n, loc);
@@ -213,7 +241,7 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
     a->E[RN_TERM_LOAD] += rnk_force_energy(xv, f);
     if (a->op == OP_GRAD) {
       rnk_force_grad(f, gl);
-      rn_scatter_add(net, gl, s, RN_DOFS_PER_VERTEX, a->g);
+      scatter_grad(net, a, gl, s, NULL, RN_DOFS_PER_VERTEX);
     }
   }
 }
@@ -245,7 +273,7 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
   case OP_GRAD:
     if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, s->loc)) != RNK_OK) return rc;
     a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
-    rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->g);
+    scatter_grad(net, a, s->loc, 0, J->idx, s->n);
     break;
   case OP_HVP: /* dense block times the gathered direction */
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
@@ -310,7 +338,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
   if (a->op == OP_GRAD) {
     rnk_force_grad(f, gl);
-    rn_scatter_add(net, gl, p, RN_DOFS_PER_VERTEX, a->g);
+    scatter_grad(net, a, gl, p, NULL, RN_DOFS_PER_VERTEX);
   }
   return RN_OK;
 }
@@ -342,7 +370,9 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
    * loads): never hand back NaN or inf with RN_OK.  Recoverable, so a solver
    * rejects such a trial point. */
   int finite = rn_all_finite(RN_TERM_COUNT, a->E);
-  if (finite && a->op == OP_GRAD) finite = rn_all_finite(net->nred, a->g);
+  if (finite && a->op == OP_GRAD)
+    finite =
+        a->gfull ? rn_all_finite(net->nfull, a->gfull) : rn_all_finite(net->nred, a->g);
   if (finite && a->op == OP_HVP) finite = rn_all_finite(net->nred, a->Hv);
   /* Hessian: every contribution was checked against RN_HESS_BOUND, so the
    * sums cannot overflow (fewer than 1e7 contributions per entry), without
@@ -465,4 +495,21 @@ rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
   a.lambda = 1.0; /* the loads' rate: they are linear in the load factor */
   a.loads_only = 1;
   return eval_into(net, &a, g);
+}
+
+rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *gfull,
+                                const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_GRAD, where, x);
+  a.gfull = gfull;
+  if (net->nfull) memset(gfull, 0, net->nfull * sizeof(double));
+  return eval_all(net, &a);
+}
+
+rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
+                                     const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_GRAD, where, x);
+  a.magnitude = 1;
+  return eval_into(net, &a, gabs);
 }

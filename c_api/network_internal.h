@@ -200,6 +200,17 @@ rn_status rn_eval_fixed_hvp(const rn_network *net, const double *x, const double
 rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
                             const char *where);
 
+/* gfull[nfull] = gradient of the energy with respect to every full DOF (free and
+ * fixed; an aliased rod end slot gets its rod's stencils, the joint's slot the
+ * joint stencil and the joint force) at the reduced state x (reactions.c). */
+rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *gfull,
+                                const char *where);
+
+/* gabs[nred] = sum over the stencils (and loads) of |their gradient| at each reduced
+ * DOF: the magnitude of the forces that balance there (reactions.c). */
+rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
+                                     const char *where);
+
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference
  * twists (prev 0) and rest quantities at the input shape (theta = 0). */
