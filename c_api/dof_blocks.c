@@ -16,30 +16,25 @@
 
 #include "network_internal.h"
 
-static void set_dof(const rn_network *net, size_t a, int32_t blk, int kind,
-                    const double p[3], const double t[3], int32_t *block, int *kinds,
-                    double *point, double *axis) {
+static void set_dof(const rn_network *net, size_t a, int32_t blk, const double p[3],
+                    const double t[3], int32_t *block, double *point, double *axis) {
+  static const double zero[3] = {0.0, 0.0, 0.0};
   int64_t m = net->map[a];
   if (m < 0) return;
   block[m] = blk;
-  if (kinds) kinds[m] = kind;
   if (point) memcpy(point + 3 * m, p, 3 * sizeof(double));
-  if (axis) {
-    static const double zero[3] = {0.0, 0.0, 0.0};
-    memcpy(axis + 3 * m, t ? t : zero, 3 * sizeof(double));
-  }
+  if (axis) memcpy(axis + 3 * m, t ? t : zero, 3 * sizeof(double));
 }
 
 /* Every DOF of rod ir as interior to it: vertices, then material angles (point:
  * the edge's midpoint, axis: its unit tangent). */
-static void classify_rod(const rn_network *net, int ir, int32_t *block, int *kinds,
-                         double *point, double *axis) {
+static void classify_rod(const rn_network *net, int ir, int32_t *block, double *point,
+                         double *axis) {
   const rn_rod *r = &net->rods[ir];
   for (int i = 0; i < r->nv; ++i) {
     const double *xi = net->xfull + rn_dof_vertex(r->off, i);
     for (int k = 0; k < 3; ++k)
-      set_dof(net, rn_dof_vertex(r->off, i) + (size_t)k, ir, RN_DOF_POSITION_X + k, xi,
-              NULL, block, kinds, point, axis);
+      set_dof(net, rn_dof_vertex(r->off, i) + (size_t)k, ir, xi, NULL, block, point, axis);
   }
   for (int j = 0; j < r->ne; ++j) {
     const double *a = net->xfull + rn_dof_vertex(r->off, j);
@@ -52,29 +47,28 @@ static void classify_rod(const rn_network *net, int ir, int32_t *block, int *kin
     }
     len = sqrt(len);
     for (int k = 0; k < 3; ++k) t[k] = len > 0.0 ? t[k] / len : 0.0;
-    set_dof(net, rn_dof_theta(r->off, j), ir, RN_DOF_THETA, mid, t, block, kinds, point,
-            axis);
+    set_dof(net, rn_dof_theta(r->off, j), ir, mid, t, block, point, axis);
   }
 }
 
-rn_status rn_network_dof_blocks(const rn_network *net, int32_t *block, int *kind,
-                                double *point, double *axis) {
+rn_status rn_network_dof_blocks(const rn_network *net, int32_t *block, double *point,
+                                double *axis) {
   static const char *where = "rn_network_dof_blocks";
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_final(net, where))) return st;
   if (!block && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "block is NULL");
-  for (int ir = 0; ir < net->nrods; ++ir) classify_rod(net, ir, block, kind, point, axis);
+  for (int ir = 0; ir < net->nrods; ++ir) classify_rod(net, ir, block, point, axis);
   for (int ij = 0; ij < net->njoints; ++ij) {
     const rn_joint *J = &net->joints[ij];
     const double *xj = net->xfull + rn_dof_joint_position(J->off);
     for (int k = 0; k < 3; ++k)
-      set_dof(net, rn_dof_joint_position(J->off) + (size_t)k, RN_DOF_INTERFACE,
-              RN_DOF_POSITION_X + k, xj, NULL, block, kind, point, axis);
+      set_dof(net, rn_dof_joint_position(J->off) + (size_t)k, RN_DOF_INTERFACE, xj, NULL,
+              block, point, axis);
     if (rn_joint_has_rotation(J)) {
       for (int k = 0; k < 3; ++k)
-        set_dof(net, rn_dof_joint_rotation(J->off) + (size_t)k, RN_DOF_INTERFACE,
-                RN_DOF_ROTATION_X + k, xj, NULL, block, kind, point, axis);
+        set_dof(net, rn_dof_joint_rotation(J->off) + (size_t)k, RN_DOF_INTERFACE, xj,
+                NULL, block, point, axis);
       continue; /* rigid kernel: the ends do not couple with each other */
     }
     for (int k = 0; k < J->valence; ++k) {

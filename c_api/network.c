@@ -8,9 +8,27 @@
 
 /* ---- shared checks ------------------------------------------------------- */
 int rn_all_finite(size_t n, const double *v) {
-  for (size_t i = 0; i < n; ++i)
+  /* x * 0 is NaN exactly for infinite or NaN x: one test per 8 entries */
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    double s = (v[i] * 0.0 + v[i + 1] * 0.0) + (v[i + 2] * 0.0 + v[i + 3] * 0.0) +
+               (v[i + 4] * 0.0 + v[i + 5] * 0.0) + (v[i + 6] * 0.0 + v[i + 7] * 0.0);
+    if (s != s) return 0;
+  }
+  for (; i < n; ++i)
     if (!isfinite(v[i])) return 0;
   return 1;
+}
+
+int rn_all_bounded(size_t n, const double *v) {
+  double m = 0.0; /* the largest magnitude; NaN makes it fail below */
+  int nan = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double a = fabs(v[i]);
+    m = a > m ? a : m;
+    nan |= a != a;
+  }
+  return !nan && m <= RN_HESS_BOUND;
 }
 
 int rn_wrap_index(int i, int n) {
@@ -86,8 +104,7 @@ void rn_network_destroy(rn_network **net) {
   free(n->map);
   free(n->red2full);
   free(n->xfull);
-  free(n->rowptr);
-  free(n->col);
+  rn_hessian_pattern_free(n);
   free(n);
   *net = NULL;
 }

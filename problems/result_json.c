@@ -1,11 +1,14 @@
-/* result_json.c - result JSON writer (streams the rods; %.17g numbers). */
+/* result_json.c - result JSON writer (streams the rods; %.17g numbers written by
+ * rn_format_g17, a row at a time). */
 #include "result_json.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "atomic_file.h"
+#include "num_format.h"
 
 typedef struct json_out {
   FILE *f;
@@ -14,13 +17,33 @@ typedef struct json_out {
   const rn_result_info *info;
 } json_out;
 
+/* Appends x to buf ("null" if it is not finite); returns the characters written
+ * (at most RN_NUM_BUF - 1). */
+static size_t num_text(json_out *o, double x, char *buf) {
+  if (isfinite(x)) return rn_format_g17(x, buf);
+  o->not_finite = 1;
+  memcpy(buf, "null", 5);
+  return 4;
+}
+
 static void put_num(json_out *o, double x) {
-  if (isfinite(x))
-    fprintf(o->f, "%.17g", x);
-  else {
-    o->not_finite = 1;
-    fputs("null", o->f);
+  char buf[RN_NUM_BUF];
+  fwrite(buf, 1, num_text(o, x, buf), o->f);
+}
+
+/* Appends "[x, y, z]" of v to buf (at least 3 RN_NUM_BUF + 8 bytes). */
+static size_t vec_text(json_out *o, const double *v, char *buf) {
+  size_t n = 0;
+  buf[n++] = '[';
+  for (int k = 0; k < 3; k++) {
+    if (k) {
+      buf[n++] = ',';
+      buf[n++] = ' ';
+    }
+    n += num_text(o, v[k], buf + n);
   }
+  buf[n++] = ']';
+  return n;
 }
 
 static void put_str(FILE *f, const char *s) {
@@ -60,6 +83,25 @@ static rn_status put_terms(json_out *o, rn_network *net) {
   return RN_OK;
 }
 
+/* "equilibrium": the residual on the physical scale that the gradient test used. */
+static void put_equilibrium(json_out *o) {
+  const rn_result_info *in = o->info;
+  const char *keys[6] = {"force_residual",  "force_scale",  "force_tolerance",
+                         "moment_residual", "moment_scale", "moment_tolerance"};
+  const double vals[6] = {in->force_residual,  in->force_scale,  in->force_tolerance,
+                          in->moment_residual, in->moment_scale, in->moment_tolerance};
+  fputs("  \"equilibrium\": {", o->f);
+  for (int k = 0; k < 6; k++) {
+    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
+    put_num(o, vals[k]);
+  }
+  fputs(",\n    \"relative_force_residual\": ", o->f);
+  put_num(o, in->force_scale > 0.0 ? in->force_residual / in->force_scale : 0.0);
+  fputs(", \"relative_moment_residual\": ", o->f);
+  put_num(o, in->moment_scale > 0.0 ? in->moment_residual / in->moment_scale : 0.0);
+  fputs("},\n", o->f);
+}
+
 static void put_summary(json_out *o, rn_network *net) {
   const rn_result_info *in = o->info;
   FILE *f = o->f;
@@ -76,6 +118,10 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"factorization\": ", f);
     put_str(f, in->factorization);
   }
+  if (in->preconditioner) {
+    fputs(",\n  \"preconditioner\": ", f);
+    put_str(f, in->preconditioner);
+  }
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);
@@ -91,6 +137,7 @@ static void put_summary(json_out *o, rn_network *net) {
           in->krylov_iterations);
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
+  put_equilibrium(o);
 }
 
 static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
@@ -101,32 +148,32 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_rod_name(net, rod));
   fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
+  char row[3 * RN_NUM_BUF + 16];
+  static const char sep[] = ",\n       "; /* the first row has no comma */
   for (int i = 0; i < nv; i++) {
-    fputs(i ? ",\n       [" : "\n       [", f);
-    for (int k = 0; k < 3; k++) {
-      if (k) fputs(", ", f);
-      put_num(o, buf[3 * i + k]);
-    }
-    fputc(']', f);
+    size_t n = i ? 9 : 8;
+    memcpy(row, i ? sep : sep + 1, n);
+    n += vec_text(o, &buf[3 * i], row + n);
+    fwrite(row, 1, n, f);
   }
   fputs("],\n     \"theta\": [", f);
   if ((st = rn_network_rod_theta(net, rod, buf))) return st;
   for (int i = 0; i + 1 < nv; i++) {
-    fputs(i ? ", " : "", f);
-    if (i && i % 8 == 0) fputs("\n       ", f);
-    put_num(o, buf[i]);
+    size_t n = 0;
+    if (i) {
+      n = i % 8 ? 2 : 10; /* a line break after every 8 values */
+      memcpy(row, ", \n       ", n);
+    }
+    n += num_text(o, buf[i], row + n);
+    fwrite(row, 1, n, f);
   }
   fputs("]}", f);
   return RN_OK;
 }
 
 static void put_vec(json_out *o, const double *v) {
-  fputc('[', o->f);
-  for (int k = 0; k < 3; k++) {
-    if (k) fputs(", ", o->f);
-    put_num(o, v[k]);
-  }
-  fputc(']', o->f);
+  char row[3 * RN_NUM_BUF + 8];
+  fwrite(row, 1, vec_text(o, v, row), o->f);
 }
 
 /* {"name", "model", "valence", "position": [x, y, z], "rotation": 3 rows}. */

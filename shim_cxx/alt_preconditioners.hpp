@@ -51,8 +51,9 @@ private:
 };
 
 // Rigid-body modes (6 columns: translations x, y, z, rotations about x, y, z through
-// the origin) of DOFs of the given kinds (rn_dof_kind), points and axes (3 per DOF,
-// rn_network_dof_blocks), on map (one entry per local element).
+// the origin) of DOFs of the given DofBlocks kinds (0-2 position, 3-5 rotation, 6
+// angle), points and axes (3 per DOF, rn_network_dof_blocks), on map (one entry per
+// local element).
 Teuchos::RCP<TMV> rigid_body_modes(const Teuchos::RCP<const TMap> &map, const int *kind,
                                    const double *point, const double *axis);
 

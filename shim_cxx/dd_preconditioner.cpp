@@ -17,6 +17,7 @@
 #include <Tpetra_Import.hpp>
 
 #include "alt_preconditioners.hpp"
+#include "dof_blocks.hpp"
 #include "shim_error.hpp"
 #include "sparse_cholesky.hpp"
 
@@ -190,7 +191,7 @@ std::vector<int> coarse_nodes(const DofBlocks &blk, std::vector<double> &points)
   };
   for (size_t k = 0; k < blk.interface.size(); ++k) {
     const DofBlocks::Interface &f = blk.interface[k];
-    if (f.kind == RN_DOF_THETA) {
+    if (f.kind == kDofAngle) {
       angles.push_back(k);
       continue;
     }
@@ -253,13 +254,13 @@ Teuchos::RCP<TMV> rigid_body_modes(const Teuchos::RCP<const TMap> &map, const in
   for (size_t k = 0; k < v.extent(0); ++k) {
     const double *p = point + 3 * k;
     for (size_t c = 0; c < 6; ++c) v(k, c) = 0.0;
-    if (kind[k] < RN_DOF_ROTATION_X) { // t + w x p, component a
+    if (kind[k] < kDofRotation) { // t + w x p, component a
       const size_t a = static_cast<size_t>(kind[k]);
       const double wxp[3][3] = {
           {0.0, -p[2], p[1]}, {p[2], 0.0, -p[0]}, {-p[1], p[0], 0.0}};
       v(k, a) = 1.0;
       for (size_t c = 0; c < 3; ++c) v(k, 3 + c) = wxp[c][a];
-    } else if (kind[k] < RN_DOF_THETA) { // w
+    } else if (kind[k] < kDofAngle) { // w
       v(k, static_cast<size_t>(kind[k])) = 1.0;
     } else { // w . axis
       for (size_t c = 0; c < 3; ++c) v(k, 3 + c) = axis[3 * k + c];

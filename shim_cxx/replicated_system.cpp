@@ -7,6 +7,7 @@
 #include <Teuchos_OrdinalTraits.hpp>
 
 #include "alt_preconditioners.hpp"
+#include "dof_blocks.hpp"
 #include "shim_error.hpp"
 
 namespace rodnet {
@@ -48,12 +49,8 @@ ReplicatedSystem::ReplicatedSystem(rn_network *net,
   const size_t n = problem_.size();
   const int nranks = comm->getSize(), me = comm->getRank();
   const int nrods = rn_network_num_rods(net);
-  std::vector<int32_t> block(n);
-  std::vector<int> kind(n);
-  std::vector<double> point(3 * n), axis(3 * n);
-  check_status(
-      rn_network_dof_blocks(net, block.data(), kind.data(), point.data(), axis.data()),
-      "rn_network_dof_blocks");
+  const NetworkDofs dofs = network_dofs(net);
+  const std::vector<int32_t> &block = dofs.block;
   const std::vector<int> rank = dof_ranks(problem_, block, nrods, nranks);
   for (size_t i = 0; i < n; ++i)
     if (rank[i] == me) owned_.push_back(static_cast<GO>(i));
@@ -70,26 +67,14 @@ ReplicatedSystem::ReplicatedSystem(rn_network *net,
   full_.assign(n, 0.0);
   gfull_.assign(n, 0.0);
 
-  // Blocks: owned rods renumbered 0, 1, ... in rod order.
-  std::vector<int> local_rod(static_cast<size_t>(nrods), -1);
-  blocks_.block.assign(owned_.size(), -1);
-  for (size_t l = 0; l < owned_.size(); ++l) {
-    const size_t i = static_cast<size_t>(owned_[l]);
-    kind_.push_back(kind[i]);
-    point_.insert(point_.end(), point.begin() + 3 * i, point.begin() + 3 * i + 3);
-    axis_.insert(axis_.end(), axis.begin() + 3 * i, axis.begin() + 3 * i + 3);
-    if (block[i] >= 0) {
-      int &lr = local_rod[static_cast<size_t>(block[i])];
-      if (lr < 0) lr = blocks_.num_rods++;
-      blocks_.block[l] = lr;
-    } else {
-      DofBlocks::Interface f;
-      f.local = static_cast<LO>(l);
-      f.kind = kind[i];
-      std::copy(point.begin() + 3 * i, point.begin() + 3 * i + 3, f.point);
-      std::copy(axis.begin() + 3 * i, axis.begin() + 3 * i + 3, f.axis);
-      blocks_.interface.push_back(f);
-    }
+  // Blocks: owned rods renumbered 0, 1, ... in rod order; kinds, points and axes of
+  // the owned DOFs for rigid_body_modes().
+  blocks_ = make_dof_blocks(dofs, owned_);
+  for (GO g : owned_) {
+    const size_t i = static_cast<size_t>(g);
+    kind_.push_back(dofs.kind[i]);
+    point_.insert(point_.end(), dofs.point.begin() + 3 * i, dofs.point.begin() + 3 * i + 3);
+    axis_.insert(axis_.end(), dofs.axis.begin() + 3 * i, dofs.axis.begin() + 3 * i + 3);
   }
 
   // Hessian of the owned rows on the network's pattern.

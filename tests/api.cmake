@@ -12,3 +12,6 @@ rn_add_test(api_components SOURCES unit/api_components.c LIBS rodnet m LABELS un
 rn_add_test(api_load_increment SOURCES unit/api_load_increment.c LIBS rodnet m LABELS unit)
 # Rod / interface classification of the reduced DOFs (domain decomposition).
 rn_add_test(api_dof_blocks SOURCES unit/api_dof_blocks.c LIBS rodnet m LABELS unit)
+# Equilibrium checks: DOF kinds, the full-layout gradient, support reactions
+# (FD h-sweep in the load factor of prescribed motions, balance at equilibrium).
+rn_add_test(api_reactions SOURCES unit/api_reactions.c LIBS rodnet m LABELS unit)

@@ -22,6 +22,9 @@ rn_add_test(shim_networks SOURCES unit/shim_networks.c
 # The load-step predictor: lattice under stretch (same state, fewer iterations) and
 # a strongly nonlinear cantilever (same state).
 rn_add_test(shim_predictor SOURCES unit/shim_predictor.c LIBS rodnet m LABELS unit)
+# The stopping test certifies equilibrium on a physical scale (strip with a moved
+# clamp: starting gradient 5.5e7; reactions, gtol_abs as a requirement).
+rn_add_test(shim_equilibrium SOURCES unit/shim_equilibrium.c LIBS rodnet m LABELS unit)
 # State snapshots: bit-identical evaluations after solving away and restoring.
 rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 # The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests
@@ -43,3 +46,45 @@ if(MPIEXEC_EXECUTABLE)
   set_tests_properties(shim_dd_2ranks PROPERTIES LABELS "mpi" TIMEOUT 600 PROCESSORS 2
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 endif()
+# The runtime uses MPI exactly in an MPI job (launcher variables, RODNET_MPI, or MPI
+# initialised by the program); same solution either way; finalize / re-initialize.
+rn_add_test(shim_runtime SOURCES unit/shim_runtime.c LIBS rodnet MPI::MPI_C
+            ARGS serial LABELS unit)
+set_tests_properties(shim_runtime PROPERTIES ENVIRONMENT "RODNET_MPI=")
+add_test(NAME shim_runtime_forced_mpi COMMAND shim_runtime mpi)
+add_test(NAME shim_runtime_program_mpi COMMAND shim_runtime program-mpi)
+set_tests_properties(shim_runtime_forced_mpi PROPERTIES ENVIRONMENT "RODNET_MPI=1")
+set_tests_properties(shim_runtime_program_mpi PROPERTIES ENVIRONMENT "RODNET_MPI=")
+set_tests_properties(shim_runtime_forced_mpi shim_runtime_program_mpi PROPERTIES
+  LABELS unit TIMEOUT 120)
+if(MPIEXEC_EXECUTABLE)
+  set(rn_mpi_env "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
+                 "OMPI_MCA_rmaps_base_oversubscribe=1")
+  add_test(NAME shim_runtime_mpirun
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2
+                   $<TARGET_FILE:shim_runtime> mpi)
+  set_tests_properties(shim_runtime_mpirun PROPERTIES PROCESSORS 2
+                       ENVIRONMENT "${rn_mpi_env};RODNET_MPI=")
+  add_test(NAME shim_runtime_mpirun_forced_serial
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 1
+                   $<TARGET_FILE:shim_runtime> serial)
+  set_tests_properties(shim_runtime_mpirun_forced_serial PROPERTIES PROCESSORS 1
+                       ENVIRONMENT "${rn_mpi_env};RODNET_MPI=0")
+  set_tests_properties(shim_runtime_mpirun shim_runtime_mpirun_forced_serial PROPERTIES
+    LABELS "unit;mpi" TIMEOUT 120)
+endif()
+# Translating a whole scene leaves energies, gradient and solve unchanged (load
+# potentials measured from the initial state).
+rn_add_test(shim_translation SOURCES unit/shim_translation.c LIBS rodnet m LABELS unit)
+# SerialSystem (Tpetra CrsMatrix Hessian, blocks, snapshots) and the factor
+# preconditioner, through the shim's internal classes (C++, Trilinos headers).
+rn_add_test(shim_system SOURCES unit/shim_system.cpp unit/shim_system_nets.c
+            LIBS rodnet rodnet_shim_deps m LABELS unit)
+target_include_directories(shim_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                               ${PROJECT_SOURCE_DIR}/tests/unit)
+target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                      ${Trilinos_TPL_INCLUDE_DIRS})
+# Newton iteration counts of issue 8's scenes (counts, never times).
+rn_add_test(shim_newton_counts SOURCES unit/shim_newton_counts.c
+            LIBS rodnet_problems LABELS unit ARGS ${PROJECT_SOURCE_DIR}/problems/scenes)
+target_include_directories(shim_newton_counts PRIVATE ${PROJECT_SOURCE_DIR}/problems)

@@ -8,7 +8,8 @@
  *  - the interface is exactly the joint DOFs plus, for elastic joints, the
  *    free DOFs of the vertex next to the joint and of the terminal angle of every
  *    end (counts by hand), and every such end DOF does couple with another rod;
- *  - the rigid-body modes built from kind, point and axis are in the null space
+ *  - the rigid-body modes built from the kinds (rn_network_dof_info), point and
+ *    axis are in the null space
  *    of the Hessian of a free network at rest (translations at any state);
  *  - kinds and points of joint and rod DOFs; error paths. */
 #include <math.h>
@@ -58,10 +59,14 @@ static rn_network *triangle(rn_context *ctx, int ne, int model_ab, int model_c) 
   return net;
 }
 
+/* DOF kinds of these tests: 0, 1, 2 position components, 3, 4, 5 rotation
+ * components, 6 a material angle (from rn_network_dof_info). */
+enum { K_ROT = 3, K_THETA = 6 };
+
 typedef struct blocks {
   size_t n;
   int32_t *block;
-  int *kind;
+  int *kind, *rod; /* rod: rn_dof_info.rod (-1 for joint DOFs) */
   double *point, *axis;
 } blocks;
 
@@ -70,16 +75,27 @@ static blocks get_blocks(const rn_network *net) {
   b.n = rn_network_num_dofs(net);
   b.block = malloc(b.n * sizeof(int32_t) + 1);
   b.kind = malloc(b.n * sizeof(int) + 1);
+  b.rod = malloc(b.n * sizeof(int) + 1);
   b.point = malloc(3 * b.n * sizeof(double) + 1);
   b.axis = malloc(3 * b.n * sizeof(double) + 1);
-  for (size_t i = 0; i < b.n; ++i) b.block[i] = -7, b.kind[i] = -7;
-  CHECK_STATUS(rn_network_dof_blocks(net, b.block, b.kind, b.point, b.axis), RN_OK);
+  rn_dof_info *info = malloc(b.n * sizeof(rn_dof_info) + 1);
+  for (size_t i = 0; i < b.n; ++i) b.block[i] = -7;
+  CHECK_STATUS(rn_network_dof_blocks(net, b.block, b.point, b.axis), RN_OK);
+  CHECK_STATUS(rn_network_dof_info(net, info), RN_OK);
+  for (size_t i = 0; i < b.n; ++i) {
+    b.kind[i] = info[i].kind == RN_DOF_POSITION   ? info[i].component
+                : info[i].kind == RN_DOF_ROTATION ? K_ROT + info[i].component
+                                                  : K_THETA;
+    b.rod[i] = info[i].rod;
+  }
+  free(info);
   return b;
 }
 
 static void free_blocks(blocks *b) {
   free(b->block);
   free(b->kind);
+  free(b->rod);
   free(b->point);
   free(b->axis);
 }
@@ -114,7 +130,8 @@ static void check_no_coupling(const rn_network *net, const char *name) {
   blocks b = get_blocks(net);
   for (size_t i = 0; i < n; ++i) {
     CHECK(b.block[i] >= RN_DOF_INTERFACE && b.block[i] < rn_network_num_rods(net));
-    CHECK(b.kind[i] >= 0 && b.kind[i] <= RN_DOF_THETA);
+    CHECK(b.kind[i] >= 0 && b.kind[i] <= K_THETA);
+    CHECK(b.block[i] == RN_DOF_INTERFACE || b.block[i] == b.rod[i]); /* its own rod */
     for (int64_t p = rowptr[i]; p < rowptr[i + 1]; ++p) {
       int32_t j = col[p];
       if (vals[p] != 0.0 && b.block[i] >= 0 && b.block[j] >= 0 &&
@@ -173,32 +190,7 @@ static void check_interface_needed(const rn_network *net, const char *name) {
   const int32_t *col;
   double *vals = deformed_hessian(net, 1e-2, &nnz, &rowptr, &col);
   blocks b = get_blocks(net);
-  /* owner rod of each DOF regardless of the interface: -1 for joint DOFs */
-  int32_t *owner = malloc(n * sizeof(int32_t) + 1);
-  for (size_t i = 0; i < n; ++i) owner[i] = -1;
-  for (int r = 0; r < rn_network_num_rods(net); ++r) {
-    /* a rod's DOFs: vertices and angles not aliased to a joint, found through the
-     * points: a DOF is the rod's if its point is one of the rod's vertices or
-     * edge midpoints (positions at the initial state). */
-    int nv = rn_network_rod_num_vertices(net, r);
-    double *xyz = malloc(3 * (size_t)nv * sizeof(double));
-    CHECK_STATUS(rn_network_rod_vertices(net, r, xyz), RN_OK);
-    for (size_t i = 0; i < n; ++i) {
-      for (int v = 0; v < nv; ++v) {
-        double d = 0.0, dm = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          d += fabs(b.point[3 * i + k] - xyz[3 * v + k]);
-          if (v + 1 < nv)
-            dm += fabs(b.point[3 * i + k] - 0.5 * (xyz[3 * v + k] + xyz[3 * v + 3 + k]));
-        }
-        int is_end = v == 0 || v == nv - 1;
-        if ((b.kind[i] < RN_DOF_ROTATION_X && d < 1e-14 && !is_end) ||
-            (b.kind[i] == RN_DOF_THETA && v + 1 < nv && dm < 1e-14))
-          owner[i] = r;
-      }
-    }
-    free(xyz);
-  }
+  const int *owner = b.rod; /* owning rod regardless of the interface, -1: joint */
   for (size_t i = 0; i < n; ++i) {
     int coupled = 0;
     if (b.block[i] != RN_DOF_INTERFACE || owner[i] < 0) continue;
@@ -209,7 +201,6 @@ static void check_interface_needed(const rn_network *net, const char *name) {
   if (unneeded)
     printf("%s: %zu interface rod DOFs couple with no other rod\n", name, unneeded);
   CHECK(unneeded == 0);
-  free(owner);
   free(vals);
   free_blocks(&b);
 }
@@ -239,10 +230,10 @@ static void check_rigid_modes(const rn_network *net, const char *name) {
       const double *p = b.point + 3 * i, *a = b.axis + 3 * i;
       const double wxp[3] = {w[1] * p[2] - w[2] * p[1], w[2] * p[0] - w[0] * p[2],
                              w[0] * p[1] - w[1] * p[0]};
-      if (b.kind[i] < RN_DOF_ROTATION_X)
+      if (b.kind[i] < K_ROT)
         m[i] = t[b.kind[i]] + wxp[b.kind[i]];
-      else if (b.kind[i] < RN_DOF_THETA)
-        m[i] = w[b.kind[i] - RN_DOF_ROTATION_X];
+      else if (b.kind[i] < K_THETA)
+        m[i] = w[b.kind[i] - K_ROT];
       else
         m[i] = w[0] * a[0] + w[1] * a[1] + w[2] * a[2];
       mmax = fmax(mmax, fabs(m[i]));
@@ -277,17 +268,17 @@ static void check_kinds(void) {
     double an =
         sqrt(b.axis[3 * i] * b.axis[3 * i] + b.axis[3 * i + 1] * b.axis[3 * i + 1] +
              b.axis[3 * i + 2] * b.axis[3 * i + 2]);
-    if (b.kind[i] == RN_DOF_THETA) {
+    if (b.kind[i] == K_THETA) {
       nth++;
       CHECK_NEAR(an, 1.0, 1e-14);
     } else {
       CHECK(an == 0.0);
-      if (b.kind[i] < RN_DOF_ROTATION_X)
+      if (b.kind[i] < K_ROT)
         npos++;
       else
         nrot++;
     }
-    if (b.kind[i] >= RN_DOF_ROTATION_X && b.kind[i] < RN_DOF_THETA)
+    if (b.kind[i] >= K_ROT && b.kind[i] < K_THETA)
       CHECK(b.block[i] == RN_DOF_INTERFACE);
   }
   /* rods AB, BC, CA, AD of 3 edges, BC1 of 1, CA2 of 2: 15 edges; vertices: 3
@@ -298,8 +289,8 @@ static void check_kinds(void) {
   CHECK(nrot == 6);
   free_blocks(&b);
   /* errors */
-  CHECK_STATUS(rn_network_dof_blocks(net, NULL, NULL, NULL, NULL), RN_ERR_ARG);
-  CHECK_STATUS(rn_network_dof_blocks(NULL, NULL, NULL, NULL, NULL), RN_ERR_ARG);
+  CHECK_STATUS(rn_network_dof_blocks(net, NULL, NULL, NULL), RN_ERR_ARG);
+  CHECK_STATUS(rn_network_dof_blocks(NULL, NULL, NULL, NULL), RN_ERR_ARG);
   rn_network_destroy(&net);
   {
     rn_network *open = NULL;
@@ -307,7 +298,7 @@ static void check_kinds(void) {
     const double a[3] = {0, 0, 0}, c[3] = {1, 0, 0};
     CHECK_STATUS(rn_network_create(ctx, &open), RN_OK);
     shimnet_line(open, "r", a, c, 2, NULL);
-    CHECK_STATUS(rn_network_dof_blocks(open, blk, NULL, NULL, NULL), RN_ERR_STATE);
+    CHECK_STATUS(rn_network_dof_blocks(open, blk, NULL, NULL), RN_ERR_STATE);
     rn_network_destroy(&open);
   }
   rn_context_destroy(&ctx);
