@@ -34,7 +34,8 @@ static void classify_rod(const rn_network *net, int ir, int32_t *block, double *
   for (int i = 0; i < r->nv; ++i) {
     const double *xi = net->xfull + rn_dof_vertex(r->off, i);
     for (int k = 0; k < 3; ++k)
-      set_dof(net, rn_dof_vertex(r->off, i) + (size_t)k, ir, xi, NULL, block, point, axis);
+      set_dof(net, rn_dof_vertex(r->off, i) + (size_t)k, ir, xi, NULL, block, point,
+              axis);
   }
   for (int j = 0; j < r->ne; ++j) {
     const double *a = net->xfull + rn_dof_vertex(r->off, j);

@@ -73,7 +73,8 @@ ReplicatedSystem::ReplicatedSystem(rn_network *net,
   for (GO g : owned_) {
     const size_t i = static_cast<size_t>(g);
     kind_.push_back(dofs.kind[i]);
-    point_.insert(point_.end(), dofs.point.begin() + 3 * i, dofs.point.begin() + 3 * i + 3);
+    point_.insert(point_.end(), dofs.point.begin() + 3 * i,
+                  dofs.point.begin() + 3 * i + 3);
     axis_.insert(axis_.end(), dofs.axis.begin() + 3 * i, dofs.axis.begin() + 3 * i + 3);
   }
 

@@ -278,8 +278,7 @@ static void check_kinds(void) {
       else
         nrot++;
     }
-    if (b.kind[i] >= K_ROT && b.kind[i] < K_THETA)
-      CHECK(b.block[i] == RN_DOF_INTERFACE);
+    if (b.kind[i] >= K_ROT && b.kind[i] < K_THETA) CHECK(b.block[i] == RN_DOF_INTERFACE);
   }
   /* rods AB, BC, CA, AD of 3 edges, BC1 of 1, CA2 of 2: 15 edges; vertices: 3
    * joints + 2 * 3 + 0 + 1 + 3 (AD: 2 interior and the free end); rotations of
