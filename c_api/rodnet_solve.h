@@ -36,10 +36,20 @@ typedef enum rn_solver_kind {
 /* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
  * the trust-region norm (docs/solvers.md). */
 typedef enum rn_preconditioner {
-  RN_PRECOND_AUTO = 0,  /* the default for the problem (factor for now) */
-  RN_PRECOND_FACTOR = 1 /* Cholesky of H + sigma D (rn_factorization), sigma the
-                           smallest shift that factors: exact when H is positive
-                           definite (one MINRES iteration); one rank only */
+  RN_PRECOND_AUTO = 0,   /* the default for the problem: dd */
+  RN_PRECOND_FACTOR = 1, /* Cholesky of H + sigma D (rn_factorization), sigma the
+                            smallest shift that factors: exact when H is positive
+                            definite (one MINRES iteration); one rank only */
+  RN_PRECOND_DD = 2,     /* rod-level domain decomposition: banded Cholesky of every
+                            rod's interior, exact static condensation onto the joints,
+                            the coarse problem by sparse Cholesky (on rank 0) or, when
+                            that costs more than 5e10 flops, one algebraic-multigrid
+                            V-cycle; exact when H is positive definite and the coarse
+                            solve direct (one MINRES iteration) */
+  RN_PRECOND_MUELU = 3,  /* one MueLu smoothed-aggregation V-cycle on the whole
+                            Hessian (rigid-body near-null space) */
+  RN_PRECOND_IFPACK2 = 4 /* Ifpack2 additive Schwarz, one subdomain per rank with
+                            overlap 1, local sparse LU (exact on one rank) */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
@@ -156,8 +166,8 @@ rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
  * (RN_ERR_ARG if unknown). */
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
-/* Name of a preconditioner ("auto", "factor") and its parse (RN_ERR_ARG if
- * unknown). */
+/* Name of a preconditioner ("auto", "factor", "dd", "muelu", "ifpack2") and its
+ * parse (RN_ERR_ARG if unknown). */
 const char *rn_preconditioner_name(rn_preconditioner p);
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p);
 

@@ -37,8 +37,11 @@ static const char solve_help[] =
     "                        nonpositive curvature or at an inexact-Newton\n"
     "                        tolerance (docs/solvers.md)\n"
     "      --preconditioner NAME  preconditioner of tr-krylov (it defines the\n"
-    "                      trust-region norm): auto (default), factor (Cholesky\n"
-    "                      of the shifted Hessian, one rank)\n"
+    "                      trust-region norm): auto (default: dd), factor\n"
+    "                      (Cholesky of the shifted Hessian, one rank), dd (rod-\n"
+    "                      level domain decomposition), muelu (algebraic\n"
+    "                      multigrid on the whole Hessian), ifpack2 (additive\n"
+    "                      Schwarz, local LU)\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
@@ -165,7 +168,8 @@ static int make_options(const solve_args *a, const rn_scene *scene,
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
     return rn_cli_usage_error(
-        "solve", "unknown preconditioner '%s' (known: auto, factor)", a->preconditioner);
+        "solve", "unknown preconditioner '%s' (known: auto, factor, dd, muelu, ifpack2)",
+        a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
     return rn_cli_usage_error("solve",

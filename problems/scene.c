@@ -364,7 +364,8 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"tr-krylov", RN_SOLVER_TR_KRYLOV},
                                            {NULL, 0}};
 static const named_value preconditioner_names[] = {
-    {"auto", RN_PRECOND_AUTO}, {"factor", RN_PRECOND_FACTOR}, {NULL, 0}};
+    {"auto", RN_PRECOND_AUTO},   {"factor", RN_PRECOND_FACTOR},   {"dd", RN_PRECOND_DD},
+    {"muelu", RN_PRECOND_MUELU}, {"ifpack2", RN_PRECOND_IFPACK2}, {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},
                                                   {"sparse", RN_FACTOR_SPARSE},

@@ -34,6 +34,7 @@ private:
   Teuchos::RCP<const TMV> nullspace_;
   Teuchos::RCP<const TMap> map_;
   std::shared_ptr<CoarseSolver> amg_;
+  mutable Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
 class SchwarzPreconditioner : public Preconditioner {
@@ -48,6 +49,7 @@ public:
 
 private:
   std::shared_ptr<Impl> impl_;
+  mutable Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
 // Rigid-body modes (6 columns: translations x, y, z, rotations about x, y, z through

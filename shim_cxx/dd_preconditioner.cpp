@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
 #include <Tpetra_CrsGraph.hpp>
 #include <Tpetra_Export.hpp>
@@ -246,6 +247,10 @@ std::vector<int> coarse_nodes(const DofBlocks &blk, std::vector<double> &points)
 }
 
 } // namespace
+
+bool mpi_backed(const Teuchos::Comm<int> &comm) {
+  return dynamic_cast<const Teuchos::MpiComm<int> *>(&comm) != nullptr;
+}
 
 Teuchos::RCP<TMV> rigid_body_modes(const Teuchos::RCP<const TMap> &map, const int *kind,
                                    const double *point, const double *axis) {
@@ -879,13 +884,15 @@ void DdPreconditioner::setup(System &sys) {
     case DdOptions::Coarse::Amg:
       impl_->coarse = make_amg_coarse_solver(opt_.amg_xml);
       break;
-    case DdOptions::Coarse::Auto:
-      impl_->coarse = make_direct_coarse_solver(opt_.direct_max_flops);
+    case DdOptions::Coarse::Auto: // no limit when AMG cannot run (serial runtime)
+      impl_->coarse = make_direct_coarse_solver(
+          mpi_backed(*H->getComm()) ? opt_.direct_max_flops : 0.0);
       break;
     }
   }
   impl_->numeric(*H);
-  if (impl_->coarse->declined()) { // Auto: the direct factorisation costs too much
+  if (impl_->coarse->declined() && mpi_backed(*H->getComm())) {
+    // Auto: the direct factorisation costs too much
     impl_->declined_flops = impl_->coarse->flops();
     impl_->coarse = make_amg_coarse_solver(opt_.amg_xml);
     impl_->coarse->setup(impl_->S, impl_->nullspace);
@@ -897,7 +904,9 @@ void DdPreconditioner::setup(System &sys) {
 }
 
 Teuchos::RCP<const Tpetra::Operator<>> DdPreconditioner::inverse() const {
-  return Teuchos::rcp(new DdOperator(impl_, const_cast<PreconditionerStats *>(&stats_)));
+  if (op_.is_null()) // one operator for the preconditioner's life (callers keep it)
+    op_ = Teuchos::rcp(new DdOperator(impl_, const_cast<PreconditionerStats *>(&stats_)));
+  return op_;
 }
 
 long long DdPreconditioner::coarse_rows() const { return impl_->coarse_rows; }

@@ -69,12 +69,20 @@ std::unique_ptr<CoarseSolver> make_direct_coarse_solver(double max_flops = 0.0);
 std::unique_ptr<CoarseSolver>
 make_amg_coarse_solver(const std::string &xml = std::string());
 
+// MueLu and Ifpack2's additive Schwarz (Trilinos 13.2) need maps over a
+// Teuchos::MpiComm and MPI initialised: MueLu's Hierarchy setup casts the
+// communicator to an MpiComm unconditionally (a null dereference for the SerialComm
+// of rodnet's serial runtime, runtime.hpp), and Ifpack2's Schwarz calls
+// MPI_Comm_size (an abort before MPI_Init).  True if comm is an MpiComm.
+bool mpi_backed(const Teuchos::Comm<int> &comm);
+
 struct DdOptions {
   enum class Coarse { Auto, Direct, Amg };
   Coarse coarse = Coarse::Auto;
   // Auto: the direct coarse solve unless its sparse Cholesky factorisation would take
   // more floating-point operations than this (measured choice, docs/solvers.md);
-  // then the AMG one.
+  // then the AMG one (only with an MPI runtime, mpi_backed(); otherwise the
+  // direct one whatever it costs).
   double direct_max_flops = 5e10;
   // MueLu parameter file overriding the AMG coarse solve's defaults (empty: none).
   std::string amg_xml;
@@ -103,6 +111,7 @@ public:
 private:
   DdOptions opt_;
   Teuchos::RCP<Impl> impl_;
+  mutable Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
 } // namespace rodnet

@@ -165,6 +165,11 @@ public:
       : block_(block), xml_(std::move(xml)) {}
   void setup(const Teuchos::RCP<const TCrs> &S,
              const Teuchos::RCP<const TMV> &nullspace) override {
+    if (!mpi_backed(*S->getComm()))
+      throw Error(
+          RN_ERR_TRILINOS,
+          "algebraic multigrid (MueLu) needs the MPI runtime in Trilinos 13.2: run "
+          "under mpirun or with RODNET_MPI=1 (docs/solvers.md)");
     const int nranks = S->getComm()->getSize();
     guard_.setup(
         *S,
@@ -255,9 +260,12 @@ void MueluPreconditioner::setup(System &sys) {
 }
 
 Teuchos::RCP<const Tpetra::Operator<>> MueluPreconditioner::inverse() const {
-  std::shared_ptr<CoarseSolver> amg = amg_;
-  return stats_operator(
-      map_, [amg](const TMV &x, TMV &y) { amg->solve(x, y); }, &stats_);
+  if (op_.is_null()) { // one operator for the preconditioner's life (callers keep it)
+    std::shared_ptr<CoarseSolver> amg = amg_;
+    op_ = stats_operator(
+        map_, [amg](const TMV &x, TMV &y) { amg->solve(x, y); }, &stats_);
+  }
+  return op_;
 }
 
 double MueluPreconditioner::shift() const { return amg_->shift(); }
@@ -278,6 +286,11 @@ void SchwarzPreconditioner::setup(System &sys) {
     return true;
   }();
   (void)registered;
+  if (!mpi_backed(*sys.map()->getComm()))
+    throw Error(
+        RN_ERR_TRILINOS,
+        "Ifpack2 additive Schwarz needs the MPI runtime in Trilinos 13.2: run under "
+        "mpirun or with RODNET_MPI=1 (docs/solvers.md)");
   impl_->map = sys.map();
   impl_->guard.setup(
       *sys.hessian(),
@@ -306,9 +319,13 @@ void SchwarzPreconditioner::setup(System &sys) {
 }
 
 Teuchos::RCP<const Tpetra::Operator<>> SchwarzPreconditioner::inverse() const {
-  std::shared_ptr<Impl> impl = impl_;
-  return stats_operator(
-      impl_->map, [impl](const TMV &x, TMV &y) { impl->guard.P->apply(x, y); }, &stats_);
+  if (op_.is_null()) { // one operator for the preconditioner's life (callers keep it)
+    std::shared_ptr<Impl> impl = impl_;
+    op_ = stats_operator(
+        impl_->map, [impl](const TMV &x, TMV &y) { impl->guard.P->apply(x, y); },
+        &stats_);
+  }
+  return op_;
 }
 
 double SchwarzPreconditioner::shift() const { return impl_->guard.shift; }

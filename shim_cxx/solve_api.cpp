@@ -77,8 +77,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "unknown factorization";
   else if (o.predictor != 0 && o.predictor != 1)
     bad = "predictor must be 0 or 1";
-  else if (enum_value(o.preconditioner) != RN_PRECOND_AUTO &&
-           enum_value(o.preconditioner) != RN_PRECOND_FACTOR)
+  else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
+           enum_value(o.preconditioner) > RN_PRECOND_IFPACK2)
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -358,12 +358,19 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "auto";
   case RN_PRECOND_FACTOR:
     return "factor";
+  case RN_PRECOND_DD:
+    return "dd";
+  case RN_PRECOND_MUELU:
+    return "muelu";
+  case RN_PRECOND_IFPACK2:
+    return "ifpack2";
   }
   return "unknown";
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
-  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR};
+  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_DD,
+                                     RN_PRECOND_MUELU, RN_PRECOND_IFPACK2};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 

@@ -50,6 +50,8 @@
 
 #include <Teuchos_Array.hpp>
 
+#include "alt_preconditioners.hpp"
+#include "dof_blocks.hpp"
 #include "factor_preconditioner.hpp"
 #include "monitor.hpp"
 #include "preconditioner.hpp"
@@ -494,10 +496,24 @@ void TrustRegionKrylov::run() {
 
 rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   SerialSystem sys(p);
-  // RN_PRECOND_AUTO: the factor preconditioner (the only one so far).
-  FactorPreconditioner prec(opt.factorization);
-  TrustRegionKrylov(sys, prec, mon, opt).run();
-  return RN_PRECOND_FACTOR;
+  // RN_PRECOND_AUTO: the rod-level domain decomposition (docs/solvers.md,
+  // "Preconditioners for networks").
+  const rn_preconditioner kind =
+      opt.preconditioner == RN_PRECOND_AUTO ? RN_PRECOND_DD : opt.preconditioner;
+  std::unique_ptr<Preconditioner> prec;
+  if (kind == RN_PRECOND_FACTOR) {
+    prec.reset(new FactorPreconditioner(opt.factorization));
+  } else {
+    Teuchos::RCP<const TMV> modes;
+    if (kind == RN_PRECOND_MUELU) {
+      const NetworkDofs d = network_dofs(p.network());
+      modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
+    }
+    prec = make_preconditioner(rn_preconditioner_name(kind), modes);
+  }
+  if (!prec) throw Error(RN_ERR_ARG, "rn_solve: unknown preconditioner");
+  TrustRegionKrylov(sys, *prec, mon, opt).run();
+  return kind;
 }
 
 } // namespace rodnet

@@ -40,6 +40,13 @@ target_include_directories(shim_dd PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
                                            ${PROJECT_SOURCE_DIR}/problems)
 target_include_directories(shim_dd SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
                                                   ${Trilinos_TPL_INCLUDE_DIRS})
+# rn_solve's tr-krylov with every preconditioner on lattices: the exact equilibrium.
+rn_add_test(shim_dd_solve SOURCES unit/shim_dd_solve.c LIBS rodnet rodnet_problems m
+            LABELS unit)
+target_include_directories(shim_dd_solve PRIVATE ${PROJECT_SOURCE_DIR}/problems)
+add_test(NAME shim_dd_solve_mpi_runtime COMMAND shim_dd_solve mpi)
+set_tests_properties(shim_dd_solve_mpi_runtime PROPERTIES LABELS unit TIMEOUT 600
+  ENVIRONMENT "RODNET_MPI=1")
 if(MPIEXEC_EXECUTABLE)
   add_test(NAME shim_dd_2ranks
            COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:shim_dd>)
