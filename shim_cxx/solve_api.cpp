@@ -100,7 +100,9 @@ struct SolveTotals {
 // (0: the starting state); first the predictor (opt.predictor).
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
-  if (opt.predictor && predict_load_step(p, tot.factorization, t_prev, t))
+  if (opt.predictor && (opt.solver == RN_SOLVER_TR_KRYLOV
+                            ? predict_step_krylov(p, opt, t_prev, t)
+                            : predict_load_step(p, tot.factorization, t_prev, t)))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);

@@ -22,6 +22,11 @@ void run_rol_ls_newton(Problem &problem, Monitor &monitor, const rn_solve_option
 // preconditioner it used.
 rn_preconditioner run_tr_krylov(Problem &problem, Monitor &monitor,
                                 const rn_solve_options &opt);
+// The load-step predictor for tr-krylov: its preconditioner (opt.preconditioner) and
+// preconditioned MINRES to opt.krylov_tol instead of a factorisation of the whole
+// Hessian (predictor.hpp).
+bool predict_step_krylov(Problem &problem, const rn_solve_options &opt, double t_prev,
+                         double t);
 
 } // namespace rodnet
 

@@ -53,7 +53,9 @@
 #include "alt_preconditioners.hpp"
 #include "dof_blocks.hpp"
 #include "factor_preconditioner.hpp"
+#include "minres.hpp"
 #include "monitor.hpp"
+#include "predictor.hpp"
 #include "preconditioner.hpp"
 #include "shim_error.hpp"
 #include "solvers.hpp"
@@ -492,14 +494,14 @@ void TrustRegionKrylov::run() {
   }
 }
 
-} // namespace
-
-rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
-  SerialSystem sys(p);
-  // RN_PRECOND_AUTO: the rod-level domain decomposition (docs/solvers.md,
-  // "Preconditioners for networks").
+// The preconditioner of opt (RN_PRECOND_AUTO: the rod-level domain decomposition,
+// docs/solvers.md "Preconditioners for networks"); *kind the one chosen.
+std::unique_ptr<Preconditioner>
+make_tr_krylov_preconditioner(Problem &p, SerialSystem &sys, const rn_solve_options &opt,
+                              rn_preconditioner *kind_out) {
   const rn_preconditioner kind =
       opt.preconditioner == RN_PRECOND_AUTO ? RN_PRECOND_DD : opt.preconditioner;
+  *kind_out = kind;
   std::unique_ptr<Preconditioner> prec;
   if (kind == RN_PRECOND_FACTOR) {
     prec.reset(new FactorPreconditioner(opt.factorization));
@@ -512,8 +514,52 @@ rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options
     prec = make_preconditioner(rn_preconditioner_name(kind), modes);
   }
   if (!prec) throw Error(RN_ERR_ARG, "rn_solve: unknown preconditioner");
+  return prec;
+}
+
+// Adapts a Tpetra operator to MinresSolver's VectorOperator.
+class OperatorAdapter : public VectorOperator {
+public:
+  explicit OperatorAdapter(const Tpetra::Operator<> &A) : A_(A) {}
+  void apply(const MV &x, MV &y) const override { A_.apply(x, y); }
+
+private:
+  const Tpetra::Operator<> &A_;
+};
+
+} // namespace
+
+rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
+  SerialSystem sys(p);
+  rn_preconditioner kind = RN_PRECOND_AUTO;
+  std::unique_ptr<Preconditioner> prec =
+      make_tr_krylov_preconditioner(p, sys, opt, &kind);
   TrustRegionKrylov(sys, *prec, mon, opt).run();
   return kind;
+}
+
+bool predict_step_krylov(Problem &p, const rn_solve_options &opt, double t_prev,
+                         double t) {
+  return predict_load_step(
+      p,
+      [&opt](Problem &q, const std::vector<double> &x, std::vector<double> &s) {
+        SerialSystem sys(q);
+        TMV xv(sys.map(), 1), b(sys.map(), 1), sv(sys.map(), 1);
+        std::copy(x.begin(), x.end(), host_data(xv));
+        std::copy(s.begin(), s.end(), host_data(b));
+        sys.assemble_hessian(xv);
+        rn_preconditioner kind = RN_PRECOND_AUTO;
+        std::unique_ptr<Preconditioner> prec =
+            make_tr_krylov_preconditioner(q, sys, opt, &kind);
+        prec->setup(sys);
+        MinresSolver minres(sys.map(), opt.krylov_tol, opt.krylov_max_iterations);
+        const MinresResult r = minres.solve(OperatorAdapter(*sys.hessian()),
+                                            OperatorAdapter(*prec->inverse()), b, sv);
+        q.counters.krylov += r.iterations;
+        std::copy(host_data(sv), host_data(sv) + s.size(), s.begin());
+        return true;
+      },
+      t_prev, t);
 }
 
 } // namespace rodnet
