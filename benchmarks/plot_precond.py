@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """Plot the preconditioner study (bench_precond CSV, benchmarks/precond.sh) into a PNG.
 
-    python3 benchmarks/plot_precond.py benchmarks/results/precond.csv -o precond.png
+    python3 benchmarks/plot_precond.py results/precond.csv [--solve results/precond_solve.csv] \
+        -o precond.png
 
-Rows with bench = precond (one Newton system per preconditioner): MINRES iterations,
-time per Newton system (numeric setup + MINRES) per vertex and the preconditioner's
-memory per vertex against the number of vertices, one line per (lattice, joints,
-preconditioner).  Rows with bench = precond-newton (whole solves): solve time and
-peak resident size per vertex.  Prints the fitted exponent p of time ~ DOFs^p
-(least squares in log-log) of every series with at least three sizes.
+Top row, bench_precond rows (bench = precond, one Newton system per preconditioner):
+MINRES iterations, time per Newton system (numeric setup + MINRES) per vertex and the
+preconditioner's memory per vertex against the number of vertices, one line per
+(lattice, joints, preconditioner).  Bottom row, whole solves: bench_lattice rows of
+--solve (rn_solve; solver and preconditioner), else bench_precond --newton rows
+(bench = precond-newton): solve time, time per vertex and peak resident size per
+vertex.  Prints the fitted exponent p of time ~ DOFs^p (least squares in log-log) of
+every series with at least three sizes.
 """
 import argparse
 import csv
@@ -34,6 +37,7 @@ def slope(xs, ys):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("csv")
+    ap.add_argument("--solve", help="bench_lattice CSV of whole solves")
     ap.add_argument("-o", "--output", required=True)
     args = ap.parse_args()
     with open(args.csv, newline="") as f:
@@ -46,6 +50,17 @@ def main():
         key = (r["kind"], r["model"], r["precond"])
         target = system if r["bench"] == "precond" else newton
         target[key][int(r["vertices"])] = r
+    if args.solve:
+        with open(args.solve, newline="") as f:
+            for r in csv.DictReader(f):
+                key = (r["lattice"], r["joint_model"],
+                       r["solver"] + ("+" + r["preconditioner"]
+                                      if r["solver"] == "tr-krylov" else ""))
+                # vertices are not in bench_lattice's CSV: DOFs / 3.7 (8 edges per rod)
+                r["vertices"] = r["size"]
+                r["bytes_per_vertex"] = str(float(r["peak_rss_mb"]) * 1048576.0
+                                            / float(r["size"]))
+                newton[key][int(r["size"])] = r
     fig, axes = plt.subplots(2, 3, figsize=(17, 9.5))
     (a_its, a_time, a_mem), (a_ntime, a_nrate, a_rss) = axes
     print("fitted exponents of time against DOFs (>= 3 sizes):")
@@ -81,14 +96,15 @@ def main():
             (a_its, "MINRES iterations, one Newton system", "iterations"),
             (a_time, "setup (numeric) + MINRES per vertex", "microseconds per vertex"),
             (a_mem, "preconditioner memory per vertex", "bytes per vertex"),
-            (a_ntime, "whole solve (Newton, --newton)", "seconds"),
-            (a_nrate, "whole solve per vertex", "microseconds per vertex"),
-            (a_rss, "peak resident size per vertex (whole process)", "bytes per vertex")):
+            (a_ntime, "whole solve", "seconds"),
+            (a_nrate, "whole solve per vertex (per DOF with --solve)", "microseconds"),
+            (a_rss, "peak resident size per vertex (per DOF with --solve)", "bytes")):
         ax.set_xscale("log")
         if ax in (a_its,):
             ax.set_yscale("log")
         ax.set_title(ttl, fontsize=10)
-        ax.set_xlabel("vertices")
+        ax.set_xlabel("vertices" if ax in (a_its, a_time, a_mem) or not args.solve
+                      else "DOFs")
         ax.set_ylabel(yl)
         ax.grid(True, which="both", alpha=0.3)
     a_its.legend(fontsize=6, ncol=2)
