@@ -914,6 +914,11 @@ long long DdPreconditioner::rods_shifted() const { return impl_->rods_shifted; }
 double DdPreconditioner::coarse_shift() const {
   return impl_->coarse ? impl_->coarse->shift() : 0.0;
 }
+bool DdPreconditioner::exact() const {
+  return impl_->rods_shifted == 0 && coarse_shift() == 0.0 &&
+         (impl_->coarse_rows == 0 || coarse_solver() == "direct");
+}
+
 double DdPreconditioner::coarse_flops() const {
   const double f = impl_->coarse ? impl_->coarse->flops() : 0.0;
   return f > 0.0 ? f : impl_->declined_flops;

@@ -105,6 +105,10 @@ public:
   std::string coarse_solver() const;
   // Factorisation flops of the direct coarse solve (also when it declined), else 0.
   double coarse_flops() const;
+  // The last setup was an exact block factorisation of H (no rod block nor the coarse
+  // matrix shifted, the coarse solve direct): M = H, which proves H positive definite
+  // (the inertia of H is that of the rod blocks plus that of the Schur complement).
+  bool exact() const;
 
   struct Impl;
 

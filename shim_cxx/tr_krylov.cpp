@@ -332,12 +332,15 @@ private:
 
 // Negative curvature at x (step 1): Lanczos on (H, M) when the preconditioner had to
 // modify an indefinite piece, or when the stopping test is about to pass and the
-// preconditioner cannot certify positive definiteness (only "factor" can: it is the
-// Cholesky factorisation of H itself when unshifted).
+// preconditioner cannot certify positive definiteness ("factor" can: it is the
+// Cholesky factorisation of H itself when unshifted; so can "dd" with unshifted rod
+// blocks and an unshifted direct coarse solve, an exact block factorisation of H).
 void TrustRegionKrylov::analyse(const IterationView &it) {
   negcurv_ = have_v_ = false;
   mu_ = 0.0;
-  const bool certified = prec_.name() == "factor" && !prec_.stats().shifted;
+  const auto *dd = dynamic_cast<const DdPreconditioner *>(&prec_);
+  const bool certified =
+      !prec_.stats().shifted && (prec_.name() == "factor" || (dd && dd->exact()));
   if (!prec_.stats().shifted && (certified || !mon_.equilibrium_passes(it))) return;
   int steps = 0;
   mu_ = PencilLanczos(sys_, *prec_.inverse()).lowest(v_, Mv_, &steps);
