@@ -24,6 +24,15 @@ namespace {
 
 using MueluOp = MueLu::TpetraOperator<double, LO, GO, Tpetra::Map<>::node_type>;
 
+// Chebyshev polynomial of the given degree over [lambda_max / ratio, lambda_max],
+// lambda_max of D^-1 A estimated safely (see below).
+void chebyshev(Teuchos::ParameterList &c, int degree, double ratio) {
+  c.set("chebyshev: degree", degree);
+  c.set("chebyshev: ratio eigenvalue", ratio);
+  c.set("chebyshev: eigenvalue max iterations", 50);
+  c.set("chebyshev: boost factor", 1.3);
+}
+
 // Smoothed aggregation, Chebyshev smoothing of degree 3 (symmetric: the V-cycle is an SPD
 // operator for an SPD matrix), rigid-body near-null space.  Coarsest level: KLU2 on
 // one rank; on several ranks Jacobi relaxation (an Amesos2 solve of a matrix
@@ -42,22 +51,14 @@ amg_parameters(int nranks, const Teuchos::RCP<const TMV> &nullspace, int block) 
   // it by 100 |diag|: 2353 MINRES iterations); 50 iterations and a boost of 1.3 were
   // safe on every lattice measured (docs/solvers.md).
   p.set("smoother: type", "CHEBYSHEV");
-  Teuchos::ParameterList &sm = p.sublist("smoother: params");
-  sm.set("chebyshev: degree", 3);
-  sm.set("chebyshev: ratio eigenvalue", 20.0);
-  sm.set("chebyshev: eigenvalue max iterations", 50);
-  sm.set("chebyshev: boost factor", 1.3);
+  chebyshev(p.sublist("smoother: params"), 3, 20.0);
   if (nranks > 1) {
     // No direct solve of a distributed matrix: a coarsest level of at most 200 rows
     // smoothed by Chebyshev of degree 10 (Jacobi relaxation there: 137 MINRES
     // iterations on a 48x48 honeycomb on 2 ranks instead of 68).
     p.set("coarse: max size", 200);
     p.set("coarse: type", "CHEBYSHEV");
-    Teuchos::ParameterList &c = p.sublist("coarse: params");
-    c.set("chebyshev: degree", 10);
-    c.set("chebyshev: ratio eigenvalue", 100.0);
-    c.set("chebyshev: eigenvalue max iterations", 50);
-    c.set("chebyshev: boost factor", 1.3);
+    chebyshev(p.sublist("coarse: params"), 10, 100.0);
   } else {
     p.set("coarse: type", "KLU2");
   }

@@ -38,10 +38,7 @@
 #include "spd_factor.hpp"
 
 extern "C" {
-#include "lattice.h"
-#include "lattice_scene.h"
-#include "scene.h"
-#include "testutil.h"
+#include "shim_lattices.h"
 }
 
 namespace {
@@ -79,27 +76,9 @@ double norm(const TMV &a) { return std::sqrt(dot(a, a)); }
 // A lattice of `rodnet generate` under stretch along x (1e-3), 4 edges per rod.
 rn_scene *lattice(rn_context *ctx, rn_lattice_kind kind, int cells, int model,
                   int edges = 4) {
-  const int c[3] = {cells, cells, cells};
-  rn_lattice *lat = nullptr;
-  rn_lattice_scene sc{};
-  rn_scene *scene = nullptr;
   char path[256];
   std::snprintf(path, sizeof path, "shim_dd_scene_%d.json", g_rank);
-  sc.edges_per_rod = edges;
-  sc.joint_model = model;
-  sc.E = 1.0;
-  sc.nu = 0.3;
-  sc.shape = RN_LSEC_CIRCLE;
-  sc.section[0] = 1.0 / 50.0;
-  sc.load = RN_LLOAD_STRETCH;
-  sc.load_axis = 0;
-  sc.load_value = 1e-3;
-  CHECK_STATUS(rn_lattice_build(ctx, kind, c, 1.0, &lat), RN_OK);
-  CHECK_STATUS(rn_lattice_write_scene(ctx, path, lat, &sc), RN_OK);
-  rn_lattice_destroy(&lat);
-  CHECK_STATUS(rn_scene_load(ctx, path, &scene), RN_OK);
-  std::remove(path);
-  return scene;
+  return shim_lattice(ctx, kind, cells, model, edges, path);
 }
 
 // A clamped cantilever of 40 edges with a tip force (single rod: no interface).

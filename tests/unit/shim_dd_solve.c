@@ -11,37 +11,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lattice.h"
-#include "lattice_scene.h"
 #include "rodnet.h"
 #include "rodnet_solve.h"
-#include "scene.h"
-#include "testutil.h"
+#include "shim_lattices.h"
 
 /* "mpi" as argument: the MPI runtime is in use (RODNET_MPI=1), MueLu must work. */
 static int g_require_mpi = 0;
 
 static rn_scene *lattice(rn_context *ctx, rn_lattice_kind kind, int cells, int model) {
-  const int c[3] = {cells, cells, cells};
-  rn_lattice *lat = NULL;
-  rn_lattice_scene sc = {0};
-  rn_scene *scene = NULL;
-  const char *path = "shim_dd_solve_scene.json";
-  sc.edges_per_rod = 4;
-  sc.joint_model = model;
-  sc.E = 1.0;
-  sc.nu = 0.3;
-  sc.shape = RN_LSEC_CIRCLE;
-  sc.section[0] = 1.0 / 50.0;
-  sc.load = RN_LLOAD_STRETCH;
-  sc.load_axis = 0;
-  sc.load_value = 1e-3;
-  CHECK_STATUS(rn_lattice_build(ctx, kind, c, 1.0, &lat), RN_OK);
-  CHECK_STATUS(rn_lattice_write_scene(ctx, path, lat, &sc), RN_OK);
-  rn_lattice_destroy(&lat);
-  CHECK_STATUS(rn_scene_load(ctx, path, &scene), RN_OK);
-  remove(path);
-  return scene;
+  return shim_lattice(ctx, kind, cells, model, 4, "shim_dd_solve_scene.json");
 }
 
 /* All vertices of all rods, concatenated. */
