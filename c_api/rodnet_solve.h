@@ -30,7 +30,13 @@ typedef enum rn_solver_kind {
    * nonpositive curvature, or at an inexact-Newton forcing tolerance; any SPD
    * preconditioner (rn_preconditioner); leaves saddles; scales to large and
    * distributed problems.  tr-minres stays the exact reference. */
-  RN_SOLVER_TR_KRYLOV = 3
+  RN_SOLVER_TR_KRYLOV = 3,
+  /* NOX Newton on grad E = 0 (full steps) with Belos MINRES (Stratimikos),
+   * left-preconditioned by the same SPD preconditioner as RN_SOLVER_TR_KRYLOV:
+   * finds stationary points (minima, saddles or maxima alike; it neither
+   * measures the energy nor follows negative curvature), an alternative for
+   * comparisons, not a minimiser. */
+  RN_SOLVER_NOX = 4
 } rn_solver_kind;
 
 /* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
@@ -111,7 +117,7 @@ typedef struct rn_solve_options {
    * (shifted if not positive definite); x + s is accepted only if it lowers
    * the energy at t.  0: off (the step starts at x). */
   int predictor;
-  rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV; default AUTO */
+  rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV, RN_SOLVER_NOX; default AUTO */
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);

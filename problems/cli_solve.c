@@ -36,7 +36,10 @@ static const char solve_help[] =
     "                        MINRES stopped at the trust-region boundary, on\n"
     "                        nonpositive curvature or at an inexact-Newton\n"
     "                        tolerance (docs/solvers.md)\n"
-    "      --preconditioner NAME  preconditioner of tr-krylov (it defines the\n"
+    "                      nox: NOX Newton on grad E = 0 with MINRES and the\n"
+    "                        same preconditioner: finds stationary points\n"
+    "                        (minima, saddles or maxima alike), not a minimiser\n"
+    "      --preconditioner NAME  preconditioner of tr-krylov and nox (it defines the\n"
     "                      trust-region norm): auto (default), factor (Cholesky\n"
     "                      of the shifted Hessian, one rank)\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
@@ -185,8 +188,13 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
   in->solver = rn_solver_name(opt->solver);
   in->factorization = rn_factorization_name(rep->factorization);
-  if (opt->solver == RN_SOLVER_TR_KRYLOV)
+  if (opt->solver == RN_SOLVER_TR_KRYLOV || opt->solver == RN_SOLVER_NOX)
     in->preconditioner = rn_preconditioner_name(rep->preconditioner);
+  in->finds =
+      opt->solver == RN_SOLVER_NOX ? "stationary point"
+      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON)
+          ? "stationary point, energy decreasing"
+          : "local minimum";
   in->stop = rn_solve_stop_name(rep->stop);
   in->converged = rep->converged;
   in->iterations = rep->iterations;

@@ -122,6 +122,10 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"preconditioner\": ", f);
     put_str(f, in->preconditioner);
   }
+  if (in->finds) {
+    fputs(",\n  \"finds\": ", f);
+    put_str(f, in->finds);
+  }
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);

@@ -21,6 +21,10 @@ typedef struct rn_result_info {
   double force_residual, force_scale, force_tolerance;
   double moment_residual, moment_scale, moment_tolerance;
   const char *preconditioner; /* tr-krylov's preconditioner ("factor", ...), or NULL */
+  /* what the solver looks for: "local minimum" (trust regions that leave
+   * saddles), "stationary point, energy decreasing" (ROL kinds: may stop at a
+   * saddle) or "stationary point" (NOX: minima, saddles or maxima alike) */
+  const char *finds;
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info,

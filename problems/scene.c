@@ -362,6 +362,7 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
                                            {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
                                            {"tr-krylov", RN_SOLVER_TR_KRYLOV},
+                                           {"nox", RN_SOLVER_NOX},
                                            {NULL, 0}};
 static const named_value preconditioner_names[] = {
     {"auto", RN_PRECOND_AUTO}, {"factor", RN_PRECOND_FACTOR}, {NULL, 0}};

@@ -48,7 +48,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
   const int kind = enum_value(o.solver);
   if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
-      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV)
+      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV &&
+      kind != RN_SOLVER_NOX)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -116,6 +117,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
     break;
   case RN_SOLVER_TR_KRYLOV:
     tot.preconditioner = run_tr_krylov(p, mon, opt);
+    break;
+  case RN_SOLVER_NOX:
+    tot.preconditioner = run_nox(p, mon, opt);
     break;
   }
   tot.iterations += mon.iterations();
@@ -322,13 +326,16 @@ const char *rn_solver_name(rn_solver_kind k) {
     return "rol-ls-newton";
   case RN_SOLVER_TR_KRYLOV:
     return "tr-krylov";
+  case RN_SOLVER_NOX:
+    return "nox";
   }
   return "unknown";
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
   const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
+                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV,
+                                  RN_SOLVER_NOX};
   return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 

@@ -14,6 +14,8 @@ namespace rodnet {
 
 class Problem;
 class Monitor;
+class System;
+class Preconditioner;
 
 void run_tr_minres(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_tr_tcg(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
@@ -22,6 +24,13 @@ void run_rol_ls_newton(Problem &problem, Monitor &monitor, const rn_solve_option
 // preconditioner it used.
 rn_preconditioner run_tr_krylov(Problem &problem, Monitor &monitor,
                                 const rn_solve_options &opt);
+// NOX Newton on grad E = 0 with Belos MINRES, on a SerialSystem of the problem
+// (nox_solver.cpp); returns the preconditioner it used.
+rn_preconditioner run_nox(Problem &problem, Monitor &monitor,
+                          const rn_solve_options &opt);
+// The same on any System (distributed too) with a given preconditioner.
+void run_nox(System &system, Preconditioner &prec, Monitor &monitor,
+             const rn_solve_options &opt);
 
 } // namespace rodnet
 

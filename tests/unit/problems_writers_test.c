@@ -96,7 +96,8 @@ int main(int argc, char **argv) {
                          3e-10,
                          1.5,
                          4e-9,
-                         "factor"};
+                         "factor",
+                         "local minimum"};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -107,6 +108,7 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
     CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
+    CHECK(strcmp(str(root, "finds"), "local minimum") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "scene"), argv[1]) == 0);
     CHECK(strcmp(str(root, "rodnet_version"), rn_version_string()) == 0);
