@@ -16,6 +16,11 @@ typedef struct rn_result_info {
   long energy_evals, gradient_evals, hvp_evals, hessian_evals, krylov_iterations;
   double energy, gradient_norm, initial_gradient_norm, time_s;
   int predictor_steps; /* load steps whose predictor step was accepted */
+  /* equilibrium on the physical scale (rn_solve_report): residuals, scales and
+   * the tolerances of the gradient test, forces and moments apart */
+  double force_residual, force_scale, force_tolerance;
+  double moment_residual, moment_scale, moment_tolerance;
+  const char *preconditioner; /* tr-krylov's preconditioner ("factor", ...), or NULL */
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info,

@@ -48,7 +48,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
   const int kind = enum_value(o.solver);
   if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
-      kind != RN_SOLVER_ROL_LS_NEWTON)
+      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -77,6 +77,9 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "unknown factorization";
   else if (o.predictor != 0 && o.predictor != 1)
     bad = "predictor must be 0 or 1";
+  else if (enum_value(o.preconditioner) != RN_PRECOND_AUTO &&
+           enum_value(o.preconditioner) != RN_PRECOND_FACTOR)
+    bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
 }
@@ -88,6 +91,9 @@ struct SolveTotals {
   rn_solve_stop stop = RN_STOP_FAILED;
   double energy = 0.0, gnorm = 0.0;
   rn_factorization factorization = RN_FACTOR_AUTO;
+  EquilibriumView eq; // at the last iterate checked
+  double force_tol = 0.0, moment_tol = 0.0;
+  rn_preconditioner preconditioner = RN_PRECOND_AUTO;
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
@@ -108,6 +114,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   case RN_SOLVER_ROL_LS_NEWTON:
     run_rol_ls_newton(p, mon, opt);
     break;
+  case RN_SOLVER_TR_KRYLOV:
+    tot.preconditioner = run_tr_krylov(p, mon, opt);
+    break;
   }
   tot.iterations += mon.iterations();
   tot.krylov += mon.krylov_total();
@@ -115,6 +124,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   tot.stop = mon.reason();
   tot.energy = mon.energy();
   tot.gnorm = mon.gradient_norm();
+  tot.eq = mon.equilibrium();
+  tot.force_tol = mon.force_tolerance();
+  tot.moment_tol = mon.moment_tolerance();
   return mon.converged();
 }
 
@@ -195,6 +207,13 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->time_s = seconds;
   rep->factorization = tot.factorization;
   rep->predictor_steps = tot.predictor_steps;
+  rep->force_residual = tot.eq.force_residual;
+  rep->moment_residual = tot.eq.moment_residual;
+  rep->force_scale = tot.eq.force_scale;
+  rep->moment_scale = tot.eq.moment_scale;
+  rep->force_tolerance = tot.force_tol;
+  rep->moment_tolerance = tot.moment_tol;
+  rep->preconditioner = tot.preconditioner;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
@@ -262,7 +281,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->gtol_rel = 1e-9;
   opt->gtol_abs = 0.0;
   opt->step_tol = 1e-12;
-  opt->energy_tol = 1e-15;
+  opt->energy_tol = 0.0; // off: a tiny energy change does not certify equilibrium
   opt->krylov_max_iterations = 500;
   opt->krylov_tol = 1e-10;
   opt->initial_radius = 0.0;
@@ -272,6 +291,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->progress_user = nullptr;
   opt->factorization = RN_FACTOR_AUTO;
   opt->predictor = 1;
+  opt->preconditioner = RN_PRECOND_AUTO;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -300,13 +320,15 @@ const char *rn_solver_name(rn_solver_kind k) {
     return "rol-tr-tcg";
   case RN_SOLVER_ROL_LS_NEWTON:
     return "rol-ls-newton";
+  case RN_SOLVER_TR_KRYLOV:
+    return "tr-krylov";
   }
   return "unknown";
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
   const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                  RN_SOLVER_ROL_LS_NEWTON};
+                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
   return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 
@@ -328,6 +350,21 @@ rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
   const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
                                     RN_FACTOR_CHOLMOD};
   return rodnet::value_of_name(name, kinds, rn_factorization_name, f);
+}
+
+const char *rn_preconditioner_name(rn_preconditioner p) {
+  switch (rodnet::enum_value(p)) {
+  case RN_PRECOND_AUTO:
+    return "auto";
+  case RN_PRECOND_FACTOR:
+    return "factor";
+  }
+  return "unknown";
+}
+
+rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
+  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR};
+  return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep) {

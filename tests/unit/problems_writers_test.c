@@ -89,7 +89,14 @@ int main(int argc, char **argv) {
                          1.0 / 3.0,
                          2.5,
                          0.75,
-                         2};
+                         2,
+                         1e-9,
+                         4.0,
+                         2e-8,
+                         3e-10,
+                         1.5,
+                         4e-9,
+                         "factor"};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -99,6 +106,7 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "status"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
+    CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "scene"), argv[1]) == 0);
     CHECK(strcmp(str(root, "rodnet_version"), rn_version_string()) == 0);
@@ -110,6 +118,12 @@ int main(int argc, char **argv) {
     CHECK(num(root, "iterations") == 3);
     CHECK(num(root, "load_steps") == 1);
     CHECK(num(root, "predictor_steps") == 2);
+    const cJSON *eq = cJSON_GetObjectItemCaseSensitive(root, "equilibrium");
+    CHECK(num(eq, "force_residual") == 1e-9 && num(eq, "force_scale") == 4.0 &&
+          num(eq, "force_tolerance") == 2e-8 && num(eq, "moment_residual") == 3e-10 &&
+          num(eq, "moment_scale") == 1.5 && num(eq, "moment_tolerance") == 4e-9);
+    CHECK(num(eq, "relative_force_residual") == 1e-9 / 4.0 &&
+          num(eq, "relative_moment_residual") == 3e-10 / 1.5);
     CHECK(num(root, "load_factor") == 1.0);
     CHECK(num(root, "num_dofs") == (double)rn_network_num_dofs(net));
     const cJSON *ev = cJSON_GetObjectItemCaseSensitive(root, "evaluations");
