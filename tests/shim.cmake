@@ -29,3 +29,22 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
+# The distributed evaluation layer (parts, Tpetra maps, Import/Export, CrsMatrix)
+# against the whole network on 1, 2 and 3 ranks (label mpi; 3 ranks: more ranks than
+# rods for some networks).
+add_executable(mpi_system unit/mpi_system.cpp)
+target_include_directories(mpi_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                              ${PROJECT_SOURCE_DIR}/c_api)
+target_include_directories(mpi_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                     ${Trilinos_TPL_INCLUDE_DIRS})
+target_link_libraries(mpi_system PRIVATE rodnet rodnet_shim_deps)
+target_compile_options(mpi_system PRIVATE -O2)
+if(MPIEXEC_EXECUTABLE)
+  foreach(np 1 2 3)
+    add_test(NAME mpi_system_np${np}
+             COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} $<TARGET_FILE:mpi_system>)
+    set_tests_properties(mpi_system_np${np} PROPERTIES LABELS "mpi" TIMEOUT 300
+      PROCESSORS ${np} ENVIRONMENT
+      "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+  endforeach()
+endif()

@@ -1,0 +1,337 @@
+// dist_system.cpp - the distributed System (see dist_system.hpp).
+#include "dist_system.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Tpetra_CrsGraph.hpp>
+
+#include "shim_error.hpp"
+
+namespace rodnet {
+namespace {
+
+// The MPI communicator under comm; MPI_COMM_NULL for a serial (Teuchos::SerialComm)
+// one, on which no MPI call is made (MPI may not even be initialised).
+MPI_Comm raw_comm(const Teuchos::RCP<const Teuchos::Comm<int>> &comm) {
+  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
+  if (mpi.is_null()) return MPI_COMM_NULL;
+  return *mpi->getRawMpiComm();
+}
+
+template <class T>
+void allreduce(T *in, T *out, int n, MPI_Datatype t, MPI_Op op, MPI_Comm c) {
+  if (c == MPI_COMM_NULL) {
+    std::copy(in, in + n, out);
+    return;
+  }
+  MPI_Allreduce(in, out, n, t, op, c);
+}
+
+double *col0(TMV &v) { return v.getDataNonConst(0).getRawPtr(); }
+
+// The last error message recorded in the network's context.
+std::string last_error(rn_network *net) {
+  const char *m = rn_context_last_error(rn_network_context(net));
+  return (m && *m) ? m : "unknown error";
+}
+
+} // namespace
+
+rn_status DistSystem::agree(rn_status local, const std::string &msg) const {
+  const int size = comm_->getSize(), rank = comm_->getRank();
+  int in[2] = {local < 0 ? static_cast<int>(local) : 0,
+               local > 0 ? -static_cast<int>(local) : 0};
+  int out[2] = {0, 0};
+  ++stats_.reductions;
+  stats_.bytes_sent += sizeof in;
+  allreduce(in, out, 2, MPI_INT, MPI_MIN, raw_comm(comm_));
+  if (out[0] == 0) return static_cast<rn_status>(-out[1]);
+  if (raw_comm(comm_) == MPI_COMM_NULL) { // one rank: its own message
+    const std::string text = msg.empty() ? last_error(net_) : msg;
+    if (!msg.empty())
+      rn_context_set_error(rn_network_context(net_), local, "%s", text.c_str());
+    throw Error(local, text, true);
+  }
+  // the first failing rank's message goes to every rank
+  int mine = local < 0 ? rank : size, first = size;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, raw_comm(comm_));
+  std::string text = local < 0 ? (msg.empty() ? last_error(net_) : msg) : std::string();
+  int len = static_cast<int>(text.size()), st = local;
+  MPI_Bcast(&len, 1, MPI_INT, first, raw_comm(comm_));
+  MPI_Bcast(&st, 1, MPI_INT, first, raw_comm(comm_));
+  text.resize(static_cast<size_t>(len));
+  MPI_Bcast(&text[0], len, MPI_CHAR, first, raw_comm(comm_));
+  if (size > 1 && first != rank) text = "rank " + std::to_string(first) + ": " + text;
+  rn_context_set_error(rn_network_context(net_), static_cast<rn_status>(st), "%s",
+                       text.c_str());
+  throw Error(static_cast<rn_status>(st), text, true);
+}
+
+DistSystem::DistSystem(rn_network *net,
+                       const Teuchos::RCP<const Teuchos::Comm<int>> &comm)
+    : net_(net), comm_(comm) {
+  rn_status st = RN_OK;
+  std::string msg;
+  if (!net_) {
+    st = RN_ERR_ARG;
+    msg = "rn_solve: network is NULL";
+  } else if (rn_network_is_part(net_)) {
+    rn_part_info info;
+    st = rn_network_part_info(net_, &info);
+    if (!st && (info.nparts != comm_->getSize() || info.part != comm_->getRank())) {
+      st = RN_ERR_ARG;
+      msg = "rn_solve: part " + std::to_string(info.part) + " of " +
+            std::to_string(info.nparts) + " on rank " + std::to_string(comm_->getRank()) +
+            " of " + std::to_string(comm_->getSize()) +
+            " (each rank must hold the part of its rank, over all ranks)";
+    }
+  } else if (net_ && comm_->getSize() > 1) {
+    st = RN_ERR_ARG;
+    msg = "rn_solve: a whole network on " + std::to_string(comm_->getSize()) +
+          " ranks (build each rank's part with rn_network_set_part)";
+  }
+  agree(st, msg);
+  n_local_ = rn_network_num_dofs(net_);
+  n_owned_ = n_local_;
+  if (rn_network_is_part(net_))
+    agree(check_status(rn_network_part_dofs(net_, &n_owned_, nullptr, nullptr),
+                       "rn_network_part_dofs"));
+  build_maps();
+  build_hessian_graph();
+}
+
+DistSystem::~DistSystem() = default;
+
+// Owned ids: contiguous in rank order.  Ghost ids: asked from their owners by key.
+void DistSystem::build_maps() {
+  const MPI_Comm c = raw_comm(comm_);
+  const int size = comm_->getSize();
+  long long owned = static_cast<long long>(n_owned_), offset = 0;
+  if (c != MPI_COMM_NULL) MPI_Exscan(&owned, &offset, 1, MPI_LONG_LONG, MPI_SUM, c);
+  if (comm_->getRank() == 0) offset = 0;
+  std::vector<GO> gids(n_local_);
+  for (size_t i = 0; i < n_owned_; ++i)
+    gids[i] = static_cast<GO>(offset + static_cast<long long>(i));
+  rn_status st = RN_OK;
+  if (c != MPI_COMM_NULL && (n_local_ > n_owned_ || size > 1)) {
+    const int64_t *keys = nullptr;
+    const int *owners = nullptr;
+    check_status(rn_network_part_dofs(net_, nullptr, &keys, &owners),
+                 "rn_network_part_dofs");
+    // requests: ghost keys grouped by owner
+    std::vector<int> scount(static_cast<size_t>(size), 0),
+        rcount(static_cast<size_t>(size));
+    for (size_t i = n_owned_; i < n_local_; ++i) ++scount[static_cast<size_t>(owners[i])];
+    MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, c);
+    std::vector<int> sdisp(static_cast<size_t>(size) + 1, 0),
+        rdisp(static_cast<size_t>(size) + 1, 0);
+    for (int q = 0; q < size; ++q) {
+      sdisp[static_cast<size_t>(q) + 1] =
+          sdisp[static_cast<size_t>(q)] + scount[static_cast<size_t>(q)];
+      rdisp[static_cast<size_t>(q) + 1] =
+          rdisp[static_cast<size_t>(q)] + rcount[static_cast<size_t>(q)];
+    }
+    std::vector<long long> sk(static_cast<size_t>(sdisp[static_cast<size_t>(size)]));
+    std::vector<size_t> slot(sk.size());
+    std::vector<int> fill(sdisp.begin(), sdisp.end() - 1);
+    for (size_t i = n_owned_; i < n_local_; ++i) {
+      const int q = owners[i];
+      slot[static_cast<size_t>(fill[static_cast<size_t>(q)])] = i;
+      sk[static_cast<size_t>(fill[static_cast<size_t>(q)]++)] = keys[i];
+    }
+    std::vector<long long> rk(static_cast<size_t>(rdisp[static_cast<size_t>(size)]));
+    MPI_Alltoallv(sk.data(), scount.data(), sdisp.data(), MPI_LONG_LONG, rk.data(),
+                  rcount.data(), rdisp.data(), MPI_LONG_LONG, c);
+    // answers: owned keys are increasing in the part's order
+    for (long long &k : rk) {
+      const int64_t *e = keys + n_owned_,
+                    *p = std::lower_bound(keys, e, static_cast<int64_t>(k));
+      if (p == e || *p != k) {
+        st = RN_ERR_INTERNAL;
+        k = -1;
+      } else {
+        k = offset + (p - keys);
+      }
+    }
+    std::vector<long long> ans(sk.size());
+    MPI_Alltoallv(rk.data(), rcount.data(), rdisp.data(), MPI_LONG_LONG, ans.data(),
+                  scount.data(), sdisp.data(), MPI_LONG_LONG, c);
+    for (size_t a = 0; a < ans.size(); ++a) {
+      if (ans[a] < 0) st = RN_ERR_INTERNAL;
+      gids[slot[a]] = static_cast<GO>(ans[a]);
+    }
+    stats_.bytes_sent += 16.0 * static_cast<double>(sk.size() + rk.size());
+  }
+  agree(st, "rn_solve: the parts of the network do not agree on their DOFs (a ghost "
+            "DOF is not owned by the part its key names)");
+  const Tpetra::global_size_t any =
+      Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  owned_ = Teuchos::rcp(new TMap(any, n_owned_, 0, comm_));
+  overlap_ = Teuchos::rcp(
+      new TMap(any, Teuchos::ArrayView<const GO>(gids.data(), gids.size()), 0, comm_));
+  importer_ = Teuchos::rcp(new Tpetra::Import<>(owned_, overlap_));
+  exporter_ = Teuchos::rcp(new Tpetra::Export<>(overlap_, owned_));
+  xov_ = Teuchos::rcp(new TMV(overlap_, 1));
+  gov_ = Teuchos::rcp(new TMV(overlap_, 1));
+}
+
+// The overlap graph is the part's CSR pattern (rows and columns in the overlap map's
+// local numbering); the owned graph its export to the owners.
+void DistSystem::build_hessian_graph() {
+  size_t nnz = 0;
+  const int64_t *rowptr = nullptr;
+  const int32_t *col = nullptr;
+  check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
+               "rn_network_hessian_pattern");
+  Teuchos::ArrayRCP<size_t> rp(n_local_ + 1);
+  Teuchos::ArrayRCP<LO> ci(nnz);
+  for (size_t i = 0; i <= n_local_; ++i) rp[i] = static_cast<size_t>(rowptr[i]);
+  for (size_t k = 0; k < nnz; ++k) ci[k] = static_cast<LO>(col[k]);
+  ghost_nnz_ = static_cast<double>(nnz - static_cast<size_t>(rowptr[n_owned_]));
+  using Graph = Tpetra::CrsGraph<>;
+  auto ov = Teuchos::rcp(new Graph(overlap_, overlap_, rp, ci));
+  ov->fillComplete(owned_, owned_);
+  auto owned = Teuchos::rcp(new Graph(owned_, 0));
+  owned->doExport(*ov, *exporter_, Tpetra::INSERT);
+  owned->fillComplete(owned_, owned_);
+  hov_ = Teuchos::rcp(new TCrs(Teuchos::rcp_const_cast<const Graph>(ov)));
+  h_ = Teuchos::rcp(new TCrs(Teuchos::rcp_const_cast<const Graph>(owned)));
+  hov_->fillComplete(owned_, owned_);
+  h_->fillComplete(owned_, owned_);
+  vals_.assign(nnz, 0.0);
+}
+
+void DistSystem::import_state(const TMV &x) {
+  xov_->doImport(x, *importer_, Tpetra::INSERT);
+  ++stats_.imports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(importer_->getNumExportIDs());
+}
+
+void DistSystem::get_state(TMV &x) const {
+  std::vector<double> all(n_local_ + 1);
+  agree(check_status(rn_network_get_dofs(net_, all.data()), "rn_network_get_dofs"));
+  std::copy(all.begin(), all.begin() + static_cast<long>(n_owned_), col0(x));
+}
+
+void DistSystem::set_state(const TMV &x) {
+  import_state(x);
+  agree(check_status(rn_network_set_dofs(net_, col0(*xov_)), "rn_network_set_dofs"));
+}
+
+rn_status DistSystem::energy(const TMV &x, double *E) {
+  ++counters.energy;
+  import_state(x);
+  double local = 0.0;
+  rn_status st = RN_OK;
+  try {
+    st = check_status(rn_network_energy(net_, col0(*xov_), &local), "rn_network_energy");
+  } catch (const Error &e) {
+    st = e.status();
+  }
+  st = agree(st);
+  double sum = 0.0;
+  allreduce(&local, &sum, 1, MPI_DOUBLE, MPI_SUM, raw_comm(comm_));
+  ++stats_.reductions;
+  stats_.bytes_sent += 8.0;
+  if (E) *E = sum;
+  return st;
+}
+
+rn_status DistSystem::gradient(const TMV &x, double *E, TMV &g) {
+  ++counters.gradient;
+  import_state(x);
+  double local = 0.0;
+  rn_status st = RN_OK;
+  try {
+    st = check_status(rn_network_gradient(net_, col0(*xov_), &local, col0(*gov_)),
+                      "rn_network_gradient");
+  } catch (const Error &e) {
+    st = e.status();
+  }
+  st = agree(st);
+  if (E) {
+    double sum = 0.0;
+    allreduce(&local, &sum, 1, MPI_DOUBLE, MPI_SUM, raw_comm(comm_));
+    ++stats_.reductions;
+    stats_.bytes_sent += 8.0;
+    *E = sum;
+  }
+  if (st != RN_OK) return st;
+  g.putScalar(0.0);
+  g.doExport(*gov_, *exporter_, Tpetra::ADD);
+  ++stats_.exports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+  return st;
+}
+
+void DistSystem::assemble_hessian(const TMV &x) {
+  ++counters.hessian;
+  import_state(x);
+  rn_status st = RN_OK;
+  try {
+    st = check_status(rn_network_hessian_values(net_, col0(*xov_), vals_.data()),
+                      "rn_network_hessian_values");
+  } catch (const Error &e) {
+    st = e.status();
+  }
+  if (agree(st) != RN_OK)
+    throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
+  size_t nnz = 0;
+  const int64_t *rowptr = nullptr;
+  const int32_t *col = nullptr;
+  check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
+               "rn_network_hessian_pattern");
+  hov_->resumeFill();
+  std::vector<LO> cols;
+  for (size_t i = 0; i < n_local_; ++i) {
+    const size_t a = static_cast<size_t>(rowptr[i]),
+                 b = static_cast<size_t>(rowptr[i + 1]);
+    cols.assign(col + a, col + b);
+    hov_->replaceLocalValues(static_cast<LO>(i), Teuchos::ArrayView<const LO>(cols),
+                             Teuchos::ArrayView<const double>(vals_.data() + a, b - a));
+  }
+  hov_->fillComplete(owned_, owned_);
+  h_->resumeFill();
+  h_->setAllToScalar(0.0);
+  h_->doExport(*hov_, *exporter_, Tpetra::ADD);
+  h_->fillComplete(owned_, owned_);
+  ++stats_.exports;
+  stats_.bytes_sent += 16.0 * ghost_nnz_;
+}
+
+void DistSystem::accept(TMV &x) {
+  import_state(x);
+  rn_state *saved = nullptr;
+  rn_status st = rn_network_state_save(net_, &saved);
+  if (st == RN_OK) st = rn_network_update_reference(net_, col0(*xov_));
+  // all parts or none: a part that updated while another failed goes back
+  rn_status all = RN_OK;
+  try {
+    all = agree(st);
+  } catch (...) {
+    if (st == RN_OK) rn_network_state_restore(net_, saved);
+    rn_state_destroy(&saved);
+    throw;
+  }
+  if (all != RN_OK) {
+    if (st == RN_OK) rn_network_state_restore(net_, saved);
+    rn_state_destroy(&saved);
+    throw Error(all, "rn_solve: reference update at a degenerate state");
+  }
+  rn_state_destroy(&saved);
+  std::copy(col0(*xov_), col0(*xov_) + n_owned_, col0(x));
+}
+
+const DofBlocks &DistSystem::blocks() const {
+  if (!blocks_done_)
+    throw Error(RN_ERR_INTERNAL,
+                "DistSystem::blocks: the rod / interface classification of a part needs "
+                "rn_network_dof_blocks (issue 7, not yet merged)");
+  return blocks_;
+}
+
+} // namespace rodnet

@@ -1,0 +1,43 @@
+# The `rodnet` command under mpirun (label mpi, 2 or 3 ranks, with a timeout): a bad
+# scene, an error only some ranks see, a solver that cannot run distributed, more
+# ranks than rods: one clear error (one line on stderr, from rank 0) and the same
+# exit status on every rank, never a hang.
+if(NOT RN_WITH_TRILINOS OR NOT MPIEXEC_EXECUTABLE)
+  return()
+endif()
+set(RN_MPI_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/mpi)
+set(RN_MPI_OUT ${CMAKE_CURRENT_BINARY_DIR}/mpi_cli)
+file(MAKE_DIRECTORY ${RN_MPI_OUT})
+set(RN_MPI_ENV
+    "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
+# rn_mpi_cli(NAME NP RC REGEX ARGS...): rodnet on NP ranks exits with RC on every
+# rank (mpirun returns it), prints one line on stderr matching REGEX (mpirun -q:
+# Open MPI's own notice about the non-zero status is not printed), writes no result
+# file.
+function(rn_mpi_cli name np rc regex)
+  string(REPLACE ";" "@@" args "${ARGN}")
+  add_test(NAME ${name}
+           COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
+                   "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@${np}@@${CMAKE_BINARY_DIR}/rodnet@@${args}"
+                   -DEXPECT_RC=${rc} "-DEXPECT_REGEX=${regex}" -DSTDERR_LINES=1
+                   -DREMOVE=${RN_MPI_OUT}/${name}.json
+                   -DEXPECT_ABSENT=${RN_MPI_OUT}/${name}.json
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+  set_tests_properties(${name} PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS ${np}
+                       ENVIRONMENT "${RN_MPI_ENV}")
+endfunction()
+
+rn_mpi_cli(mpi_cli_malformed 2 3 "malformed JSON"
+           solve ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/malformed.json -o ${RN_MPI_OUT}/mpi_cli_malformed.json)
+rn_mpi_cli(mpi_cli_coincident 2 3 "joints 0 .'J1'. and 1 .'J2'. are coincident"
+           solve ${RN_MPI_DATA}/coincident_joints.json -o ${RN_MPI_OUT}/mpi_cli_coincident.json)
+rn_mpi_cli(mpi_cli_gap_joint 2 3 "rod ends do not meet"
+           solve ${RN_MPI_DATA}/gap_joint.json -o ${RN_MPI_OUT}/mpi_cli_gap_joint.json)
+rn_mpi_cli(mpi_cli_unwritable 2 3 "cannot"
+           solve ${RN_MPI_DATA}/chain.json -o /nonexistent-dir/result.json)
+rn_mpi_cli(mpi_cli_serial_solver 2 2 "solver 'tr-minres' .*cannot run on 2 MPI ranks"
+           solve ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
+rn_mpi_cli(mpi_cli_more_ranks 3 2 "cannot run on 3 MPI ranks"
+           solve ${CMAKE_SOURCE_DIR}/problems/scenes/cantilever.json
+           -o ${RN_MPI_OUT}/mpi_cli_more_ranks.json)
