@@ -133,8 +133,8 @@ static rn_status build_dof_map(rn_network *net) {
     off += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[ij]));
   }
   net->nfull = off;
-  net->map = malloc(off * sizeof(int64_t));
-  net->xfull = calloc(off, sizeof(double));
+  net->map = malloc((off ? off : 1) * sizeof(int64_t)); /* a part may hold nothing */
+  net->xfull = calloc(off ? off : 1, sizeof(double));
   if (!net->map || !net->xfull) return RN_ERR_ALLOC;
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];

@@ -180,28 +180,57 @@ void DistSystem::build_maps() {
 }
 
 // The overlap graph is the part's CSR pattern (rows and columns in the overlap map's
-// local numbering); the owned graph its export to the owners.
+// local numbering); the owned graph its export to the owners, built once.  Each
+// assembly then sums the owned rows into the owned matrix by local column (hcols_) and
+// exports only the ghost rows (the interface).
 void DistSystem::build_hessian_graph() {
   size_t nnz = 0;
   const int64_t *rowptr = nullptr;
   const int32_t *col = nullptr;
   check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
                "rn_network_hessian_pattern");
-  Teuchos::ArrayRCP<size_t> rp(n_local_ + 1);
-  Teuchos::ArrayRCP<LO> ci(nnz);
-  for (size_t i = 0; i <= n_local_; ++i) rp[i] = static_cast<size_t>(rowptr[i]);
-  for (size_t k = 0; k < nnz; ++k) ci[k] = static_cast<LO>(col[k]);
-  ghost_nnz_ = static_cast<double>(nnz - static_cast<size_t>(rowptr[n_owned_]));
   using Graph = Tpetra::CrsGraph<>;
-  auto ov = Teuchos::rcp(new Graph(overlap_, overlap_, rp, ci));
-  ov->fillComplete(owned_, owned_);
-  auto owned = Teuchos::rcp(new Graph(owned_, 0));
-  owned->doExport(*ov, *exporter_, Tpetra::INSERT);
-  owned->fillComplete(owned_, owned_);
-  hov_ = Teuchos::rcp(new TCrs(Teuchos::rcp_const_cast<const Graph>(ov)));
+  const size_t own_nnz = static_cast<size_t>(rowptr[n_owned_]);
+  ghost_nnz_ = static_cast<double>(nnz - own_nnz);
+  Teuchos::RCP<Graph> owned;
+  {
+    Teuchos::ArrayRCP<size_t> rp(n_local_ + 1);
+    Teuchos::ArrayRCP<LO> ci(nnz);
+    for (size_t i = 0; i <= n_local_; ++i) rp[i] = static_cast<size_t>(rowptr[i]);
+    for (size_t k = 0; k < nnz; ++k) ci[k] = static_cast<LO>(col[k]);
+    auto ov = Teuchos::rcp(new Graph(overlap_, overlap_, rp, ci));
+    ov->fillComplete(owned_, owned_);
+    owned = Teuchos::rcp(new Graph(owned_, 0));
+    owned->doExport(*ov, *exporter_, Tpetra::INSERT);
+    owned->fillComplete(owned_, owned_);
+  }
   h_ = Teuchos::rcp(new TCrs(Teuchos::rcp_const_cast<const Graph>(owned)));
-  hov_->fillComplete(owned_, owned_);
   h_->fillComplete(owned_, owned_);
+  // owned rows: the local column in h_ of each entry
+  hcols_.resize(own_nnz);
+  auto cmap = h_->getColMap();
+  for (size_t k = 0; k < own_nnz; ++k)
+    hcols_[k] =
+        cmap->getLocalElement(overlap_->getGlobalElement(static_cast<LO>(col[k])));
+  // ghost rows: their own map, graph and export
+  const size_t ng = n_local_ - n_owned_;
+  std::vector<GO> gg(ng);
+  for (size_t i = 0; i < ng; ++i)
+    gg[i] = overlap_->getGlobalElement(static_cast<LO>(n_owned_ + i));
+  const Tpetra::global_size_t any =
+      Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  auto gmap =
+      Teuchos::rcp(new TMap(any, Teuchos::ArrayView<const GO>(gg.data(), ng), 0, comm_));
+  Teuchos::ArrayRCP<size_t> grp(ng + 1);
+  Teuchos::ArrayRCP<LO> gci(nnz - own_nnz);
+  for (size_t i = 0; i <= ng; ++i)
+    grp[i] = static_cast<size_t>(rowptr[n_owned_ + i]) - own_nnz;
+  for (size_t k = own_nnz; k < nnz; ++k) gci[k - own_nnz] = static_cast<LO>(col[k]);
+  auto gg_graph = Teuchos::rcp(new Graph(gmap, overlap_, grp, gci));
+  gg_graph->fillComplete(owned_, owned_);
+  hgh_ = Teuchos::rcp(new TCrs(Teuchos::rcp_const_cast<const Graph>(gg_graph)));
+  hgh_->fillComplete(owned_, owned_);
+  ghost_exporter_ = Teuchos::rcp(new Tpetra::Export<>(gmap, owned_));
   vals_.assign(nnz, 0.0);
 }
 
@@ -285,19 +314,28 @@ void DistSystem::assemble_hessian(const TMV &x) {
   const int32_t *col = nullptr;
   check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
                "rn_network_hessian_pattern");
-  hov_->resumeFill();
+  h_->resumeFill();
+  h_->setAllToScalar(0.0);
+  for (size_t i = 0; i < n_owned_; ++i) {
+    const size_t a = static_cast<size_t>(rowptr[i]),
+                 b = static_cast<size_t>(rowptr[i + 1]);
+    if (h_->sumIntoLocalValues(static_cast<LO>(i), static_cast<LO>(b - a),
+                               vals_.data() + a,
+                               hcols_.data() + a) != static_cast<LO>(b - a))
+      throw Error(RN_ERR_INTERNAL, "rn_solve: the Hessian's graph lacks an entry");
+  }
+  hgh_->resumeFill();
   std::vector<LO> cols;
-  for (size_t i = 0; i < n_local_; ++i) {
+  for (size_t i = n_owned_; i < n_local_; ++i) {
     const size_t a = static_cast<size_t>(rowptr[i]),
                  b = static_cast<size_t>(rowptr[i + 1]);
     cols.assign(col + a, col + b);
-    hov_->replaceLocalValues(static_cast<LO>(i), Teuchos::ArrayView<const LO>(cols),
+    hgh_->replaceLocalValues(static_cast<LO>(i - n_owned_),
+                             Teuchos::ArrayView<const LO>(cols),
                              Teuchos::ArrayView<const double>(vals_.data() + a, b - a));
   }
-  hov_->fillComplete(owned_, owned_);
-  h_->resumeFill();
-  h_->setAllToScalar(0.0);
-  h_->doExport(*hov_, *exporter_, Tpetra::ADD);
+  hgh_->fillComplete(owned_, owned_);
+  h_->doExport(*hgh_, *ghost_exporter_, Tpetra::ADD);
   h_->fillComplete(owned_, owned_);
   ++stats_.exports;
   stats_.bytes_sent += 16.0 * ghost_nnz_;

@@ -79,7 +79,12 @@ private:
   Teuchos::RCP<const Tpetra::Import<>> importer_;
   Teuchos::RCP<const Tpetra::Export<>> exporter_;
   Teuchos::RCP<TMV> xov_, gov_;
-  Teuchos::RCP<TCrs> hov_, h_;
+  // The Hessian: the owned rows of the part's CSR are summed into h_ directly (their
+  // columns in h_'s column map, hcols_), the ghost rows go through hgh_, a matrix on
+  // the ghost rows exported (ADD) to their owners.
+  Teuchos::RCP<TCrs> hgh_, h_;
+  Teuchos::RCP<const Tpetra::Export<>> ghost_exporter_;
+  std::vector<LO> hcols_; // [owned-row CSR entries]
   std::vector<double> vals_;
   double ghost_nnz_ = 0.0; // CSR entries in the ghost rows (exported each assembly)
   mutable CommStats stats_;

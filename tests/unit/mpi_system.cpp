@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -229,6 +230,12 @@ void check_network(rn_context *ctx, const Builder &b, const char *label,
   if (size > 1 && max_share < 1.0)
     EXPECT(static_cast<double>(n_owned) <= max_share * static_cast<double>(n),
            "%s: rank owns %zu of %zu DOFs", label, n_owned, n);
+  { // a one-process solver refuses a part (instead of solving it alone)
+    rn_solve_report rep;
+    EXPECT(rn_solve(part, nullptr, &rep) == RN_ERR_ARG &&
+               std::strstr(rn_context_last_error(ctx), "needs the whole network"),
+           "%s: rn_solve on a part: %s", label, rn_context_last_error(ctx));
+  }
   {
     DistSystem sys(part, comm);
     EXPECT(sys.global_size() == static_cast<GO>(n), "%s: global size", label);
