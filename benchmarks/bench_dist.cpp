@@ -110,8 +110,10 @@ void memory_mb(double *rss, double *peak) {
   char line[256];
   while (std::fgets(line, sizeof line, f)) {
     long kb = 0;
-    if (std::sscanf(line, "VmRSS: %ld kB", &kb) == 1) *rss = static_cast<double>(kb) / 1024.0;
-    if (std::sscanf(line, "VmHWM: %ld kB", &kb) == 1) *peak = static_cast<double>(kb) / 1024.0;
+    if (std::sscanf(line, "VmRSS: %ld kB", &kb) == 1)
+      *rss = static_cast<double>(kb) / 1024.0;
+    if (std::sscanf(line, "VmHWM: %ld kB", &kb) == 1)
+      *peak = static_cast<double>(kb) / 1024.0;
   }
   std::fclose(f);
 }

@@ -393,11 +393,12 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
   const rn_solve_options &o = opt ? *opt : defaults;
   rn_status s = rodnet::validate_options(o, rn_network_context(net));
   if (s == RN_OK && rn_network_is_part(net) && !rn_solver_is_distributed(o.solver))
-    s = rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
-                             "rn_solve: solver '%s' needs the whole network on one process; "
-                             "a part of a distributed network needs a distributed solver "
-                             "(docs/parallel.md)",
-                             rn_solver_name(o.solver));
+    s = rn_context_set_error(
+        rn_network_context(net), RN_ERR_ARG,
+        "rn_solve: solver '%s' needs the whole network on one process; "
+        "a part of a distributed network needs a distributed solver "
+        "(docs/parallel.md)",
+        rn_solver_name(o.solver));
   if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, o, rep); });
   if (rep && s != RN_OK) {
     rep->status = s;
