@@ -142,10 +142,17 @@ static void progress(void *user, const rn_iteration_info *it) {
   fflush(stderr);
 }
 
-static int make_options(const solve_args *a, const rn_scene *scene,
-                        rn_solve_options *opt) {
+/* The solve options: defaults, the scene's solver block, the command line.  A
+ * bad name is a usage error, printed only if loud (one rank of several). */
+static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_options *opt,
+                        int loud) {
   rn_solve_options_default(opt);
   rn_scene_apply_solver(scene, opt);
+  if (!loud &&
+      ((a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK) ||
+       (a->factorization &&
+        rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)))
+    return RN_EXIT_USAGE;
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
@@ -250,7 +257,7 @@ static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *s
 
 static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
   rn_solve_options opt;
-  int rc = make_options(a, scene, &opt);
+  int rc = make_options(a, scene, &opt, 1);
   if (rc) return rc;
   progress_state ps = {0};
   if (!a->quiet) {
@@ -306,11 +313,9 @@ static rn_status agree(dist_run *d, rn_status st, const char *prefix) {
   return st;
 }
 
-/* Graph pass, partition, part pass.  0 or an exit status. */
-static int load_part(dist_run *d, const solve_args *a) {
+/* Graph pass: the scene's rod graph and options, and the output paths. */
+static int load_graph(dist_run *d, const solve_args *a) {
   rn_scene_part sp;
-  const int *nv = NULL, *jp = NULL, *jr = NULL;
-  int nr = 0, nj = 0;
   memset(&sp, 0, sizeof sp);
   sp.mode = RN_SCENE_GRAPH;
   rn_status st = rn_scene_load_part(d->ctx, a->scene, &sp, &d->graph);
@@ -318,6 +323,16 @@ static int load_part(dist_run *d, const solve_args *a) {
   st = d->rank == 0 ? rn_file_probe_writable(d->ctx, a->output) : RN_OK;
   if (!st && d->rank == 0 && a->vtk) st = rn_file_probe_writable(d->ctx, a->vtk);
   if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INPUT;
+  return 0;
+}
+
+/* Partition of the graph, then the part pass.  0 or an exit status. */
+static int load_part(dist_run *d, const solve_args *a) {
+  rn_scene_part sp;
+  const int *nv = NULL, *jp = NULL, *jr = NULL;
+  int nr = 0, nj = 0;
+  rn_status st;
+  memset(&sp, 0, sizeof sp);
   rn_network_rod_graph(rn_scene_network(d->graph), &nr, &nv, &nj, &jp, &jr);
   d->rod_part = malloc(((size_t)nr + 1) * sizeof(int));
   st = d->rod_part
@@ -385,9 +400,11 @@ static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in
 
 static int run_distributed(dist_run *d, const solve_args *a) {
   rn_solve_options opt;
-  int rc = load_part(d, a);
+  int rc = load_graph(d, a);
   if (rc) return rc;
-  if ((rc = make_options(a, d->part, &opt))) return rc;
+  /* the scene's solver block is read in the graph pass too */
+  rc = make_options(a, d->graph, &opt, d->rank == 0);
+  if (rc) return rc; /* the same on every rank: its message printed by rank 0 */
   if (!rn_solver_is_distributed(opt.solver)) {
     if (d->rank == 0)
       fprintf(stderr,
@@ -397,6 +414,7 @@ static int run_distributed(dist_run *d, const solve_args *a) {
               rn_solver_name(opt.solver), d->size);
     return RN_EXIT_USAGE;
   }
+  if ((rc = load_part(d, a))) return rc;
   progress_state ps = {0};
   if (!a->quiet && d->rank == 0) {
     opt.progress = progress;

@@ -3,6 +3,7 @@
 // that the command's MPI paths stay in the shim.
 #include <mpi.h>
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,9 @@ void rn_runtime_ranks(int *rank, int *size) {
 }
 
 int rn_solver_is_distributed(rn_solver_kind k) {
-  (void)k; // no distributed solver kind yet: the Newton-Krylov trust region is one
-  return 0;
+  // The Newton-Krylov trust region (issue 7) works on a System (shim_cxx/system.hpp),
+  // serial or distributed; every other kind factors the whole Hessian.
+  return std::strcmp(rn_solver_name(k), "tr-krylov") == 0;
 }
 
 rn_status rn_dist_agree(rn_context *ctx, rn_status local) {

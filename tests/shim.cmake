@@ -48,3 +48,6 @@ if(MPIEXEC_EXECUTABLE)
       "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
   endforeach()
 endif()
+# The METIS partition of the rod graph (rn_partition_rods): balance, contiguity,
+# determinism, the special cases (one part, more parts than rods, no joints).
+rn_add_test(shim_partition SOURCES unit/shim_partition.c LIBS rodnet LABELS unit)
