@@ -12,8 +12,10 @@
 // bytes_per_step (payload the rank sent in imports, exports and reductions per step),
 // edge_cut, rss_mb (resident memory after the steps: the part, its System and
 // matrices) and peak_mb (the high-water mark, which includes the transient JSON tree
-// of the scene that every rank parses).  With --callgrind the step loop is bracketed by
-// CALLGRIND_START_INSTRUMENTATION / STOP: run under `valgrind --tool=callgrind
+// of the scene that every rank parses) and bytes_per_matvec (what one Hessian apply,
+// i.e. one Krylov iteration, sends: the ghost columns of x the other ranks import).  With
+// --callgrind the step loop is bracketed by CALLGRIND_START_INSTRUMENTATION / STOP: run
+// under `valgrind --tool=callgrind
 // --instr-atstart=no` to count the instructions of the steps alone, per rank
 // (benchmarks/bench_dist.sh).  Timings are reported, never asserted; the benchmark
 // checks that every evaluation succeeds and that the energy is finite.
@@ -138,7 +140,7 @@ int main(int argc, char **argv) {
   }
   rn_network *net = rn_scene_network(scene);
   int bad = 0;
-  enum { NCOL = 11 };
+  enum { NCOL = 12 };
   std::vector<double> row(NCOL, 0.0), times;
   {
     rodnet::DistSystem sys(net, comm);
@@ -176,6 +178,9 @@ int main(int argc, char **argv) {
            0.0,
            0.0};
     memory_mb(&row[9], &row[10]);
+    // a Krylov iteration's Hessian apply imports the ghost columns of x
+    auto imp = sys.hessian()->getCrsGraph()->getImporter();
+    row[11] = imp.is_null() ? 0.0 : 8.0 * static_cast<double>(imp->getNumExportIDs());
   }
   std::vector<double> rows(NCOL * static_cast<size_t>(size));
   MPI_Gather(row.data(), NCOL, MPI_DOUBLE, rows.data(), NCOL, MPI_DOUBLE, 0,
@@ -188,7 +193,7 @@ int main(int argc, char **argv) {
     FILE *f = o.out ? std::fopen(o.out, "a") : stdout;
     static const char *const extra =
         "rank,owned_dofs,ghost_dofs,owned_stencils,owned_rods,"
-        "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb";
+        "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb,bytes_per_matvec";
     if (f && (!o.out || std::ftell(f) == 0)) rn_bench_csv_header(f, extra);
     const std::string label = o.label ? o.label : o.scene;
     for (int q = 0; q < size && f; ++q) {
@@ -196,8 +201,8 @@ int main(int argc, char **argv) {
       std::fprintf(f, "\"%s\",\"%s\",\"%s\",%d,dist,%s,%ld,%d,%.6e,%.6e", RN_BENCH_COMMIT,
                    RN_BENCH_COMPILER, RN_BENCH_FLAGS, size, label.c_str(),
                    static_cast<long>(r[7]), o.repeats, med, mn);
-      std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f\n", q, r[1], r[2],
-                   r[3], r[4], r[5], r[6], r[8], r[9], r[10]);
+      std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f,%.0f\n", q, r[1],
+                   r[2], r[3], r[4], r[5], r[6], r[8], r[9], r[10], r[11]);
     }
     if (f && o.out) std::fclose(f);
   }
