@@ -3,6 +3,15 @@
  * product (rn_network_hvp) and assembly of the CSR Hessian values
  * (rn_network_hessian_values), for straight and curved (helix) rods.
  *
+ * Each row also gives the work per vertex: floating-point operations counted
+ * by a counting build of the rod kernels (kernel_counts.cpp) plus the
+ * additions of the assembly (one per scattered entry), the bytes the
+ * evaluation must move at least with rodnet's data layout (bytes_model
+ * below), and the achieved rates against one core's peak (clock from
+ * /proc/cpuinfo, vector width from its flags, 2 FMA units: 4 x width flops
+ * per cycle; the code uses no fused multiply-adds, so half of that is the
+ * practical ceiling).
+ *
  * Every timed evaluation is checked (status RN_OK, finite results) and the HVP is
  * compared with the assembled Hessian times the same vector, so a smoke run also
  * checks that the two share one source of truth.  Timings are never asserted.
@@ -15,6 +24,7 @@
 #include <string.h>
 
 #include "bench_util.h"
+#include "kernel_counts.h"
 
 #define MAX_LIST 32
 
@@ -89,6 +99,56 @@ static double hvp_vs_csr(const bench_case *c) {
   return worst;
 }
 
+/* Peak double-precision flops per second of one core: clock x vector width x
+ * 2 (FMA) x 2 units, from /proc/cpuinfo; 0 if unknown. */
+static double core_peak(double *ghz, int *width) {
+  FILE *f = fopen("/proc/cpuinfo", "r");
+  char line[4096];
+  double mhz = 0.0;
+  *width = 2;
+  if (!f) return 0.0;
+  while (fgets(line, sizeof line, f)) {
+    if (mhz == 0.0 && !strncmp(line, "cpu MHz", 7)) {
+      const char *c = strchr(line, ':');
+      if (c) mhz = atof(c + 1);
+    }
+    if (!strncmp(line, "flags", 5)) {
+      if (strstr(line, " avx512f"))
+        *width = 8;
+      else if (strstr(line, " avx2") && *width < 4)
+        *width = 4;
+      break;
+    }
+  }
+  fclose(f);
+  *ghz = mhz * 1e-3;
+  return mhz * 1e6 * (double)*width * 4.0;
+}
+
+/* Bytes an evaluation moves at least, per vertex, with rodnet's layout: each
+ * array it touches counted once per read and once per write, at its size
+ * (4 DOFs of 8 bytes and 4 entries of the 8-byte DOF map per vertex; per
+ * edge the reference frame 48, stretch parameters 16; per interior vertex
+ * bending 48, twisting 32 and stored twist 8 bytes; CSR values 8 bytes per
+ * entry, zeroed, accumulated (read + write) and checked; the band-row
+ * descriptors 16 bytes per DOF). */
+static double bytes_model(op_kind op, size_t n, size_t nnz, long nv) {
+  double d = (double)n / (double)nv, e = (double)nnz / (double)nv;
+  double state = 8.0 * d + 8.0 * d;                /* x and the map (gather) */
+  double params = 48.0 + 16.0 + 48.0 + 32.0 + 8.0; /* per vertex ~ per edge */
+  double b = state + params;
+  switch (op) {
+  case OP_ENERGY:
+    return b;
+  case OP_GRADIENT: /* g zeroed, accumulated, checked; map for the scatter */
+    return b + 8.0 * d * 4.0 + 8.0 * d;
+  case OP_HVP: /* v gathered (and its map), Hv as g */
+    return b + 16.0 * d + 8.0 * d * 4.0 + 8.0 * d;
+  default:
+    return b + 8.0 * e * 4.0 + 16.0 * d;
+  }
+}
+
 /* Batch size so that one timed batch takes about a millisecond. */
 static int calibrate(bench_case *c, op_kind op) {
   double t0 = rn_bench_now();
@@ -124,16 +184,31 @@ static int time_op(bench_case *c, op_kind op, const bench_opts *o, rn_bench_shap
     free(t);
     return 1;
   }
-  double med, mn;
+  double med, mn, addmul = 0.0, divsqrt = 0.0, ghz = 0.0;
+  int width = 2;
   rn_bench_stats(t, reps, &med, &mn);
   free(t);
+  if (nv >= 3 && rn_bench_kernel_counts((int)op, (int)nv, &addmul, &divsqrt)) {
+    fprintf(stderr, "bench: the counting build failed at %ld vertices\n", nv);
+    return 1;
+  }
+  /* plus one addition per entry the assembly scatters */
+  addmul += op == OP_HESSIAN  ? (double)c->nnz / (double)nv
+            : op == OP_ENERGY ? 0.0
+                              : (double)c->n / (double)nv;
+  double flops = addmul + divsqrt, bytes = bytes_model(op, c->n, c->nnz, nv);
+  double tv = med / (double)nv, peak = core_peak(&ghz, &width);
   rn_bench_csv_begin(out, "kernels", rn_bench_shape_name(shape), nv, reps, med, mn);
-  fprintf(out, ",%s,%zu,%zu,%d,%.6e,%.6e\n", op_names[op], c->n, c->nnz, batch,
-          med / (double)nv, mn / (double)nv);
+  fprintf(out, ",%s,%zu,%zu,%d,%.6e,%.6e,%.1f,%.1f,%.1f,%.4g,%.4g,%.4g,%.4g\n",
+          op_names[op], c->n, c->nnz, batch, tv, mn / (double)nv, flops, divsqrt, bytes,
+          flops / tv * 1e-9, peak * 1e-9, peak > 0.0 ? flops / tv / peak : 0.0,
+          bytes / tv * 1e-9);
   fflush(out);
-  fprintf(stderr, "bench_kernels: %-8s %7ld vertices %-14s %.3e s/vertex (min %.3e)\n",
-          rn_bench_shape_name(shape), nv, op_names[op], med / (double)nv,
-          mn / (double)nv);
+  fprintf(stderr,
+          "bench_kernels: %-8s %7ld vertices %-14s %8.1f ns/vertex (min %.1f)  %6.0f "
+          "flops  %5.0f bytes  %5.2f Gflop/s = %.1f%% of peak\n",
+          rn_bench_shape_name(shape), nv, op_names[op], tv * 1e9, mn / (double)nv * 1e9,
+          flops, bytes, flops / tv * 1e-9, peak > 0.0 ? 100.0 * flops / tv / peak : 0.0);
   return 0;
 }
 
@@ -263,7 +338,9 @@ int main(int argc, char **argv) {
   }
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx)) return 1;
-  rn_bench_csv_header(out, "op,dofs,nnz,batch,median_per_vertex,min_per_vertex");
+  rn_bench_csv_header(out, "op,dofs,nnz,batch,median_per_vertex,min_per_vertex,"
+                           "flops_per_vertex,divsqrt_per_vertex,bytes_per_vertex,"
+                           "gflops,peak_gflops,peak_fraction,gbytes_per_s");
   for (int s = 0; s < o.n_shapes && !rc; ++s)
     for (int k = 0; k < o.n_sizes && !rc; ++k)
       rc = bench_one(ctx, &o, o.shapes[s], o.sizes[k], out);

@@ -4,7 +4,8 @@
     python3 benchmarks/plot.py results/kernels.csv -o results/kernels.png
 
 kernels: median time per vertex against the number of vertices, one line per
-(shape, operation), log-log.  solve: median solve time (left) and Newton and
+(shape, operation), log-log (with --before CSV, an earlier run in grey), and the
+achieved fraction of one core's peak flop rate with the counted work per vertex.  solve: median solve time (left) and Newton and
 Krylov iterations (right) against the number of vertices.  lattice: median rn_solve time
 (left) and Newton iterations and factorisations (right) against the free DOFs, one line per
 (lattice, joint model).  The title carries the commit and compiler recorded in the CSV.
@@ -36,24 +37,53 @@ def title(rows, what):
     return f"rodnet {what} - commit {r['commit']}, {r['compiler']}, {r['ranks']} rank(s)"
 
 
-def plot_kernels(rows, ax):
-    series = defaultdict(list)
-    for r in rows:
-        series[(r["case"], r["op"])].append(
-            (int(r["size"]), float(r["median_per_vertex"]), float(r["min_per_vertex"])))
-    ops = sorted({op for _, op in series})
+def plot_kernels(rows, axes, before=None):
+    """Left: median time per vertex (ns) against vertices, one line per (shape,
+    operation), and those of an earlier run (--before) thin and grey.  Right (if
+    the CSV has the counted work): achieved fraction of one core's peak flop
+    rate, with the counted flops and modelled bytes per vertex in the legend."""
+    ax_t, ax_p = axes
+    ops = sorted({r["op"] for r in rows})
     colors = {op: f"C{i}" for i, op in enumerate(ops)}
-    for (shape, op), pts in sorted(series.items(), key=lambda kv: (kv[0][1], kv[0][0])):
+
+    def series(rs, key):
+        out = defaultdict(list)
+        for r in rs:
+            if key in r and r[key] not in ("", None):
+                out[(r["case"], r["op"])].append((int(r["size"]), float(r[key])))
+        return out
+
+    if before:
+        for (shape, op), pts in sorted(series(before, "median_per_vertex").items()):
+            pts.sort()
+            ax_t.plot([p[0] for p in pts], [1e9 * p[1] for p in pts], ":",
+                      color="grey", lw=1, label=f"{op} ({shape}), {before[0]['commit']}")
+    for (shape, op), pts in sorted(series(rows, "median_per_vertex").items(),
+                                   key=lambda kv: (kv[0][1], kv[0][0])):
         pts.sort()
         style = "-" if shape == "straight" else "--"
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o",
-                color=colors[op], label=f"{op} ({shape})")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("vertices")
-    ax.set_ylabel("median time per vertex [s]")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.01, 0.5))
+        ax_t.plot([p[0] for p in pts], [1e9 * p[1] for p in pts], style, marker="o",
+                  color=colors[op], label=f"{op} ({shape})")
+    ax_t.set_ylabel("median time per vertex [ns]")
+    frac = series(rows, "peak_fraction")
+    if frac:
+        work = {(r["op"]): (float(r["flops_per_vertex"]), float(r["bytes_per_vertex"]))
+                for r in rows if "flops_per_vertex" in r}
+        for (shape, op), pts in sorted(frac.items(), key=lambda kv: (kv[0][1], kv[0][0])):
+            pts.sort()
+            style = "-" if shape == "straight" else "--"
+            fl, by = work[op]
+            ax_p.plot([p[0] for p in pts], [100.0 * p[1] for p in pts], style, marker="o",
+                      color=colors[op], label=f"{op} ({shape}): {fl:.0f} flops, {by:.0f} B")
+        ax_p.set_ylabel("fraction of one core's peak flop rate [%]")
+    else:
+        ax_p.set_visible(False)
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.set_xlabel("vertices")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize="x-small")
+    ax_t.set_yscale("log")
 
 
 def style_axes(axes, xlabel, ylog):
@@ -115,6 +145,7 @@ def main():
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("csv", help="CSV written by bench_kernels, bench_solve or bench_lattice")
     p.add_argument("-o", "--output", help="PNG to write (default: CSV name with .png)")
+    p.add_argument("--before", help="kernels: CSV of an earlier run, drawn in grey")
     args = p.parse_args()
     rows = read_rows(args.csv)
     kinds = {r["bench"] for r in rows}
@@ -122,8 +153,8 @@ def main():
         sys.exit(f"plot.py: one benchmark per CSV, found {sorted(kinds)}")
     kind = kinds.pop()
     if kind == "kernels":
-        fig, ax = plt.subplots(figsize=(10, 5.5))
-        plot_kernels(rows, ax)
+        fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
+        plot_kernels(rows, axes, read_rows(args.before) if args.before else None)
     elif kind == "solve":
         fig, axes = plt.subplots(1, 2, figsize=(11, 5))
         plot_solve(rows, axes)

@@ -51,66 +51,58 @@ static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
   if (a->op == OP_HESS) rn_csr_add_block(net, s, n, loc, a->vals);
 }
 
-static int stretch_eval(const rn_network *net, const rn_rod *r, int j, eval_args *a) {
-  enum { N = RN_EDGE_STENCIL };
-  size_t s = rn_dof_edge_stencil(r->off, j);
-  const rnk_stretch_param *p = &r->sp[j];
-  double q[N], vl[N], loc[N * N], E = 0.0;
-  int rc = RNK_OK;
-  rn_gather(net, a->x, s, N, q);
-  switch (a->op) {
-  case OP_ENERGY:
-    rc = rnk_stretch_energy(q, p, &E);
-    break;
-  case OP_GRAD:
-    rc = rnk_stretch_grad(q, p, &E, loc);
-    break;
-  case OP_HVP:
-    gather_dir(net, a, s, N, vl);
-    rc = rnk_stretch_hvp(q, p, vl, loc);
-    break;
-  case OP_HESS:
-    rc = rnk_stretch_hess(q, p, loc);
-    break;
-  }
-  if (rc != RNK_OK) return rc;
-  a->E[RN_TERM_STRETCH] += E;
-  accumulate(net, a, s, N, loc);
-  return RNK_OK;
+/* Rods are evaluated by the whole-rod kernels (rnk_rod_*) in segments of up
+ * to RN_ROD_SEGMENT edges: the segment's slice of the full state is gathered
+ * onto the stack, the kernels compute each edge's frame once for both of its
+ * vertices, and the result is scattered back (the Hessian as band rows, by
+ * the positions computed at finalize).  Consecutive segments share one edge;
+ * its stretching is counted by the first. */
+enum { RN_ROD_SEGMENT = 32, RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
+
+static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int ir, int j0,
+                                const int bad[2]) {
+  if (bad[0] >= 0) return degenerate(net, a, "stretching", ir, "edge", j0 + bad[0]);
+  return degenerate(net, a, "bending/twist", ir, "vertex", j0 + bad[1]);
 }
 
-/* Bending and twisting at interior vertex i share the edge frames: one
- * combined kernel (same values as rnk_bend_* + rnk_twist_*). */
-static int bendtwist_eval(const rn_network *net, const rn_rod *r, int i, eval_args *a) {
-  enum { N = RN_VERTEX_STENCIL };
-  size_t s = rn_dof_vertex_stencil(r->off, i);
-  const rnk_bend_param *bp = &r->bp[i - 1];
-  rnk_twist_param tp = r->tp[i - 1];
-  const rnk_frame *ref = &r->ref[i - 1];
-  double q[N], vl[N], loc[N * N], Eb = 0.0, Et = 0.0;
-  int rc = RNK_OK;
-  tp.ref_twist = r->ref_twist[i - 1];
-  rn_gather(net, a->x, s, N, q);
+/* The stretching, bending and twisting of edges [j0, j0 + ne) of rod r and of
+ * the interior vertices between them. */
+static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
+                                  eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  size_t s = rn_dof_edge_stencil(r->off, j0);
+  int n = 4 * ne + 3, bad[2], rc = RNK_OK;
+  double x[RN_ROD_SEGMENT_DOFS], v[RN_ROD_SEGMENT_DOFS], out[RN_ROD_SEGMENT_DOFS];
+  double band[RN_ROD_SEGMENT_DOFS * RNK_BAND], E[3] = {0.0, 0.0, 0.0};
+  rnk_rod_seg seg = {ne, x,          r->ref + j0, r->sp + j0,       j0 ? 1 : 0,
+                     ne, r->bp + j0, r->tp + j0,  r->ref_twist + j0};
+  rn_gather(net, a->x, s, n, x);
   switch (a->op) {
   case OP_ENERGY:
-    rc = rnk_bendtwist_energy(q, ref, bp, &tp, &Eb, &Et);
+    rc = rnk_rod_energy(&seg, E, bad);
     break;
   case OP_GRAD:
-    rc = rnk_bendtwist_grad(q, ref, bp, &tp, &Eb, loc);
-    break; /* sum */
+    memset(out, 0, (size_t)n * sizeof(double));
+    if ((rc = rnk_rod_grad(&seg, E, out, bad)) == RNK_OK)
+      rn_scatter_add(net, out, s, n, a->g);
+    break;
   case OP_HVP:
-    gather_dir(net, a, s, N, vl);
-    rc = rnk_bendtwist_hvp(q, ref, bp, &tp, vl, loc);
+    gather_dir(net, a, s, n, v);
+    memset(out, 0, (size_t)n * sizeof(double));
+    if ((rc = rnk_rod_hvp(&seg, v, out, bad)) == RNK_OK)
+      rn_scatter_add(net, out, s, n, a->Hv);
     break;
   case OP_HESS:
-    rc = rnk_bendtwist_hess(q, ref, bp, &tp, loc);
+    memset(band, 0, (size_t)n * RNK_BAND * sizeof(double));
+    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK)
+      rn_csr_add_band(net, s, n, band, a->vals);
     break;
   }
-  if (rc != RNK_OK) return rc;
-  a->E[RN_TERM_BEND] += Eb;
-  a->E[RN_TERM_TWIST] += Et;
-  accumulate(net, a, s, N, loc);
-  return RNK_OK;
+  if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
+  a->E[RN_TERM_STRETCH] += E[0];
+  a->E[RN_TERM_BEND] += E[1];
+  a->E[RN_TERM_TWIST] += E[2];
+  return RN_OK;
 }
 
 static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a) {
@@ -148,7 +140,8 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
   return RNK_OK;
 }
 
-/* Dead vertex forces: E = -lambda f . x (Hessian zero). */
+/* Dead vertex forces: E = -lambda f . (x - x0), the potential measured from the
+ * initial state x0 (so it does not depend on where the origin is); Hessian zero. */
 static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
   for (int v = 0; v < r->nv; ++v) {
     size_t s = rn_dof_vertex(r->off, v);
@@ -156,6 +149,7 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
     for (int k = 0; k < 3; ++k) f[k] = a->lambda * r->fvert[3 * v + k];
     if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) continue;
     rn_gather(net, a->x, s, RN_DOFS_PER_VERTEX, xv);
+    for (int k = 0; k < 3; ++k) xv[k] -= r->x0[3 * v + k];
     a->E[RN_TERM_LOAD] += rnk_force_energy(xv, f);
     if (a->op == OP_GRAD) {
       rnk_force_grad(f, gl);
@@ -226,7 +220,8 @@ static int joint_couple_grad(const rn_network *net, const rn_joint *J,
 }
 
 /* The whole-joint stencil, gathered and scattered by its index list; the
- * dead force on the joint position. */
+ * dead force on the joint position, E = -lambda F . (x_J - x_J0) (from the initial
+ * position, as forces_eval). */
 static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   const rn_joint *J = &net->joints[ij];
   rn_joint_scratch s;
@@ -250,6 +245,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   for (int k = 0; k < 3; ++k) f[k] = a->lambda * J->force[k];
   if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) return RN_OK;
   rn_gather(net, a->x, p, RN_DOFS_PER_VERTEX, xj);
+  for (int k = 0; k < 3; ++k) xj[k] -= J->x0[k];
   a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
   if (a->op == OP_GRAD) {
     rnk_force_grad(f, gl);
@@ -264,12 +260,13 @@ static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
     forces_eval(net, r, a);
     return RN_OK;
   }
-  for (int j = 0; j < r->ne; ++j)
-    if (stretch_eval(net, r, j, a) != RNK_OK)
-      return degenerate(net, a, "stretching", ir, "edge", j);
-  for (int i = 1; i < r->nv - 1; ++i)
-    if (bendtwist_eval(net, r, i, a) != RNK_OK)
-      return degenerate(net, a, "bending/twist", ir, "vertex", i);
+  for (int j0 = 0;;) {
+    int ne = r->ne - j0 < RN_ROD_SEGMENT ? r->ne - j0 : RN_ROD_SEGMENT;
+    rn_status st = rod_segment_eval(net, ir, j0, ne, a);
+    if (st) return st;
+    if (j0 + ne == r->ne) break;
+    j0 += ne - 1;
+  }
   forces_eval(net, r, a);
   return RN_OK;
 }

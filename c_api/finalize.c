@@ -198,11 +198,9 @@ static void undo_finalize(rn_network *net) {
   free(net->map);
   free(net->red2full);
   free(net->xfull);
-  free(net->rowptr);
-  free(net->col);
-  net->map = net->red2full = net->rowptr = NULL;
+  rn_hessian_pattern_free(net);
+  net->map = net->red2full = NULL;
   net->xfull = NULL;
-  net->col = NULL;
   net->nfull = net->nred = net->nnz = net->bandwidth = 0;
 }
 

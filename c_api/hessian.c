@@ -162,6 +162,41 @@ static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo
   return RN_OK;
 }
 
+static int64_t csr_find(const rn_network *net, int64_t r, int64_t c);
+
+/* The band row descriptors (network_internal.h) from the pattern and the rod
+ * stencil ranges [lo(a), hi(a)]. */
+static rn_status build_band_rows(rn_network *net, const size_t *lo, const size_t *hi) {
+  net->band = malloc((net->nfull ? net->nfull : 1) * sizeof(rn_band_row));
+  if (!net->band) return RN_ERR_ALLOC;
+  for (size_t a = 0; a < net->nfull; ++a) {
+    rn_band_row *b = &net->band[a];
+    int64_t r = net->map[a], m0 = net->map[lo[a]], p0;
+    b->pos = RN_BAND_NONE;
+    b->lo = (signed char)((int64_t)lo[a] - (int64_t)a);
+    b->hi = (signed char)((int64_t)hi[a] - (int64_t)a);
+    if (r < 0 || (lo[a] == a && hi[a] == a)) continue; /* fixed, or not in a rod */
+    b->pos = RN_BAND_SEARCH;
+    if (m0 < 0 || (p0 = csr_find(net, r, m0)) < 0) continue;
+    int ok = p0 + (int64_t)(hi[a] - lo[a]) < net->rowptr[r + 1];
+    for (size_t c = lo[a]; c <= hi[a] && ok; ++c) {
+      int64_t k = (int64_t)(c - lo[a]);
+      ok = net->map[c] == m0 + k && net->col[p0 + k] == m0 + k;
+    }
+    if (ok) b->pos = p0;
+  }
+  return RN_OK;
+}
+
+void rn_hessian_pattern_free(rn_network *net) {
+  free(net->rowptr);
+  free(net->col);
+  free(net->band);
+  net->rowptr = NULL;
+  net->col = NULL;
+  net->band = NULL;
+}
+
 rn_status rn_build_hessian_pattern(rn_network *net) {
   size_t *lo = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   size_t *hi = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
@@ -180,7 +215,7 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   }
   net->col = b.c;
   b.c = NULL;
-  st = net->col ? RN_OK : RN_ERR_ALLOC;
+  st = net->col ? build_band_rows(net, lo, hi) : RN_ERR_ALLOC;
 done:
   free(b.c);
   free(lo);
@@ -213,6 +248,27 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
       if (c < 0) continue;
       pos = csr_find(net, r, c);
       if (pos >= 0) vals[pos] += H[k * n + l];
+    }
+  }
+}
+
+void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
+                     double *vals) {
+  for (int i = 0; i < n; ++i) {
+    size_t a = s + (size_t)i;
+    const rn_band_row *b = &net->band[a];
+    /* row[c - a] = entry (a, c) */
+    const double *row = band + (size_t)i * RNK_BAND + RNK_BAND_HALF;
+    if (b->pos >= 0) {
+      double *v = vals + b->pos - b->lo;
+      for (int d = b->lo; d <= b->hi; ++d) v[d] += row[d];
+    } else if (b->pos == RN_BAND_SEARCH) {
+      int64_t r = net->map[a];
+      for (int d = b->lo; d <= b->hi; ++d) {
+        int64_t c = net->map[(size_t)((int64_t)a + d)], pos;
+        if (c < 0 || row[d] == 0.0) continue;
+        if ((pos = csr_find(net, r, c)) >= 0) vals[pos] += row[d];
+      }
     }
   }
 }

@@ -94,6 +94,17 @@ typedef struct rn_joint {
   size_t *idx;         /* full index of each kernel stencil entry */
 } rn_joint;
 
+/* Where row a of the full layout, restricted to the rod stencils' columns
+ * [a + lo, a + hi], goes in the CSR values: at pos.. pos + hi - lo if those
+ * columns are free, distinct and consecutive in the row (pos >= 0), by a
+ * search per entry otherwise (pos == RN_BAND_SEARCH); RN_BAND_NONE for fixed
+ * rows and joint DOFs.  Built with the pattern (hessian.c). */
+enum { RN_BAND_SEARCH = -1, RN_BAND_NONE = -2 };
+typedef struct rn_band_row {
+  int64_t pos;
+  signed char lo, hi;
+} rn_band_row;
+
 struct rn_network {
   rn_context *ctx;
   rn_rod *rods;
@@ -111,6 +122,7 @@ struct rn_network {
   double *xfull;     /* current state; fixed entries at lambda [nfull] */
   int64_t *rowptr;   /* Hessian pattern [nred + 1] */
   int32_t *col;      /* [nnz] */
+  rn_band_row *band; /* rod rows of the full layout into the CSR values [nfull] */
   size_t nnz;
   size_t bandwidth;
   struct rn_part_data *part; /* NULL: a whole network (part.c) */
@@ -259,6 +271,13 @@ rn_status rn_build_hessian_pattern(rn_network *net);
  * into CSR values (hessian.c). */
 void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
                       double *vals);
+/* Adds rows s .. s + n - 1 of the full layout given in rnk.h band storage
+ * (band[i * RNK_BAND + c - (s + i) + RNK_BAND_HALF] = entry (s + i, c); rod
+ * stencils only) into CSR values. */
+void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
+                     double *vals);
+/* Frees the Hessian pattern (rowptr, col, band) and sets the pointers NULL. */
+void rn_hessian_pattern_free(rn_network *net);
 /* The same for a stencil gathered by the full index list idx[n]. */
 void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
                           const double *H, double *vals);

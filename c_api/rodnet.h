@@ -185,7 +185,10 @@ rn_status rn_network_displace_end(rn_network *net, int rod, int end, const doubl
 rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
                                      const double disp[3]);
 
-/* Loads (dead, scaled by the load factor). */
+/* Loads (dead, scaled by the load factor).  Their potential is measured from the
+ * initial state: -lambda f . (x - x0) for forces (x0 the input position of the
+ * vertex or joint), the rotation since the initial state for couples; the load
+ * energy is 0 at the initial state and independent of the origin. */
 rn_status rn_network_add_force(rn_network *net, int rod, int vertex, const double f[3]);
 /* Couple on the material frame of the edge at a vertex (edge i for vertex i,
  * the last edge for the last vertex); see rnk_moment_* for the model. */

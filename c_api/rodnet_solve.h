@@ -128,17 +128,24 @@ int rn_solver_is_distributed(rn_solver_kind k);
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
 
-/* ---- runtime (Tpetra / Kokkos / MPI) --------------------------------------
- * The solvers run on Tpetra, whose runtime (Kokkos and, if not yet initialised,
- * MPI) must be initialised once per process.  Programs should call
+/* ---- runtime (Kokkos / MPI) ------------------------------------------------
+ * The solvers run on Tpetra, whose runtime (Kokkos and, in an MPI job, MPI) must
+ * be initialised once per process.  Programs should call
  * rn_runtime_initialize(&argc, &argv) at the start of main() and
  * rn_runtime_finalize() before returning.  If they do not, the first rn_solve
- * initialises it (MPI too, when it is not yet
- * initialised) and registers rn_runtime_finalize() with atexit(); a program
- * that uses MPI itself must then initialise MPI before the first solve.
+ * initialises it and registers rn_runtime_finalize() with atexit().
+ * MPI is used (and initialised by rodnet if the program has not done it) only
+ * when the process belongs to an MPI job: MPI is already initialised, or an MPI
+ * launcher started the process (OMPI_COMM_WORLD_SIZE, PMIX_RANK, PMI_RANK or
+ * PMI_SIZE set in the environment), or RODNET_MPI=1; RODNET_MPI=0 forbids it.
+ * Otherwise only Kokkos is initialised and rodnet never calls MPI_Init (a
+ * singleton MPI_Init costs a few tenths of a second).  A program that calls MPI
+ * itself should initialise MPI before rodnet's runtime: under a launcher rodnet
+ * would otherwise have initialised it, and MPI_Init cannot be called twice.
  * Idempotent: initialising twice is a no-op.  rn_runtime_finalize() finalises
  * only what rodnet initialised (never an MPI or Kokkos the caller set up), after
- * which no solve may run (MPI cannot be re-initialised): RN_ERR_STATE.
+ * which no solve may run (neither MPI nor Tpetra can be initialised again):
+ * rn_runtime_initialize and rn_solve then return RN_ERR_STATE.
  * argc/argv may be NULL.  Not thread-safe; call from the main thread. */
 rn_status rn_runtime_initialize(int *argc, char ***argv);
 void rn_runtime_finalize(void);

@@ -1,5 +1,7 @@
-/* bendtwist.c - bending and twisting at one vertex from one evaluation of
- * the two edge frames (the frames dominate the cost of both terms). */
+/* bendtwist.c - bending and twisting at one vertex from second-order jets of
+ * the two edge frames: the helpers the joint kernels use, and the jet
+ * evaluation of the vertex stencil that the tests take as the oracle of the
+ * closed forms (rod.c). */
 #include "rnk.h"
 #include "stencil.h"
 
@@ -45,9 +47,9 @@ static int bendtwist_eval(const double q[11], const rnk_frame ref[2],
   return RNK_OK;
 }
 
-int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2],
-                         const rnk_bend_param *bp, const rnk_twist_param *tp, double *Eb,
-                         double *Et) {
+int rnk_jet_bendtwist_energy(const double q[11], const rnk_frame ref[2],
+                             const rnk_bend_param *bp, const rnk_twist_param *tp,
+                             double *Eb, double *Et) {
   jet eb, et;
   int st = bendtwist_eval(q, ref, bp, tp, 0, &eb, &et);
   if (st) return st;
@@ -56,9 +58,9 @@ int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2],
   return RNK_OK;
 }
 
-int rnk_bendtwist_grad(const double q[11], const rnk_frame ref[2],
-                       const rnk_bend_param *bp, const rnk_twist_param *tp, double *E,
-                       double g[11]) {
+int rnk_jet_bendtwist_grad(const double q[11], const rnk_frame ref[2],
+                           const rnk_bend_param *bp, const rnk_twist_param *tp, double *E,
+                           double g[11]) {
   jet eb, et;
   int st = bendtwist_eval(q, ref, bp, tp, 1, &eb, &et);
   if (st) return st;
@@ -68,9 +70,9 @@ int rnk_bendtwist_grad(const double q[11], const rnk_frame ref[2],
   return RNK_OK;
 }
 
-int rnk_bendtwist_hess(const double q[11], const rnk_frame ref[2],
-                       const rnk_bend_param *bp, const rnk_twist_param *tp,
-                       double H[121]) {
+int rnk_jet_bendtwist_hess(const double q[11], const rnk_frame ref[2],
+                           const rnk_bend_param *bp, const rnk_twist_param *tp,
+                           double H[121]) {
   jet eb, et;
   int st = bendtwist_eval(q, ref, bp, tp, 2, &eb, &et);
   if (st) return st;
@@ -79,11 +81,11 @@ int rnk_bendtwist_hess(const double q[11], const rnk_frame ref[2],
   return RNK_OK;
 }
 
-int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
-                      const rnk_bend_param *bp, const rnk_twist_param *tp,
-                      const double v[11], double Hv[11]) {
+int rnk_jet_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
+                          const rnk_bend_param *bp, const rnk_twist_param *tp,
+                          const double v[11], double Hv[11]) {
   double H[121];
-  int st = rnk_bendtwist_hess(q, ref, bp, tp, H);
+  int st = rnk_jet_bendtwist_hess(q, ref, bp, tp, H);
   if (st) return st;
   rnk_block_mv(11, H, v, Hv);
   return RNK_OK;

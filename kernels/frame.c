@@ -216,17 +216,6 @@ int rnk_frame_update(const double e[3], rnk_frame *ref) {
   return RNK_OK;
 }
 
-int rnk_reference_twist(const double q[11], const rnk_frame ref[2], double ref_twist_prev,
-                        double *m) {
-  rnk_edge_jet f[2];
-  int st = rnk_vertex_frames(q, ref, 0, f);
-  if (st) return st;
-  jet dm;
-  rnk_twist_increment(f, ref_twist_prev, &dm);
-  *m = ref_twist_prev + dm.v;
-  return RNK_OK;
-}
-
 void rnk_block_mv(int n, const double *H, const double *v, double *y) {
   for (int i = 0; i < n; ++i) {
     double s = 0.0;

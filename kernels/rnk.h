@@ -121,8 +121,10 @@ int rnk_twist_hvp(const double q[11], const rnk_frame ref[2], const rnk_twist_pa
                   const double v[11], double Hv[11]);
 
 /* ---- bending + twisting at one vertex, sharing the edge frames ----------
- * Same values as rnk_bend_* + rnk_twist_* (E, g and H are the sums), at about
- * half the cost; what the assembly uses. */
+ * Same values as rnk_bend_* + rnk_twist_* (E, g and H are the sums); closed
+ * forms (rod.c, docs/energy.md): the bending-only and twisting-only kernels
+ * above are these with the other stiffness zero.  The HVP never forms the
+ * block. */
 int rnk_bendtwist_energy(const double q[11], const rnk_frame ref[2],
                          const rnk_bend_param *bp, const rnk_twist_param *tp, double *Eb,
                          double *Et);
@@ -135,6 +137,62 @@ int rnk_bendtwist_hess(const double q[11], const rnk_frame ref[2],
 int rnk_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
                       const rnk_bend_param *bp, const rnk_twist_param *tp,
                       const double v[11], double Hv[11]);
+
+/* Test oracle: the same four functions evaluated with second-order jets
+ * (generic forward differentiation of the composition, bendtwist.c).  Slow;
+ * kept so that the tests can compare the closed forms with an independent
+ * implementation at any configuration. */
+int rnk_jet_bendtwist_energy(const double q[11], const rnk_frame ref[2],
+                             const rnk_bend_param *bp, const rnk_twist_param *tp,
+                             double *Eb, double *Et);
+int rnk_jet_bendtwist_grad(const double q[11], const rnk_frame ref[2],
+                           const rnk_bend_param *bp, const rnk_twist_param *tp, double *E,
+                           double g[11]);
+int rnk_jet_bendtwist_hess(const double q[11], const rnk_frame ref[2],
+                           const rnk_bend_param *bp, const rnk_twist_param *tp,
+                           double H[121]);
+int rnk_jet_bendtwist_hvp(const double q[11], const rnk_frame ref[2],
+                          const rnk_bend_param *bp, const rnk_twist_param *tp,
+                          const double v[11], double Hv[11]);
+
+/* ---- whole rods: stretching + bending + twisting in one pass -------------
+ * A segment of a rod: ne >= 1 consecutive edges, their ne + 1 vertices and
+ * the ne - 1 interior vertices between them.  x is the segment's slice of the
+ * rod's DOF vector, (x_0[3], theta^0, x_1[3], ..., theta^{ne-1}, x_ne[3]),
+ * n = 4 ne + 3 doubles; the vertex stencil of interior vertex k (1 <= k <
+ * ne) is x[4 (k-1) .. 4 (k-1) + 10], the edge stencil of edge j x[4 j ..
+ * 4 j + 6].  Values are those of rnk_stretch_* (edges stretch_lo <= j <
+ * stretch_hi only: so that overlapping segments count each edge once) and
+ * rnk_bendtwist_* (every interior vertex, parameters bp[k-1], tp[k-1] with
+ * the stored reference twist ref_twist[k-1] in place of tp[k-1].ref_twist).
+ * Each edge's frame is computed once for both of its vertices.  The loops
+ * have no early exit: on RNK_DEGENERATE, bad[0] is the first degenerate
+ * stretched edge and bad[1] the first degenerate interior vertex (-1 if
+ * none) and the outputs are unspecified. */
+typedef struct rnk_rod_seg {
+  int ne;
+  const double *x;             /* [4 ne + 3] */
+  const rnk_frame *ref;        /* [ne] reference frames */
+  const rnk_stretch_param *sp; /* [ne] */
+  int stretch_lo, stretch_hi;  /* edges whose stretching counts */
+  const rnk_bend_param *bp;    /* [ne - 1] */
+  const rnk_twist_param *tp;   /* [ne - 1] */
+  const double *ref_twist;     /* [ne - 1] */
+} rnk_rod_seg;
+
+/* Half bandwidth of a rod's Hessian in its DOF vector (a vertex stencil spans
+ * 11 consecutive DOFs) and the row length of the band storage below. */
+enum { RNK_BAND_HALF = 10, RNK_BAND = 2 * RNK_BAND_HALF + 1 };
+
+/* E[0..2] = stretching, bending, twisting energy of the segment. */
+int rnk_rod_energy(const rnk_rod_seg *s, double E[3], int bad[2]);
+/* Also adds the gradient to g[4 ne + 3]. */
+int rnk_rod_grad(const rnk_rod_seg *s, double E[3], double *g, int bad[2]);
+/* Adds H v to Hv[4 ne + 3] (matrix-free: no block is formed). */
+int rnk_rod_hvp(const rnk_rod_seg *s, const double *v, double *Hv, int bad[2]);
+/* Adds the Hessian to the band storage: entry (a, c), |a - c| <= 10, at
+ * band[a * RNK_BAND + c - a + RNK_BAND_HALF], a, c in [0, 4 ne + 3). */
+int rnk_rod_hess(const rnk_rod_seg *s, double *band, int bad[2]);
 
 /* ---- couple on an edge's material frame, edge stencil q[7] ---------------
  * E = -|M| (angle0 + alpha): alpha is the rotation about the fixed axis

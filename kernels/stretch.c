@@ -57,9 +57,21 @@ int rnk_stretch_hess(const double q[7], const rnk_stretch_param *p, double H[49]
 
 int rnk_stretch_hvp(const double q[7], const rnk_stretch_param *p, const double v[7],
                     double Hv[7]) {
-  double H[49];
-  int st = rnk_stretch_hess(q, p, H);
+  double e[3], l;
+  int st = edge_geometry(q, e, &l);
   if (st) return st;
-  rnk_block_mv(7, H, v, Hv);
+  /* (k / lbar) [ r de + (1 - r) t (t . de) ], r = 1 - lbar / l, de = v1 - v0 */
+  double s = p->k / p->lbar, r = 1.0 - p->lbar / l, de[3], td = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    de[k] = v[4 + k] - v[k];
+    td += e[k] * de[k];
+  }
+  td *= (1.0 - r) / (l * l);
+  for (int k = 0; k < 3; ++k) {
+    double hk = s * (r * de[k] + td * e[k]);
+    Hv[k] = -hk;
+    Hv[4 + k] = hk;
+  }
+  Hv[3] = 0.0;
   return RNK_OK;
 }

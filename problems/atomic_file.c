@@ -32,6 +32,7 @@ static int is_special(const char *path) {
  * the status is RN_ERR_IO and *err the errno (0 otherwise). */
 static rn_status write_and_close(FILE *f, rn_file_writer write, void *user,
                                  rn_context *ctx, int *err) {
+  setvbuf(f, NULL, _IOFBF, (size_t)1 << 20); /* large files: fewer write calls */
   rn_status st = write(f, user, ctx);
   *err = 0;
   if (!st && (fflush(f) != 0 || ferror(f))) {

@@ -1,11 +1,14 @@
-/* result_json.c - result JSON writer (streams the rods; %.17g numbers). */
+/* result_json.c - result JSON writer (streams the rods; %.17g numbers written by
+ * rn_format_g17, a row at a time). */
 #include "result_json.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "atomic_file.h"
+#include "num_format.h"
 
 typedef struct json_out {
   FILE *f;
@@ -14,13 +17,33 @@ typedef struct json_out {
   const rn_result_info *info;
 } json_out;
 
+/* Appends x to buf ("null" if it is not finite); returns the characters written
+ * (at most RN_NUM_BUF - 1). */
+static size_t num_text(json_out *o, double x, char *buf) {
+  if (isfinite(x)) return rn_format_g17(x, buf);
+  o->not_finite = 1;
+  memcpy(buf, "null", 5);
+  return 4;
+}
+
 static void put_num(json_out *o, double x) {
-  if (isfinite(x))
-    fprintf(o->f, "%.17g", x);
-  else {
-    o->not_finite = 1;
-    fputs("null", o->f);
+  char buf[RN_NUM_BUF];
+  fwrite(buf, 1, num_text(o, x, buf), o->f);
+}
+
+/* Appends "[x, y, z]" of v to buf (at least 3 RN_NUM_BUF + 8 bytes). */
+static size_t vec_text(json_out *o, const double *v, char *buf) {
+  size_t n = 0;
+  buf[n++] = '[';
+  for (int k = 0; k < 3; k++) {
+    if (k) {
+      buf[n++] = ',';
+      buf[n++] = ' ';
+    }
+    n += num_text(o, v[k], buf + n);
   }
+  buf[n++] = ']';
+  return n;
 }
 
 static void put_str(FILE *f, const char *s) {
@@ -112,32 +135,31 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_rod_name(net, rod));
   fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
+  char row[3 * RN_NUM_BUF + 16];
   for (int i = 0; i < nv; i++) {
-    fputs(i ? ",\n       [" : "\n       [", f);
-    for (int k = 0; k < 3; k++) {
-      if (k) fputs(", ", f);
-      put_num(o, buf[3 * i + k]);
-    }
-    fputc(']', f);
+    size_t n = i ? 9 : 8;
+    memcpy(row, ",\n       " + (i ? 0 : 1), n);
+    n += vec_text(o, &buf[3 * i], row + n);
+    fwrite(row, 1, n, f);
   }
   fputs("],\n     \"theta\": [", f);
   if ((st = rn_network_rod_theta(net, rod, buf))) return st;
   for (int i = 0; i + 1 < nv; i++) {
-    fputs(i ? ", " : "", f);
-    if (i && i % 8 == 0) fputs("\n       ", f);
-    put_num(o, buf[i]);
+    size_t n = 0;
+    if (i) {
+      n = i % 8 ? 2 : 10; /* a line break after every 8 values */
+      memcpy(row, ", \n       ", n);
+    }
+    n += num_text(o, buf[i], row + n);
+    fwrite(row, 1, n, f);
   }
   fputs("]}", f);
   return RN_OK;
 }
 
 static void put_vec(json_out *o, const double *v) {
-  fputc('[', o->f);
-  for (int k = 0; k < 3; k++) {
-    if (k) fputs(", ", o->f);
-    put_num(o, v[k]);
-  }
-  fputc(']', o->f);
+  char row[3 * RN_NUM_BUF + 8];
+  fwrite(row, 1, vec_text(o, v, row), o->f);
 }
 
 /* {"name", "model", "valence", "position": [x, y, z], "rotation": 3 rows}. */

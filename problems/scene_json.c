@@ -1,6 +1,8 @@
 /* scene_json.c - typed access to cJSON values with JSON-path errors. */
 #include "scene_json.h"
 
+#include "num_format.h"
+
 #include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
@@ -49,9 +51,12 @@ size_t rn_jwalk_key(rn_jwalk *w, const char *key) {
 }
 
 size_t rn_jwalk_index(rn_jwalk *w, int i) {
-  size_t mark = w->len;
-  char buf[32];
-  snprintf(buf, sizeof buf, "[%d]", i);
+  size_t mark = w->len; /* called for every element of big arrays: no printf */
+  char buf[RN_NUM_BUF + 2];
+  buf[0] = '[';
+  size_t n = 1 + rn_format_long(i, buf + 1);
+  buf[n++] = ']';
+  buf[n] = '\0';
   jwalk_append(w, buf);
   return mark;
 }
@@ -192,16 +197,19 @@ rn_status rn_jv_number(rn_jwalk *w, const cJSON *v, rn_jrange r, double *out) {
 }
 
 rn_status rn_jv_int(rn_jwalk *w, const cJSON *v, long lo, long hi, int *out) {
+  if (cJSON_IsNumber(v) && isfinite(v->valuedouble)) {
+    double x = v->valuedouble;
+    if (x == floor(x) && x >= (double)lo && x <= (double)hi) {
+      *out = (int)x;
+      return RN_OK;
+    }
+  }
   char what[96];
   if (hi >= 2147483647L)
     snprintf(what, sizeof what, "an integer >= %ld", lo);
   else
     snprintf(what, sizeof what, "an integer in [%ld, %ld]", lo, hi);
-  if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) return expected(w, what, v);
-  double x = v->valuedouble;
-  if (x != floor(x) || x < (double)lo || x > (double)hi) return expected(w, what, v);
-  *out = (int)x;
-  return RN_OK;
+  return expected(w, what, v);
 }
 
 rn_status rn_jv_string(rn_jwalk *w, const cJSON *v, const char **out) {
@@ -211,9 +219,11 @@ rn_status rn_jv_string(rn_jwalk *w, const cJSON *v, const char **out) {
 }
 
 rn_status rn_jv_vec(rn_jwalk *w, const cJSON *v, int n, rn_jrange r, double *out) {
-  char what[64];
-  snprintf(what, sizeof what, "an array of %d numbers", n);
-  if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) return expected(w, what, v);
+  if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) {
+    char what[64];
+    snprintf(what, sizeof what, "an array of %d numbers", n);
+    return expected(w, what, v);
+  }
   int i = 0;
   for (const cJSON *c = v->child; c; c = c->next, i++) {
     size_t mark = rn_jwalk_index(w, i);

@@ -1,6 +1,8 @@
 /* vtk.c - .vtu writer (VTK XML UnstructuredGrid, ASCII).  Each data array is
  * one field: a function that fills the values of one rod, written rod after
- * rod (the field table is in vtk.h's order). */
+ * rod (the field table is in vtk.h's order).  The stencil quantities that several
+ * fields share (rn_network_rod_vertex_fields, rn_network_rod_strains) are computed
+ * once per rod before writing, 8 doubles per interior vertex. */
 #include "vtk.h"
 
 #include <math.h>
@@ -9,6 +11,7 @@
 #include <string.h>
 
 #include "atomic_file.h"
+#include "num_format.h"
 
 enum { VTK_VERTEX = 1, VTK_LINE = 3, N_WORK = 4 };
 
@@ -19,7 +22,47 @@ typedef struct vtk_out {
   int not_finite;
   double *val;          /* values of one rod, 9 * max vertices */
   double *work[N_WORK]; /* scratch, 3 * max vertices each */
+  size_t *first;        /* per rod: index of its first interior vertex in the caches */
+  double *vf;           /* per interior vertex i of a rod, in blocks of 5 (interior count)
+                           per rod: moments (m1, m2), twisting moment, bending and twisting
+                           energy, as rn_network_rod_vertex_fields returns them */
+  double *kt;           /* blocks of 3 per rod: curvature (kappa1, kappa2), twist (tau) */
 } vtk_out;
+
+/* Cached stencil fields of rod (vtk_out.vf): moment[2 n], twist_moment[n],
+ * bend_energy[n], twist_energy[n], n the rod's interior vertices. */
+static const double *rod_vertex_fields(const vtk_out *o, int rod) {
+  return o->vf + 5 * o->first[rod];
+}
+
+static const double *rod_strains(const vtk_out *o, int rod) {
+  return o->kt + 3 * o->first[rod];
+}
+
+/* Fills the caches: one rn_network_rod_vertex_fields and one rn_network_rod_strains
+ * call per rod. */
+static rn_status cache_stencil_fields(vtk_out *o) {
+  const int nrods = rn_network_num_rods(o->net);
+  size_t total = 0;
+  o->first = malloc(((size_t)nrods + 1) * sizeof *o->first);
+  if (!o->first) return RN_ERR_ALLOC;
+  for (int r = 0; r < nrods; r++) {
+    o->first[r] = total;
+    total += (size_t)rn_network_rod_num_vertices(o->net, r) - 2;
+  }
+  o->first[nrods] = total;
+  o->vf = malloc((5 * total + 1) * sizeof *o->vf);
+  o->kt = malloc((3 * total + 1) * sizeof *o->kt);
+  if (!o->vf || !o->kt) return RN_ERR_ALLOC;
+  rn_status st = RN_OK;
+  for (int r = 0; r < nrods && !st; r++) {
+    const size_t n = o->first[r + 1] - o->first[r];
+    double *v = o->vf + 5 * o->first[r], *k = o->kt + 3 * o->first[r];
+    st = rn_network_rod_vertex_fields(o->net, r, v, v + 2 * n, v + 3 * n, v + 4 * n);
+    if (!st) st = rn_network_rod_strains(o->net, r, NULL, k, k + 2 * n);
+  }
+  return st;
+}
 
 /* Fills o->val with the values of one rod (count * ncomp). */
 typedef rn_status (*vtk_fill)(vtk_out *o, int rod, double *val);
@@ -76,11 +119,9 @@ static rn_status fill_displacement(vtk_out *o, int rod, double *val) {
  * length; 0 at the rod's ends. */
 static rn_status strain_rate(vtk_out *o, int rod, int ncomp, double *val) {
   int nv = rn_network_rod_num_vertices(o->net, rod);
-  double *x = o->work[0], *s = o->work[1];
+  double *x = o->work[0];
+  const double *s = rod_strains(o, rod) + (ncomp == 2 ? 0 : 2 * (nv - 2));
   rn_status st = rn_network_rod_vertices(o->net, rod, x);
-  if (!st)
-    st = rn_network_rod_strains(o->net, rod, NULL, ncomp == 2 ? s : NULL,
-                                ncomp == 1 ? s : NULL);
   if (st) return st;
   memset(val, 0, (size_t)(ncomp * nv) * sizeof *val);
   for (int i = 1; i + 1 < nv; i++)
@@ -99,9 +140,7 @@ static rn_status fill_twist_rate(vtk_out *o, int rod, double *val) {
 
 static rn_status fill_moment(vtk_out *o, int rod, double *val) {
   int nv = rn_network_rod_num_vertices(o->net, rod);
-  double *m = o->work[0];
-  rn_status st = rn_network_rod_vertex_fields(o->net, rod, m, NULL, NULL, NULL);
-  if (st) return st;
+  const double *m = rod_vertex_fields(o, rod);
   memset(val, 0, (size_t)nv * sizeof *val);
   for (int i = 1; i + 1 < nv; i++) val[i] = hypot(m[2 * i - 2], m[2 * i - 1]);
   return RN_OK;
@@ -111,9 +150,9 @@ static rn_status fill_moment(vtk_out *o, int rod, double *val) {
  * the vertex's two edges (the curvature binormal is kappa1 d2 - kappa2 d1). */
 static rn_status fill_moment_vector(vtk_out *o, int rod, double *val) {
   int nv = rn_network_rod_num_vertices(o->net, rod);
-  double *m = o->work[0], *d1 = o->work[1], *d2 = o->work[2];
-  rn_status st = rn_network_rod_vertex_fields(o->net, rod, m, NULL, NULL, NULL);
-  if (!st) st = rn_network_rod_frames(o->net, rod, d1, d2);
+  const double *m = rod_vertex_fields(o, rod);
+  double *d1 = o->work[1], *d2 = o->work[2];
+  rn_status st = rn_network_rod_frames(o->net, rod, d1, d2);
   if (st) return st;
   memset(val, 0, 3 * (size_t)nv * sizeof *val);
   for (int i = 1; i + 1 < nv; i++) {
@@ -128,8 +167,8 @@ static rn_status fill_moment_vector(vtk_out *o, int rod, double *val) {
 
 static rn_status fill_twisting_moment(vtk_out *o, int rod, double *val) {
   int nv = rn_network_rod_num_vertices(o->net, rod);
-  rn_status st = rn_network_rod_vertex_fields(o->net, rod, NULL, val + 1, NULL, NULL);
-  if (st) return st;
+  memcpy(val + 1, rod_vertex_fields(o, rod) + 2 * (nv - 2),
+         (size_t)(nv - 2) * sizeof *val);
   val[0] = val[nv - 1] = 0.0;
   return RN_OK;
 }
@@ -191,9 +230,9 @@ static rn_status fill_rest_length(vtk_out *o, int rod, double *val) {
  * cell.  Sum over edges of energy_density * rest_length = elastic energy. */
 static rn_status fill_energy_density(vtk_out *o, int rod, double *val) {
   int nv = rn_network_rod_num_vertices(o->net, rod);
-  double *es = o->work[0], *eb = o->work[1], *et = o->work[2], *len = o->work[3];
+  double *es = o->work[0], *len = o->work[3];
+  const double *eb = rod_vertex_fields(o, rod) + 3 * (nv - 2), *et = eb + (nv - 2);
   rn_status st = rn_network_rod_edge_fields(o->net, rod, NULL, es);
-  if (!st) st = rn_network_rod_vertex_fields(o->net, rod, NULL, NULL, eb, et);
   if (!st) st = rn_network_rod_rest_lengths(o->net, rod, len);
   if (st) return st;
   for (int e = 0; e + 1 < nv; e++) val[e] = es[e] / len[e];
@@ -245,23 +284,40 @@ enum { N_FIELDS = (int)(sizeof fields / sizeof fields[0]) };
 
 /* ---- writing ------------------------------------------------------------------- */
 
-static void put_num(vtk_out *o, double x) {
-  if (!isfinite(x)) {
-    o->not_finite = 1;
-    x = 0;
-  }
-  fprintf(o->f, "%.17g", x);
-}
+/* Rows of up to 9 numbers, each written with one fwrite. */
+enum { ROW_MAX = 10 + 9 * RN_NUM_BUF };
 
 static void put_rows(vtk_out *o, const double *v, int rows, int ncomp) {
+  char row[ROW_MAX];
   for (int r = 0; r < rows; r++) {
-    fputs("          ", o->f);
+    size_t n = 10;
+    memset(row, ' ', n);
     for (int k = 0; k < ncomp; k++) {
-      if (k) fputc(' ', o->f);
-      put_num(o, v[ncomp * r + k]);
+      double x = v[ncomp * r + k];
+      if (!isfinite(x)) {
+        o->not_finite = 1;
+        x = 0;
+      }
+      if (k) row[n++] = ' ';
+      n += rn_format_g17(x, row + n);
     }
-    fputc('\n', o->f);
+    row[n++] = '\n';
+    fwrite(row, 1, n, o->f);
   }
+}
+
+/* One row "          a[ b]\n" of one or two integers (b < 0: none). */
+static void put_ints(FILE *f, long a, long b) {
+  char row[16 + 2 * RN_NUM_BUF];
+  size_t n = 10;
+  memset(row, ' ', n);
+  n += rn_format_long(a, row + n);
+  if (b >= 0) {
+    row[n++] = ' ';
+    n += rn_format_long(b, row + n);
+  }
+  row[n++] = '\n';
+  fwrite(row, 1, n, f);
 }
 
 /* The row of joint j in field fld: position, displacement, rotation and
@@ -325,23 +381,22 @@ static void cell_arrays(vtk_out *o) {
   fputs("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n", f);
   for (int r = 0; r < nrods; r++) {
     int nv = rn_network_rod_num_vertices(o->net, r);
-    for (int e = 0; e + 1 < nv; e++)
-      fprintf(f, "          %ld %ld\n", base + e, base + e + 1);
+    for (int e = 0; e + 1 < nv; e++) put_ints(f, base + e, base + e + 1);
     base += nv;
     cells += nv - 1;
   }
   int nj = rn_network_num_joints(o->net);
-  for (int j = 0; j < nj; j++) fprintf(f, "          %ld\n", base + j);
+  for (int j = 0; j < nj; j++) put_ints(f, base + j, -1);
   fputs("        </DataArray>\n"
         "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
         f);
-  for (long c = 1; c <= cells; c++) fprintf(f, "          %ld\n", 2 * c);
-  for (int j = 1; j <= nj; j++) fprintf(f, "          %ld\n", 2 * cells + j);
+  for (long c = 1; c <= cells; c++) put_ints(f, 2 * c, -1);
+  for (int j = 1; j <= nj; j++) put_ints(f, 2 * cells + j, -1);
   fputs("        </DataArray>\n"
         "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
         f);
-  for (long c = 0; c < cells; c++) fprintf(f, "          %d\n", VTK_LINE);
-  for (int j = 0; j < nj; j++) fprintf(f, "          %d\n", VTK_VERTEX);
+  for (long c = 0; c < cells; c++) put_ints(f, VTK_LINE, -1);
+  for (int j = 0; j < nj; j++) put_ints(f, VTK_VERTEX, -1);
   fputs("        </DataArray>\n", f);
 }
 
@@ -385,8 +440,12 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
   o->val = mem;
   for (int k = 0; k < N_WORK; k++)
     o->work[k] = mem ? mem + 3 * (size_t)maxnv * (k + 3) : NULL;
-  rn_status st = mem ? write_body(o, npoints, ncells) : RN_ERR_ALLOC;
+  rn_status st = mem ? cache_stencil_fields(o) : RN_ERR_ALLOC;
+  if (!st) st = write_body(o, npoints, ncells);
   free(mem);
+  free(o->first);
+  free(o->vf);
+  free(o->kt);
   if (st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench.sh: build (scripts/setup.sh), run the benchmarks at full size and plot them.
-# Writes benchmarks/results/{kernels,solve,lattice}.{csv,png}.
+# Writes benchmarks/results/{kernels,solve,lattice,startup,io}.{csv,png}.
 #
 #   bash scripts/bench.sh            # full: kernels 1e2..1e5 vertices, solve 101/401/3201,
 #                                    # honeycombs 10x10 and 30x30, rigid and elastic joints
@@ -32,5 +32,18 @@ fi
 if [ -x ./build/benchmarks/bench_lattice ]; then
   ./build/benchmarks/bench_lattice --cells "$lcells" "${sargs[@]}" --out "$out/lattice.csv"
   "$py" benchmarks/plot.py "$out/lattice.csv" -o "$out/lattice.png"
+fi
+# Whole-process start-up of `rodnet solve` (the issue's 401-vertex cantilever) and
+# scene reading / result writing on honeycombs of 1e4, 1e5 (and, with RN_BENCH_LARGE,
+# 1e6) vertices.
+if [ -x ./build/benchmarks/bench_io ]; then
+  "$py" benchmarks/bench_startup.py --rodnet build/rodnet --sizes 401,3201 \
+    --repeats "$([ "${RN_BENCH_QUICK:-0}" = 1 ] && echo 5 || echo 21)" \
+    --out "$out/startup.csv"
+  "$py" benchmarks/plot_startup_io.py "$out/startup.csv" -o "$out/startup.png"
+  iocells=21,66
+  [ "${RN_BENCH_LARGE:-0}" = 1 ] && iocells=$iocells,208
+  ./build/benchmarks/bench_io --cells "$iocells" --solve "${sargs[@]}" --out "$out/io.csv"
+  "$py" benchmarks/plot_startup_io.py "$out/io.csv" -o "$out/io.png"
 fi
 echo "bench.sh: results in $out/"

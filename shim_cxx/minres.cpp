@@ -4,18 +4,16 @@
 #include <cmath>
 #include <vector>
 
-#include <mpi.h>
-
 #include <BelosLinearProblem.hpp>
 #include <BelosMinresIter.hpp>
 #include <BelosStatusTestCombo.hpp>
 #include <BelosStatusTestGenResNorm.hpp>
 #include <BelosStatusTestMaxIters.hpp>
 #include <BelosTpetraAdapter.hpp>
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_oblackholestream.hpp>
 #include <Tpetra_Operator.hpp>
 
+#include "runtime.hpp"
 #include "shim_error.hpp"
 
 namespace rodnet {
@@ -53,10 +51,7 @@ private:
 } // namespace
 
 Teuchos::RCP<const Map> make_local_map(size_t n) {
-  int initialized = 0;
-  MPI_Initialized(&initialized);
-  if (!initialized) throw Error(RN_ERR_TRILINOS, "rn_solve: MPI is not initialized");
-  auto comm = Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
+  auto comm = self_comm();
   using GO = Map::global_ordinal_type;
   return Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(n), GO(0), comm));
 }

@@ -19,7 +19,8 @@ namespace rodnet {
 using Map = Tpetra::Map<>;
 using MV = Tpetra::MultiVector<>;
 
-// One-rank map of n entries over MPI_COMM_SELF (rn_solve is not distributed yet).
+// One-rank map of n entries over self_comm() (runtime.hpp: MPI_COMM_SELF in MPI mode,
+// a serial communicator otherwise).
 Teuchos::RCP<const Map> make_local_map(size_t n);
 
 // Host pointer to the (single) column of a multivector (Serial node: host = device).

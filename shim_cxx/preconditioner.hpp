@@ -24,8 +24,8 @@ namespace rodnet {
 struct PreconditionerStats {
   long setups = 0, applies = 0;
   double setup_seconds = 0.0, apply_seconds = 0.0;
-  double bytes = 0.0;    // memory held after the last setup (this rank)
-  bool shifted = false;  // the last setup had to modify an indefinite piece
+  double bytes = 0.0;   // memory held after the last setup (this rank)
+  bool shifted = false; // the last setup had to modify an indefinite piece
 };
 
 class Preconditioner {

@@ -1,8 +1,6 @@
 // solve_api.cpp - extern "C" entry points of rodnet_solve.h: options, names,
-// runtime (Tpetra/Kokkos/MPI), rn_solve with load stepping, Hessian eigenvalue.
+// rn_solve with load stepping, Hessian eigenvalue.
 // Every entry catches all exceptions; none crosses into C.
-#include <mpi.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -10,35 +8,18 @@
 #include <exception>
 #include <vector>
 
-#include <Tpetra_Core.hpp>
-
 #include "banded.hpp"
 #include "monitor.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
 #include "rodnet_solve.h"
+#include "runtime.hpp"
 #include "shim_error.hpp"
 #include "solvers.hpp"
 #include "spd_factor.hpp"
 
 namespace rodnet {
 namespace {
-
-bool g_initialized_here = false; // Tpetra::initialize was called by rodnet
-bool g_atexit_registered = false;
-
-void finalize_at_exit() { rn_runtime_finalize(); }
-
-// Initialise on first use (rn_solve called without rn_runtime_initialize): the
-// runtime is then finalised at program exit.
-void ensure_runtime() {
-  if (Tpetra::isInitialized()) return;
-  const rn_status s = rn_runtime_initialize(nullptr, nullptr);
-  if (s != RN_OK)
-    throw Error(s, "rn_solve: cannot initialise the Tpetra/Kokkos/MPI runtime");
-  if (!g_atexit_registered && std::atexit(finalize_at_exit) == 0)
-    g_atexit_registered = true;
-}
 
 // The integer value of a C enum field.  A C caller may store any int in it; read as
 // the C++ enum type, a value outside the enumerators' range is undefined behaviour.
@@ -347,36 +328,6 @@ rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
   const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
                                     RN_FACTOR_CHOLMOD};
   return rodnet::value_of_name(name, kinds, rn_factorization_name, f);
-}
-
-rn_status rn_runtime_initialize(int *argc, char ***argv) {
-  try {
-    if (Tpetra::isInitialized()) return RN_OK;
-    int finalized = 0;
-    MPI_Finalized(&finalized);
-    if (finalized) return RN_ERR_STATE;
-    int argc0 = 0;
-    char *argv0[] = {nullptr};
-    char **argvp = argv0;
-    if (!argc || !argv) {
-      argc = &argc0;
-      argv = &argvp;
-    }
-    Tpetra::initialize(argc, argv);
-    rodnet::g_initialized_here = true;
-    return RN_OK;
-  } catch (...) {
-    return RN_ERR_TRILINOS;
-  }
-}
-
-void rn_runtime_finalize(void) {
-  try {
-    if (rodnet::g_initialized_here && Tpetra::isInitialized()) Tpetra::finalize();
-    rodnet::g_initialized_here = false;
-  } catch (...) {
-    rodnet::g_initialized_here = false;
-  }
 }
 
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep) {

@@ -33,6 +33,8 @@ rn_add_test(problems_scene_errors SOURCES unit/problems_scene_errors_test.c
 file(GLOB RN_EXAMPLE_SCENES ${RN_SCENES}/*.json)
 rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_EXAMPLE_SCENES})
+rn_add_test(problems_num_format SOURCES unit/problems_num_format_test.c
+            LIBS rodnet_problems m LABELS unit)
 rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_CLI_OUT}/atomic_scratch)
 set(RN_OBJ_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/obj)

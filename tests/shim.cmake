@@ -29,6 +29,36 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
+# The runtime uses MPI exactly in an MPI job (launcher variables, RODNET_MPI, or MPI
+# initialised by the program); same solution either way; finalize / re-initialize.
+rn_add_test(shim_runtime SOURCES unit/shim_runtime.c LIBS rodnet MPI::MPI_C
+            ARGS serial LABELS unit)
+set_tests_properties(shim_runtime PROPERTIES ENVIRONMENT "RODNET_MPI=")
+add_test(NAME shim_runtime_forced_mpi COMMAND shim_runtime mpi)
+add_test(NAME shim_runtime_program_mpi COMMAND shim_runtime program-mpi)
+set_tests_properties(shim_runtime_forced_mpi PROPERTIES ENVIRONMENT "RODNET_MPI=1")
+set_tests_properties(shim_runtime_program_mpi PROPERTIES ENVIRONMENT "RODNET_MPI=")
+set_tests_properties(shim_runtime_forced_mpi shim_runtime_program_mpi PROPERTIES
+  LABELS unit TIMEOUT 120)
+if(MPIEXEC_EXECUTABLE)
+  set(rn_mpi_env "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
+                 "OMPI_MCA_rmaps_base_oversubscribe=1")
+  add_test(NAME shim_runtime_mpirun
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2
+                   $<TARGET_FILE:shim_runtime> mpi)
+  set_tests_properties(shim_runtime_mpirun PROPERTIES PROCESSORS 2
+                       ENVIRONMENT "${rn_mpi_env};RODNET_MPI=")
+  add_test(NAME shim_runtime_mpirun_forced_serial
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 1
+                   $<TARGET_FILE:shim_runtime> serial)
+  set_tests_properties(shim_runtime_mpirun_forced_serial PROPERTIES PROCESSORS 1
+                       ENVIRONMENT "${rn_mpi_env};RODNET_MPI=0")
+  set_tests_properties(shim_runtime_mpirun shim_runtime_mpirun_forced_serial PROPERTIES
+    LABELS "unit;mpi" TIMEOUT 120)
+endif()
+# Translating a whole scene leaves energies, gradient and solve unchanged (load
+# potentials measured from the initial state).
+rn_add_test(shim_translation SOURCES unit/shim_translation.c LIBS rodnet m LABELS unit)
 # The distributed evaluation layer (parts, Tpetra maps, Import/Export, CrsMatrix)
 # against the whole network on 1, 2 and 3 ranks (label mpi; 3 ranks: more ranks than
 # rods for some networks).

@@ -111,8 +111,11 @@ if [ ! -f "$archive" ]; then
 else
   libm=$(${CC:-cc} -print-file-name=libm.so.6)
   [ -f "$libm" ] || libm=$(ldconfig -p | awk '/libm\.so\.6 / {print $NF; exit}')
+  # __cpu_indicator_init, __cpu_model: libgcc's CPU feature detection behind
+  # GCC's target_clones (the rod kernels' loops pick AVX2 / AVX-512 at run time).
   allowed=$( { "$nm" -D --defined-only "$libm" | awk '{print $NF}' | sed 's/@.*//';
-               printf '%s\n' memset memcpy _GLOBAL_OFFSET_TABLE_; } | sort -u)
+               printf '%s\n' memset memcpy _GLOBAL_OFFSET_TABLE_ \
+                 __cpu_indicator_init __cpu_model; } | sort -u)
   # Undefined in some object and not defined by another object of the archive.
   defined=$("$nm" --defined-only -g "$archive" 2>/dev/null | awk 'NF == 3 {print $3}' | sort -u)
   undefined=$(comm -23 <("$nm" -u "$archive" 2>/dev/null | awk 'NF >= 2 {print $NF}' |

@@ -6,6 +6,7 @@
  * energy and gradient at rest, invariance under rigid motions of a free rod,
  * the energy unchanged by update_reference, load lumping, the motion of
  * clamped ends under the load factor, and the built-in self-test. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -246,7 +247,13 @@ static void test_full(rn_context *ctx) {
   CHECK_STATUS(rn_network_energy(net, x, &E), RN_OK);
   CHECK_STATUS(rn_network_gradient(net, x, &Eg, g), RN_OK);
   CHECK_NEAR(terms[0] + terms[1] + terms[2] + terms[3], E, 1e-15 * fabs(E));
-  CHECK(Eg == E);
+  /* The gradient path sums the same stencil energies into other buckets (bending
+   * and twisting of a vertex together): equal to a few units of round-off of the
+   * terms' magnitudes, not bit for bit (it matched bit for bit only while the load
+   * term, then -f . x with absolute positions, dwarfed the rest). */
+  CHECK_NEAR(Eg, E,
+             4 * DBL_EPSILON *
+                 (fabs(terms[0]) + fabs(terms[1]) + fabs(terms[2]) + fabs(terms[3])));
   for (int t = 0; t < RN_TERM_COUNT; ++t) CHECK(terms[t] != 0.0);
   CHECK(terms[RN_TERM_STRETCH] > 0 && terms[RN_TERM_BEND] > 0 &&
         terms[RN_TERM_TWIST] > 0);
