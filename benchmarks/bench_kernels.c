@@ -129,9 +129,10 @@ static double core_peak(double *ghz, int *width) {
  * array it touches counted once per read and once per write, at its size
  * (4 DOFs of 8 bytes and 4 entries of the 8-byte DOF map per vertex; per
  * edge the reference frame 48, stretch parameters 16; per interior vertex
- * bending 48, twisting 32 and stored twist 8 bytes; CSR values 8 bytes per
- * entry, zeroed, accumulated (read + write) and checked; the band-row
- * descriptors 16 bytes per DOF). */
+ * bending 48, twisting 32 and stored twist 8 bytes; gradient and HVP zeroed,
+ * accumulated (read + write) and checked; CSR values 8 bytes per entry,
+ * stored once (rows next to clamps and joints are zeroed and accumulated:
+ * not counted); the band-row descriptors 16 bytes per DOF). */
 static double bytes_model(op_kind op, size_t n, size_t nnz, long nv) {
   double d = (double)n / (double)nv, e = (double)nnz / (double)nv;
   double state = 8.0 * d + 8.0 * d;                /* x and the map (gather) */
@@ -145,7 +146,7 @@ static double bytes_model(op_kind op, size_t n, size_t nnz, long nv) {
   case OP_HVP: /* v gathered (and its map), Hv as g */
     return b + 16.0 * d + 8.0 * d * 4.0 + 8.0 * d;
   default:
-    return b + 8.0 * e * 4.0 + 16.0 * d;
+    return b + 8.0 * e + 16.0 * d;
   }
 }
 

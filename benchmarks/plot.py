@@ -54,10 +54,10 @@ def plot_kernels(rows, axes, before=None):
         return out
 
     if before:
-        for (shape, op), pts in sorted(series(before, "median_per_vertex").items()):
+        for i, ((shape, op), pts) in enumerate(sorted(series(before, "median_per_vertex").items())):
             pts.sort()
-            ax_t.plot([p[0] for p in pts], [1e9 * p[1] for p in pts], ":",
-                      color="grey", lw=1, label=f"{op} ({shape}), {before[0]['commit']}")
+            ax_t.plot([p[0] for p in pts], [1e9 * p[1] for p in pts], ":", color="grey",
+                      lw=1, label=f"all, commit {before[0]['commit']}" if i == 0 else None)
     for (shape, op), pts in sorted(series(rows, "median_per_vertex").items(),
                                    key=lambda kv: (kv[0][1], kv[0][0])):
         pts.sort()

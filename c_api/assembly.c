@@ -22,7 +22,14 @@ typedef struct eval_args {
   double *g;         /* OP_GRAD output, accumulated */
   double *Hv;        /* OP_HVP output, accumulated */
   double *vals;      /* OP_HESS output, accumulated */
+  int unbounded;     /* OP_HESS: a contribution exceeded RN_HESS_BOUND or was not
+                        finite (then the sums may overflow) */
   const char *where; /* public entry point, for messages */
+
+  /* OP_GRAD variants (reactions.c): on the full layout instead of g
+   * (rn_eval_gradient_full); |local gradient| into g (rn_eval_gradient_magnitude) */
+  double *gfull;
+  int magnitude;
 } eval_args;
 
 static rn_status degenerate(const rn_network *net, const eval_args *a, const char *term,
@@ -43,12 +50,38 @@ static void gather_dir(const rn_network *net, const eval_args *a, size_t s, int 
     rn_gather_dir(net, a->v, s, n, vl);
 }
 
+/* Accumulates a local gradient of n DOFs at full index s (or by index list idx). */
+static void scatter_grad(const rn_network *net, eval_args *a, const double *gl, size_t s,
+                         const size_t *idx, int n) {
+  double mag[RN_VERTEX_STENCIL];
+  if (a->magnitude) { /* stencils of rods and loads only (joints: by blocks below) */
+    for (int b = 0; b < n; b += RN_VERTEX_STENCIL) {
+      const int m = n - b < RN_VERTEX_STENCIL ? n - b : RN_VERTEX_STENCIL;
+      for (int k = 0; k < m; ++k) mag[k] = fabs(gl[b + k]);
+      if (idx)
+        rn_scatter_add_idx(net, mag, idx + b, m, a->g);
+      else
+        rn_scatter_add(net, mag, s + (size_t)b, m, a->g);
+    }
+    return;
+  }
+  if (a->gfull)
+    for (int k = 0; k < n; ++k) a->gfull[idx ? idx[k] : s + (size_t)k] += gl[k];
+  else if (idx)
+    rn_scatter_add_idx(net, gl, idx, n, a->g);
+  else
+    rn_scatter_add(net, gl, s, n, a->g);
+}
+
 /* Accumulates a local gradient / HVP / Hessian block of a stencil. */
 static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
                        const double *loc) {
-  if (a->op == OP_GRAD) rn_scatter_add(net, loc, s, n, a->g);
+  if (a->op == OP_GRAD) scatter_grad(net, a, loc, s, NULL, n);
   if (a->op == OP_HVP) rn_scatter_add(net, loc, s, n, a->Hv);
-  if (a->op == OP_HESS) rn_csr_add_block(net, s, n, loc, a->vals);
+  if (a->op == OP_HESS) {
+    a->unbounded |= !rn_all_bounded((size_t)n * (size_t)n, loc);
+    rn_csr_add_block(net, s, n, loc, a->vals);
+  }
 }
 
 /* Rods are evaluated by the whole-rod kernels (rnk_rod_*) in segments of up
@@ -57,7 +90,7 @@ static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
  * vertices, and the result is scattered back (the Hessian as band rows, by
  * the positions computed at finalize).  Consecutive segments share one edge;
  * its stretching is counted by the first. */
-enum { RN_ROD_SEGMENT = 32, RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
+enum { RN_ROD_SEGMENT_DOFS = 4 * RN_ROD_SEGMENT + 3 };
 
 static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int ir, int j0,
                                 const int bad[2]) {
@@ -66,7 +99,8 @@ static rn_status rod_degenerate(const rn_network *net, const eval_args *a, int i
 }
 
 /* The stretching, bending and twisting of edges [j0, j0 + ne) of rod r and of
- * the interior vertices between them. */
+ * the interior vertices between them, through a copy of the segment's DOFs
+ * on the stack (ne <= RN_ROD_SEGMENT). */
 static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
                                   eval_args *a) {
   const rn_rod *r = &net->rods[ir];
@@ -95,7 +129,7 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
   case OP_HESS:
     memset(band, 0, (size_t)n * RNK_BAND * sizeof(double));
     if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK)
-      rn_csr_add_band(net, s, n, band, a->vals);
+      a->unbounded |= !rn_csr_add_band(net, s, n, band, a->vals);
     break;
   }
   if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
@@ -103,6 +137,61 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
   a->E[RN_TERM_BEND] += E[1];
   a->E[RN_TERM_TWIST] += E[2];
   return RN_OK;
+}
+
+/* The same for edges whose DOFs are free, distinct and consecutive in the
+ * reduced vector (rn_rod_direct_edges): the kernels read x (and v) and
+ * accumulate into g (Hv) in place, with no copy, however long the run. */
+static rn_status rod_direct_eval(const rn_network *net, int ir, int j0, int ne,
+                                 eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  size_t m = (size_t)net->map[rn_dof_edge_stencil(r->off, j0)];
+  int bad[2], rc = RNK_OK;
+  double E[3] = {0.0, 0.0, 0.0};
+  rnk_rod_seg seg = {ne, a->x + m,   r->ref + j0, r->sp + j0,       j0 ? 1 : 0,
+                     ne, r->bp + j0, r->tp + j0,  r->ref_twist + j0};
+  switch (a->op) {
+  case OP_ENERGY:
+    rc = rnk_rod_energy(&seg, E, bad);
+    break;
+  case OP_GRAD:
+    rc = rnk_rod_grad(&seg, E, a->g + m, bad);
+    break;
+  case OP_HVP: /* (a direction on the fixed DOFs only is zero here) */
+    if (!a->vfull) rc = rnk_rod_hvp(&seg, a->v + m, a->Hv + m, bad);
+    break;
+  case OP_HESS:
+    return rod_segment_eval(net, ir, j0, ne, a); /* (not reached) */
+  }
+  if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
+  a->E[RN_TERM_STRETCH] += E[0];
+  a->E[RN_TERM_BEND] += E[1];
+  a->E[RN_TERM_TWIST] += E[2];
+  return RN_OK;
+}
+
+/* All of rod ir's stretching, bending and twisting: segments that share one
+ * edge with the next (its stretching counted once), copied ones of at most
+ * RN_ROD_SEGMENT edges and, for the energy, gradient and HVP, one in-place
+ * segment over the rod's run of free consecutive DOFs. */
+static rn_status rod_stencils_eval(const rn_network *net, int ir, eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  int lo = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir];
+  int hi = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir + 1];
+  for (int j0 = 0;;) {
+    int j1, direct = j0 >= lo && hi - j0 >= 2;
+    if (direct)
+      j1 = hi;
+    else {
+      j1 = j0 + RN_ROD_SEGMENT < r->ne ? j0 + RN_ROD_SEGMENT : r->ne;
+      if (j0 < lo && j1 > lo + 1) j1 = lo + 1; /* the next starts the run */
+    }
+    rn_status st = direct ? rod_direct_eval(net, ir, j0, j1 - j0, a)
+                          : rod_segment_eval(net, ir, j0, j1 - j0, a);
+    if (st) return st;
+    if (j1 == r->ne) return RN_OK;
+    j0 = j1 - 1;
+  }
 }
 
 static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a) {
@@ -153,7 +242,7 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
     a->E[RN_TERM_LOAD] += rnk_force_energy(xv, f);
     if (a->op == OP_GRAD) {
       rnk_force_grad(f, gl);
-      rn_scatter_add(net, gl, s, RN_DOFS_PER_VERTEX, a->g);
+      scatter_grad(net, a, gl, s, NULL, RN_DOFS_PER_VERTEX);
     }
   }
 }
@@ -185,7 +274,7 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
   case OP_GRAD:
     if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, s->loc)) != RNK_OK) return rc;
     a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
-    rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->g);
+    scatter_grad(net, a, s->loc, 0, J->idx, s->n);
     break;
   case OP_HVP: /* dense block times the gathered direction */
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
@@ -198,6 +287,7 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
     break;
   case OP_HESS:
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
+    a->unbounded |= !rn_all_bounded((size_t)s->n * (size_t)s->n, s->loc);
     rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
     break;
   }
@@ -249,7 +339,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
   if (a->op == OP_GRAD) {
     rnk_force_grad(f, gl);
-    rn_scatter_add(net, gl, p, RN_DOFS_PER_VERTEX, a->g);
+    scatter_grad(net, a, gl, p, NULL, RN_DOFS_PER_VERTEX);
   }
   return RN_OK;
 }
@@ -260,13 +350,8 @@ static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
     forces_eval(net, r, a);
     return RN_OK;
   }
-  for (int j0 = 0;;) {
-    int ne = r->ne - j0 < RN_ROD_SEGMENT ? r->ne - j0 : RN_ROD_SEGMENT;
-    rn_status st = rod_segment_eval(net, ir, j0, ne, a);
-    if (st) return st;
-    if (j0 + ne == r->ne) break;
-    j0 += ne - 1;
-  }
+  rn_status st = rod_stencils_eval(net, ir, a);
+  if (st) return st;
   forces_eval(net, r, a);
   return RN_OK;
 }
@@ -288,9 +373,14 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
    * loads): never hand back NaN or inf with RN_OK.  Recoverable, so a solver
    * rejects such a trial point. */
   int finite = rn_all_finite(RN_TERM_COUNT, a->E);
-  if (finite && a->op == OP_GRAD) finite = rn_all_finite(net->nred, a->g);
+  if (finite && a->op == OP_GRAD)
+    finite =
+        a->gfull ? rn_all_finite(net->nfull, a->gfull) : rn_all_finite(net->nred, a->g);
   if (finite && a->op == OP_HVP) finite = rn_all_finite(net->nred, a->Hv);
-  if (finite && a->op == OP_HESS) finite = rn_all_finite(net->nnz, a->vals);
+  /* Hessian: every contribution was checked against RN_HESS_BOUND, so the
+   * sums cannot overflow (fewer than 1e7 contributions per entry), without
+   * another pass over the values */
+  if (finite && a->op == OP_HESS) finite = !a->unbounded;
   if (!finite)
     return rn_fail(net->ctx, RN_OVERFLOW, a->where,
                    "the energy or its derivatives overflow (not finite) at this state");
@@ -389,7 +479,7 @@ rn_status rn_network_hessian_values(const rn_network *net, const double *x,
   if ((st = check_eval(net, "rn_network_hessian_values", x, vals))) return st;
   args_init(&a, net, OP_HESS, "rn_network_hessian_values", x);
   a.vals = vals;
-  if (net->nnz) memset(vals, 0, net->nnz * sizeof(double));
+  rn_hessian_zero(net, vals); /* the rest is stored by the rods first */
   return eval_all(net, &a);
 }
 
@@ -408,4 +498,21 @@ rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
   a.lambda = 1.0; /* the loads' rate: they are linear in the load factor */
   a.loads_only = 1;
   return eval_into(net, &a, g);
+}
+
+rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *gfull,
+                                const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_GRAD, where, x);
+  a.gfull = gfull;
+  if (net->nfull) memset(gfull, 0, net->nfull * sizeof(double));
+  return eval_all(net, &a);
+}
+
+rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
+                                     const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_GRAD, where, x);
+  a.magnitude = 1;
+  return eval_into(net, &a, gabs);
 }

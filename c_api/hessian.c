@@ -3,7 +3,9 @@
  * stencil touching them: rod stencils as ranges of their rod's full vector,
  * joint stencils by their index lists, through the aliases of joint
  * positions. */
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "network_internal.h"
 
@@ -188,13 +190,137 @@ static rn_status build_band_rows(rn_network *net, const size_t *lo, const size_t
   return RN_OK;
 }
 
+/* complete[a] = 0 for the full DOFs that more than one segment of the
+ * Hessian assembly touches (the rod segmentation of assembly.c for the
+ * Hessian: edges [j0, j0 + RN_ROD_SEGMENT), next j0 = previous end - 1; the
+ * shared edge's stretching counted by the first). */
+static void mark_split_rows(const rn_network *net, unsigned char *complete, int *seg_of) {
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    size_t off = r->off, n = rn_dof_rod_count(r->nv);
+    for (size_t i = 0; i < n; ++i) seg_of[i] = -1;
+    for (int j0 = 0, sid = 0;; ++sid) {
+      int j1 = j0 + RN_ROD_SEGMENT < r->ne ? j0 + RN_ROD_SEGMENT : r->ne;
+      /* stencils of the segment: stretched edges and vertices */
+      for (int k = 0; k < 2; ++k) {
+        int first = k == 0 ? (j0 ? j0 + 1 : j0) : j0 + 1, last = j1 - 1;
+        for (int m = first; m <= last; ++m) {
+          size_t s = k == 0 ? rn_dof_edge_stencil(0, m) : rn_dof_vertex_stencil(0, m);
+          int len = k == 0 ? RN_EDGE_STENCIL : RN_VERTEX_STENCIL;
+          if (k == 1 && m > r->nv - 2) break;
+          for (size_t i = s; i < s + (size_t)len; ++i) {
+            if (seg_of[i] >= 0 && seg_of[i] != sid) complete[off + i] = 0;
+            seg_of[i] = sid;
+          }
+        }
+      }
+      if (j1 == r->ne) break;
+      j0 = j1 - 1;
+    }
+  }
+}
+
+static int cmp_i64_pair(const void *a, const void *b) {
+  int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+  return (x > y) - (x < y);
+}
+
+/* The rows whose rod band run is stored (assign), and the CSR ranges that
+ * must be zeroed instead. */
+static rn_status build_assign(rn_network *net) {
+  size_t nf = net->nfull ? net->nfull : 1, nass = 0, maxlen = 1;
+  unsigned char *complete = malloc(nf), *nrows = calloc(net->nred ? net->nred : 1, 1);
+  int *seg_of = NULL;
+  int64_t *iv = NULL;
+  rn_status st = RN_ERR_ALLOC;
+  for (int ir = 0; ir < net->nrods; ++ir)
+    if (rn_dof_rod_count(net->rods[ir].nv) > maxlen)
+      maxlen = rn_dof_rod_count(net->rods[ir].nv);
+  seg_of = malloc(maxlen * sizeof(int));
+  iv = malloc(2 * nf * sizeof(int64_t));
+  net->hzero = malloc(2 * (nf + 1) * sizeof(int64_t));
+  if (!complete || !nrows || !seg_of || !iv || !net->hzero) goto done;
+  memset(complete, 1, nf);
+  mark_split_rows(net, complete, seg_of);
+  for (size_t a = 0; a < net->nfull; ++a) /* full rows per reduced row */
+    if (net->map[a] >= 0 && nrows[net->map[a]] < 2) nrows[net->map[a]]++;
+  for (size_t a = 0; a < net->nfull; ++a) {
+    rn_band_row *b = &net->band[a];
+    b->assign = (signed char)(b->pos >= 0 && complete[a] && nrows[net->map[a]] == 1);
+    if (!b->assign) continue;
+    iv[2 * nass] = b->pos;
+    iv[2 * nass + 1] = b->pos + b->hi - b->lo + 1;
+    nass++;
+  }
+  qsort(iv, nass, 2 * sizeof(int64_t), cmp_i64_pair);
+  net->nhzero = 0;
+  int64_t at = 0;
+  for (size_t k = 0; k <= nass; ++k) {
+    int64_t end = k < nass ? iv[2 * k] : (int64_t)net->nnz;
+    if (end > at) {
+      net->hzero[2 * net->nhzero] = at;
+      net->hzero[2 * net->nhzero + 1] = end - at;
+      net->nhzero++;
+    }
+    if (k < nass) at = iv[2 * k + 1];
+  }
+  st = RN_OK;
+done:
+  free(complete);
+  free(nrows);
+  free(seg_of);
+  free(iv);
+  return st;
+}
+
+void rn_hessian_zero(const rn_network *net, double *vals) {
+  for (size_t k = 0; k < net->nhzero; ++k)
+    memset(vals + net->hzero[2 * k], 0, (size_t)net->hzero[2 * k + 1] * sizeof(double));
+}
+
 void rn_hessian_pattern_free(rn_network *net) {
   free(net->rowptr);
   free(net->col);
   free(net->band);
+  free(net->rod_direct);
+  free(net->hzero);
   net->rowptr = NULL;
   net->col = NULL;
   net->band = NULL;
+  net->rod_direct = NULL;
+  net->hzero = NULL;
+  net->nhzero = 0;
+}
+
+/* For each rod the longest run of edges [lo, hi) whose stencils read DOFs
+ * that are free and consecutive in the reduced vector, in order (the
+ * assembly evaluates them in place); none of an aliased joint end. */
+static rn_status build_rod_direct(rn_network *net) {
+  net->rod_direct = malloc(2 * (size_t)(net->nrods ? net->nrods : 1) * sizeof(int));
+  if (!net->rod_direct) return RN_ERR_ALLOC;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    size_t n = rn_dof_rod_count(r->nv);
+    size_t best_a = 0, best_b = 0, a = 0; /* runs [a, b) of the full slice */
+    for (size_t i = 0; i <= n; ++i) {
+      int64_t mi = i < n ? net->map[r->off + i] : -1;
+      int joins = i > a && mi >= 0 && mi == net->map[r->off + i - 1] + 1;
+      if (i == a && mi >= 0) continue; /* a run starts */
+      if (joins) continue;
+      if (i - a > best_b - best_a) {
+        best_a = a;
+        best_b = i;
+      }
+      a = mi >= 0 ? i : i + 1;
+    }
+    /* edges j with 4j >= best_a and 4j + 6 < best_b */
+    int lo = (int)((best_a + 3) / 4), hi = best_b >= 3 ? (int)((best_b - 3) / 4) : 0;
+    if (hi > r->ne) hi = r->ne;
+    if (hi < lo) hi = lo;
+    net->rod_direct[2 * ir] = lo;
+    net->rod_direct[2 * ir + 1] = hi;
+  }
+  return RN_OK;
 }
 
 rn_status rn_build_hessian_pattern(rn_network *net) {
@@ -216,6 +342,8 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   net->col = b.c;
   b.c = NULL;
   st = net->col ? build_band_rows(net, lo, hi) : RN_ERR_ALLOC;
+  if (st == RN_OK) st = build_rod_direct(net);
+  if (st == RN_OK) st = build_assign(net);
 done:
   free(b.c);
   free(lo);
@@ -252,8 +380,9 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
   }
 }
 
-void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
-                     double *vals) {
+int rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
+                    double *vals) {
+  double big = 0.0; /* values above RN_HESS_BOUND or not finite */
   for (int i = 0; i < n; ++i) {
     size_t a = s + (size_t)i;
     const rn_band_row *b = &net->band[a];
@@ -261,16 +390,27 @@ void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
     const double *row = band + (size_t)i * RNK_BAND + RNK_BAND_HALF;
     if (b->pos >= 0) {
       double *v = vals + b->pos - b->lo;
-      for (int d = b->lo; d <= b->hi; ++d) v[d] += row[d];
+      if (b->assign)
+        for (int d = b->lo; d <= b->hi; ++d) {
+          v[d] = row[d];
+          big += fabs(row[d]) <= RN_HESS_BOUND ? 0.0 : 1.0;
+        }
+      else
+        for (int d = b->lo; d <= b->hi; ++d) {
+          v[d] += row[d];
+          big += fabs(row[d]) <= RN_HESS_BOUND ? 0.0 : 1.0;
+        }
     } else if (b->pos == RN_BAND_SEARCH) {
       int64_t r = net->map[a];
       for (int d = b->lo; d <= b->hi; ++d) {
         int64_t c = net->map[(size_t)((int64_t)a + d)], pos;
         if (c < 0 || row[d] == 0.0) continue;
+        big += fabs(row[d]) <= RN_HESS_BOUND ? 0.0 : 1.0;
         if ((pos = csr_find(net, r, c)) >= 0) vals[pos] += row[d];
       }
     }
   }
+  return big == 0.0;
 }
 
 void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,

@@ -20,6 +20,17 @@ int rn_all_finite(size_t n, const double *v) {
   return 1;
 }
 
+int rn_all_bounded(size_t n, const double *v) {
+  double m = 0.0; /* the largest magnitude; NaN makes it fail below */
+  int nan = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double a = fabs(v[i]);
+    m = a > m ? a : m;
+    nan |= a != a;
+  }
+  return !nan && m <= RN_HESS_BOUND;
+}
+
 int rn_wrap_index(int i, int n) {
   if (i < 0) i += n;
   return (i >= 0 && i < n) ? i : -1;

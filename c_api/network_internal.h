@@ -103,7 +103,14 @@ enum { RN_BAND_SEARCH = -1, RN_BAND_NONE = -2 };
 typedef struct rn_band_row {
   int64_t pos;
   signed char lo, hi;
+  signed char assign; /* the row's run is only this row's rod band, complete in
+                         one assembly segment: stored, not added (no zeroing) */
 } rn_band_row;
+
+/* Edges per rod segment of the Hessian assembly (assembly.c); consecutive
+ * segments share one edge.  hessian.c mirrors the segmentation to know which
+ * rows a single segment completes. */
+enum { RN_ROD_SEGMENT = 33 };
 
 struct rn_network {
   rn_context *ctx;
@@ -123,6 +130,11 @@ struct rn_network {
   int64_t *rowptr;   /* Hessian pattern [nred + 1] */
   int32_t *col;      /* [nnz] */
   rn_band_row *band; /* rod rows of the full layout into the CSR values [nfull] */
+  int *rod_direct;   /* [2 nrods]: rod edges [lo, hi) whose stencils' DOFs are free,
+                        distinct and consecutive in the reduced vector */
+  int64_t *hzero;    /* [2 nhzero]: (first, count) of the CSR values no rod band
+                        stores: zeroed before each assembly */
+  size_t nhzero;
   size_t nnz;
   size_t bandwidth;
   struct rn_part_data *part; /* NULL: a whole network (part.c) */
@@ -199,6 +211,10 @@ rn_status rn_net_check_rod(const rn_network *net, const char *where, int *rod);
 rn_status rn_net_check_building(const rn_network *net, const char *where);
 rn_status rn_net_check_final(const rn_network *net, const char *where);
 int rn_all_finite(size_t n, const double *v);
+/* 1 if every |v[i]| <= RN_HESS_BOUND (finite): a sum of fewer than 1e7 such
+ * values cannot overflow. */
+#define RN_HESS_BOUND 1e300
+int rn_all_bounded(size_t n, const double *v);
 /* Resolves a possibly negative index (-1 = last) into [0, n); -1 if out of
  * range. */
 int rn_wrap_index(int i, int n);
@@ -253,6 +269,17 @@ rn_status rn_eval_fixed_hvp(const rn_network *net, const double *x, const double
 rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
                             const char *where);
 
+/* gfull[nfull] = gradient of the energy with respect to every full DOF (free and
+ * fixed; an aliased rod end slot gets its rod's stencils, the joint's slot the
+ * joint stencil and the joint force) at the reduced state x (reactions.c). */
+rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *gfull,
+                                const char *where);
+
+/* gabs[nred] = sum over the stencils (and loads) of |their gradient| at each reduced
+ * DOF: the magnitude of the forces that balance there (reactions.c). */
+rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
+                                     const char *where);
+
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference
  * twists (prev 0) and rest quantities at the input shape (theta = 0). */
@@ -273,10 +300,14 @@ void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
                       double *vals);
 /* Adds rows s .. s + n - 1 of the full layout given in rnk.h band storage
  * (band[i * RNK_BAND + c - (s + i) + RNK_BAND_HALF] = entry (s + i, c); rod
- * stencils only) into CSR values. */
-void rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
-                     double *vals);
-/* Frees the Hessian pattern (rowptr, col, band) and sets the pointers NULL. */
+ * stencils only) into CSR values.  Returns 1 if every value it added was at
+ * most RN_HESS_BOUND in magnitude (rn_all_bounded). */
+int rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
+                    double *vals);
+/* Zeroes the CSR values that the rod bands do not store (net->hzero). */
+void rn_hessian_zero(const rn_network *net, double *vals);
+/* Frees the Hessian pattern (rowptr, col, band, rod_direct, hzero) and sets
+ * the pointers NULL. */
 void rn_hessian_pattern_free(rn_network *net);
 /* The same for a stencil gathered by the full index list idx[n]. */
 void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,

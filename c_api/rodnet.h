@@ -464,6 +464,87 @@ rn_status rn_network_part_state_pack(const rn_network *net, double *buf, size_t 
  * the network. */
 rn_status rn_network_part_state_unpack(rn_network *net, const double *buf, size_t n);
 
+/* ---- equilibrium: DOF kinds, applied loads, reactions --------------------
+ * The gradient of the energy is the out-of-balance generalised force: a force
+ * at a position DOF, a moment at a material angle (about the edge tangent) or
+ * at a joint rotation component (global frame).  At a fixed DOF it is the
+ * reaction of the support on the structure, dE/dq (R = dE/dq balances the
+ * internal and applied forces there).  Used by rn_solve's stopping test and by
+ * result writers. */
+enum {
+  RN_DOF_POSITION = 0, /* a vertex or joint coordinate: the gradient is a force */
+  RN_DOF_THETA = 1,    /* a material angle: a moment about the edge tangent */
+  RN_DOF_ROTATION = 2  /* a joint rotation-vector component: a moment (global) */
+};
+/* kind[num_dofs]: the RN_DOF_* kind of every reduced DOF. */
+rn_status rn_network_dof_kinds(const rn_network *net, int *kind);
+/* What a reduced DOF is: its kind, its owner (a rod, or a joint: a rod end
+ * vertex at a joint is the joint's position) and where in it. */
+typedef struct rn_dof_info {
+  int kind;      /* RN_DOF_* */
+  int rod;       /* owning rod, -1 for a joint's DOF */
+  int joint;     /* owning joint, -1 for a rod's DOF */
+  int index;     /* rod vertex (position) or edge (angle); 0 for joints */
+  int component; /* coordinate or rotation component 0, 1, 2; 0 for angles */
+} rn_dof_info;
+/* info[num_dofs] for every reduced DOF. */
+rn_status rn_network_dof_info(const rn_network *net, rn_dof_info *info);
+/* gfull[num_full_dofs]: the gradient with respect to every DOF of the full
+ * layout (free and fixed) at the reduced state x.  A rod end vertex at a joint
+ * aliases the joint position: its slot holds its rod's contributions and the
+ * joint's slot the joint's; their sum is the gradient with respect to the
+ * joint position.  RN_DEGENERATE at a degenerate x. */
+rn_status rn_network_gradient_full(const rn_network *net, const double *x, double *gfull);
+/* gabs[num_dofs]: at each reduced DOF the sum over the energy's stencils and
+ * the loads of the magnitude of their gradient there, |dE_s/dq_i| summed over
+ * stencils s: the size of the forces (moments) that balance at that DOF, whose
+ * round-off bounds how small the gradient can be computed. */
+rn_status rn_network_gradient_magnitude(const rn_network *net, const double *x,
+                                        double *gabs);
+/* The largest applied force (Euclidean norm per vertex or joint: point
+ * forces, lumped line loads and gravity) and the largest applied couple, at
+ * the current load factor. */
+rn_status rn_network_applied_load_max(const rn_network *net, double *force,
+                                      double *moment);
+
+/* A support: a group of fixed DOFs that act together. */
+typedef enum rn_support_kind {
+  RN_SUPPORT_CLAMP = 0,  /* clamped rod end: its end edge (2 vertices, angle) */
+  RN_SUPPORT_VERTEX = 1, /* pinned rod vertex (some or all components) */
+  RN_SUPPORT_THETA = 2,  /* fixed material angle of a rod edge (fix_theta) */
+  RN_SUPPORT_JOINT = 3   /* pinned or clamped joint */
+} rn_support_kind;
+
+/* The reaction of one support on the structure, in the global frame. */
+typedef struct rn_reaction {
+  rn_support_kind kind;
+  int rod;            /* rod index (-1 for a joint) */
+  int index;          /* clamp: end (0 start, 1 end); vertex; edge; joint */
+  int fixed;          /* fixed position components (RN_FIX_* bitmask; 0 for
+                         RN_SUPPORT_THETA) */
+  int fixed_rotation; /* 1 if the support fixes rotations (clamps) */
+  double point[3];    /* where it acts: the vertex, the joint, the midpoint of
+                         the clamped (or angle-fixed) edge; current state */
+  double force[3];    /* reaction force; 0 on free components */
+  double moment[3];   /* reaction moment about point: the moments of the two
+                         vertex forces of a clamp plus dE/dtheta along the
+                         edge tangent; dE/dw of a clamped joint; the
+                         dE/dtheta moment of a fixed angle */
+} rn_reaction;
+
+/* Number of supports of a finalized network (0 otherwise).  Order: per rod,
+ * the start clamp, pinned vertices (not in a clamp) by vertex, fixed angles
+ * (not of a clamped edge) by edge, the end clamp; then pinned or clamped
+ * joints by index. */
+int rn_network_num_supports(const rn_network *net);
+/* Reactions r[n] (n = rn_network_num_supports) at the reduced state x
+ * (usually an equilibrium: the current state after rn_solve).  At equilibrium
+ * they balance the applied loads: sum of forces and of moments (about any
+ * point) is zero.  RN_ERR_ARG if n is not the number of supports,
+ * RN_DEGENERATE at a degenerate x, RN_ERR_ALLOC. */
+rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reaction *r,
+                               int n);
+
 /* ---- derivative self-test ------------------------------------------------ */
 typedef struct rn_check_report {
   double grad_rel_err; /* worst relative FD error of the gradient */

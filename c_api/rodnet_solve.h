@@ -27,8 +27,27 @@ typedef enum rn_solver_kind {
   /* ROL trust region with truncated CG (Steihaug-Toint), preconditioned. */
   RN_SOLVER_ROL_TR_TCG = 1,
   /* ROL line-search Newton-Krylov with Belos MINRES as the Krylov solver. */
-  RN_SOLVER_ROL_LS_NEWTON = 2
+  RN_SOLVER_ROL_LS_NEWTON = 2,
+  /* Newton-Krylov trust region (issue 7): the step from preconditioned MINRES
+   * that stops at the trust-region boundary (in the preconditioner's norm), on
+   * nonpositive curvature, or at an inexact-Newton forcing tolerance; any SPD
+   * preconditioner (rn_preconditioner); leaves saddles; scales to large and
+   * distributed problems.  tr-minres stays the exact reference. */
+  RN_SOLVER_TR_KRYLOV = 3
 } rn_solver_kind;
+
+/* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
+ * the trust-region norm (docs/solvers.md). */
+typedef enum rn_preconditioner {
+  RN_PRECOND_AUTO = 0,   /* the default for the problem: factor on a whole
+                            network, local on a part of a distributed one */
+  RN_PRECOND_FACTOR = 1, /* Cholesky of H + sigma D (rn_factorization), sigma the
+                            smallest shift that factors: exact when H is positive
+                            definite (one MINRES iteration); one rank only */
+  RN_PRECOND_LOCAL = 2   /* block Jacobi over the ranks: each rank's sparse
+                            Cholesky of its owned block H_pp + sigma_p D_p (the
+                            factor preconditioner on one rank); docs/parallel.md */
+} rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
  * search, negative curvature) and as the SPD preconditioner of every solver kind
@@ -50,9 +69,12 @@ typedef enum rn_factorization {
 
 /* Why a solve stopped. */
 typedef enum rn_solve_stop {
-  RN_STOP_GRADIENT = 0, /* ||g|| <= gtol_rel * g_scale (or gtol_abs) */
+  RN_STOP_GRADIENT = 0, /* equilibrium: force and moment residuals within their
+                           tolerances on the physical scale (and ||g|| <= gtol_abs
+                           if set) */
   RN_STOP_STEP = 1,     /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
-  RN_STOP_ENERGY = 2,   /* |dE| <= energy_tol * (1 + |E|) on an accepted step */
+  RN_STOP_ENERGY = 2,   /* |dE| <= energy_tol * (1 + |E|) on an accepted step
+                           (off by default) */
   RN_STOP_MAX_ITER = 3, /* iteration limit: not converged */
   RN_STOP_RADIUS = 4,   /* trust radius collapsed: not converged */
   RN_STOP_FAILED = 5    /* error (see status / context) */
@@ -72,10 +94,14 @@ typedef struct rn_iteration_info {
 typedef struct rn_solve_options {
   rn_solver_kind solver;
   int max_iterations;        /* Newton iterations per load step (default 200) */
-  double gtol_rel;           /* default 1e-9, relative to max(||g_0||, force scale) */
-  double gtol_abs;           /* default 0 (off) */
+  double gtol_rel;           /* default 1e-9: the force (moment) residual relative
+                                to the force (moment) scale of the applied loads and
+                                reactions (see rn_solve) */
+  double gtol_abs;           /* default 0 (off); > 0: ||g|| <= gtol_abs is required
+                                as well (not an alternative) */
   double step_tol;           /* default 1e-12 */
-  double energy_tol;         /* default 1e-15 */
+  double energy_tol;         /* default 0 (off): a tiny energy change does not
+                                certify equilibrium */
   int krylov_max_iterations; /* default 500 */
   double krylov_tol;         /* relative MINRES residual, default 1e-10 */
   double initial_radius;     /* default 0: automatic */
@@ -92,6 +118,7 @@ typedef struct rn_solve_options {
    * (shifted if not positive definite); x + s is accepted only if it lowers
    * the energy at t.  0: off (the step starts at x). */
   int predictor;
+  rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV; default AUTO */
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -111,11 +138,24 @@ typedef struct rn_solve_report {
   long factorizations; /* numeric Cholesky factorisations of H + sigma D, failed
                           ones included (the main cost on large networks) */
   int predictor_steps; /* load steps whose predictor step was accepted */
+  /* Equilibrium at the last iterate on the physical scale (the gradient test;
+   * docs/solvers.md "Stopping tests"): the largest |g_i| over position DOFs (a
+   * force) and over material angles and joint rotations (a moment), the force
+   * and moment scales they are measured against (applied loads and support
+   * reactions, rn_network_reactions) and the tolerances the gradient test
+   * required, max(gtol_rel * scale, 10 * round-off floor).  All 0 when no
+   * iteration was checked (no free DOFs). */
+  double force_residual, moment_residual;
+  double force_scale, moment_scale;
+  double force_tolerance, moment_tolerance;
+  /* the preconditioner RN_SOLVER_TR_KRYLOV used (never AUTO once it ran);
+   * RN_PRECOND_AUTO for the other kinds */
+  rn_preconditioner preconditioner;
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
  * "radius", "failed"); name of a solver kind ("tr-minres", "rol-tr-tcg",
- * "rol-ls-newton"); parse a solver name (RN_ERR_ARG if unknown). */
+ * "rol-ls-newton", "tr-krylov"); parse a solver name (RN_ERR_ARG if unknown). */
 const char *rn_solve_stop_name(rn_solve_stop s);
 const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
@@ -127,6 +167,10 @@ int rn_solver_is_distributed(rn_solver_kind k);
  * (RN_ERR_ARG if unknown). */
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
+/* Name of a preconditioner ("auto", "factor") and its parse (RN_ERR_ARG if
+ * unknown). */
+const char *rn_preconditioner_name(rn_preconditioner p);
+rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p);
 
 /* ---- runtime (Kokkos / MPI) ------------------------------------------------
  * The solvers run on Tpetra, whose runtime (Kokkos and, in an MPI job, MPI) must
@@ -165,15 +209,19 @@ void rn_runtime_finalize(void);
  * solve does not converge the network is left at the last iterate of the last
  * attempt, at that attempt's load factor (rn_network_load_factor tells).
  *
- * Stopping (per load step; rep->stop says which test fired): gradient when
- * ||g|| <= gtol_rel * max(||g_0||, f) with g_0 the gradient at the start of the
- * load step and f = rep->initial_gradient_norm, the norm of the gradient at the
- * solve's starting state at the target load factor (the out-of-balance force to
- * remove), or ||g|| <= gtol_abs when gtol_abs > 0; step and energy only after an
- * accepted step the globalisation did not shorten (full Newton step: interior
- * trust-region step / unit line-search step).  TR-MINRES applies no convergence
- * test while the Hessian has significant negative curvature (a saddle is not a
- * solution).  rep->krylov_iterations counts MINRES iterations (TR-MINRES,
+ * Stopping (per load step; rep->stop says which test fired): gradient
+ * (equilibrium) when the largest force residual (|g_i| over position DOFs) is
+ * at most max(gtol_rel F, 10 f_F) and the largest moment residual (material
+ * angles, joint rotations) at most max(gtol_rel M, 10 f_M), where F = max(F0,
+ * M0 / L) and M = max(M0, F0 L), F0 and M0 the largest applied force / couple
+ * or support reaction force / moment at the iterate, L the size of the
+ * structure (bounding-box diagonal), and f_F, f_M the round-off floor of the
+ * gradient there; and ||g|| <= gtol_abs if gtol_abs > 0 (rep->force_residual
+ * and the fields after it report the values); step and energy (energy off by
+ * default) only after an accepted step the globalisation did not shorten (full
+ * Newton step: interior trust-region step / unit line-search step).  TR-MINRES applies no
+ * convergence test while the Hessian has significant negative curvature (a saddle is not
+ * a solution).  rep->krylov_iterations counts MINRES iterations (TR-MINRES,
  * ROL-LS-Newton) or truncated-CG iterations (ROL-TR-TCG, counted as Hessian-
  * vector products); rep->hvp_evals counts matrix-free and CSR Hessian-vector
  * products; rep->load_steps counts load steps attempted (including those cut

@@ -249,7 +249,9 @@ int rnk_twist_hvp(const double q[11], const rnk_frame ref[2], const rnk_twist_pa
  * variables (e0, theta0, e1, theta1) or its Hessian block; (3) every edge
  * sums what its two vertices and its stretching give it, and the DOFs get
  * the differences.  Degeneracy is flagged, never an early exit. */
-enum { RQ_CHUNK = 64 };
+/* 65 edges per chunk: 64 vertex stencils, a whole number of vectors; the
+ * arrays are padded to RQ_DIM. */
+enum { RQ_CHUNK = 65, RQ_DIM = 72 };
 
 /* Loops over stencils: no dependence between iterations.  With GCC, each
  * function holding one is also compiled for AVX2 and AVX-512 and picked at
@@ -270,12 +272,12 @@ typedef enum { SEG_ENERGY, SEG_GRAD, SEG_HVP, SEG_HESS } seg_op;
 
 /* Prepared edges of a chunk (rq_edge, structure of arrays). */
 typedef struct rq_edges {
-  double t[3][RQ_CHUNK], l[RQ_CHUNK], il[RQ_CHUNK], th[3][RQ_CHUNK];
-  double g[4][RQ_CHUNK], q[4][RQ_CHUNK], h[4][RQ_CHUNK];
-  double cs[RQ_CHUNK], sn[RQ_CHUNK], theta[RQ_CHUNK];
-  double shrt[RQ_CHUNK], bad[RQ_CHUNK];
+  double t[3][RQ_DIM], l[RQ_DIM], il[RQ_DIM], th[3][RQ_DIM];
+  double g[4][RQ_DIM], q[4][RQ_DIM], h[4][RQ_DIM];
+  double cs[RQ_DIM], sn[RQ_DIM], theta[RQ_DIM];
+  double shrt[RQ_DIM], bad[RQ_DIM];
   /* HVP: the direction's edge vectors, tangent rates and angle rates */
-  double de[3][RQ_CHUNK], dt[3][RQ_CHUNK], dth[RQ_CHUNK];
+  double de[3][RQ_DIM], dt[3][RQ_DIM], dth[RQ_DIM];
 } rq_edges;
 
 RQ_INLINE void edges_put(rq_edges *S, int j, const rq_edge *E) {
@@ -321,11 +323,11 @@ RQ_INLINE void edges_get(const rq_edges *S, int j, rq_edge *E) {
 /* Inputs of a chunk transposed to structure of arrays, so that the loops
  * over stencils read unit-stride arrays only. */
 typedef struct rq_in {
-  double e[3][RQ_CHUNK], theta[RQ_CHUNK], th[3][RQ_CHUNK], a1[3][RQ_CHUNK];
-  double ve[3][RQ_CHUNK], vth[RQ_CHUNK]; /* HVP direction */
+  double e[3][RQ_DIM], theta[RQ_DIM], th[3][RQ_DIM], a1[3][RQ_DIM];
+  double ve[3][RQ_DIM], vth[RQ_DIM]; /* HVP direction */
   /* vertex k of the chunk at index k - 1 */
-  double B[3][RQ_CHUNK], kbar[2][RQ_CHUNK], vlen[RQ_CHUNK];
-  double beta[RQ_CHUNK], taubar[RQ_CHUNK], tvlen[RQ_CHUNK], m[RQ_CHUNK];
+  double B[3][RQ_DIM], kbar[2][RQ_DIM], vlen[RQ_DIM];
+  double beta[RQ_DIM], taubar[RQ_DIM], tvlen[RQ_DIM], m[RQ_DIM];
 } rq_in;
 
 /* Phase 1: edges j0 .. j0 + n - 1 of the segment (and the direction's rates
@@ -334,27 +336,35 @@ RQ_CLONES static void chunk_edges(const rnk_rod_seg *s, int j0, int n, const dou
                                   rq_in *I, rq_edges *S) {
   const double *x = s->x + 4 * j0;
   const rnk_frame *ref = s->ref + j0;
+  RQ_VECTOR_LOOP
   for (int j = 0; j < n; ++j) {
     const double *xa = x + 4 * j;
-    RQ_UNROLL for (int k = 0; k < 3; ++k) {
-      I->e[k][j] = xa[4 + k] - xa[k];
-      I->th[k][j] = ref[j].t[k];
-      I->a1[k][j] = ref[j].a1[k];
-    }
+    RQ_UNROLL for (int k = 0; k < 3; ++k) I->e[k][j] = xa[4 + k] - xa[k];
     I->theta[j] = xa[3];
   }
-  for (int k = 0; k + 1 < n; ++k) {
-    const rnk_bend_param *bp = &s->bp[j0 + k];
-    const rnk_twist_param *tp = &s->tp[j0 + k];
-    RQ_UNROLL for (int c = 0; c < 3; ++c) I->B[c][k] = bp->B[c];
-    I->kbar[0][k] = bp->kbar[0];
-    I->kbar[1][k] = bp->kbar[1];
-    I->vlen[k] = bp->vlen;
-    I->beta[k] = tp->beta;
-    I->taubar[k] = tp->taubar;
-    I->tvlen[k] = tp->vlen;
-    I->m[k] = s->ref_twist[j0 + k];
-  }
+  /* one member per loop: GCC vectorises strided copies of single members, not
+   * of whole structs (groups of 6 or 4 doubles) */
+#define RQ_COPY(dst, src, count) \
+  RQ_VECTOR_LOOP for (int j = 0; j < (count); ++j) { (dst)[j] = src; }
+  RQ_COPY(I->th[0], ref[j].t[0], n)
+  RQ_COPY(I->th[1], ref[j].t[1], n)
+  RQ_COPY(I->th[2], ref[j].t[2], n)
+  RQ_COPY(I->a1[0], ref[j].a1[0], n)
+  RQ_COPY(I->a1[1], ref[j].a1[1], n)
+  RQ_COPY(I->a1[2], ref[j].a1[2], n)
+  const rnk_bend_param *bp = s->bp + j0;
+  const rnk_twist_param *tp = s->tp + j0;
+  RQ_COPY(I->B[0], bp[j].B[0], n - 1)
+  RQ_COPY(I->B[1], bp[j].B[1], n - 1)
+  RQ_COPY(I->B[2], bp[j].B[2], n - 1)
+  RQ_COPY(I->kbar[0], bp[j].kbar[0], n - 1)
+  RQ_COPY(I->kbar[1], bp[j].kbar[1], n - 1)
+  RQ_COPY(I->vlen, bp[j].vlen, n - 1)
+  RQ_COPY(I->beta, tp[j].beta, n - 1)
+  RQ_COPY(I->taubar, tp[j].taubar, n - 1)
+  RQ_COPY(I->tvlen, tp[j].vlen, n - 1)
+  RQ_COPY(I->m, s->ref_twist[j0 + j], n - 1)
+#undef RQ_COPY
   RQ_VECTOR_LOOP
   for (int j = 0; j < n; ++j) {
     rq_edge E;
@@ -373,6 +383,7 @@ RQ_CLONES static void chunk_edges(const rnk_rod_seg *s, int j0, int n, const dou
     }
   if (!v) return;
   v += 4 * j0;
+  RQ_VECTOR_LOOP
   for (int j = 0; j < n; ++j) {
     const double *va = v + 4 * j;
     RQ_UNROLL for (int k = 0; k < 3; ++k) I->ve[k][j] = va[4 + k] - va[k];
@@ -403,11 +414,23 @@ RQ_INLINE void vertex_params(const rq_in *I, int k, rnk_bend_param *bp,
   tp->ref_twist = I->m[k - 1];
 }
 
+/* Vertex k of the chunk: its two edges and its strains, energy and (ord >= 1)
+ * dE/dr. */
+RQ_INLINE void vertex_prepare(const rq_in *I, const rq_edges *S, int k, int ord,
+                              rq_edge E[2], rq_vert *V) {
+  rnk_bend_param bp;
+  rnk_twist_param tp;
+  vertex_params(I, k, &bp, &tp);
+  edges_get(S, k - 1, &E[0]);
+  edges_get(S, k, &E[1]);
+  rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, ord, V);
+}
+
 /* Per-vertex results of a chunk: vertex k (1 <= k < n) at index k; indices 0
  * and n stay zero so that every edge can read both neighbours. */
 typedef struct rq_vout {
-  double a[8][RQ_CHUNK + 1]; /* gradient or HVP in (e0, theta0, e1, theta1) */
-  double H[36][RQ_CHUNK];    /* Hessian in those variables, upper triangle */
+  double a[8][RQ_DIM];  /* gradient or HVP in (e0, theta0, e1, theta1) */
+  double H[36][RQ_DIM]; /* Hessian in those variables, upper triangle */
 } rq_vout;
 
 /* Phase 2 (energy, gradient, HVP); specialised per op (chunk_* below) so
@@ -420,12 +443,7 @@ RQ_INLINE void chunk_vertices_op(const rq_in *I, int n, seg_op op, const rq_edge
   for (int k = 1; k < n; ++k) {
     rq_edge E[2];
     rq_vert V;
-    rnk_bend_param bp;
-    rnk_twist_param tp;
-    vertex_params(I, k, &bp, &tp);
-    edges_get(S, k - 1, &E[0]);
-    edges_get(S, k, &E[1]);
-    rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, ord, &V);
+    vertex_prepare(I, S, k, ord, E, &V);
     eb += V.Eb;
     et += V.Et;
     b += V.bad + E[0].bad + E[1].bad;
@@ -483,13 +501,8 @@ RQ_CLONES static void chunk_hess(const rq_in *I, int n, const rq_edges *S, rq_vo
   for (int k = 1; k < n; ++k) {
     rq_edge E[2];
     rq_vert V;
-    rnk_bend_param bp;
-    rnk_twist_param tp;
     double He[8][8];
-    vertex_params(I, k, &bp, &tp);
-    edges_get(S, k - 1, &E[0]);
-    edges_get(S, k, &E[1]);
-    rq_vert_eval(&E[0], &E[1], &bp, &tp, tp.ref_twist, 1, &V);
+    vertex_prepare(I, S, k, 1, E, &V);
     b += V.bad + E[0].bad + E[1].bad;
     stencil_hess_e(E, &V, He);
     RQ_UNROLL for (int r = 0, m = 0; r < 8; ++r)

@@ -204,11 +204,12 @@ RQ_INLINE void rq_vert_eval(const rq_edge *E0, const rq_edge *E1,
   d -= 2.0 * M_PI * rq_rint(d * (0.5 / M_PI));
   V->ref_twist = m_prev + d;
   V->tau = E1->theta - E0->theta + V->ref_twist;
-  double iv = 1.0 / bp->vlen;
+  /* 1 / vlen of bending and twisting (equal in practice) with one division */
+  double ivv = 1.0 / (bp->vlen * tp->vlen), iv = tp->vlen * ivv;
   V->B[0] = bp->B[0] * iv;
   V->B[1] = bp->B[1] * iv;
   V->B[2] = bp->B[2] * iv;
-  V->beta = tp->beta / tp->vlen;
+  V->beta = tp->beta * (bp->vlen * ivv);
   double d1 = V->kappa[0] - bp->kbar[0], d2 = V->kappa[1] - bp->kbar[1];
   double dt = V->tau - tp->taubar;
   V->m1 = V->B[0] * d1 + V->B[1] * d2;

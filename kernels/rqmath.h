@@ -57,16 +57,18 @@ RQM_INLINE void rq_sincos(double x, double *s, double *c) {
   *c = q == 0.0 ? cr : q == 1.0 ? -sr : q == 2.0 ? -cr : sr;
 }
 
-/* atan2(y, x) for (x, y) != (0, 0); 0 for (0, 0). */
+/* atan2(y, x) for (x, y) != (0, 0); 0 for (0, 0).  One division and one
+ * square root: with t = min/max of |x|, |y| in [0, 1], atan t = pi/4 +
+ * atan((t - 1)/(t + 1)) above tan(pi/8), and atan u = 2 atan v with
+ * v = u / (1 + sqrt(1 + u^2)) = num / (den + sqrt(den^2 + num^2)) for
+ * u = num / den, so |v| <= tan(pi/16). */
 RQM_INLINE double rq_atan2(double y, double x) {
   const double pi = 3.14159265358979323846, tan_pi_8 = 0.41421356237309504880;
   double ax = fabs(x), ay = fabs(y);
   double mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
-  double t = mn / (mx > 0.0 ? mx : 1.0); /* in [0, 1] */
-  /* atan t = pi/4 + atan((t - 1)/(t + 1)) above tan(pi/8); then halve once
-   * more: atan u = 2 atan(u / (1 + sqrt(1 + u^2))), |v| <= tan(pi/16) */
-  double u = t > tan_pi_8 ? (t - 1.0) / (t + 1.0) : t;
-  double v = u / (1.0 + sqrt(1.0 + u * u)), v2 = v * v;
+  double num = mn > tan_pi_8 * mx ? mn - mx : mn;
+  double den = mn > tan_pi_8 * mx ? mn + mx : (mx > 0.0 ? mx : 1.0);
+  double v = num / (den + sqrt(den * den + num * num)), v2 = v * v;
   double p = 1.0 / 25.0; /* Taylor series to v^25 */
   p = p * v2 - 1.0 / 23.0;
   p = p * v2 + 1.0 / 21.0;
@@ -79,7 +81,7 @@ RQM_INLINE double rq_atan2(double y, double x) {
   p = p * v2 - 1.0 / 7.0;
   p = p * v2 + 1.0 / 5.0;
   p = p * v2 - 1.0 / 3.0;
-  double a = 2.0 * (v + v * v2 * p) + (t > tan_pi_8 ? 0.25 * pi : 0.0);
+  double a = 2.0 * (v + v * v2 * p) + (mn > tan_pi_8 * mx ? 0.25 * pi : 0.0);
   a = ay > ax ? 0.5 * pi - a : a;
   a = x < 0.0 ? pi - a : a;
   return y < 0.0 ? -a : a;

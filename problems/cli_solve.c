@@ -33,14 +33,26 @@ static const char solve_help[] =
     "                        networks; default)\n"
     "                      rol-tr-tcg: ROL trust region with truncated CG\n"
     "                      rol-ls-newton: ROL line-search Newton with MINRES\n"
+    "                      tr-krylov: Newton-Krylov trust region: preconditioned\n"
+    "                        MINRES stopped at the trust-region boundary, on\n"
+    "                        nonpositive curvature or at an inexact-Newton\n"
+    "                        tolerance (docs/solvers.md)\n"
+    "      --preconditioner NAME  preconditioner of tr-krylov (it defines the\n"
+    "                      trust-region norm): auto (default: factor on one\n"
+    "                      rank, local under mpirun), factor (Cholesky of the\n"
+    "                      shifted Hessian, one rank), local (each rank's\n"
+    "                      Cholesky of its own block, block Jacobi;\n"
+    "                      docs/parallel.md)\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
     "                      ordering), cholmod (SuiteSparse CHOLMOD, the library\n"
     "                      reference for sparse)\n"
     "      --max-iter N    Newton iterations allowed per load step (default 200)\n"
-    "      --gtol X        stop when the gradient norm falls below X times its\n"
-    "                      scale (initial gradient or force scale; default 1e-9)\n"
+    "      --gtol X        equilibrium test: stop when the largest force (moment)\n"
+    "                      residual is below X times the force (moment) scale of\n"
+    "                      the applied loads and support reactions, or at the\n"
+    "                      round-off floor (default 1e-9; docs/solvers.md)\n"
     "      --load-steps N  apply the loads in N equal continuation steps (default:\n"
     "                      one step, split automatically when a full step fails)\n"
     "      --no-predictor  start each load step where the last one converged (default:\n"
@@ -56,7 +68,7 @@ static const char solve_help[] =
     "unwritable output path, 4 solver error or failed write.\n";
 
 typedef struct solve_args {
-  const char *scene, *output, *vtk, *solver, *factorization;
+  const char *scene, *output, *vtk, *solver, *factorization, *preconditioner;
   int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol, no_predictor;
   double gtol;
 } solve_args;
@@ -75,6 +87,9 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--factorization", NULL,
                                     &v)) != 0)
     a->factorization = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--preconditioner", NULL,
+                                    &v)) != 0)
+    a->preconditioner = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) !=
            0) {
     if (m > 0)
@@ -156,8 +171,13 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton)",
+                              "rol-tr-tcg, rol-ls-newton, tr-krylov)",
                               a->solver);
+  if (a->preconditioner &&
+      rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
+    return rn_cli_usage_error("solve",
+                              "unknown preconditioner '%s' (known: auto, factor, local)",
+                              a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
     return rn_cli_usage_error("solve",
@@ -177,6 +197,8 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
   in->solver = rn_solver_name(opt->solver);
   in->factorization = rn_factorization_name(rep->factorization);
+  if (opt->solver == RN_SOLVER_TR_KRYLOV)
+    in->preconditioner = rn_preconditioner_name(rep->preconditioner);
   in->stop = rn_solve_stop_name(rep->stop);
   in->converged = rep->converged;
   in->iterations = rep->iterations;
@@ -191,6 +213,12 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->gradient_norm = rep->gradient_norm;
   in->initial_gradient_norm = rep->initial_gradient_norm;
   in->time_s = rep->time_s;
+  in->force_residual = rep->force_residual;
+  in->force_scale = rep->force_scale;
+  in->force_tolerance = rep->force_tolerance;
+  in->moment_residual = rep->moment_residual;
+  in->moment_scale = rep->moment_scale;
+  in->moment_tolerance = rep->moment_tolerance;
 }
 
 /* The partition block of one rank: everything owned by it. */
@@ -226,7 +254,9 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   rn_network *net = rn_scene_network(scene);
   printf("rodnet solve: %s\n", a->scene);
   printf("  status       %s (stopped by: %s)\n", in->status, in->stop);
-  printf("  solver       %s (%s factorisation)\n", in->solver, in->factorization);
+  printf("  solver       %s (%s factorisation%s%s)\n", in->solver, in->factorization,
+         in->preconditioner ? ", preconditioner " : "",
+         in->preconditioner ? in->preconditioner : "");
   printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
          rn_network_num_rods(net), rn_scene_num_vertices(scene),
          rn_network_num_dofs(net));
@@ -239,6 +269,10 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   printf("  energy       %.17g\n", in->energy);
   printf("  |gradient|   %.3e (initial %.3e)\n", in->gradient_norm,
          in->initial_gradient_norm);
+  printf("  residual     force %.3e (scale %.3e, tolerance %.3e), moment %.3e (scale "
+         "%.3e, tolerance %.3e)\n",
+         in->force_residual, in->force_scale, in->force_tolerance, in->moment_residual,
+         in->moment_scale, in->moment_tolerance);
   print_partition(in);
   printf("  time         %.3f s\n", in->time_s);
   printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");

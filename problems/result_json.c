@@ -83,6 +83,25 @@ static rn_status put_terms(json_out *o, rn_network *net) {
   return RN_OK;
 }
 
+/* "equilibrium": the residual on the physical scale that the gradient test used. */
+static void put_equilibrium(json_out *o) {
+  const rn_result_info *in = o->info;
+  const char *keys[6] = {"force_residual",  "force_scale",  "force_tolerance",
+                         "moment_residual", "moment_scale", "moment_tolerance"};
+  const double vals[6] = {in->force_residual,  in->force_scale,  in->force_tolerance,
+                          in->moment_residual, in->moment_scale, in->moment_tolerance};
+  fputs("  \"equilibrium\": {", o->f);
+  for (int k = 0; k < 6; k++) {
+    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
+    put_num(o, vals[k]);
+  }
+  fputs(",\n    \"relative_force_residual\": ", o->f);
+  put_num(o, in->force_scale > 0.0 ? in->force_residual / in->force_scale : 0.0);
+  fputs(", \"relative_moment_residual\": ", o->f);
+  put_num(o, in->moment_scale > 0.0 ? in->moment_residual / in->moment_scale : 0.0);
+  fputs("},\n", o->f);
+}
+
 static void put_summary(json_out *o, rn_network *net) {
   const rn_result_info *in = o->info;
   FILE *f = o->f;
@@ -99,6 +118,10 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"factorization\": ", f);
     put_str(f, in->factorization);
   }
+  if (in->preconditioner) {
+    fputs(",\n  \"preconditioner\": ", f);
+    put_str(f, in->preconditioner);
+  }
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);
@@ -114,6 +137,7 @@ static void put_summary(json_out *o, rn_network *net) {
           in->krylov_iterations);
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
+  put_equilibrium(o);
   if (in->part_ranks > 0) {
     fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", in->part_ranks);
     for (int q = 0; q < in->part_ranks; q++)
@@ -136,9 +160,10 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   put_str(f, rn_network_rod_name(net, rod));
   fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
   char row[3 * RN_NUM_BUF + 16];
+  static const char sep[] = ",\n       "; /* the first row has no comma */
   for (int i = 0; i < nv; i++) {
     size_t n = i ? 9 : 8;
-    memcpy(row, ",\n       " + (i ? 0 : 1), n);
+    memcpy(row, i ? sep : sep + 1, n);
     n += vec_text(o, &buf[3 * i], row + n);
     fwrite(row, 1, n, f);
   }

@@ -16,6 +16,11 @@ typedef struct rn_result_info {
   long energy_evals, gradient_evals, hvp_evals, hessian_evals, krylov_iterations;
   double energy, gradient_norm, initial_gradient_norm, time_s;
   int predictor_steps; /* load steps whose predictor step was accepted */
+  /* equilibrium on the physical scale (rn_solve_report): residuals, scales and
+   * the tolerances of the gradient test, forces and moments apart */
+  double force_residual, force_scale, force_tolerance;
+  double moment_residual, moment_scale, moment_tolerance;
+  const char *preconditioner; /* tr-krylov's preconditioner ("factor", ...), or NULL */
   /* the partition over MPI ranks (docs/parallel.md); part_ranks = 0: no block */
   int part_ranks;
   const long *part_dofs, *part_stencils; /* [part_ranks] owned per rank */

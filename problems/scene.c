@@ -311,6 +311,7 @@ enum { N_SOLVER_FIELDS = (int)(sizeof solver_fields / sizeof solver_fields[0]) }
 #define SOLVER_BIT_METHOD (1u << N_SOLVER_FIELDS)
 #define SOLVER_BIT_FACTORIZATION (1u << (N_SOLVER_FIELDS + 1))
 #define SOLVER_BIT_PREDICTOR (1u << (N_SOLVER_FIELDS + 2))
+#define SOLVER_BIT_PRECONDITIONER (1u << (N_SOLVER_FIELDS + 3))
 
 /* The option field of solver_fields[i]: *ip for integers, *dp for numbers. */
 static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) {
@@ -360,7 +361,12 @@ typedef struct named_value {
 static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
                                            {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
+                                           {"tr-krylov", RN_SOLVER_TR_KRYLOV},
                                            {NULL, 0}};
+static const named_value preconditioner_names[] = {{"auto", RN_PRECOND_AUTO},
+                                                   {"factor", RN_PRECOND_FACTOR},
+                                                   {"local", RN_PRECOND_LOCAL},
+                                                   {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},
                                                   {"sparse", RN_FACTOR_SPARSE},
@@ -396,15 +402,22 @@ static rn_status read_solver_name(rn_scene_parser *p, const cJSON *v, const char
   return st;
 }
 
-/* The solver block's string keys "method" and "factorization". */
+/* The solver block's string keys "method", "factorization" and "preconditioner". */
 static rn_status read_solver_names(rn_scene_parser *p, const cJSON *v) {
   rn_scene *s = p->scene;
-  int kind, fkind;
+  int kind, fkind, pkind;
   rn_status st = read_solver_name(p, v, "method", "solver", solver_names, &kind);
   if (!st)
     st = read_solver_name(p, v, "factorization", "factorization", factorization_names,
                           &fkind);
+  if (!st)
+    st = read_solver_name(p, v, "preconditioner", "preconditioner", preconditioner_names,
+                          &pkind);
   if (st) return st;
+  if (pkind >= 0) {
+    s->solver_opt.preconditioner = (rn_preconditioner)pkind;
+    s->solver_set |= SOLVER_BIT_PRECONDITIONER;
+  }
   if (kind >= 0) {
     s->solver_opt.solver = (rn_solver_kind)kind;
     s->solver_set |= SOLVER_BIT_METHOD;
@@ -432,13 +445,21 @@ static rn_status read_solver_predictor(rn_scene_parser *p, const cJSON *v) {
 }
 
 static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"method",         "factorization",
-                                     "max_iterations", "gtol",
-                                     "gtol_abs",       "step_tol",
-                                     "energy_tol",     "krylov_max_iterations",
-                                     "krylov_tol",     "initial_radius",
-                                     "load_steps",     "max_load_cuts",
-                                     "predictor",      NULL};
+  static const char *const keys[] = {"method",
+                                     "factorization",
+                                     "max_iterations",
+                                     "gtol",
+                                     "gtol_abs",
+                                     "step_tol",
+                                     "energy_tol",
+                                     "krylov_max_iterations",
+                                     "krylov_tol",
+                                     "initial_radius",
+                                     "load_steps",
+                                     "max_load_cuts",
+                                     "predictor",
+                                     "preconditioner",
+                                     NULL};
   rn_scene *s = p->scene;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = read_solver_names(p, v);
@@ -462,6 +483,7 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
   if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = src.solver;
   if (s->solver_set & SOLVER_BIT_FACTORIZATION) opt->factorization = src.factorization;
   if (s->solver_set & SOLVER_BIT_PREDICTOR) opt->predictor = src.predictor;
+  if (s->solver_set & SOLVER_BIT_PRECONDITIONER) opt->preconditioner = src.preconditioner;
   for (int i = 0; i < N_SOLVER_FIELDS; i++) {
     if (!(s->solver_set & (1u << i))) continue;
     int *ip_src, *ip_dst;

@@ -98,13 +98,20 @@ DistSystem::DistSystem(rn_network *net,
   n_local_ = rn_network_num_dofs(net_);
   n_owned_ = n_local_;
   if (rn_network_is_part(net_))
-    agree(check_status(rn_network_part_dofs(net_, &n_owned_, nullptr, nullptr),
-                       "rn_network_part_dofs"));
+    agree(rn_network_part_dofs(net_, &n_owned_, nullptr, nullptr));
   build_maps();
   build_hessian_graph();
 }
 
-DistSystem::~DistSystem() = default;
+DistSystem::~DistSystem() { rn_state_destroy(&snapshot_); }
+
+bool DistSystem::save_state() {
+  rn_state_destroy(&snapshot_);
+  agree(rn_network_state_save(net_, &snapshot_));
+  return true;
+}
+
+void DistSystem::restore_state() { agree(rn_network_state_restore(net_, snapshot_)); }
 
 // Owned ids: contiguous in rank order.  Ghost ids: asked from their owners by key.
 void DistSystem::build_maps() {
@@ -242,13 +249,13 @@ void DistSystem::import_state(const TMV &x) {
 
 void DistSystem::get_state(TMV &x) const {
   std::vector<double> all(n_local_ + 1);
-  agree(check_status(rn_network_get_dofs(net_, all.data()), "rn_network_get_dofs"));
+  agree(rn_network_get_dofs(net_, all.data()));
   std::copy(all.begin(), all.begin() + static_cast<long>(n_owned_), col0(x));
 }
 
 void DistSystem::set_state(const TMV &x) {
   import_state(x);
-  agree(check_status(rn_network_set_dofs(net_, col0(*xov_)), "rn_network_set_dofs"));
+  agree(rn_network_set_dofs(net_, col0(*xov_)));
 }
 
 rn_status DistSystem::energy(const TMV &x, double *E) {

@@ -55,6 +55,9 @@ public:
   Teuchos::RCP<const TCrs> hessian() const override { return h_; }
   void accept(TMV &x) override;
   const DofBlocks &blocks() const override;
+  // Snapshots of every part (rn_network_state_save), in lockstep on all ranks.
+  bool save_state() override;
+  void restore_state() override;
 
   rn_network *network() const { return net_; }
   const Teuchos::RCP<const Teuchos::Comm<int>> &comm() const { return comm_; }
@@ -90,6 +93,7 @@ private:
   mutable CommStats stats_;
   mutable DofBlocks blocks_;
   mutable bool blocks_done_ = false;
+  rn_state *snapshot_ = nullptr;
 };
 
 } // namespace rodnet

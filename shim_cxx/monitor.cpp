@@ -20,6 +20,19 @@ bool Monitor::converged() const {
          reason_ == RN_STOP_ENERGY;
 }
 
+bool Monitor::equilibrium_passes(const IterationView &it) const {
+  const bool abs_ok = opt_.gtol_abs == 0.0 || it.gnorm <= opt_.gtol_abs;
+  if (!it.eq.valid) {
+    const double scale = started_ ? g_scale_ : std::max(it.gnorm, force_scale_);
+    return it.gnorm <= opt_.gtol_rel * scale && abs_ok;
+  }
+  const double ftol =
+      std::max(opt_.gtol_rel * it.eq.force_scale, kFloorFactor * it.eq.force_floor);
+  const double mtol =
+      std::max(opt_.gtol_rel * it.eq.moment_scale, kFloorFactor * it.eq.moment_floor);
+  return it.eq.force_residual <= ftol && it.eq.moment_residual <= mtol && abs_ok;
+}
+
 bool Monitor::check(const IterationView &it) {
   if (!started_) {
     g_scale_ = std::max(it.gnorm, force_scale_);
@@ -38,8 +51,13 @@ bool Monitor::check(const IterationView &it) {
     info.load_factor = load_factor_;
     opt_.progress(opt_.progress_user, &info);
   }
-  const bool small_gradient = it.gnorm <= opt_.gtol_rel * g_scale_ ||
-                              (opt_.gtol_abs > 0.0 && it.gnorm <= opt_.gtol_abs);
+  if (it.eq.valid) {
+    force_tol_ =
+        std::max(opt_.gtol_rel * it.eq.force_scale, kFloorFactor * it.eq.force_floor);
+    moment_tol_ =
+        std::max(opt_.gtol_rel * it.eq.moment_scale, kFloorFactor * it.eq.moment_floor);
+  }
+  const bool small_gradient = equilibrium_passes(it);
   const bool newton_step = it.iteration > 0 && it.accepted && it.unconstrained;
   if (!std::isfinite(it.energy) || !std::isfinite(it.gnorm)) {
     reason_ = RN_STOP_FAILED;
@@ -48,7 +66,7 @@ bool Monitor::check(const IterationView &it) {
   } else if (newton_step && !it.negative_curvature &&
              it.step_norm <= opt_.step_tol * (1.0 + it.x_norm)) {
     reason_ = RN_STOP_STEP;
-  } else if (newton_step && !it.negative_curvature &&
+  } else if (opt_.energy_tol > 0.0 && newton_step && !it.negative_curvature &&
              std::fabs(it.energy_change) <=
                  opt_.energy_tol * (1.0 + std::fabs(it.energy))) {
     reason_ = RN_STOP_ENERGY;

@@ -3,12 +3,19 @@
 // Each solver calls Monitor::check() once per Newton iteration (and once for the
 // starting point, iteration 0) with what it knows about the current iterate; the
 // monitor calls the user's progress callback and decides whether to stop:
-//  - gradient: ||g|| <= gtol_rel * g_scale, g_scale = max(||g_0||, force_scale), where
-//    g_0 is the gradient at the start of this load step and force_scale the norm of
-//    the gradient at the solve's starting state at the target load factor (the
-//    out-of-balance force the solve has to remove); or ||g|| <= gtol_abs if > 0.
-//    Only when the solver reports no significant negative curvature (a saddle with a
-//    small gradient is not a minimum).
+//  - gradient (equilibrium on a physical scale, equilibrium.hpp): the largest force
+//    residual (|g_i| over position DOFs) is at most force_tol = max(gtol_rel *
+//    force_scale, kFloorFactor * force_floor) and the largest moment residual (angles,
+//    joint rotations) at most moment_tol, the same with the moment scale and floor;
+//    force_scale = the largest applied force or support reaction at the iterate,
+//    moment_scale = the largest applied couple or reaction moment, or force_scale
+//    times the mean edge length; the floor is the residual that round-off alone
+//    makes.  If gtol_abs > 0, ||g|| <= gtol_abs is required too (not an
+//    alternative).  Only when the solver reports no significant negative curvature
+//    (a saddle with a small gradient is not a minimum).  A solver that provides no
+//    EquilibriumView falls back to ||g|| <= gtol_rel * max(||g_0||, f) (g_0 the
+//    gradient at the start of the load step, f = the out-of-balance force at the
+//    solve's start).
 //  - step: after an accepted step that the globalisation did not shorten,
 //    ||s|| <= step_tol (1 + ||x||).
 //  - energy: after such a step, |dE| <= energy_tol (1 + |E|).
@@ -18,6 +25,7 @@
 
 #include <chrono>
 
+#include "equilibrium.hpp"
 #include "rodnet_solve.h"
 
 namespace rodnet {
@@ -37,7 +45,12 @@ struct IterationView {
   double energy_change = 0.0;
   bool negative_curvature = false; // significant negative curvature seen at x
   bool radius_collapsed = false;
+  EquilibriumView eq; // residual on the physical scale at the current iterate
 };
+
+// A residual within this factor of the round-off floor counts as zero (measured:
+// the residual of Newton's method stagnates at 1 to 4 times the floor estimate).
+constexpr double kFloorFactor = 10.0;
 
 class Monitor {
 public:
@@ -46,6 +59,9 @@ public:
 
   // Reports progress; returns true when a stopping test fires (see reason()).
   bool check(const IterationView &it);
+  // Whether the gradient (equilibrium) test would pass at it, curvature aside; no
+  // side effects.
+  bool equilibrium_passes(const IterationView &it) const;
 
   rn_solve_stop reason() const { return reason_; }
   bool converged() const;
@@ -53,6 +69,11 @@ public:
   double energy() const { return last_.energy; }
   double gradient_norm() const { return last_.gnorm; }
   double g_scale() const { return g_scale_; }
+  // The residual at the last iterate checked and the tolerances it was tested
+  // against (force_tol, moment_tol; 0 when no EquilibriumView was given).
+  const EquilibriumView &equilibrium() const { return last_.eq; }
+  double force_tolerance() const { return force_tol_; }
+  double moment_tolerance() const { return moment_tol_; }
   // Krylov iterations reported so far (sum of IterationView::krylov).
   long krylov_total() const { return krylov_total_; }
   double seconds() const;
@@ -60,6 +81,7 @@ public:
 private:
   const rn_solve_options &opt_;
   double force_scale_, g_scale_ = 0.0, load_factor_;
+  double force_tol_ = 0.0, moment_tol_ = 0.0;
   Clock::time_point start_;
   int offset_;
   bool started_ = false;

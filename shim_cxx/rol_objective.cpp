@@ -125,7 +125,10 @@ void RodObjective::ensure_factor() {
 }
 
 RodStatusTest::RodStatusTest(Monitor &monitor, RodObjective &obj, bool line_search)
-    : mon_(monitor), obj_(obj), line_search_(line_search) {}
+    : mon_(monitor), obj_(obj), line_search_(line_search),
+      equilibrium_(new Equilibrium(obj.problem())) {}
+
+RodStatusTest::~RodStatusTest() = default;
 
 bool RodStatusTest::check(ROL::AlgorithmState<double> &base) {
   // Only the TypeU algorithms use this test: their state carries the radius / step
@@ -148,6 +151,8 @@ bool RodStatusTest::check(ROL::AlgorithmState<double> &base) {
     it.krylov = static_cast<int>(*krylov_counter_ - krylov_seen_);
     krylov_seen_ = *krylov_counter_;
   }
+  if (state.gradientVec && x.size() == obj_.problem().size())
+    it.eq = equilibrium_->measure(x.data(), host_data(*state.gradientVec));
   if (!mon_.check(it)) return true;
   state.statusFlag =
       mon_.converged() ? ROL::EXITSTATUS_CONVERGED : ROL::EXITSTATUS_MAXITER;

@@ -21,6 +21,7 @@
 #include <ROL_StatusTest.hpp>
 #include <ROL_TpetraMultiVector.hpp>
 
+#include "equilibrium.hpp"
 #include "minres.hpp"
 #include "monitor.hpp"
 #include "problem.hpp"
@@ -77,6 +78,7 @@ public:
   // line_search: the step was unconstrained if the step length was 1; otherwise
   // (trust region) if it was shorter than the radius it was computed for.
   RodStatusTest(Monitor &monitor, RodObjective &obj, bool line_search);
+  ~RodStatusTest() override;
   bool check(ROL::AlgorithmState<double> &state) override;
   // Krylov iterations of the iteration just finished (set by the caller's Krylov
   // solver or counted as Hessian-vector products).
@@ -89,6 +91,7 @@ private:
   double radius_prev_ = 0.0;
   long krylov_seen_ = 0;
   const long *krylov_counter_ = nullptr;
+  std::unique_ptr<Equilibrium> equilibrium_;
 };
 
 // Parameters shared by the ROL algorithms: ROL's own status test is disabled

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "dist_system.hpp"
 #include "monitor.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
@@ -48,7 +49,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
   const int kind = enum_value(o.solver);
   if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
-      kind != RN_SOLVER_ROL_LS_NEWTON)
+      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -77,6 +78,10 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "unknown factorization";
   else if (o.predictor != 0 && o.predictor != 1)
     bad = "predictor must be 0 or 1";
+  else if (enum_value(o.preconditioner) != RN_PRECOND_AUTO &&
+           enum_value(o.preconditioner) != RN_PRECOND_FACTOR &&
+           enum_value(o.preconditioner) != RN_PRECOND_LOCAL)
+    bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
 }
@@ -88,13 +93,18 @@ struct SolveTotals {
   rn_solve_stop stop = RN_STOP_FAILED;
   double energy = 0.0, gnorm = 0.0;
   rn_factorization factorization = RN_FACTOR_AUTO;
+  EquilibriumView eq; // at the last iterate checked
+  double force_tol = 0.0, moment_tol = 0.0;
+  rn_preconditioner preconditioner = RN_PRECOND_AUTO;
+  System *dist = nullptr; // the distributed System of a part (nullptr: whole network)
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
 // (0: the starting state); first the predictor (opt.predictor).
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
-  if (opt.predictor && predict_load_step(p, tot.factorization, t_prev, t))
+  // (the predictor factors the whole Hessian: not on a part)
+  if (opt.predictor && !tot.dist && predict_load_step(p, tot.factorization, t_prev, t))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
@@ -108,6 +118,10 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   case RN_SOLVER_ROL_LS_NEWTON:
     run_rol_ls_newton(p, mon, opt);
     break;
+  case RN_SOLVER_TR_KRYLOV:
+    tot.preconditioner =
+        tot.dist ? run_tr_krylov(*tot.dist, mon, opt) : run_tr_krylov(p, mon, opt);
+    break;
   }
   tot.iterations += mon.iterations();
   tot.krylov += mon.krylov_total();
@@ -115,6 +129,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   tot.stop = mon.reason();
   tot.energy = mon.energy();
   tot.gnorm = mon.gradient_norm();
+  tot.eq = mon.equilibrium();
+  tot.force_tol = mon.force_tolerance();
+  tot.moment_tol = mon.moment_tolerance();
   return mon.converged();
 }
 
@@ -177,16 +194,17 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
 
 void fill_report(const Problem &p, const SolveTotals &tot, double g0, double seconds,
                  rn_solve_report *rep) {
+  const Counters &c = tot.dist ? tot.dist->counters : p.counters;
   rep->status = RN_OK;
   rep->stop = tot.stop;
   rep->converged = (tot.stop == RN_STOP_GRADIENT || tot.stop == RN_STOP_STEP ||
                     tot.stop == RN_STOP_ENERGY);
   rep->iterations = tot.iterations;
-  rep->energy_evals = p.counters.energy;
-  rep->gradient_evals = p.counters.gradient;
-  rep->hvp_evals = p.counters.hvp;
-  rep->hessian_evals = p.counters.hessian;
-  rep->factorizations = p.counters.factorizations;
+  rep->energy_evals = c.energy;
+  rep->gradient_evals = c.gradient;
+  rep->hvp_evals = c.hvp;
+  rep->hessian_evals = c.hessian;
+  rep->factorizations = c.factorizations;
   rep->krylov_iterations = tot.krylov;
   rep->load_steps = tot.load_steps;
   rep->energy = tot.energy;
@@ -195,6 +213,13 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->time_s = seconds;
   rep->factorization = tot.factorization;
   rep->predictor_steps = tot.predictor_steps;
+  rep->force_residual = tot.eq.force_residual;
+  rep->moment_residual = tot.eq.moment_residual;
+  rep->force_scale = tot.eq.force_scale;
+  rep->moment_scale = tot.eq.moment_scale;
+  rep->force_tolerance = tot.force_tol;
+  rep->moment_tolerance = tot.moment_tol;
+  rep->preconditioner = tot.preconditioner;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
@@ -204,14 +229,39 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   const double target = rn_network_load_factor(net);
   std::vector<double> x(p.size()), g(p.size());
   check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
-  if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
-    throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-  const double force_scale = norm2(p.size(), g.data());
+  // A part of a distributed network: its System on all ranks (collective from here;
+  // its graph is built once for the solve), the gradient norm over all ranks.
+  std::unique_ptr<DistSystem> dist;
+  if (rn_network_is_part(net)) dist = std::make_unique<DistSystem>(net, world_comm());
+  double force_scale = 0.0;
+  if (dist) {
+    TMV xd(dist->map(), 1), gd(dist->map(), 1);
+    dist->get_state(xd);
+    if (dist->gradient(xd, nullptr, gd) != RN_OK)
+      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
+    Teuchos::Array<double> nrm(1);
+    gd.norm2(nrm());
+    force_scale = nrm[0];
+  } else {
+    if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
+      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
+    force_scale = norm2(p.size(), g.data());
+  }
   SolveTotals tot;
+  tot.dist = dist.get();
   tot.factorization = choose_factor_kind(p, opt.factorization);
-  if (p.size() == 0) { // every DOF is prescribed: nothing to solve
+  if ((dist ? static_cast<size_t>(dist->global_size()) : p.size()) == 0) {
+    // every DOF is prescribed: nothing to solve
     double E = 0.0;
-    if (p.energy(x.data(), &E) != RN_OK)
+    rn_status st = RN_OK;
+    if (dist) {
+      TMV xd(dist->map(), 1);
+      dist->get_state(xd);
+      st = dist->energy(xd, &E);
+    } else {
+      st = p.energy(x.data(), &E);
+    }
+    if (st != RN_OK)
       throw Error(RN_ERR_GEOMETRY, "rn_solve: the prescribed state is degenerate");
     tot.stop = RN_STOP_GRADIENT;
     tot.energy = E;
@@ -262,7 +312,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->gtol_rel = 1e-9;
   opt->gtol_abs = 0.0;
   opt->step_tol = 1e-12;
-  opt->energy_tol = 1e-15;
+  opt->energy_tol = 0.0; // off: a tiny energy change does not certify equilibrium
   opt->krylov_max_iterations = 500;
   opt->krylov_tol = 1e-10;
   opt->initial_radius = 0.0;
@@ -272,6 +322,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->progress_user = nullptr;
   opt->factorization = RN_FACTOR_AUTO;
   opt->predictor = 1;
+  opt->preconditioner = RN_PRECOND_AUTO;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -300,13 +351,15 @@ const char *rn_solver_name(rn_solver_kind k) {
     return "rol-tr-tcg";
   case RN_SOLVER_ROL_LS_NEWTON:
     return "rol-ls-newton";
+  case RN_SOLVER_TR_KRYLOV:
+    return "tr-krylov";
   }
   return "unknown";
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
   const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                  RN_SOLVER_ROL_LS_NEWTON};
+                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
   return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 
@@ -328,6 +381,24 @@ rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
   const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
                                     RN_FACTOR_CHOLMOD};
   return rodnet::value_of_name(name, kinds, rn_factorization_name, f);
+}
+
+const char *rn_preconditioner_name(rn_preconditioner p) {
+  switch (rodnet::enum_value(p)) {
+  case RN_PRECOND_AUTO:
+    return "auto";
+  case RN_PRECOND_FACTOR:
+    return "factor";
+  case RN_PRECOND_LOCAL:
+    return "local";
+  }
+  return "unknown";
+}
+
+rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
+  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR,
+                                     RN_PRECOND_LOCAL};
+  return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep) {

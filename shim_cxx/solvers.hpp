@@ -18,6 +18,16 @@ class Monitor;
 void run_tr_minres(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_tr_tcg(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_ls_newton(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
+// The Newton-Krylov trust region on a SerialSystem of the problem; returns the
+// preconditioner it used.
+rn_preconditioner run_tr_krylov(Problem &problem, Monitor &monitor,
+                                const rn_solve_options &opt);
+// The same on any System (a distributed one: shim_cxx/dist_system.hpp) with the local
+// (block Jacobi) preconditioner; RN_ERR_ARG for the factor preconditioner on several
+// ranks.
+class System;
+rn_preconditioner run_tr_krylov(System &system, Monitor &monitor,
+                                const rn_solve_options &opt);
 
 } // namespace rodnet
 

@@ -27,6 +27,7 @@
 #include <Tpetra_Map.hpp>
 #include <Tpetra_MultiVector.hpp>
 
+#include "equilibrium.hpp"
 #include "problem.hpp"
 #include "rodnet.h"
 
@@ -90,6 +91,19 @@ public:
 
   // Rod / interface structure of the owned DOFs (fixed for the System's life).
   virtual const DofBlocks &blocks() const = 0;
+
+  // Residual of equilibrium on the physical scale at x with gradient g there
+  // (equilibrium.hpp: maxima over all ranks); .valid = false if not provided (the
+  // stopping test then falls back to a test relative to the first gradient).
+  virtual EquilibriumView equilibrium(const TMV & /*x*/, const TMV & /*g*/) {
+    return EquilibriumView();
+  }
+  // One snapshot of the whole mutable state (rn_network_state_save on every part),
+  // for the trust region's watchdog (nonmonotone steps it may take back): false if
+  // not supported (the trust region then stays monotone).  restore_state() goes
+  // back to it exactly (state and reference frames); x must be set by the caller.
+  virtual bool save_state() { return false; }
+  virtual void restore_state() {}
 
   // Evaluation counts of this rank (energy, gradient, Hessian, HVP, Krylov).
   Counters counters;

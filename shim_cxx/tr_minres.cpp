@@ -29,6 +29,24 @@
 //     the boundary.  A degenerate trial point (rn_network_energy > 0) is rejected and
 //     the radius shrinks.  Accepted steps call update(x, Accept), i.e.
 //     rn_network_update_reference.
+//  5a. Watchdog (nonmonotone acceptance; Chamberlain, Powell, Lemarechal and Pedersen
+//     1982).  A step that fails the ratio test only because its trial point has a
+//     higher energy (finite) is taken tentatively: x becomes the trial point
+//     (reference updated) and the iteration continues from there for at most
+//     kWatchdogSteps steps, each of which must pass its own ratio test.  As soon as a
+//     trial point's energy is below E(anchor) - 1e-4 pred(anchor step), it is
+//     accepted for good; otherwise the state goes back to the anchor (an exact
+//     snapshot, rn_network_state_save) and the anchor's step counts as rejected
+//     (radius /4), and the next watchdog waits for a monotone acceptance.  Why: a
+//     Newton step linearises rotations, so it stretches the very stiff edges to
+//     second order in the step (energy ~ EA |s|^4) while it is right to first order
+//     in the soft bending directions: the ratio test then rejects good steps and
+//     the radius shrinks to what the stretching allows (the Maratos effect of stiff,
+//     penalty-like terms).  The next Newton step, from the stretched point, removes
+//     the stretch (measured in docs/solvers.md: cantilever alpha = 5, 45 -> 7
+//     iterations).  A second-order correction with the anchor's Hessian does not
+//     work here: the residual's stiff forces along the rotated edges meet only the
+//     soft bending stiffness of the old Hessian (measured: energies 1e5 to 1e20).
 //  6. Monitor::check once per iteration; no convergence test passes while the
 //     pencil has a significant negative eigenvalue (mu < -1e3 eps), so a saddle is
 //     never reported as a solution.  A rejected step at the round-off size of x
@@ -63,6 +81,9 @@ constexpr int kMaxMultiplierIts = 60;
 // not be exact: mu (>= the lowest eigenvalue) starts the multiplier search from
 // below, and v has to be a direction of negative curvature.
 constexpr int kLanczosSteps = 30;
+// Tentative steps of the watchdog at most (measured: 1 step leaves the arch of
+// docs/solvers.md at 46 iterations, 2 or more give 14).
+constexpr int kWatchdogSteps = 2;
 
 // y = (H + shift M) x with the assembled Hessian and the metric's CSR values m.
 class ShiftedHessian : public VectorOperator {
@@ -108,14 +129,28 @@ public:
       : p_(p), mon_(mon), opt_(opt), n_(p.size()),
         f0_(make_spd_factor(p, opt.factorization)),
         fl_(make_spd_factor(p, opt.factorization)),
-        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), rhs_(map, 1),
-        sol_(map, 1), w_(n_), q_(n_), hs_(n_), ms_(n_) {}
+        minres_(map, opt.krylov_tol, opt.krylov_max_iterations), equilibrium_(p),
+        rhs_(map, 1), sol_(map, 1), w_(n_), q_(n_), hs_(n_), ms_(n_) {}
 
   using ROL::TypeU::Algorithm<double>::run;
   void run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
            std::ostream &out) override;
 
 private:
+  // The last point accepted by the ratio test while the iteration tries tentative
+  // steps from it (watchdog, step 5a).
+  struct Anchor {
+    bool active = false;
+    int steps = 0;         // tentative steps taken from it
+    std::vector<double> x; // its state
+    double energy = 0.0;   // E(x)
+    double pred = 0.0;     // predicted decrease of its (rejected) step
+    double radius = 0.0;   // radius and D-norm of that step
+    double step = 0.0;
+    rn_state *snapshot = nullptr; // the network's whole mutable state there
+    ~Anchor() { rn_state_destroy(&snapshot); }
+  };
+
   void analyse_hessian(const double *x);
   void lowest_eigenpair();
   Step solve_subproblem(const double *g, double radius);
@@ -146,6 +181,7 @@ private:
   double mu_last_ = 0.0;  // mu_ of the last indefinite Hessian (0: none yet)
   std::vector<double> v_; // its eigenvector, ||v||_M = 1
   MinresSolver minres_;
+  Equilibrium equilibrium_;
   MV rhs_, sol_;
   std::vector<double> w_, q_, hs_, ms_;
 };
@@ -350,15 +386,22 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
   double tol = std::sqrt(ROL::ROL_EPSILON<double>());
   initialize(x, g);
   ROL::Ptr<RolVector> xtrial = x.clone(), gvec = state_->gradientVec;
-  obj.update(x, ROL::UpdateType::Initial, 0);
-  state_->value = obj.value(x, tol);
-  obj.gradient(*gvec, x, tol);
-  state_->nfval++;
-  state_->ngrad++;
-  state_->gnorm = gvec->norm();
+  auto take_state = [&](const RolVector &xnew, ROL::UpdateType type) {
+    x.set(xnew);
+    obj.update(x, type, state_->iter);
+    state_->value = obj.value(x, tol);
+    obj.gradient(*gvec, x, tol);
+    state_->nfval++;
+    state_->ngrad++;
+    state_->gnorm = gvec->norm();
+    state_->iterateVec->set(x);
+  };
+  take_state(x, ROL::UpdateType::Initial);
   double radius = opt_.initial_radius;
   IterationView it;
-  bool fresh = true;
+  bool fresh = true, check = true;
+  Anchor anchor;
+  bool watchdog_blocked = false; // after a failed watchdog, until a monotone accept
   for (;;) {
     const double *xp = host_data(x);
     if (fresh) analyse_hessian(xp);
@@ -369,8 +412,12 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     it.radius = radius;
     it.negative_curvature = negcurv_;
     it.x_norm = norm2(n_, xp);
-    if (mon_.check(it)) break;
     const double *gp = host_data(*gvec);
+    if (check) {
+      it.eq = equilibrium_.measure(xp, gp);
+      if (mon_.check(it)) break;
+    }
+    check = true;
     if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
       radius = sigma0_ == 0.0 ? std::numeric_limits<double>::max()
                               : std::max(gradient_radius(gp), 1e-8);
@@ -391,30 +438,75 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
                            : -std::numeric_limits<double>::infinity();
     state_->iter++;
     state_->snorm = norm2(n_, st.s.data());
+    // What to do with the trial point: accept it (for good), take it tentatively
+    // (watchdog), reject it, or give up the watchdog and go back to the anchor.
+    enum class Move { Reject, Accept, Tentative, Back } move = Move::Reject;
+    if (anchor.active) {
+      if (std::isfinite(ftrial) && ftrial <= anchor.energy - kAccept * anchor.pred)
+        move = Move::Accept;
+      else if (anchor.steps < kWatchdogSteps && rho > kAccept)
+        move = Move::Tentative;
+      else
+        move = Move::Back;
+    } else if (rho > kAccept) {
+      move = Move::Accept;
+    } else if (!watchdog_blocked && std::isfinite(ftrial)) {
+      move = Move::Tentative;
+      anchor.active = true;
+      anchor.steps = 0;
+      anchor.x.assign(xp, xp + n_);
+      anchor.energy = state_->value;
+      anchor.pred = pred;
+      anchor.radius = radius;
+      anchor.step = snorm;
+      rn_state_destroy(&anchor.snapshot);
+      check_status(rn_network_state_save(p_.network(), &anchor.snapshot),
+                   "rn_network_state_save");
+    }
     it.krylov = st.krylov;
-    it.accepted = rho > kAccept;
-    it.unconstrained = !st.boundary;
+    it.accepted = move == Move::Accept || move == Move::Tentative;
+    // The step and energy tests only after a monotone interior (Newton) step.
+    it.unconstrained = !st.boundary && move == Move::Accept && !anchor.active;
     it.step_norm = state_->snorm;
     it.energy_change = it.accepted ? ftrial - state_->value : 0.0;
     // A rejected step at the round-off level of x: the radius has collapsed.
     it.radius_collapsed =
-        !it.accepted && state_->snorm <= 10.0 * DBL_EPSILON * (1.0 + it.x_norm);
-    if (it.accepted) {
-      x.set(*xtrial);
-      obj.update(x, ROL::UpdateType::Accept, state_->iter);
-      state_->value = ftrial;
-      obj.gradient(*gvec, x, tol);
-      state_->ngrad++;
-      state_->gnorm = gvec->norm();
-      state_->iterateVec->set(x);
+        move == Move::Reject && state_->snorm <= 10.0 * DBL_EPSILON * (1.0 + it.x_norm);
+    switch (move) {
+    case Move::Accept:
+      if (anchor.active) // the watchdog succeeded
+        anchor.active = false;
+      else
+        watchdog_blocked = false;
+      if (rho < 0.25) // (rho of this step from its own start)
+        radius = 0.25 * std::min(radius, snorm);
+      else if (rho > 0.75 && st.boundary)
+        radius *= 2.0;
+      take_state(*xtrial, ROL::UpdateType::Accept);
       fresh = true;
-    } else {
+      break;
+    case Move::Tentative:
+      ++anchor.steps;
+      take_state(*xtrial, ROL::UpdateType::Accept);
+      fresh = true;
+      break;
+    case Move::Back: // exact return to the anchor, whose step counts as rejected
+      check_status(rn_network_state_restore(p_.network(), anchor.snapshot),
+                   "rn_network_state_restore");
+      std::copy(anchor.x.begin(), anchor.x.end(), host_data(*xtrial));
+      take_state(*xtrial, ROL::UpdateType::Initial);
+      radius = 0.25 * std::min(anchor.radius, anchor.step);
+      anchor.active = false;
+      watchdog_blocked = true;
+      fresh = true;
+      check = false; // the anchor was checked already
+      it.accepted = false;
+      break;
+    case Move::Reject:
       obj.update(x, ROL::UpdateType::Revert, state_->iter);
+      if (rho < 0.25) radius = 0.25 * std::min(radius, snorm);
+      break;
     }
-    if (rho < 0.25)
-      radius = 0.25 * std::min(radius, snorm);
-    else if (rho > 0.75 && st.boundary)
-      radius *= 2.0;
     state_->searchSize = radius;
   }
 }

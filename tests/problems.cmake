@@ -251,22 +251,44 @@ if(RN_WITH_TRILINOS)
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --solver newton)
   rn_cli_test(problems_cli_unknown_factorization 2 "unknown factorization 'lu'"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --factorization lu)
+  rn_cli_test(problems_cli_unknown_preconditioner 2 "unknown preconditioner 'ilu'"
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --solver tr-krylov
+                   --preconditioner ilu)
+  # tr-krylov with the factor preconditioner: named in the summary and RESULT.json
+  rn_cli_test(problems_cli_preconditioner_factor 0
+              "status +converged.*solver +tr-krylov .*preconditioner factor"
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/precond_factor.json --solver tr-krylov
+                   --preconditioner factor --quiet)
   foreach(f banded sparse cholmod)
     rn_cli_test(problems_cli_factorization_${f} 0 "status +converged.*${f} factorisation"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/factorization_${f}.json
                      --factorization ${f} --quiet)
   endforeach()
-  foreach(solver tr-minres rol-tr-tcg rol-ls-newton)
+  foreach(solver tr-minres rol-tr-tcg rol-ls-newton tr-krylov)
     rn_cli_test(problems_cli_solver_${solver} 0 "status +converged.*solver +${solver}"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/solver_${solver}.json --solver ${solver}
                      --quiet)
   endforeach()
-  # Every example scene solves.
+  # Every example scene solves, and the Newton-Krylov trust region (tr-krylov) finds
+  # the same equilibrium as the exact one (tr-minres, the default).
   foreach(scene ${RN_EXAMPLE_SCENES})
     get_filename_component(stem ${scene} NAME_WE)
     rn_cli_test(problems_example_${stem} 0 "status +converged" TIMEOUT 900
                 ARGS solve ${scene} -o ${RN_CLI_OUT}/example_${stem}.json
                      --vtk ${RN_CLI_OUT}/example_${stem}.vtu --quiet)
+    rn_cli_test(problems_example_${stem}_tr_krylov 0 "status +converged" TIMEOUT 900
+                ARGS solve ${scene} -o ${RN_CLI_OUT}/example_${stem}_krylov.json
+                     --solver tr-krylov --quiet)
+    set_tests_properties(problems_example_${stem} PROPERTIES
+                         FIXTURES_SETUP problems_example_${stem}_exact)
+    set_tests_properties(problems_example_${stem}_tr_krylov PROPERTIES
+                         FIXTURES_SETUP problems_example_${stem}_krylov)
+    add_test(NAME problems_example_${stem}_krylov_vs_exact
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/compare_results.py
+                     ${RN_CLI_OUT}/example_${stem}_krylov.json
+                     ${RN_CLI_OUT}/example_${stem}.json)
+    set_tests_properties(problems_example_${stem}_krylov_vs_exact PROPERTIES LABELS unit
+      FIXTURES_REQUIRED "problems_example_${stem}_exact;problems_example_${stem}_krylov")
   endforeach()
   # The .vtu fields of solved scenes: moments in equilibrium with the tip force
   # (cantilever) and the end couple (end_moment), energy density summing to the
@@ -276,8 +298,8 @@ if(RN_WITH_TRILINOS)
                    --tip-force 0 0 -0.39)
   set_tests_properties(problems_cli_result_vtu_fields PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_cantilever_result)
-  set_tests_properties(problems_example_end_moment PROPERTIES
-                       FIXTURES_SETUP problems_end_moment_result)
+  set_tests_properties(problems_example_end_moment PROPERTIES FIXTURES_SETUP
+                       "problems_end_moment_result;problems_example_end_moment_exact")
   add_test(NAME problems_example_end_moment_vtu_fields
            COMMAND ${RN_VTK_PYTHON} ${RN_CHECK_FIELDS} ${RN_CLI_OUT}/example_end_moment.vtu
                    --result ${RN_CLI_OUT}/example_end_moment.json

@@ -22,6 +22,9 @@ rn_add_test(shim_networks SOURCES unit/shim_networks.c
 # The load-step predictor: lattice under stretch (same state, fewer iterations) and
 # a strongly nonlinear cantilever (same state).
 rn_add_test(shim_predictor SOURCES unit/shim_predictor.c LIBS rodnet m LABELS unit)
+# The stopping test certifies equilibrium on a physical scale (strip with a moved
+# clamp: starting gradient 5.5e7; reactions, gtol_abs as a requirement).
+rn_add_test(shim_equilibrium SOURCES unit/shim_equilibrium.c LIBS rodnet m LABELS unit)
 # State snapshots: bit-identical evaluations after solving away and restoring.
 rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 # The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests
@@ -59,6 +62,18 @@ endif()
 # Translating a whole scene leaves energies, gradient and solve unchanged (load
 # potentials measured from the initial state).
 rn_add_test(shim_translation SOURCES unit/shim_translation.c LIBS rodnet m LABELS unit)
+# SerialSystem (Tpetra CrsMatrix Hessian, blocks, snapshots) and the factor
+# preconditioner, through the shim's internal classes (C++, Trilinos headers).
+rn_add_test(shim_system SOURCES unit/shim_system.cpp unit/shim_system_nets.c
+            LIBS rodnet rodnet_shim_deps m LABELS unit)
+target_include_directories(shim_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                               ${PROJECT_SOURCE_DIR}/tests/unit)
+target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                      ${Trilinos_TPL_INCLUDE_DIRS})
+# Newton iteration counts of issue 8's scenes (counts, never times).
+rn_add_test(shim_newton_counts SOURCES unit/shim_newton_counts.c
+            LIBS rodnet_problems LABELS unit ARGS ${PROJECT_SOURCE_DIR}/problems/scenes)
+target_include_directories(shim_newton_counts PRIVATE ${PROJECT_SOURCE_DIR}/problems)
 # The distributed evaluation layer (parts, Tpetra maps, Import/Export, CrsMatrix)
 # against the whole network on 1, 2 and 3 ranks (label mpi; 3 ranks: more ranks than
 # rods for some networks).

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Regenerate the example scenes of problems/scenes/ whose vertex lists or
-rest shapes are too long to write by hand (ring.json, helix.json).
+rest shapes are too long to write by hand (ring.json, helix.json,
+arch_p4.json, arch_p8.json, end_moment_circle.json).
 
     python3 problems/scenes/make_examples.py [OUTDIR]
 """
@@ -62,6 +63,63 @@ def helix():
     }
 
 
+def arch(load):
+    # A 215-degree circular arch (R = 1, 320 edges) in the xz plane, symmetric
+    # about the z axis, hinged (pinned) at its start and clamped at its end,
+    # under a dead crown load P = load * EI / R^2 along -z, the classical
+    # in-plane problem (DaDeppo and Schmidt 1975: limit load about 9 EI / R^2).
+    # In-plane the section is a round wire's of radius r = 2e-3 R (EA R^2 / EI
+    # = 4 R^2 / r^2 = 1e6), with E chosen so that EI = 1; a round arch this
+    # slender buckles out of its plane (lateral-torsional) near P = 0.7 EI/R^2,
+    # so, as in end_moment.json, the section is 100 times stiffer out of plane
+    # (I11, d1 = y) and in torsion.  The stress-free shape is the arch itself.
+    edges, span = 320, math.radians(215.0)
+    r = 2.0e-3
+    i22 = math.pi * r**4 / 4.0
+    verts = []
+    for i in range(edges + 1):
+        a = -0.5 * span + span * i / edges
+        verts.append([fmt(math.sin(a)), 0.0, fmt(math.cos(a))])
+    return {
+        "description": "A 215-degree circular arch (R = 1, 320 edges, EA R^2/EI = 1e6, "
+                       "EI = 1 in plane, 100 EI out of plane and in torsion) hinged at its "
+                       "start and clamped at its end, under a dead crown load P = %g EI/R^2 "
+                       "applied at once from the unloaded arch (issue 8)." % load,
+        "materials": {"arch": {"E": fmt(1.0 / i22), "nu": 0.3}},
+        "sections": {"laterally_stiff_wire": {
+            "shape": "explicit", "A": fmt(math.pi * r**2), "I11": fmt(100 * i22),
+            "I22": fmt(i22), "I12": 0, "J": fmt(200 * i22)}},
+        "rods": [{"name": "arch", "material": "arch", "section": "laterally_stiff_wire",
+                  "vertices": verts, "d1": [0, 1, 0]}],
+        "constraints": [{"type": "pin", "rod": "arch", "vertex": 0},
+                        {"type": "clamp", "rod": "arch", "end": "end"}],
+        "loads": [{"type": "force", "rod": "arch", "vertex": edges // 2,
+                   "value": [0, 0, -float(load)]}],
+    }
+
+
+def end_moment_circle():
+    # end_moment.json's rod and section under the closing moment M = 2 pi EI/L
+    # (a full circle), applied at once.
+    EI = 1.0e7 * 7.853981633974483e-9
+    return {
+        "description": "A clamped rod under the end moment M = 2 pi E I / L closes into a "
+                       "full circle of radius L / (2 pi); the load is applied at once.  The "
+                       "section is the round wire's in the plane of bending and 100 times "
+                       "stiffer out of plane and in torsion (see end_moment.json).",
+        "materials": {"steel": {"E": 1.0e7, "nu": 0.5}},
+        "sections": {"laterally_stiff_wire": {
+            "shape": "explicit", "A": 3.141592653589793e-4, "I11": 7.853981633974483e-7,
+            "I22": 7.853981633974483e-9, "I12": 0, "J": 1.5707963267948966e-6}},
+        "rods": [{"name": "beam", "material": "steel", "section": "laterally_stiff_wire",
+                  "line": {"from": [0, 0, 0], "to": [1, 0, 0], "vertices": 101},
+                  "d1": [0, 1, 0]}],
+        "constraints": [{"type": "clamp", "rod": "beam", "end": "start"}],
+        "loads": [{"type": "moment", "rod": "beam", "vertex": -1,
+                   "value": [0, -2 * math.pi * EI, 0]}],
+    }
+
+
 def dump(scene, path):
     # One vertex / curvature pair per line keeps the files readable.
     text = json.dumps(scene, indent=2)
@@ -77,6 +135,9 @@ def main():
     outdir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     dump(ring(), os.path.join(outdir, "ring.json"))
     dump(helix(), os.path.join(outdir, "helix.json"))
+    dump(arch(4), os.path.join(outdir, "arch_p4.json"))
+    dump(arch(8), os.path.join(outdir, "arch_p8.json"))
+    dump(end_moment_circle(), os.path.join(outdir, "end_moment_circle.json"))
 
 
 if __name__ == "__main__":

@@ -355,11 +355,46 @@ static void test_math(void) {
   printf("rq_sincos: worst error %.2f ulp(1); rq_atan2: %.2f ulp\n", worst_sc, worst_at);
 }
 
+/* Signed area of the spherical triangle (a, b, c). */
+static double tri_area(const double a[3], const double b[3], const double c[3]) {
+  double bc[3];
+  rn_test_cross3(b, c, bc);
+  double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2],
+         bcd = b[0] * c[0] + b[1] * c[1] + b[2] * c[2],
+         ca = c[0] * a[0] + c[1] * a[1] + c[2] * a[2];
+  return 2.0 * atan2(a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2], 1.0 + ab + bcd + ca);
+}
+
+/* The continued reference twist by an independent formula: with the stored
+ * twist equal to the stored frames' own, the holonomy of parallel transport
+ * gives m - m_stored = -(signed area of the spherical quadrilateral
+ * (t_hat0, t0, t1, t_hat1)). */
+static void test_holonomy(void) {
+  config c;
+  double worst = 0.0;
+  for (int trial = 0; trial < 500; ++trial) {
+    random_config(&c, 0.5, 0.4);
+    double m, t[2][3];
+    for (int s = 0; s < 2; ++s) {
+      for (int k = 0; k < 3; ++k) t[s][k] = c.q[4 * s + 4 + k] - c.q[4 * s + k];
+      rn_test_normalize3(t[s]);
+    }
+    CHECK_STATUS(rnk_reference_twist(c.q, c.ref, c.tp.ref_twist, &m), RNK_OK);
+    double area =
+        tri_area(c.ref[0].t, t[0], t[1]) + tri_area(c.ref[0].t, t[1], c.ref[1].t);
+    double d = remainder(m - c.tp.ref_twist + area, 2.0 * M_PI);
+    worst = fmax(worst, fabs(d));
+    CHECK_NEAR(d, 0.0, 1e-13);
+  }
+  printf("reference twist vs holonomy: worst difference %.2e\n", worst);
+}
+
 int main(void) {
   test_math();
   test_random();
   test_straight();
   test_degenerate();
+  test_holonomy();
   test_rod();
   return rn_test_finish("kernels_closed_form");
 }

@@ -40,7 +40,8 @@ static const char *scene_text =
     "  {'type': 'force', 'rod': 's', 'vertex': -1, 'value': [1, 0, 0]},"
     "  {'type': 'gravity', 'value': [0, 0, -10]}],"
     " 'solver': {'method': 'rol-tr-tcg', 'max_iterations': 7, 'gtol': 1e-7,"
-    "            'load_steps': 3, 'factorization': 'cholmod'}}";
+    "            'load_steps': 3, 'factorization': 'cholmod', 'preconditioner': "
+    "'factor'}}";
 
 static char *unquote(const char *s) {
   size_t n = strlen(s);
@@ -103,6 +104,7 @@ static void check_reader(rn_context *ctx) {
   CHECK(opt.solver == RN_SOLVER_ROL_TR_TCG);
   CHECK(opt.max_iterations == 7);
   CHECK(opt.factorization == RN_FACTOR_CHOLMOD);
+  CHECK(opt.preconditioner == RN_PRECOND_FACTOR);
   CHECK(opt.gtol_rel == 1e-7);
   CHECK(opt.load_steps == 3);
   CHECK(opt.krylov_tol == 0.25); /* not in the block: untouched */

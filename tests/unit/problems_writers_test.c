@@ -91,6 +91,13 @@ int main(int argc, char **argv) {
                          2.5,
                          0.75,
                          2,
+                         1e-9,
+                         4.0,
+                         2e-8,
+                         3e-10,
+                         1.5,
+                         4e-9,
+                         "factor",
                          2,
                          part_dofs,
                          part_stencils,
@@ -105,6 +112,7 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "status"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
+    CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "scene"), argv[1]) == 0);
     CHECK(strcmp(str(root, "rodnet_version"), rn_version_string()) == 0);
@@ -116,6 +124,12 @@ int main(int argc, char **argv) {
     CHECK(num(root, "iterations") == 3);
     CHECK(num(root, "load_steps") == 1);
     CHECK(num(root, "predictor_steps") == 2);
+    const cJSON *eq = cJSON_GetObjectItemCaseSensitive(root, "equilibrium");
+    CHECK(num(eq, "force_residual") == 1e-9 && num(eq, "force_scale") == 4.0 &&
+          num(eq, "force_tolerance") == 2e-8 && num(eq, "moment_residual") == 3e-10 &&
+          num(eq, "moment_scale") == 1.5 && num(eq, "moment_tolerance") == 4e-9);
+    CHECK(num(eq, "relative_force_residual") == 1e-9 / 4.0 &&
+          num(eq, "relative_moment_residual") == 3e-10 / 1.5);
     CHECK(num(root, "load_factor") == 1.0);
     CHECK(num(root, "num_dofs") == (double)rn_network_num_dofs(net));
     const cJSON *ev = cJSON_GetObjectItemCaseSensitive(root, "evaluations");

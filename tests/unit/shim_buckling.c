@@ -1,4 +1,4 @@
-/* shim_buckling.c - TR-MINRES leaves a saddle by negative curvature.
+/* shim_buckling.c - TR-MINRES and TR-KRYLOV leave a saddle by negative curvature.
  *
  * A clamped-free column (21 vertices, L = 1 along z, rectangle 0.02 x 0.01,
  * E = 1e7) under a dead compressive tip load 1.3 x the Euler load
@@ -13,7 +13,9 @@
  *    moved sideways by more than 0.1 L;
  *  - the same with the sparse factorisations forced, rodnet's and CHOLMOD's
  *    (their failed factorisations drive the multiplier search and the inverse
- *    iteration): converged, stable, the same energy to 1e-10. */
+ *    iteration): converged, stable, the same energy to 1e-10;
+ *  - the same with the Newton-Krylov trust region (tr-krylov, factor
+ *    preconditioner): converged, stable, the same energy to 1e-10. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -130,6 +132,20 @@ int main(int argc, char **argv) {
     CHECK(lmin_final > 0.0);
     CHECK_REL(rep.energy, E_final, 1e-10);
   }
+
+  /* the Newton-Krylov trust region (factor preconditioner) leaves the saddle too */
+  rn_network_destroy(&net);
+  net = column(ctx, &P);
+  rn_solve_options_default(&opt);
+  opt.solver = RN_SOLVER_TR_KRYLOV;
+  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+  CHECK(rep.converged == 1 && rep.preconditioner == RN_PRECOND_FACTOR);
+  CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin_final), RN_OK);
+  printf("tr-krylov: stop=%s its=%d krylov=%ld E=%.10e lowest eigenvalue %.6e\n",
+         rn_solve_stop_name(rep.stop), rep.iterations, rep.krylov_iterations, rep.energy,
+         lmin_final);
+  CHECK(lmin_final > 0.0);
+  CHECK_REL(rep.energy, E_final, 1e-10);
 
   free(x0);
   free(x);

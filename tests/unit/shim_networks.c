@@ -80,9 +80,9 @@ static double state_diff(const solved *a, const solved *b, const double *b0) {
 }
 
 static void compare_kinds(rn_context *ctx, const char *label, builder build) {
-  const rn_solver_kind kinds[3] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                   RN_SOLVER_ROL_LS_NEWTON};
-  solved s[3], banded;
+  const rn_solver_kind kinds[4] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
+                                   RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
+  solved s[4], banded;
   rn_solve_options opt;
   rn_network *net0 = build(ctx);
   size_t n0;
@@ -90,7 +90,7 @@ static void compare_kinds(rn_context *ctx, const char *label, builder build) {
   printf("%s: %zu DOFs, half bandwidth %zu\n", label, rn_network_num_dofs(net0),
          rn_network_hessian_bandwidth(net0));
   rn_network_destroy(&net0);
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 4; ++k) {
     rn_solve_options_default(&opt);
     opt.solver = kinds[k];
     solve_one(ctx, build, &opt, &s[k]);
@@ -119,7 +119,7 @@ static void compare_kinds(rn_context *ctx, const char *label, builder build) {
     CHECK(d <= 1e-7);
     free(banded.state);
   }
-  for (int k = 0; k < 3; ++k) free(s[k].state);
+  for (int k = 0; k < 4; ++k) free(s[k].state);
   free(state0);
 }
 

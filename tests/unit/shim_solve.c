@@ -50,13 +50,28 @@ static void test_names_and_options(rn_context *ctx) {
   CHECK(opt.solver == RN_SOLVER_TR_MINRES);
   CHECK(opt.max_iterations == 200 && opt.krylov_max_iterations == 500);
   CHECK(opt.gtol_rel == 1e-9 && opt.gtol_abs == 0.0 && opt.step_tol == 1e-12);
-  CHECK(opt.energy_tol == 1e-15 && opt.krylov_tol == 1e-10);
+  CHECK(opt.energy_tol == 0.0 && opt.krylov_tol == 1e-10);
   CHECK(opt.initial_radius == 0.0 && opt.load_steps == 0 && opt.max_load_cuts == 8);
   CHECK(opt.progress == NULL);
 
   CHECK(strcmp(rn_solver_name(RN_SOLVER_TR_MINRES), "tr-minres") == 0);
   CHECK(strcmp(rn_solver_name(RN_SOLVER_ROL_TR_TCG), "rol-tr-tcg") == 0);
   CHECK(strcmp(rn_solver_name(RN_SOLVER_ROL_LS_NEWTON), "rol-ls-newton") == 0);
+  CHECK(strcmp(rn_solver_name(RN_SOLVER_TR_KRYLOV), "tr-krylov") == 0);
+  CHECK_STATUS(rn_solver_from_name("tr-krylov", &k), RN_OK);
+  CHECK(k == RN_SOLVER_TR_KRYLOV);
+  {
+    rn_preconditioner pk = RN_PRECOND_FACTOR;
+    CHECK(opt.preconditioner == RN_PRECOND_AUTO);
+    CHECK(strcmp(rn_preconditioner_name(RN_PRECOND_AUTO), "auto") == 0);
+    CHECK(strcmp(rn_preconditioner_name(RN_PRECOND_FACTOR), "factor") == 0);
+    CHECK(strcmp(rn_preconditioner_name((rn_preconditioner)7), "unknown") == 0);
+    CHECK_STATUS(rn_preconditioner_from_name("auto", &pk), RN_OK);
+    CHECK(pk == RN_PRECOND_AUTO);
+    CHECK_STATUS(rn_preconditioner_from_name("factor", &pk), RN_OK);
+    CHECK(pk == RN_PRECOND_FACTOR);
+    CHECK_STATUS(rn_preconditioner_from_name("dd?", &pk), RN_ERR_ARG);
+  }
   CHECK_STATUS(rn_solver_from_name("rol-ls-newton", &k), RN_OK);
   CHECK(k == RN_SOLVER_ROL_LS_NEWTON);
   CHECK_STATUS(rn_solver_from_name("tr-minres", &k), RN_OK);
@@ -219,12 +234,12 @@ static void solve_kind(rn_context *ctx, rn_solver_kind kind, double P, double **
 
 static void test_solver_agreement(rn_context *ctx) {
   const double P = 0.3 * 3.0 * shim_cantilever_EI(); /* linear tip deflection 0.3 L */
-  const rn_solver_kind kinds[3] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                   RN_SOLVER_ROL_LS_NEWTON};
-  kind_result res[3];
+  const rn_solver_kind kinds[4] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
+                                   RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
+  kind_result res[4];
   double *x0 = NULL;
   size_t n;
-  for (int k = 0; k < 3; ++k) solve_kind(ctx, kinds[k], P, &x0, &res[k]);
+  for (int k = 0; k < 4; ++k) solve_kind(ctx, kinds[k], P, &x0, &res[k]);
   {
     rn_network *net = shim_cantilever(ctx, P);
     n = rn_network_num_dofs(net);
@@ -232,14 +247,14 @@ static void test_solver_agreement(rn_context *ctx) {
   }
   /* A large deflection: the tip moves by a good fraction of L. */
   CHECK(fabs(res[0].x[n - 1] - x0[n - 1]) > 0.1);
-  for (int k = 1; k < 3; ++k) {
+  for (int k = 1; k < 4; ++k) {
     const double d = shim_rel_diff(n, res[k].x, res[0].x, x0);
     printf("%s vs tr-minres: relative difference %.2e, energy %.2e\n",
            rn_solver_name(kinds[k]), d, fabs(res[k].energy / res[0].energy - 1.0));
     CHECK(d <= 1e-8);
     CHECK_REL(res[k].energy, res[0].energy, 1e-10);
   }
-  for (int k = 0; k < 3; ++k) free(res[k].x);
+  for (int k = 0; k < 4; ++k) free(res[k].x);
   free(x0);
 }
 

@@ -1,0 +1,276 @@
+/* reactions.c - what an equilibrium check needs: the kind of every reduced DOF
+ * (force or moment units), the gradient on the full layout, the largest applied
+ * load, and the reactions of every support (constraint) in the global frame. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_internal.h"
+
+rn_status rn_network_dof_kinds(const rn_network *net, int *kind) {
+  static const char *where = "rn_network_dof_kinds";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!kind && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "kind is NULL");
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    for (int v = 0; v < r->nv; ++v)
+      for (int k = 0; k < RN_DOFS_PER_VERTEX; ++k) {
+        const int64_t m = net->map[rn_dof_vertex(r->off, v) + (size_t)k];
+        if (m >= 0) kind[m] = RN_DOF_POSITION;
+      }
+    for (int j = 0; j < r->ne; ++j) {
+      const int64_t m = net->map[rn_dof_theta(r->off, j)];
+      if (m >= 0) kind[m] = RN_DOF_THETA;
+    }
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    for (int k = 0; k < 3; ++k) {
+      const int64_t m = net->map[rn_dof_joint_position(J->off) + (size_t)k];
+      if (m >= 0) kind[m] = RN_DOF_POSITION;
+    }
+    if (!rn_joint_has_rotation(J)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int64_t m = net->map[rn_dof_joint_rotation(J->off) + (size_t)k];
+      if (m >= 0) kind[m] = RN_DOF_ROTATION;
+    }
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_dof_info(const rn_network *net, rn_dof_info *info) {
+  static const char *where = "rn_network_dof_info";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!info && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "info is NULL");
+  for (int ir = 0; ir < net->nrods; ++ir) { /* rods first: joints overwrite aliases */
+    const rn_rod *r = &net->rods[ir];
+    for (int v = 0; v < r->nv; ++v)
+      for (int k = 0; k < RN_DOFS_PER_VERTEX; ++k) {
+        const int64_t m = net->map[rn_dof_vertex(r->off, v) + (size_t)k];
+        if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, ir, -1, v, k};
+      }
+    for (int j = 0; j < r->ne; ++j) {
+      const int64_t m = net->map[rn_dof_theta(r->off, j)];
+      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_THETA, ir, -1, j, 0};
+    }
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    for (int k = 0; k < 3; ++k) {
+      const int64_t m = net->map[rn_dof_joint_position(J->off) + (size_t)k];
+      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, -1, ij, 0, k};
+      const int64_t w = rn_joint_has_rotation(J)
+                            ? net->map[rn_dof_joint_rotation(J->off) + (size_t)k]
+                            : -1;
+      if (w >= 0) info[w] = (rn_dof_info){RN_DOF_ROTATION, -1, ij, 0, k};
+    }
+  }
+  return RN_OK;
+}
+
+rn_status rn_network_gradient_full(const rn_network *net, const double *x,
+                                   double *gfull) {
+  static const char *where = "rn_network_gradient_full";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if ((!x && net->nred) || !gfull)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
+  if (!rn_all_finite(net->nred, x))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  return rn_eval_gradient_full(net, x, gfull, where);
+}
+
+rn_status rn_network_gradient_magnitude(const rn_network *net, const double *x,
+                                        double *gabs) {
+  static const char *where = "rn_network_gradient_magnitude";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if ((!x || !gabs) && net->nred)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
+  if (!rn_all_finite(net->nred, x))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  return rn_eval_gradient_magnitude(net, x, gabs, where);
+}
+
+static double norm3(const double v[3]) {
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+rn_status rn_network_applied_load_max(const rn_network *net, double *force,
+                                      double *moment) {
+  static const char *where = "rn_network_applied_load_max";
+  rn_status st;
+  double fbig = 0.0, mbig = 0.0;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!force || !moment) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    for (int v = 0; v < r->nv; ++v) fbig = fmax(fbig, norm3(&r->fvert[3 * v]));
+  }
+  for (int im = 0; im < net->nmom; ++im) mbig = fmax(mbig, norm3(net->moments[im].M));
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    fbig = fmax(fbig, norm3(net->joints[ij].force));
+    mbig = fmax(mbig, norm3(net->joints[ij].M));
+  }
+  *force = fabs(net->lambda) * fbig;
+  *moment = fabs(net->lambda) * mbig;
+  return RN_OK;
+}
+
+/* Calls visit(net, support, ctx) for every support in the documented order;
+ * returns the number of supports. */
+typedef void (*support_visitor)(const rn_network *net, const rn_reaction *proto,
+                                void *ctx);
+
+static int for_each_support(const rn_network *net, support_visitor visit, void *ctx) {
+  int n = 0;
+  rn_reaction p;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    memset(&p, 0, sizeof p);
+    p.rod = ir;
+    if (r->clamped[RN_START]) {
+      p.kind = RN_SUPPORT_CLAMP, p.index = 0, p.fixed = RN_FIX_XYZ, p.fixed_rotation = 1;
+      if (visit) visit(net, &p, ctx);
+      ++n;
+    }
+    for (int v = 0; v < r->nv; ++v) {
+      if (rn_rod_in_clamp(r, v) || !r->pinned[v]) continue;
+      p.kind = RN_SUPPORT_VERTEX, p.index = v, p.fixed = r->pinned[v],
+      p.fixed_rotation = 0;
+      if (visit) visit(net, &p, ctx);
+      ++n;
+    }
+    for (int j = 0; j < r->ne; ++j) {
+      if (!r->theta_fixed[j] || (r->clamped[RN_START] && j == 0) ||
+          (r->clamped[RN_END] && j == r->ne - 1))
+        continue;
+      p.kind = RN_SUPPORT_THETA, p.index = j, p.fixed = 0, p.fixed_rotation = 0;
+      if (visit) visit(net, &p, ctx);
+      ++n;
+    }
+    if (r->clamped[RN_END]) {
+      p.kind = RN_SUPPORT_CLAMP, p.index = 1, p.fixed = RN_FIX_XYZ, p.fixed_rotation = 1;
+      if (visit) visit(net, &p, ctx);
+      ++n;
+    }
+  }
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    const int mask = rn_joint_fixed_components(J);
+    if (!mask) continue;
+    memset(&p, 0, sizeof p);
+    p.kind = RN_SUPPORT_JOINT, p.rod = -1, p.index = ij, p.fixed = mask;
+    p.fixed_rotation = J->clamped;
+    if (visit) visit(net, &p, ctx);
+    ++n;
+  }
+  return n;
+}
+
+int rn_network_num_supports(const rn_network *net) {
+  if (!net || !net->finalized) return 0;
+  return for_each_support(net, NULL, NULL);
+}
+
+typedef struct reaction_ctx {
+  const double *full, *gfull; /* state and gradient, full layout */
+  rn_reaction *out;
+  int n;
+} reaction_ctx;
+
+static void add_scaled(double a[3], double s, const double b[3]) {
+  for (int k = 0; k < 3; ++k) a[k] += s * b[k];
+}
+
+/* Adds the force f applied at y to the reaction (force, and moment about point). */
+static void add_point_force(rn_reaction *R, const double y[3], const double f[3]) {
+  const double d[3] = {y[0] - R->point[0], y[1] - R->point[1], y[2] - R->point[2]};
+  add_scaled(R->force, 1.0, f);
+  R->moment[0] += d[1] * f[2] - d[2] * f[1];
+  R->moment[1] += d[2] * f[0] - d[0] * f[2];
+  R->moment[2] += d[0] * f[1] - d[1] * f[0];
+}
+
+/* The material angle of edge j is a rotation about its tangent: its gradient is
+ * the moment component along it. */
+static void add_theta_moment(const reaction_ctx *c, const rn_rod *r, int j,
+                             rn_reaction *R) {
+  const double *x0 = &c->full[rn_dof_vertex(r->off, j)];
+  const double *x1 = &c->full[rn_dof_vertex(r->off, j + 1)];
+  double t[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+  const double l = norm3(t);
+  if (l > 0.0) add_scaled(R->moment, c->gfull[rn_dof_theta(r->off, j)] / l, t);
+}
+
+static void reaction_visit(const rn_network *net, const rn_reaction *proto, void *vctx) {
+  reaction_ctx *c = vctx;
+  rn_reaction *R = &c->out[c->n++];
+  *R = *proto;
+  if (proto->kind == RN_SUPPORT_JOINT) {
+    const rn_joint *J = &net->joints[proto->index];
+    const size_t p = rn_dof_joint_position(J->off);
+    memcpy(R->point, &c->full[p], sizeof R->point);
+    add_scaled(R->force, 1.0, &c->gfull[p]);
+    for (int k = 0; k < J->valence; ++k) { /* the rod end slots alias the joint */
+      const rn_rod *r = &net->rods[J->rod[k]];
+      add_scaled(R->force, 1.0,
+                 &c->gfull[rn_dof_vertex(r->off, rn_end_vertex(r->nv, J->end[k]))]);
+    }
+    for (int k = 0; k < 3; ++k)
+      if (!rn_component_fixed(proto->fixed, k)) R->force[k] = 0.0;
+    if (J->clamped && rn_joint_has_rotation(J))
+      add_scaled(R->moment, 1.0, &c->gfull[rn_dof_joint_rotation(J->off)]);
+  } else {
+    const rn_rod *r = &net->rods[proto->rod];
+    if (proto->kind == RN_SUPPORT_VERTEX) {
+      const size_t s = rn_dof_vertex(r->off, proto->index);
+      memcpy(R->point, &c->full[s], sizeof R->point);
+      for (int k = 0; k < 3; ++k)
+        if (rn_component_fixed(proto->fixed, k)) R->force[k] = c->gfull[s + (size_t)k];
+    } else {
+      const int j = proto->kind == RN_SUPPORT_THETA ? proto->index
+                                                    : rn_end_edge(r->nv, proto->index);
+      const double *x0 = &c->full[rn_dof_vertex(r->off, j)];
+      const double *x1 = &c->full[rn_dof_vertex(r->off, j + 1)];
+      for (int k = 0; k < 3; ++k) R->point[k] = 0.5 * (x0[k] + x1[k]);
+      if (proto->kind == RN_SUPPORT_CLAMP) {
+        add_point_force(R, x0, &c->gfull[rn_dof_vertex(r->off, j)]);
+        add_point_force(R, x1, &c->gfull[rn_dof_vertex(r->off, j + 1)]);
+      }
+      add_theta_moment(c, r, j, R);
+    }
+  }
+}
+
+rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reaction *out,
+                               int n) {
+  static const char *where = "rn_network_reactions";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  const int ns = for_each_support(net, NULL, NULL);
+  if (n != ns)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "n = %d, but the network has %d supports",
+                   n, ns);
+  if (!ns) return RN_OK;
+  if (!out || (!x && net->nred))
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
+  if (!rn_all_finite(net->nred, x))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  double *full = malloc(2 * net->nfull * sizeof(double));
+  if (!full) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  reaction_ctx c = {full, full + net->nfull, out, 0};
+  rn_expand_state(net, x, full);
+  st = rn_eval_gradient_full(net, x, full + net->nfull, where);
+  if (!st) for_each_support(net, reaction_visit, &c);
+  free(full);
+  return st;
+}
