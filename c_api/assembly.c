@@ -170,12 +170,42 @@ static rn_status rod_direct_eval(const rn_network *net, int ir, int j0, int ne,
   return RN_OK;
 }
 
+/* Rod ir's stretching, bending and twisting gradient stencil by stencil, for
+ * the gradient variants that need each stencil's own contribution (on the full
+ * layout, or its magnitude): the stencil kernels of rnk.h, same values as the
+ * whole-rod kernels.  Off the hot path (reactions, round-off floors). */
+static rn_status rod_stencils_grad_each(const rn_network *net, int ir, eval_args *a) {
+  const rn_rod *r = &net->rods[ir];
+  double q[RN_VERTEX_STENCIL], gl[RN_VERTEX_STENCIL], E = 0.0;
+  for (int j = 0; j < r->ne; ++j) {
+    size_t s = rn_dof_edge_stencil(r->off, j);
+    rn_gather(net, a->x, s, RN_EDGE_STENCIL, q);
+    if (rnk_stretch_grad(q, &r->sp[j], &E, gl) != RNK_OK)
+      return degenerate(net, a, "stretching", ir, "edge", j);
+    a->E[RN_TERM_STRETCH] += E;
+    scatter_grad(net, a, gl, s, NULL, RN_EDGE_STENCIL);
+  }
+  for (int i = 1; i < r->nv - 1; ++i) {
+    size_t s = rn_dof_vertex_stencil(r->off, i);
+    rnk_twist_param tp = r->tp[i - 1];
+    tp.ref_twist = r->ref_twist[i - 1];
+    rn_gather(net, a->x, s, RN_VERTEX_STENCIL, q);
+    if (rnk_bendtwist_grad(q, &r->ref[i - 1], &r->bp[i - 1], &tp, &E, gl) != RNK_OK)
+      return degenerate(net, a, "bending/twist", ir, "vertex", i);
+    a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
+    scatter_grad(net, a, gl, s, NULL, RN_VERTEX_STENCIL);
+  }
+  return RN_OK;
+}
+
 /* All of rod ir's stretching, bending and twisting: segments that share one
  * edge with the next (its stretching counted once), copied ones of at most
  * RN_ROD_SEGMENT edges and, for the energy, gradient and HVP, one in-place
  * segment over the rod's run of free consecutive DOFs. */
 static rn_status rod_stencils_eval(const rn_network *net, int ir, eval_args *a) {
   const rn_rod *r = &net->rods[ir];
+  if (a->op == OP_GRAD && (a->gfull || a->magnitude))
+    return rod_stencils_grad_each(net, ir, a);
   int lo = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir];
   int hi = a->op == OP_HESS ? 0 : net->rod_direct[2 * ir + 1];
   for (int j0 = 0;;) {
