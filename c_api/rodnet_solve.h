@@ -39,14 +39,18 @@ typedef enum rn_solver_kind {
 /* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
  * the trust-region norm (docs/solvers.md). */
 typedef enum rn_preconditioner {
-  RN_PRECOND_AUTO = 0,   /* the default for the problem: factor on a whole
-                            network, local on a part of a distributed one */
-  RN_PRECOND_FACTOR = 1, /* Cholesky of H + sigma D (rn_factorization), sigma the
-                            smallest shift that factors: exact when H is positive
-                            definite (one MINRES iteration); one rank only */
-  RN_PRECOND_LOCAL = 2   /* block Jacobi over the ranks: each rank's sparse
-                            Cholesky of its owned block H_pp + sigma_p D_p (the
-                            factor preconditioner on one rank); docs/parallel.md */
+  RN_PRECOND_AUTO = 0,    /* the default for the problem: factor on a whole
+                             network, local on a part of a distributed one */
+  RN_PRECOND_FACTOR = 1,  /* Cholesky of H + sigma D (rn_factorization), sigma the
+                             smallest shift that factors: exact when H is positive
+                             definite (one MINRES iteration); one rank only */
+  RN_PRECOND_LOCAL = 2,   /* block Jacobi over the ranks: each rank's sparse
+                             Cholesky of its owned block H_pp + sigma_p D_p (the
+                             factor preconditioner on one rank); docs/parallel.md */
+  RN_PRECOND_GATHERED = 3 /* the factor preconditioner's matrix on any number of
+                             ranks: the whole Hessian gathered on rank 0 and
+                             factored there (exact; not scalable: for tests and
+                             small problems); docs/parallel.md */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier

@@ -41,8 +41,9 @@ static const char solve_help[] =
     "                      trust-region norm): auto (default: factor on one\n"
     "                      rank, local under mpirun), factor (Cholesky of the\n"
     "                      shifted Hessian, one rank), local (each rank's\n"
-    "                      Cholesky of its own block, block Jacobi;\n"
-    "                      docs/parallel.md)\n"
+    "                      Cholesky of its own block, block Jacobi),\n"
+    "                      gathered (factor's matrix on rank 0: exact, not\n"
+    "                      scalable; docs/parallel.md)\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
@@ -176,7 +177,8 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
     return rn_cli_usage_error("solve",
-                              "unknown preconditioner '%s' (known: auto, factor, local)",
+                              "unknown preconditioner '%s' (known: auto, factor, "
+                              "local, gathered)",
                               a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)

@@ -366,6 +366,7 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
 static const named_value preconditioner_names[] = {{"auto", RN_PRECOND_AUTO},
                                                    {"factor", RN_PRECOND_FACTOR},
                                                    {"local", RN_PRECOND_LOCAL},
+                                                   {"gathered", RN_PRECOND_GATHERED},
                                                    {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},

@@ -4,6 +4,8 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <cstring>
 
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -372,11 +374,225 @@ void DistSystem::accept(TMV &x) {
 }
 
 const DofBlocks &DistSystem::blocks() const {
-  if (!blocks_done_)
-    throw Error(RN_ERR_INTERNAL,
-                "DistSystem::blocks: the rod / interface classification of a part needs "
-                "rn_network_dof_blocks (issue 7, not yet merged)");
+  if (!blocks_done_) build_blocks();
   return blocks_;
+}
+
+// As SerialSystem::build_blocks on the owned rows of the part's pattern (columns may
+// be ghost DOFs): a DOF is interior to its rod when every DOF it couples with belongs
+// to that rod or to a joint; rods numbered by their order among the owned rods.
+void DistSystem::build_blocks() const {
+  std::vector<rn_dof_info> info(n_local_);
+  agree(n_local_ ? rn_network_dof_info(net_, info.data()) : RN_OK);
+  size_t nnz = 0;
+  const int64_t *rowptr = nullptr;
+  const int32_t *col = nullptr;
+  check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
+               "rn_network_hessian_pattern");
+  std::vector<int> owned_rods; // whole-network indices, increasing
+  for (int r = 0; r < rn_network_num_rods(net_); ++r)
+    if (rn_network_rod_owner(net_, r) == comm_->getRank() || !rn_network_is_part(net_))
+      owned_rods.push_back(r);
+  blocks_.num_rods = static_cast<int>(owned_rods.size());
+  blocks_.block.assign(n_owned_, -1);
+  for (size_t i = 0; i < n_owned_; ++i) {
+    int owner = info[i].rod;
+    for (int64_t k = rowptr[i]; k < rowptr[i + 1] && owner >= 0; ++k) {
+      const int other = info[static_cast<size_t>(col[k])].rod;
+      if (other >= 0 && other != owner) owner = -1;
+    }
+    if (owner >= 0)
+      owner =
+          static_cast<int>(std::lower_bound(owned_rods.begin(), owned_rods.end(), owner) -
+                           owned_rods.begin());
+    blocks_.block[i] = owner;
+  }
+  for (size_t i = 0; i < n_owned_; ++i) {
+    if (blocks_.block[i] >= 0) continue;
+    DofBlocks::Interface f;
+    const rn_dof_info &d = info[i];
+    f.local = static_cast<LO>(i);
+    f.kind = d.kind == RN_DOF_POSITION   ? d.component
+             : d.kind == RN_DOF_ROTATION ? 3 + d.component
+                                         : 6;
+    if (d.joint >= 0) {
+      rn_network_joint_position(net_, d.joint, f.point);
+    } else { // a vertex, or the midpoint of the edge of an angle
+      std::vector<double> v(
+          3 * static_cast<size_t>(rn_network_rod_num_vertices(net_, d.rod)));
+      rn_network_rod_vertices(net_, d.rod, v.data());
+      for (size_t k = 0; k < 3; ++k)
+        f.point[k] = d.kind == RN_DOF_THETA
+                         ? 0.5 * (v[3 * static_cast<size_t>(d.index) + k] +
+                                  v[3 * static_cast<size_t>(d.index + 1) + k])
+                         : v[3 * static_cast<size_t>(d.index) + k];
+    }
+    blocks_.interface.push_back(f);
+  }
+  blocks_done_ = true;
+}
+
+} // namespace rodnet
+
+namespace rodnet {
+
+namespace {
+
+double norm3(const double v[3]) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+// A fixed pseudo-random sign per DOF (as equilibrium.cpp: by global id here).
+double sign_of(GO i) {
+  uint64_t h = (static_cast<uint64_t>(i) + 1) * 0x9E3779B97F4A7C15ull;
+  h ^= h >> 31;
+  return (h & 1) ? 1.0 : -1.0;
+}
+
+} // namespace
+
+// The largest support reaction force and moment: each part's partial reactions (its
+// owned stencils) of the supports it holds, gathered and summed by support.
+void DistSystem::reaction_scales(double *f0, double *m0) {
+  const int ns = rn_network_num_supports(net_);
+  std::vector<rn_reaction> r(static_cast<size_t>(ns));
+  rn_status st = ns ? rn_network_reactions(net_, col0(*xov_), r.data(), ns) : RN_OK;
+  if (agree(st) != RN_OK) r.clear(); // degenerate: no reactions (as one rank)
+  std::vector<double> mine;          // kind, rod, index, force[3], moment[3]
+  for (const rn_reaction &s : r) {
+    mine.insert(mine.end(), {static_cast<double>(s.kind), static_cast<double>(s.rod),
+                             static_cast<double>(s.index), s.force[0], s.force[1],
+                             s.force[2], s.moment[0], s.moment[1], s.moment[2]});
+  }
+  const MPI_Comm c = raw_comm(comm_);
+  std::vector<double> all = mine;
+  if (c != MPI_COMM_NULL && comm_->getSize() > 1) {
+    const int size = comm_->getSize();
+    int cnt = static_cast<int>(mine.size());
+    std::vector<int> counts(static_cast<size_t>(size)),
+        disp(static_cast<size_t>(size) + 1, 0);
+    MPI_Allgather(&cnt, 1, MPI_INT, counts.data(), 1, MPI_INT, c);
+    for (int q = 0; q < size; ++q)
+      disp[static_cast<size_t>(q) + 1] =
+          disp[static_cast<size_t>(q)] + counts[static_cast<size_t>(q)];
+    all.resize(static_cast<size_t>(disp[static_cast<size_t>(size)]));
+    MPI_Allgatherv(mine.data(), cnt, MPI_DOUBLE, all.data(), counts.data(), disp.data(),
+                   MPI_DOUBLE, c);
+    stats_.bytes_sent += 8.0 * static_cast<double>(mine.size()) * (size - 1);
+  }
+  // sum by support (kind, rod, index), in rank order: the same on every rank
+  std::vector<size_t> order(all.size() / 9);
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::lexicographical_compare(&all[9 * a], &all[9 * a + 3], &all[9 * b],
+                                        &all[9 * b + 3]);
+  });
+  *f0 = *m0 = 0.0;
+  for (size_t i = 0; i < order.size();) {
+    double f[3] = {0.0, 0.0, 0.0}, m[3] = {0.0, 0.0, 0.0};
+    size_t j = i;
+    for (; j < order.size() &&
+           std::equal(&all[9 * order[i]], &all[9 * order[i] + 3], &all[9 * order[j]]);
+         ++j)
+      for (int k = 0; k < 3; ++k) {
+        f[k] += all[9 * order[j] + 3 + static_cast<size_t>(k)];
+        m[k] += all[9 * order[j] + 6 + static_cast<size_t>(k)];
+      }
+    *f0 = std::max(*f0, norm3(f));
+    *m0 = std::max(*m0, norm3(m));
+    i = j;
+  }
+}
+
+EquilibriumView DistSystem::equilibrium(const TMV &x, const TMV &g) {
+  const MPI_Comm c = raw_comm(comm_);
+  if (size_ < 0.0) { // once: DOF kinds, the size of the structure
+    kind_.assign(n_local_, RN_DOF_POSITION);
+    if (n_local_)
+      agree(rn_network_dof_kinds(net_, kind_.data()));
+    else
+      agree(RN_OK);
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL},
+           hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int r = 0; r < rn_network_num_rods(net_); ++r) {
+      if (!rn_network_rod_is_local(net_, r)) continue;
+      std::vector<double> xyz(3 *
+                              static_cast<size_t>(rn_network_rod_num_vertices(net_, r)));
+      if (rn_network_rod_initial_vertices(net_, r, xyz.data()) != RN_OK) continue;
+      for (size_t i = 0; i < xyz.size(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+        hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+      }
+    }
+    double glo[3], ghi[3];
+    allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, c);
+    allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, c);
+    size_ = 0.0;
+    for (int k = 0; k < 3; ++k)
+      if (ghi[k] >= glo[k]) size_ += (ghi[k] - glo[k]) * (ghi[k] - glo[k]);
+    size_ = std::sqrt(size_);
+  }
+  EquilibriumView v = last_eq_;
+  auto gd = g.getData(0), xd = x.getData(0);
+  double loc[3] = {0.0, 0.0, 0.0}, glob[3]; // force, moment residual, max |x|
+  for (size_t i = 0; i < n_owned_; ++i) {
+    const double a = std::fabs(gd[static_cast<LO>(i)]);
+    if (kind_[i] == RN_DOF_POSITION) {
+      loc[0] = std::max(loc[0], a);
+      loc[2] = std::max(loc[2], std::fabs(xd[static_cast<LO>(i)]));
+    } else {
+      loc[1] = std::max(loc[1], a);
+    }
+  }
+  allreduce(loc, glob, 3, MPI_DOUBLE, MPI_MAX, c);
+  v.force_residual = glob[0];
+  v.moment_residual = glob[1];
+  const double xmax = glob[2];
+  // scales and floors change slowly: again only near the last scale (as equilibrium.cpp)
+  if (last_eq_.valid && v.force_residual > 1e-3 * last_eq_.force_scale &&
+      v.moment_residual > 1e-3 * last_eq_.moment_scale)
+    return v;
+  import_state(x);
+  double load[2] = {0.0, 0.0}, gload[2];
+  agree(rn_network_applied_load_max(net_, &load[0], &load[1]));
+  allreduce(load, gload, 2, MPI_DOUBLE, MPI_MAX, c);
+  double freac = 0.0, mreac = 0.0;
+  reaction_scales(&freac, &mreac);
+  const double f0 = std::max(gload[0], freac), m0 = std::max(gload[1], mreac);
+  v.force_scale = size_ > 0.0 ? std::max(f0, m0 / size_) : f0;
+  v.moment_scale = std::max(m0, f0 * size_);
+  // round-off floor: |H delta| + eps * (sum of stencil force magnitudes)
+  TMV delta(owned_, 1), hd(owned_, 1), ga(owned_, 1);
+  {
+    auto dd = delta.getDataNonConst(0);
+    for (size_t i = 0; i < n_owned_; ++i)
+      dd[static_cast<LO>(i)] = sign_of(owned_->getGlobalElement(static_cast<LO>(i))) *
+                               DBL_EPSILON * (kind_[i] == RN_DOF_POSITION ? xmax : 1.0);
+  }
+  TMV dov(overlap_, 1);
+  dov.doImport(delta, *importer_, Tpetra::INSERT);
+  rn_status st = rn_network_hvp(net_, col0(*xov_), col0(dov), col0(*gov_));
+  agree(st < 0 ? st : RN_OK);
+  ++counters.hvp;
+  hd.doExport(*gov_, *exporter_, Tpetra::ADD);
+  st = rn_network_gradient_magnitude(net_, col0(*xov_), col0(*gov_));
+  agree(st < 0 ? st : RN_OK);
+  ga.doExport(*gov_, *exporter_, Tpetra::ADD);
+  stats_.bytes_sent += 8.0 * static_cast<double>(importer_->getNumExportIDs() +
+                                                 2 * exporter_->getNumExportIDs());
+  double fl[2] = {0.0, 0.0}, gfl[2];
+  auto hdd = hd.getData(0), gad = ga.getData(0);
+  for (size_t i = 0; i < n_owned_; ++i) {
+    double &floor = kind_[i] == RN_DOF_POSITION ? fl[0] : fl[1];
+    floor = std::max(floor, std::fabs(hdd[static_cast<LO>(i)]) +
+                                DBL_EPSILON * gad[static_cast<LO>(i)]);
+  }
+  allreduce(fl, gfl, 2, MPI_DOUBLE, MPI_MAX, c);
+  v.force_floor = gfl[0];
+  v.moment_floor = gfl[1];
+  v.valid = true;
+  last_eq_ = v;
+  return v;
 }
 
 } // namespace rodnet

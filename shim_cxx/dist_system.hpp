@@ -27,6 +27,7 @@
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 
+#include "equilibrium.hpp"
 #include "system.hpp"
 
 namespace rodnet {
@@ -58,6 +59,10 @@ public:
   // Snapshots of every part (rn_network_state_save), in lockstep on all ranks.
   bool save_state() override;
   void restore_state() override;
+  // The residual of equilibrium on the physical scale (equilibrium.hpp) over all
+  // ranks: residuals and floors are maxima over the owned DOFs, the reactions of the
+  // supports are summed over the parts (each sees the stencils it owns).
+  EquilibriumView equilibrium(const TMV &x, const TMV &g) override;
 
   rn_network *network() const { return net_; }
   const Teuchos::RCP<const Teuchos::Comm<int>> &comm() const { return comm_; }
@@ -94,6 +99,13 @@ private:
   mutable DofBlocks blocks_;
   mutable bool blocks_done_ = false;
   rn_state *snapshot_ = nullptr;
+  // equilibrium(): DOF kinds (owned first), the size of the structure, the last
+  // full measurement
+  std::vector<int> kind_;
+  double size_ = -1.0;
+  EquilibriumView last_eq_;
+  void reaction_scales(double *f0, double *m0);
+  void build_blocks() const;
 };
 
 } // namespace rodnet

@@ -85,10 +85,11 @@ void LocalPreconditioner::setup(System &sys) {
   const Clock::time_point t0 = Clock::now();
   const TCrs &H = *sys.hessian();
   const auto comm = sys.map()->getComm();
-  if (!analysis_ && rowptr_.empty()) build_pattern(H);
+  if (rowptr_.empty()) build_pattern(H);
   auto values = H.getLocalMatrixHost().values;
   for (size_t k = 0; k < vals_.size(); ++k) vals_[k] = values(src_[k]);
-  if (m_.empty()) { // D = |diag H|, floored at 1e-8 of its largest entry (all ranks)
+  if (!metric_done_) {   // D = |diag H|, floored at 1e-8 of its largest entry (all ranks)
+    metric_done_ = true; // (on every rank, also one that owns nothing: collective)
     m_.assign(vals_.size(), 0.0);
     double local = 0.0, dmax = 0.0;
     for (size_t i = 0; i < n_; ++i)

@@ -41,6 +41,7 @@ private:
   std::vector<int32_t> col_;     //
   std::vector<size_t> src_;      // position of each entry in H's local values
   std::vector<double> vals_, m_; // block values; metric D on the pattern
+  bool metric_done_ = false;
   std::shared_ptr<const SparseAnalysis> analysis_;
   std::unique_ptr<SparseCholesky> chol_;
   const SparseCholesky *chol_ptr_ = nullptr; // what the inverse operator applies

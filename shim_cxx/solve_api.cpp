@@ -80,7 +80,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "predictor must be 0 or 1";
   else if (enum_value(o.preconditioner) != RN_PRECOND_AUTO &&
            enum_value(o.preconditioner) != RN_PRECOND_FACTOR &&
-           enum_value(o.preconditioner) != RN_PRECOND_LOCAL)
+           enum_value(o.preconditioner) != RN_PRECOND_LOCAL &&
+           enum_value(o.preconditioner) != RN_PRECOND_GATHERED)
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -391,13 +392,15 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "factor";
   case RN_PRECOND_LOCAL:
     return "local";
+  case RN_PRECOND_GATHERED:
+    return "gathered";
   }
   return "unknown";
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
-  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR,
-                                     RN_PRECOND_LOCAL};
+  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,
+                                     RN_PRECOND_GATHERED};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 

@@ -23,8 +23,8 @@ void run_rol_ls_newton(Problem &problem, Monitor &monitor, const rn_solve_option
 rn_preconditioner run_tr_krylov(Problem &problem, Monitor &monitor,
                                 const rn_solve_options &opt);
 // The same on any System (a distributed one: shim_cxx/dist_system.hpp) with the local
-// (block Jacobi) preconditioner; RN_ERR_ARG for the factor preconditioner on several
-// ranks.
+// (block Jacobi; the default) or the gathered preconditioner; RN_ERR_ARG for the
+// factor preconditioner on several ranks.
 class System;
 rn_preconditioner run_tr_krylov(System &system, Monitor &monitor,
                                 const rn_solve_options &opt);

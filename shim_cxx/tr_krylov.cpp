@@ -51,6 +51,7 @@
 #include <Teuchos_Array.hpp>
 
 #include "factor_preconditioner.hpp"
+#include "gathered_preconditioner.hpp"
 #include "local_preconditioner.hpp"
 #include "monitor.hpp"
 #include "preconditioner.hpp"
@@ -495,7 +496,8 @@ void TrustRegionKrylov::run() {
 
 rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   SerialSystem sys(p);
-  if (opt.preconditioner == RN_PRECOND_LOCAL) return run_tr_krylov(sys, mon, opt);
+  if (opt.preconditioner == RN_PRECOND_LOCAL || opt.preconditioner == RN_PRECOND_GATHERED)
+    return run_tr_krylov(sys, mon, opt);
   // RN_PRECOND_AUTO: the factor preconditioner.
   FactorPreconditioner prec(opt.factorization);
   TrustRegionKrylov(sys, prec, mon, opt).run();
@@ -506,6 +508,11 @@ rn_preconditioner run_tr_krylov(System &sys, Monitor &mon, const rn_solve_option
   if (opt.preconditioner == RN_PRECOND_FACTOR && sys.map()->getComm()->getSize() > 1)
     throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
                             "use local (docs/parallel.md)");
+  if (opt.preconditioner == RN_PRECOND_GATHERED) {
+    GatheredPreconditioner prec;
+    TrustRegionKrylov(sys, prec, mon, opt).run();
+    return RN_PRECOND_GATHERED;
+  }
   LocalPreconditioner prec;
   TrustRegionKrylov(sys, prec, mon, opt).run();
   return RN_PRECOND_LOCAL;
