@@ -27,6 +27,7 @@ static void stencil_ranges(const rn_network *net, size_t *lo, size_t *hi) {
   }
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];
+    if (!rn_rod_evaluated(r)) continue; /* a ghost rod of a part */
     for (int j = 0; j < r->ne; ++j)
       cover(lo, hi, rn_dof_edge_stencil(r->off, j), RN_EDGE_STENCIL);
     for (int i = 1; i < r->nv - 1; ++i)
@@ -67,7 +68,8 @@ static void fill_full_lists(const rn_network *net, row_lists *L) {
 static rn_status row_lists_build(const rn_network *net, row_lists *L) {
   size_t nj = 0, n1 = net->nred + 1;
   for (int ij = 0; ij < net->njoints; ++ij)
-    nj += (size_t)joint_stencil_n(&net->joints[ij]);
+    if (rn_joint_evaluated(&net->joints[ij]))
+      nj += (size_t)joint_stencil_n(&net->joints[ij]);
   L->fptr = calloc(n1, sizeof(size_t));
   L->full = malloc((net->nfull + 1) * sizeof(size_t));
   L->jptr = calloc(n1, sizeof(size_t));
@@ -77,6 +79,7 @@ static rn_status row_lists_build(const rn_network *net, row_lists *L) {
   for (int pass = 0; pass < 2; ++pass) {
     for (int ij = 0; ij < net->njoints; ++ij) {
       const rn_joint *J = &net->joints[ij];
+      if (!rn_joint_evaluated(J)) continue; /* a ghost joint of a part */
       for (int k = 0; k < joint_stencil_n(J); ++k) {
         int64_t m = net->map[J->idx[k]];
         if (m < 0) continue;

@@ -142,6 +142,17 @@ static void put_summary(json_out *o, rn_network *net) {
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
   put_equilibrium(o);
+  if (in->part_ranks > 0) {
+    fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", in->part_ranks);
+    for (int q = 0; q < in->part_ranks; q++)
+      fprintf(f, "%s%ld", q ? ", " : "", in->part_dofs[q]);
+    fputs("], \"owned_stencils\": [", f);
+    for (int q = 0; q < in->part_ranks; q++)
+      fprintf(f, "%s%ld", q ? ", " : "", in->part_stencils[q]);
+    fprintf(f, "], \"edge_cut\": %ld, \"imbalance\": ", in->edge_cut);
+    put_num(o, in->imbalance);
+    fputs("},\n", f);
+  }
 }
 
 static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {

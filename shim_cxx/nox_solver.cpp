@@ -35,7 +35,6 @@
 #include <Thyra_StateFuncModelEvaluatorBase.hpp>
 #include <Thyra_TpetraThyraWrappers.hpp>
 
-#include "factor_preconditioner.hpp"
 #include "monitor.hpp"
 #include "preconditioner.hpp"
 #include "shim_error.hpp"
@@ -342,12 +341,16 @@ void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
   sys.set_state(*tpetra_of(solver->getSolutionGroup().getX()));
 }
 
+rn_preconditioner run_nox(System &sys, Monitor &mon, const rn_solve_options &opt) {
+  rn_preconditioner used = RN_PRECOND_AUTO;
+  const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
+  run_nox(sys, *prec, mon, opt);
+  return used;
+}
+
 rn_preconditioner run_nox(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   SerialSystem sys(p);
-  // RN_PRECOND_AUTO: the factor preconditioner, as for tr-krylov.
-  FactorPreconditioner prec(opt.factorization);
-  run_nox(sys, prec, mon, opt);
-  return RN_PRECOND_FACTOR;
+  return run_nox(sys, mon, opt);
 }
 
 } // namespace rodnet

@@ -51,6 +51,8 @@
 #include <Teuchos_Array.hpp>
 
 #include "factor_preconditioner.hpp"
+#include "gathered_preconditioner.hpp"
+#include "local_preconditioner.hpp"
 #include "monitor.hpp"
 #include "preconditioner.hpp"
 #include "shim_error.hpp"
@@ -492,12 +494,36 @@ void TrustRegionKrylov::run() {
 
 } // namespace
 
+std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
+                                                    const rn_solve_options &opt,
+                                                    rn_preconditioner *used) {
+  const bool serial = dynamic_cast<const SerialSystem *>(&sys) != nullptr;
+  rn_preconditioner kind = opt.preconditioner;
+  if (kind == RN_PRECOND_AUTO) kind = serial ? RN_PRECOND_FACTOR : RN_PRECOND_LOCAL;
+  if (kind == RN_PRECOND_FACTOR && !serial)
+    throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
+                            "use local (docs/parallel.md)");
+  *used = kind;
+  switch (kind) {
+  case RN_PRECOND_GATHERED:
+    return std::make_unique<GatheredPreconditioner>();
+  case RN_PRECOND_LOCAL:
+    return std::make_unique<LocalPreconditioner>();
+  default:
+    return std::make_unique<FactorPreconditioner>(opt.factorization);
+  }
+}
+
+rn_preconditioner run_tr_krylov(System &sys, Monitor &mon, const rn_solve_options &opt) {
+  rn_preconditioner used = RN_PRECOND_AUTO;
+  const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
+  TrustRegionKrylov(sys, *prec, mon, opt).run();
+  return used;
+}
+
 rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   SerialSystem sys(p);
-  // RN_PRECOND_AUTO: the factor preconditioner (the only one so far).
-  FactorPreconditioner prec(opt.factorization);
-  TrustRegionKrylov(sys, prec, mon, opt).run();
-  return RN_PRECOND_FACTOR;
+  return run_tr_krylov(sys, mon, opt);
 }
 
 } // namespace rodnet
