@@ -34,10 +34,11 @@ typedef struct eval_args {
 
 static rn_status degenerate(const rn_network *net, const eval_args *a, const char *term,
                             int rod, const char *what, int idx) {
+  const rn_rod *r = &net->rods[rod];
   return rn_fail(net->ctx, RN_DEGENERATE, a->where,
                  "%s of rod %d ('%s') is degenerate at %s %d (zero-length edge or "
                  "opposite tangents)",
-                 term, rod, rn_network_rod_name(net, rod), what, idx);
+                 term, r->gid, r->name ? r->name : "", what, idx);
 }
 
 /* Local direction of a stencil starting at full index s (OP_HVP). */
@@ -360,7 +361,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
         net->ctx, RN_DEGENERATE, a->where,
         "joint %d ('%s') is degenerate (opposite tangents at a connection edge, "
         "a zero-length terminal edge or a singular rotation fit)",
-        ij, rn_network_joint_name(net, ij));
+        J->gid, J->name ? J->name : "");
   for (int k = 0; k < 3; ++k) f[k] = a->lambda * J->force[k];
   if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) return RN_OK;
   rn_gather(net, a->x, p, RN_DOFS_PER_VERTEX, xj);
@@ -388,14 +389,16 @@ static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
 static rn_status eval_all(const rn_network *net, eval_args *a) {
   rn_status st;
   memset(a->E, 0, sizeof(a->E));
+  /* In a part, the stencils of ghost rods and joints belong to other parts. */
   for (int ir = 0; ir < net->nrods; ++ir)
-    if ((st = eval_rod(net, ir, a))) return st;
+    if (rn_rod_evaluated(&net->rods[ir]) && (st = eval_rod(net, ir, a))) return st;
   for (int im = 0; im < net->nmom; ++im)
-    if (moment_eval(net, &net->moments[im], a) != RNK_OK)
+    if (rn_rod_evaluated(&net->rods[net->moments[im].rod]) &&
+        moment_eval(net, &net->moments[im], a) != RNK_OK)
       return degenerate(net, a, "moment", net->moments[im].rod, "vertex",
                         net->moments[im].vertex);
   for (int ij = 0; ij < net->njoints; ++ij)
-    if ((st = joint_eval(net, ij, a))) return st;
+    if (rn_joint_evaluated(&net->joints[ij]) && (st = joint_eval(net, ij, a))) return st;
   /* Finite inputs can still overflow (huge stiffness times strain, huge
    * loads): never hand back NaN or inf with RN_OK.  Recoverable, so a solver
    * rejects such a trial point. */

@@ -5,35 +5,44 @@
 
 #include "network_internal.h"
 
-static rn_status check_end(const rn_network *net, const char *where, int rod, int end) {
+/* Checks a call on end `end` of rod g (whole-network index); *lr receives the
+ * local index, RN_NOT_HERE if another part holds the rod. */
+static rn_status check_end(const rn_network *net, const char *where, int g, int end,
+                           int *lr) {
   rn_status st;
+  *lr = g;
   if ((st = rn_net_check_building(net, where))) return st;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  st = rn_net_rod(net, where, lr);
+  if (st && st != RN_NOT_HERE) return st;
   if (end != RN_START && end != RN_END)
     return rn_fail(net->ctx, RN_ERR_ARG, where,
-                   "rod %d: end must be RN_START or RN_END, got %d", rod, end);
-  return RN_OK;
+                   "rod %d: end must be RN_START or RN_END, got %d", g, end);
+  return st;
 }
 
-/* Resolves a vertex (negative = from the end) or records an error. */
-static rn_status resolve_vertex(const rn_network *net, const char *where, int rod,
-                                int vertex, int *v) {
+/* Resolves a vertex of rod g (negative = from the end) or records an error;
+ * *lr as for check_end. */
+static rn_status resolve_vertex(const rn_network *net, const char *where, int g,
+                                int vertex, int *v, int *lr) {
   rn_status st;
+  int nv = rn_net_rod_nv(net, g);
+  *lr = g;
   if ((st = rn_net_check_building(net, where))) return st;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
-  *v = rn_wrap_index(vertex, net->rods[rod].nv);
+  st = rn_net_rod(net, where, lr);
+  if (st && st != RN_NOT_HERE) return st;
+  *v = rn_wrap_index(vertex, nv);
   if (*v < 0)
     return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "rod %d: vertex %d out of range (%d vertices)", rod, vertex,
-                   net->rods[rod].nv);
-  return RN_OK;
+                   "rod %d: vertex %d out of range (%d vertices)", g, vertex, nv);
+  return st;
 }
 
 rn_status rn_network_clamp(rn_network *net, int rod, int end) {
   rn_status st;
+  int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_end(net, "rn_network_clamp", rod, end))) return st;
-  net->rods[rod].clamped[end] = 1;
+  if ((st = check_end(net, "rn_network_clamp", rod, end, &lr))) return rn_not_here_ok(st);
+  net->rods[lr].clamped[end] = 1;
   return RN_OK;
 }
 
@@ -41,14 +50,16 @@ rn_status rn_network_clamp(rn_network *net, int rod, int end) {
 static rn_status pin_vertex(rn_network *net, const char *where, int rod, int vertex,
                             int components) {
   rn_status st;
-  int v;
-  if ((st = resolve_vertex(net, where, rod, vertex, &v))) return st;
+  int v, lr;
+  st = resolve_vertex(net, where, rod, vertex, &v, &lr);
+  if (st && st != RN_NOT_HERE) return st;
   if (components < 1 || components > RN_FIX_XYZ)
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "rod %d vertex %d: components must be a non-empty RN_FIX_X | "
                    "RN_FIX_Y | RN_FIX_Z bitmask (1 .. 7), got %d",
                    rod, v, components);
-  net->rods[rod].pinned[v] |= (unsigned char)components;
+  if (st == RN_NOT_HERE) return RN_OK;
+  net->rods[lr].pinned[v] |= (unsigned char)components;
   return RN_OK;
 }
 
@@ -88,16 +99,18 @@ const char *rn_components_name(int mask, char buf[4]) {
 rn_status rn_network_fix_theta(rn_network *net, int rod, int edge) {
   static const char *where = "rn_network_fix_theta";
   rn_status st;
-  int j;
+  int j, lr = rod, ne;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
-  j = rn_wrap_index(edge, net->rods[rod].ne);
+  st = rn_net_rod(net, where, &lr);
+  if (st && st != RN_NOT_HERE) return st;
+  ne = rn_net_rod_nv(net, rod) - 1;
+  j = rn_wrap_index(edge, ne);
   if (j < 0)
     return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "rod %d: edge %d out of range (%d edges)", rod, edge,
-                   net->rods[rod].ne);
-  net->rods[rod].theta_fixed[j] = 1;
+                   "rod %d: edge %d out of range (%d edges)", rod, edge, ne);
+  if (st == RN_NOT_HERE) return RN_OK;
+  net->rods[lr].theta_fixed[j] = 1;
   return RN_OK;
 }
 
@@ -106,12 +119,15 @@ rn_status rn_network_displace_end(rn_network *net, int rod, int end, const doubl
   static const char *where = "rn_network_displace_end";
   rn_status st;
   rn_rod *r;
+  int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_end(net, where, rod, end))) return st;
+  st = check_end(net, where, rod, end, &lr);
+  if (st && st != RN_NOT_HERE) return st;
   if ((disp && !rn_all_finite(3, disp)) || (rotvec && !rn_all_finite(3, rotvec)))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: motion is not finite",
                    rod);
-  r = &net->rods[rod];
+  if (st == RN_NOT_HERE) return RN_OK;
+  r = &net->rods[lr];
   r->has_end_motion[end] = 1;
   for (int k = 0; k < 3; ++k) {
     r->end_disp[end][k] = disp ? disp[k] : 0.0;
@@ -124,15 +140,17 @@ rn_status rn_network_displace_vertex(rn_network *net, int rod, int vertex,
                                      const double disp[3]) {
   static const char *where = "rn_network_displace_vertex";
   rn_status st;
-  int v;
+  int v, lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = resolve_vertex(net, where, rod, vertex, &v))) return st;
+  st = resolve_vertex(net, where, rod, vertex, &v, &lr);
+  if (st && st != RN_NOT_HERE) return st;
   if (!disp) return rn_fail(net->ctx, RN_ERR_ARG, where, "disp is NULL");
   if (!rn_all_finite(3, disp))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
                    "rod %d vertex %d: displacement is not finite", rod, v);
-  net->rods[rod].has_vdisp[v] = 1;
-  memcpy(net->rods[rod].vdisp + 3 * v, disp, 3 * sizeof(double));
+  if (st == RN_NOT_HERE) return RN_OK;
+  net->rods[lr].has_vdisp[v] = 1;
+  memcpy(net->rods[lr].vdisp + 3 * v, disp, 3 * sizeof(double));
   return RN_OK;
 }
 

@@ -12,17 +12,17 @@ static rn_status validate_rod(const rn_network *net, int ir) {
   for (int j = 0; j < r->ne; ++j) {
     if (!r->has_mat[j])
       return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no material",
-                     ir, rn_network_rod_name(net, ir), j);
+                     r->gid, r->name ? r->name : "", j);
     if (!r->has_sec[j])
       return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d ('%s') edge %d has no section",
-                     ir, rn_network_rod_name(net, ir), j);
+                     r->gid, r->name ? r->name : "", j);
   }
   for (int end = RN_START; end <= RN_END; ++end)
     if (r->has_end_motion[end] && !r->clamped[end])
       return rn_fail(
           net->ctx, RN_ERR_BC, where,
-          "rod %d ('%s'): prescribed motion of the %s end, which is not clamped", ir,
-          rn_network_rod_name(net, ir), end == RN_START ? "start" : "end");
+          "rod %d ('%s'): prescribed motion of the %s end, which is not clamped", r->gid,
+          r->name ? r->name : "", end == RN_START ? "start" : "end");
   for (int v = 0; v < r->nv; ++v) {
     int fixed = rn_rod_fixed_components(r, v), k;
     char buf[4];
@@ -32,13 +32,13 @@ static rn_status validate_rod(const rn_network *net, int ir) {
           net->ctx, RN_ERR_BC, where,
           "rod %d ('%s') vertex %d: prescribed displacement of a vertex that is "
           "neither pinned nor clamped",
-          ir, rn_network_rod_name(net, ir), v);
+          r->gid, r->name ? r->name : "", v);
     if ((k = rn_free_displaced_component(fixed, r->vdisp + 3 * v)) >= 0)
       return rn_fail(net->ctx, RN_ERR_BC, where,
                      "rod %d ('%s') vertex %d: prescribed displacement %g along %c, "
                      "which is free (the vertex is pinned in %s only); pin that "
                      "component too or make it 0",
-                     ir, rn_network_rod_name(net, ir), v, r->vdisp[3 * v + k], "xyz"[k],
+                     r->gid, r->name ? r->name : "", v, r->vdisp[3 * v + k], "xyz"[k],
                      rn_components_name(fixed, buf));
   }
   return RN_OK;
@@ -133,8 +133,8 @@ static rn_status build_dof_map(rn_network *net) {
     off += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[ij]));
   }
   net->nfull = off;
-  net->map = malloc(off * sizeof(int64_t));
-  net->xfull = calloc(off, sizeof(double));
+  net->map = malloc((off ? off : 1) * sizeof(int64_t)); /* a part may hold nothing */
+  net->xfull = calloc(off ? off : 1, sizeof(double));
   if (!net->map || !net->xfull) return RN_ERR_ALLOC;
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];
@@ -144,19 +144,24 @@ static rn_status build_dof_map(rn_network *net) {
   }
   for (int ij = 0; ij < net->njoints; ++ij) mark_joint(net, &net->joints[ij]);
   alias_joint_ends(net, 1);
+  if (net->part) { /* a part: what it does not read is absent, owned DOFs first */
+    if (rn_part_begin_numbering(net)) return RN_ERR_ALLOC;
+    rn_part_mark_absent(net);
+  }
   for (size_t a = 0; a < off; ++a) nred += net->map[a] == 0;
   net->nred = nred;
   net->red2full = malloc((nred ? nred : 1) * sizeof(int64_t));
   if (!net->red2full) return RN_ERR_ALLOC;
   nred = 0;
-  for (size_t a = 0; a < off; ++a)
-    if (net->map[a] == 0) {
-      net->red2full[nred] = (int64_t)a;
-      net->map[a] = (int64_t)nred++;
-    }
+  for (int pass = 0; pass < (net->part ? 2 : 1); ++pass)
+    for (size_t a = 0; a < off; ++a)
+      if (net->map[a] == 0 && (!net->part || rn_part_entry_owned(net, a) == !pass)) {
+        net->red2full[nred] = (int64_t)a;
+        net->map[a] = (int64_t)nred++;
+      }
   alias_joint_ends(net, 0);
   rn_joints_sync(net);
-  return RN_OK;
+  return net->part ? rn_part_build_keys(net) : RN_OK;
 }
 
 /* Material frame (t, d1, d2) of each moment's edge at the current state. */
@@ -203,7 +208,12 @@ rn_status rn_network_finalize(rn_network *net) {
   rn_status st;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
-  if (net->nrods == 0)
+  if (rn_network_is_graph_only(net)) { /* only the rod graph: nothing to build */
+    if ((st = rn_part_graph_validate(net, where))) return st;
+    net->finalized = 1;
+    return RN_OK;
+  }
+  if (rn_net_num_rods_g(net) == 0)
     return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
   if ((st = rn_joints_validate(net, where))) return st;
   for (int ir = 0; ir < net->nrods; ++ir)

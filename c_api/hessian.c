@@ -27,6 +27,7 @@ static void stencil_ranges(const rn_network *net, size_t *lo, size_t *hi) {
   }
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];
+    if (!rn_rod_evaluated(r)) continue; /* a ghost rod of a part */
     for (int j = 0; j < r->ne; ++j)
       cover(lo, hi, rn_dof_edge_stencil(r->off, j), RN_EDGE_STENCIL);
     for (int i = 1; i < r->nv - 1; ++i)
@@ -67,7 +68,8 @@ static void fill_full_lists(const rn_network *net, row_lists *L) {
 static rn_status row_lists_build(const rn_network *net, row_lists *L) {
   size_t nj = 0, n1 = net->nred + 1;
   for (int ij = 0; ij < net->njoints; ++ij)
-    nj += (size_t)joint_stencil_n(&net->joints[ij]);
+    if (rn_joint_evaluated(&net->joints[ij]))
+      nj += (size_t)joint_stencil_n(&net->joints[ij]);
   L->fptr = calloc(n1, sizeof(size_t));
   L->full = malloc((net->nfull + 1) * sizeof(size_t));
   L->jptr = calloc(n1, sizeof(size_t));
@@ -77,6 +79,7 @@ static rn_status row_lists_build(const rn_network *net, row_lists *L) {
   for (int pass = 0; pass < 2; ++pass) {
     for (int ij = 0; ij < net->njoints; ++ij) {
       const rn_joint *J = &net->joints[ij];
+      if (!rn_joint_evaluated(J)) continue; /* a ghost joint of a part */
       for (int k = 0; k < joint_stencil_n(J); ++k) {
         int64_t m = net->map[J->idx[k]];
         if (m < 0) continue;
@@ -97,6 +100,22 @@ static rn_status row_lists_build(const rn_network *net, row_lists *L) {
 static int cmp_i32(const void *a, const void *b) {
   int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
   return (x > y) - (x < y);
+}
+
+/* Sorts c[n] ascending: insertion sort for the short, nearly sorted candidate
+ * lists of the rows next to joints (a few dozen entries; qsort's merge sort
+ * costs ~20x more there), qsort beyond. */
+static void sort_columns(int32_t *c, size_t n) {
+  if (n > 64) {
+    qsort(c, n, sizeof(int32_t), cmp_i32);
+    return;
+  }
+  for (size_t i = 1; i < n; ++i) {
+    int32_t v = c[i];
+    size_t j = i;
+    for (; j > 0 && c[j - 1] > v; --j) c[j] = c[j - 1];
+    c[j] = v;
+  }
 }
 
 static int increasing(const int32_t *c, size_t n) {
@@ -148,7 +167,7 @@ static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo
     net->rowptr[row] = (int64_t)start;
     if (row_candidates(net, L, lo, hi, row, b)) return RN_ERR_ALLOC;
     if (!increasing(b->c + start, b->n - start)) /* rows away from joints are */
-      qsort(b->c + start, b->n - start, sizeof(int32_t), cmp_i32);
+      sort_columns(b->c + start, b->n - start);
     for (size_t p = start; p < b->n; ++p) {
       size_t c = (size_t)b->c[p], d = c > row ? c - row : row - c;
       if (u > start && b->c[u - 1] == b->c[p]) continue;

@@ -3,13 +3,19 @@
 
 #include "network_internal.h"
 
-static rn_status check_joint_result(const rn_network *net, const char *where, int joint,
-                                    const void *out) {
+/* Checks a result call on joint *joint (whole-network index) and translates it
+ * into the local index; RN_ERR_RANGE also for a joint held by another part and,
+ * if need_owned, for a ghost joint (whose stencil is not held here). */
+static rn_status check_joint_result(const rn_network *net, const char *where, int *joint,
+                                    const void *out, int need_owned) {
   rn_status st;
+  int g = *joint;
   if ((st = rn_net_check_final(net, where))) return st;
-  if (joint < 0 || joint >= net->njoints)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "joint %d does not exist (%d joints)",
-                   joint, net->njoints);
+  st = rn_net_joint(net, where, joint);
+  if (st == RN_NOT_HERE || (!st && need_owned && net->joints[*joint].ghost))
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "joint %d is held by another part of the network", g);
+  if (st) return st;
   if (!out) return rn_fail(net->ctx, RN_ERR_ARG, where, "output is NULL");
   return RN_OK;
 }
@@ -18,7 +24,7 @@ rn_status rn_network_joint_position(const rn_network *net, int joint, double x[3
   static const char *where = "rn_network_joint_position";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_result(net, where, joint, x))) return st;
+  if ((st = check_joint_result(net, where, &joint, x, 0))) return st;
   memcpy(x, net->xfull + rn_dof_joint_position(net->joints[joint].off),
          3 * sizeof(double));
   return RN_OK;
@@ -32,7 +38,7 @@ rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9
   rn_status st;
   int rc;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_result(net, where, joint, R))) return st;
+  if ((st = check_joint_result(net, where, &joint, R, 1))) return st;
   J = &net->joints[joint];
   if (rn_joint_scratch_init(J, &s))
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
@@ -43,6 +49,6 @@ rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9
   if (rc != RNK_OK)
     return rn_fail(net->ctx, RN_DEGENERATE, where,
                    "joint %d ('%s'): the rotation fit is singular at the current state",
-                   joint, rn_network_joint_name(net, joint));
+                   J->gid, J->name ? J->name : "");
   return RN_OK;
 }

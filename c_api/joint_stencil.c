@@ -21,8 +21,7 @@ static rn_status check_end_bcs(const rn_network *net, const char *where, int ij,
                    "rod %d ('%s') vertex %d belongs to joint %d ('%s') but is %s; "
                    "constrain the joint instead (rn_network_clamp_joint, "
                    "rn_network_pin_joint, rn_network_displace_joint)",
-                   J->rod[k], rn_network_rod_name(net, J->rod[k]), v, ij,
-                   rn_network_joint_name(net, ij),
+                   r->gid, r->name ? r->name : "", v, J->gid, J->name ? J->name : "",
                    in_clamp ? "in a clamped end"
                             : (r->pinned[v] ? "pinned" : "displaced"));
   return RN_OK;
@@ -38,17 +37,17 @@ static rn_status check_joint_motion(const rn_network *net, const char *where, in
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "joint %d ('%s'): prescribed motion of a joint that is neither pinned "
                    "nor clamped",
-                   ij, rn_network_joint_name(net, ij));
+                   J->gid, J->name ? J->name : "");
   if (rotates && !J->clamped)
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "joint %d ('%s'): prescribed rotation of a joint that is not clamped",
-                   ij, rn_network_joint_name(net, ij));
+                   J->gid, J->name ? J->name : "");
   if ((k = rn_free_displaced_component(fixed, J->disp)) >= 0)
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "joint %d ('%s'): prescribed displacement %g along %c, which is free "
                    "(the joint is pinned in %s only); pin that component too or make "
                    "it 0",
-                   ij, rn_network_joint_name(net, ij), J->disp[k], "xyz"[k],
+                   J->gid, J->name ? J->name : "", J->disp[k], "xyz"[k],
                    rn_components_name(fixed, buf));
   return RN_OK;
 }
@@ -65,22 +64,23 @@ static int key_cmp(const void *a, const void *b) {
 
 /* Two joints closer than 1e-9 of the shorter of their shortest incident
  * edges: sweep over the joints sorted by x. */
-static rn_status check_coincident(const rn_network *net, const char *where) {
+rn_status rn_joint_points_check(rn_context *ctx, const char *where, int n,
+                                const rn_joint_point *p) {
   joint_key *keys;
   double lmax = 0.0;
   rn_status st = RN_OK;
-  if (net->njoints < 2) return RN_OK;
-  keys = malloc((size_t)net->njoints * sizeof(*keys));
-  if (!keys) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  for (int i = 0; i < net->njoints; ++i) {
-    keys[i].x = net->joints[i].x0[0];
+  if (n < 2) return RN_OK;
+  keys = malloc((size_t)n * sizeof(*keys));
+  if (!keys) return rn_fail(ctx, RN_ERR_ALLOC, where, "out of memory");
+  for (int i = 0; i < n; ++i) {
+    keys[i].x = p[i].x0[0];
     keys[i].j = i;
-    lmax = fmax(lmax, net->joints[i].lmin);
+    lmax = fmax(lmax, p[i].lmin);
   }
-  qsort(keys, (size_t)net->njoints, sizeof(*keys), key_cmp);
-  for (int a = 0; a < net->njoints && !st; ++a)
-    for (int b = a + 1; b < net->njoints && !st; ++b) {
-      const rn_joint *A = &net->joints[keys[a].j], *B = &net->joints[keys[b].j];
+  qsort(keys, (size_t)n, sizeof(*keys), key_cmp);
+  for (int a = 0; a < n && !st; ++a)
+    for (int b = a + 1; b < n && !st; ++b) {
+      const rn_joint_point *A = &p[keys[a].j], *B = &p[keys[b].j];
       double d0, d1, d2, tol;
       if (keys[b].x - keys[a].x > RN_JOINT_COINCIDE_TOL * lmax) break;
       d0 = A->x0[0] - B->x0[0];
@@ -88,16 +88,32 @@ static rn_status check_coincident(const rn_network *net, const char *where) {
       d2 = A->x0[2] - B->x0[2];
       tol = RN_JOINT_COINCIDE_TOL * fmin(A->lmin, B->lmin);
       if (sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= tol) {
-        int i = keys[a].j < keys[b].j ? keys[a].j : keys[b].j;
-        int j = keys[a].j < keys[b].j ? keys[b].j : keys[a].j;
-        st = rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
+        const rn_joint_point *I = A->gid < B->gid ? A : B, *J = A->gid < B->gid ? B : A;
+        st = rn_fail(ctx, RN_ERR_GEOMETRY, where,
                      "joints %d ('%s') and %d ('%s') are coincident (at (%g, %g, %g)); "
                      "merge them into one joint",
-                     i, rn_network_joint_name(net, i), j, rn_network_joint_name(net, j),
+                     I->gid, I->name ? I->name : "", J->gid, J->name ? J->name : "",
                      A->x0[0], A->x0[1], A->x0[2]);
       }
     }
   free(keys);
+  return st;
+}
+
+static rn_status check_coincident(const rn_network *net, const char *where) {
+  rn_joint_point *p;
+  rn_status st;
+  if (net->njoints < 2) return RN_OK;
+  p = malloc((size_t)net->njoints * sizeof(*p));
+  if (!p) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  for (int i = 0; i < net->njoints; ++i) {
+    memcpy(p[i].x0, net->joints[i].x0, sizeof(p[i].x0));
+    p[i].lmin = net->joints[i].lmin;
+    p[i].gid = net->joints[i].gid;
+    p[i].name = net->joints[i].name;
+  }
+  st = rn_joint_points_check(net->ctx, where, net->njoints, p);
+  free(p);
   return st;
 }
 
@@ -160,8 +176,8 @@ rn_status rn_joints_build(rn_network *net) {
     for (int k = 0; k < J->valence; ++k)
       if (build_end(&net->rods[J->rod[k]], J->end[k], &J->ends[k]))
         return rn_fail(net->ctx, RN_ERR_GEOMETRY, "rn_network_finalize",
-                       "joint %d ('%s'): degenerate terminal edge of rod %d", ij,
-                       rn_network_joint_name(net, ij), J->rod[k]);
+                       "joint %d ('%s'): degenerate terminal edge of rod %d", J->gid,
+                       J->name ? J->name : "", net->rods[J->rod[k]].gid);
     build_indices(net, J);
   }
   return RN_OK;
@@ -277,7 +293,8 @@ void rn_joints_place(rn_network *net) {
 
 void rn_joints_continue_twists(rn_network *net) {
   for (int ij = 0; ij < net->njoints; ++ij)
-    if (net->joints[ij].clamped && net->joints[ij].has_motion)
+    if (net->joints[ij].clamped && net->joints[ij].has_motion &&
+        rn_joint_evaluated(&net->joints[ij]))
       continue_joint_twists(net, ij);
 }
 
@@ -290,6 +307,7 @@ rn_status rn_joints_check_initial(const rn_network *net, const char *where) {
     rnk_joint kj;
     double E, R[9];
     int rc;
+    if (!rn_joint_evaluated(J)) continue; /* its owner checks it */
     if (rn_joint_scratch_init(J, &s))
       return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
     rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
@@ -299,8 +317,8 @@ rn_status rn_joints_check_initial(const rn_network *net, const char *where) {
     rn_joint_scratch_free(&s);
     if (rc != RNK_OK)
       return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
-                     "joint %d ('%s'): degenerate at the initial state (%s)", ij,
-                     rn_network_joint_name(net, ij),
+                     "joint %d ('%s'): degenerate at the initial state (%s)", J->gid,
+                     J->name ? J->name : "",
                      kj.rigid ? "opposite tangents at a connection edge"
                               : "the incident frames make the rotation fit singular, or "
                                 "opposite tangents at a connection edge");

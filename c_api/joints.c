@@ -26,29 +26,34 @@ size_t rn_joints_full_count(const rn_network *net) {
 
 static const char *end_name(int end) { return end == RN_START ? "start" : "end"; }
 
-/* Range, end value and membership of end k of a new joint. */
+/* Range and end value of end k of a new joint, and no end listed twice. */
 static rn_status check_joint_end(const rn_network *net, const char *where,
                                  const int *rods, const int *ends, int k) {
-  rn_status st;
   int rod = rods[k], end = ends[k];
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if (rod < 0 || rod >= rn_net_rods_added(net))
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d does not exist (%d rods)", rod,
+                   rn_net_rods_added(net));
   if (end != RN_START && end != RN_END)
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "joint end %d: end must be RN_START or RN_END, got %d", k, end);
-  if (net->rods[rod].joint[end] >= 0) {
-    int o = net->rods[rod].joint[end];
-    return rn_fail(net->ctx, RN_ERR_ARG, where,
-                   "the %s of rod %d ('%s') already belongs to joint %d ('%s'); a rod "
-                   "end belongs to at most one joint",
-                   end_name(end), rod, rn_network_rod_name(net, rod), o,
-                   rn_network_joint_name(net, o));
-  }
   for (int l = 0; l < k; ++l)
     if (rods[l] == rod && ends[l] == end)
       return rn_fail(net->ctx, RN_ERR_ARG, where,
                      "the %s of rod %d ('%s') is listed twice in the joint",
                      end_name(end), rod, rn_network_rod_name(net, rod));
   return RN_OK;
+}
+
+/* End (local rod lr, whole-network index g) must not belong to another joint. */
+static rn_status check_end_free(const rn_network *net, const char *where, int lr, int g,
+                                int end) {
+  int o = net->rods[lr].joint[end];
+  if (o < 0) return RN_OK;
+  return rn_fail(net->ctx, RN_ERR_ARG, where,
+                 "the %s of rod %d ('%s') already belongs to joint %d ('%s'); a rod "
+                 "end belongs to at most one joint",
+                 end_name(end), g, rn_network_rod_name(net, g), net->joints[o].gid,
+                 net->joints[o].name ? net->joints[o].name : "");
 }
 
 static double dist3(const double a[3], const double b[3]) {
@@ -80,9 +85,8 @@ static rn_status check_coincide(const rn_network *net, const char *where,
                      "joint %d ('%s'): the %s of rod %d ('%s') is %g away from the "
                      "joint's first end (tolerance %g = 1e-9 of the shortest incident "
                      "edge); the end vertices of a joint must coincide",
-                     net->njoints, name ? name : "", end_name(J->end[k]), J->rod[k],
-                     rn_network_rod_name(net, J->rod[k]), d,
-                     RN_JOINT_COINCIDE_TOL * lmin);
+                     J->gid, name ? name : "", end_name(J->end[k]), r->gid,
+                     r->name ? r->name : "", d, RN_JOINT_COINCIDE_TOL * lmin);
   }
   return RN_OK;
 }
@@ -116,11 +120,25 @@ static rn_status joint_alloc(rn_joint *J, const char *name, int n, const int *ro
   return RN_OK;
 }
 
+/* The ends of a new joint held here (keep_end[k]), as local rod indices. */
+static int local_ends(const rn_network *net, int n, const int *rods, const int *ends,
+                      const int *keep_end, int *lrods, int *lends) {
+  int m = 0;
+  for (int k = 0; k < n; ++k) {
+    int lr = rods[k];
+    if (!keep_end[k] || rn_net_rod(net, "", &lr) != RN_OK) continue;
+    lrods[m] = lr;
+    lends[m++] = ends[k];
+  }
+  return m;
+}
+
 rn_status rn_network_add_joint(rn_network *net, const char *name, rn_joint_model model,
                                int n_ends, const int *rods, const int *ends, int *joint) {
   static const char *where = "rn_network_add_joint";
   rn_joint J;
   rn_status st;
+  int keep, m, *buf;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
   if (model != RN_JOINT_ELASTIC && model != RN_JOINT_RIGID)
@@ -133,55 +151,88 @@ rn_status rn_network_add_joint(rn_network *net, const char *name, rn_joint_model
   if (!rods || !ends) return rn_fail(net->ctx, RN_ERR_ARG, where, "rods or ends is NULL");
   for (int k = 0; k < n_ends; ++k)
     if ((st = check_joint_end(net, where, rods, ends, k))) return st;
-  if (grow_joints(net)) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  if (joint_alloc(&J, name, n_ends, rods, ends)) {
-    rn_joint_free(&J);
-    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  buf = malloc(3 * (size_t)n_ends * sizeof(int));
+  if (!buf) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  st = rn_part_add_joint(net, name, n_ends, rods, ends, &keep, buf);
+  if (st != RN_OK) {
+    free(buf);
+    if (st == RN_NOT_HERE && joint) *joint = rn_net_joints_added(net) - 1;
+    return rn_not_here_ok(st);
   }
-  J.model = (int)model;
-  if ((st = check_coincide(net, where, name, &J))) {
+  m = local_ends(net, n_ends, rods, ends, buf, buf + n_ends, buf + 2 * n_ends);
+  for (int k = 0; k < m && !st; ++k)
+    st = check_end_free(net, where, buf[n_ends + k], net->rods[buf[n_ends + k]].gid,
+                        buf[2 * n_ends + k]);
+  if (!st && grow_joints(net))
+    st = rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  if (!st && joint_alloc(&J, name, m, buf + n_ends, buf + 2 * n_ends)) {
     rn_joint_free(&J);
+    st = rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  if (st) {
+    free(buf);
     return st;
   }
-  for (int k = 0; k < n_ends; ++k) net->rods[rods[k]].joint[ends[k]] = net->njoints;
+  J.model = (int)model;
+  rn_part_tag_joint(net, &J);
+  if ((st = check_coincide(net, where, name, &J))) {
+    rn_joint_free(&J);
+    free(buf);
+    return st;
+  }
+  for (int k = 0; k < m; ++k)
+    net->rods[buf[n_ends + k]].joint[buf[2 * n_ends + k]] = net->njoints;
+  free(buf);
   net->joints[net->njoints] = J;
-  if (joint) *joint = net->njoints;
+  if (joint) *joint = J.gid;
   net->njoints++;
   return RN_OK;
 }
 
-int rn_network_num_joints(const rn_network *net) { return net ? net->njoints : 0; }
+int rn_network_num_joints(const rn_network *net) {
+  return net ? rn_net_num_joints_g(net) : 0;
+}
+
+/* The joint held here under whole-network index joint, NULL if none. */
+static const rn_joint *local_joint(const rn_network *net, int joint) {
+  if (!net || joint < 0 || joint >= rn_net_num_joints_g(net)) return NULL;
+  if (net->part && rn_net_joint(net, "", &joint) != RN_OK) return NULL;
+  return joint < net->njoints ? &net->joints[joint] : NULL;
+}
 
 const char *rn_network_joint_name(const rn_network *net, int joint) {
-  if (!net || joint < 0 || joint >= net->njoints || !net->joints[joint].name) return "";
-  return net->joints[joint].name;
+  const rn_joint *J = local_joint(net, joint);
+  return (J && J->name) ? J->name : "";
 }
 
 int rn_network_joint_model(const rn_network *net, int joint) {
-  if (!net || joint < 0 || joint >= net->njoints) return -1;
-  return net->joints[joint].model;
+  const rn_joint *J = local_joint(net, joint);
+  return J ? J->model : -1;
 }
 
 int rn_network_joint_valence(const rn_network *net, int joint) {
-  if (!net || joint < 0 || joint >= net->njoints) return -1;
-  return net->joints[joint].valence;
+  const rn_joint *J = local_joint(net, joint);
+  return J ? J->valence : -1;
 }
 
 /* ---- boundary conditions and loads ------------------------------------------ */
-static rn_status check_joint_arg(const rn_network *net, const char *where, int joint) {
+/* Checks a building call on joint g (whole-network index): *lj receives the
+ * local index; RN_NOT_HERE if another part holds the joint (no effect here). */
+static rn_status check_joint_arg(const rn_network *net, const char *where, int g,
+                                 int *lj) {
   rn_status st;
+  *lj = g;
   if ((st = rn_net_check_building(net, where))) return st;
-  if (joint < 0 || joint >= net->njoints)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "joint %d does not exist (%d joints)",
-                   joint, net->njoints);
-  return RN_OK;
+  return rn_net_joint(net, where, lj);
 }
 
 rn_status rn_network_clamp_joint(rn_network *net, int joint) {
   rn_status st;
+  int lj;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_arg(net, "rn_network_clamp_joint", joint))) return st;
-  net->joints[joint].clamped = 1;
+  if ((st = check_joint_arg(net, "rn_network_clamp_joint", joint, &lj)))
+    return rn_not_here_ok(st);
+  net->joints[lj].clamped = 1;
   return RN_OK;
 }
 
@@ -189,13 +240,16 @@ rn_status rn_network_clamp_joint(rn_network *net, int joint) {
 static rn_status pin_joint(rn_network *net, const char *where, int joint,
                            int components) {
   rn_status st;
-  if ((st = check_joint_arg(net, where, joint))) return st;
+  int lj;
+  st = check_joint_arg(net, where, joint, &lj);
+  if (st && st != RN_NOT_HERE) return st;
   if (components < 1 || components > RN_FIX_XYZ)
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "joint %d: components must be a non-empty RN_FIX_X | RN_FIX_Y | "
                    "RN_FIX_Z bitmask (1 .. 7), got %d",
                    joint, components);
-  net->joints[joint].pinned |= components;
+  if (st == RN_NOT_HERE) return RN_OK;
+  net->joints[lj].pinned |= components;
   return RN_OK;
 }
 
@@ -214,12 +268,15 @@ rn_status rn_network_displace_joint(rn_network *net, int joint, const double dis
   static const char *where = "rn_network_displace_joint";
   rn_status st;
   rn_joint *J;
+  int lj;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_arg(net, where, joint))) return st;
+  st = check_joint_arg(net, where, joint, &lj);
+  if (st && st != RN_NOT_HERE) return st;
   if ((disp && !rn_all_finite(3, disp)) || (rotvec && !rn_all_finite(3, rotvec)))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "joint %d: motion is not finite",
                    joint);
-  J = &net->joints[joint];
+  if (st == RN_NOT_HERE) return RN_OK;
+  J = &net->joints[lj];
   J->has_motion = 1;
   for (int k = 0; k < 3; ++k) {
     J->disp[k] = disp ? disp[k] : 0.0;
@@ -228,29 +285,33 @@ rn_status rn_network_displace_joint(rn_network *net, int joint, const double dis
   return RN_OK;
 }
 
-static rn_status check_joint_load(const rn_network *net, const char *where, int joint,
-                                  const double *v) {
-  rn_status st;
-  if ((st = check_joint_arg(net, where, joint))) return st;
+/* Checks a load on joint g; *lj and RN_NOT_HERE as for check_joint_arg. */
+static rn_status check_joint_load(const rn_network *net, const char *where, int g,
+                                  const double *v, int *lj) {
+  rn_status st = check_joint_arg(net, where, g, lj);
+  if (st && st != RN_NOT_HERE) return st;
   if (!v) return rn_fail(net->ctx, RN_ERR_ARG, where, "value is NULL");
   if (!rn_all_finite(3, v))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "joint %d: load is not finite",
-                   joint);
-  return RN_OK;
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "joint %d: load is not finite", g);
+  return st;
 }
 
 rn_status rn_network_add_joint_force(rn_network *net, int joint, const double f[3]) {
   rn_status st;
+  int lj;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_load(net, "rn_network_add_joint_force", joint, f))) return st;
-  for (int k = 0; k < 3; ++k) net->joints[joint].force[k] += f[k];
+  if ((st = check_joint_load(net, "rn_network_add_joint_force", joint, f, &lj)))
+    return rn_not_here_ok(st);
+  for (int k = 0; k < 3; ++k) net->joints[lj].force[k] += f[k];
   return RN_OK;
 }
 
 rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m[3]) {
   rn_status st;
+  int lj;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_load(net, "rn_network_add_joint_moment", joint, m))) return st;
-  for (int k = 0; k < 3; ++k) net->joints[joint].M[k] += m[k];
+  if ((st = check_joint_load(net, "rn_network_add_joint_moment", joint, m, &lj)))
+    return rn_not_here_ok(st);
+  for (int k = 0; k < 3; ++k) net->joints[lj].M[k] += m[k];
   return RN_OK;
 }

@@ -86,8 +86,8 @@ static rn_status fixed_increment(rn_network *net, double t_prev, double t, doubl
       if (clamp_angle(full_t, rn_dof_edge_stencil(r->off, j), &r->ref[j],
                       &frames[2 * ir + end], &phi) != RNK_OK)
         return rn_fail(net->ctx, RN_DEGENERATE, where,
-                       "clamped edge %d of rod %d ('%s') is degenerate", j, ir,
-                       rn_network_rod_name(net, ir));
+                       "clamped edge %d of rod %d ('%s') is degenerate", j, r->gid,
+                       r->name ? r->name : "");
       full_t[th] = net->xfull[th] + phi; /* the difference below gives phi */
     }
   }

@@ -28,29 +28,35 @@ void rn_couple_vector(const double f[9], const double m[3], double b[3]) {
 
 int rn_moment_edge(int nv, int vertex) { return vertex < nv - 1 ? vertex : nv - 2; }
 
+/* Checks a load on vertex `vertex` of rod (whole-network index): the vertex
+ * into *v, the local rod index into *lr; RN_NOT_HERE if another part holds
+ * the rod (the load has no effect here). */
 static rn_status check_load(const rn_network *net, const char *where, int rod, int vertex,
-                            const double *value, int *v) {
-  rn_status st;
+                            const double *value, int *v, int *lr) {
+  rn_status st, here;
+  int nv = rn_net_rod_nv(net, rod);
+  *lr = rod;
   if ((st = rn_net_check_building(net, where))) return st;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
-  *v = rn_wrap_index(vertex, net->rods[rod].nv);
+  here = rn_net_rod(net, where, lr);
+  if (here && here != RN_NOT_HERE) return here;
+  *v = rn_wrap_index(vertex, nv);
   if (*v < 0)
     return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "rod %d: vertex %d out of range (%d vertices)", rod, vertex,
-                   net->rods[rod].nv);
+                   "rod %d: vertex %d out of range (%d vertices)", rod, vertex, nv);
   if (!value) return rn_fail(net->ctx, RN_ERR_ARG, where, "value is NULL");
   if (!rn_all_finite(3, value))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
                    "rod %d vertex %d: load is not finite", rod, *v);
-  return RN_OK;
+  return here;
 }
 
 rn_status rn_network_add_force(rn_network *net, int rod, int vertex, const double f[3]) {
   rn_status st;
-  int v;
+  int v, lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_load(net, "rn_network_add_force", rod, vertex, f, &v))) return st;
-  for (int k = 0; k < 3; ++k) net->rods[rod].fpoint[3 * v + k] += f[k];
+  if ((st = check_load(net, "rn_network_add_force", rod, vertex, f, &v, &lr)))
+    return rn_not_here_ok(st);
+  for (int k = 0; k < 3; ++k) net->rods[lr].fpoint[3 * v + k] += f[k];
   return RN_OK;
 }
 
@@ -58,9 +64,12 @@ rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const doub
   static const char *where = "rn_network_add_moment";
   rn_status st;
   rn_moment *mo;
-  int v;
+  int v, lr, gid;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_load(net, where, rod, vertex, m, &v))) return st;
+  st = check_load(net, where, rod, vertex, m, &v, &lr);
+  if (st && st != RN_NOT_HERE) return st;
+  gid = rn_part_next_moment(net);
+  if (st == RN_NOT_HERE) return RN_OK;
   if (net->nmom == net->cap_mom) {
     int cap = net->cap_mom ? 2 * net->cap_mom : 8;
     rn_moment *p = realloc(net->moments, (size_t)cap * sizeof(*p));
@@ -70,9 +79,10 @@ rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const doub
   }
   mo = &net->moments[net->nmom++];
   memset(mo, 0, sizeof(*mo));
-  mo->rod = rod;
+  mo->gid = gid;
+  mo->rod = lr;
   mo->vertex = v;
-  mo->edge = rn_moment_edge(net->rods[rod].nv, v);
+  mo->edge = rn_moment_edge(net->rods[lr].nv, v);
   memcpy(mo->M, m, sizeof(mo->M));
   return RN_OK;
 }
@@ -80,10 +90,10 @@ rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const doub
 rn_status rn_network_add_line_load(rn_network *net, int rod, const double w[3]) {
   static const char *where = "rn_network_add_line_load";
   rn_status st;
-  int v;
+  int v, lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_load(net, where, rod, 0, w, &v))) return st;
-  for (int k = 0; k < 3; ++k) net->rods[rod].line_load[k] += w[k];
+  if ((st = check_load(net, where, rod, 0, w, &v, &lr))) return rn_not_here_ok(st);
+  for (int k = 0; k < 3; ++k) net->rods[lr].line_load[k] += w[k];
   return RN_OK;
 }
 

@@ -36,11 +36,13 @@ int rn_wrap_index(int i, int n) {
   return (i >= 0 && i < n) ? i : -1;
 }
 
-rn_status rn_net_check_rod(const rn_network *net, const char *where, int rod) {
-  if (rod < 0 || rod >= net->nrods)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d does not exist (%d rods)", rod,
-                   net->nrods);
-  return RN_OK;
+rn_status rn_net_check_rod(const rn_network *net, const char *where, int *rod) {
+  int g = *rod;
+  rn_status st = rn_net_rod(net, where, rod);
+  if (st == RN_NOT_HERE)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "rod %d is held by another part of the network", g);
+  return st;
 }
 
 rn_status rn_net_check_building(const rn_network *net, const char *where) {
@@ -105,6 +107,7 @@ void rn_network_destroy(rn_network **net) {
   free(n->red2full);
   free(n->xfull);
   rn_hessian_pattern_free(n);
+  rn_part_free(&n->part);
   free(n);
   *net = NULL;
 }
@@ -159,6 +162,7 @@ rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const do
   static const char *where = "rn_network_add_rod";
   rn_rod r;
   rn_status st;
+  int keep;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
   if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
@@ -171,8 +175,13 @@ rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const do
   if (d1 && !rn_all_finite(3, d1))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod '%s': d1 is not finite",
                    name ? name : "");
+  if ((st = rn_part_add_rod(net, nv, xyz, &keep)) != RN_OK) {
+    if (st == RN_NOT_HERE && rod) *rod = rn_net_rods_added(net) - 1;
+    return rn_not_here_ok(st);
+  }
   if (grow_rods(net)) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   memset(&r, 0, sizeof(r));
+  rn_part_tag_rod(net, &r);
   if (rod_alloc(&r, nv, name)) {
     rn_rod_free(&r);
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
@@ -184,21 +193,27 @@ rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const do
     return st;
   }
   net->rods[net->nrods] = r;
-  if (rod) *rod = net->nrods;
+  if (rod) *rod = r.gid;
   net->nrods++;
   return RN_OK;
 }
 
-static rn_status check_edge_arg(const rn_network *net, const char *where, int rod,
-                                int edge) {
+/* Checks a building call on rod g (whole-network index) and edge (-1: all):
+ * *lr receives the local index; RN_NOT_HERE if another part holds the rod
+ * (the call then has no effect here). */
+static rn_status check_edge_arg(const rn_network *net, const char *where, int g, int edge,
+                                int *lr) {
   rn_status st;
+  int ne;
+  *lr = g;
   if ((st = rn_net_check_building(net, where))) return st;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
-  if (edge < -1 || edge >= net->rods[rod].ne)
+  st = rn_net_rod(net, where, lr);
+  if (st && st != RN_NOT_HERE) return st;
+  ne = rn_net_rod_nv(net, g) - 1;
+  if (edge < -1 || edge >= ne)
     return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "rod %d: edge %d out of range (-1 = all, %d edges)", rod, edge,
-                   net->rods[rod].ne);
-  return RN_OK;
+                   "rod %d: edge %d out of range (-1 = all, %d edges)", g, edge, ne);
+  return st;
 }
 
 rn_status rn_network_set_material(rn_network *net, int rod, int edge,
@@ -206,8 +221,10 @@ rn_status rn_network_set_material(rn_network *net, int rod, int edge,
   static const char *where = "rn_network_set_material";
   rn_status st;
   rn_rod *r;
+  int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_edge_arg(net, where, rod, edge))) return st;
+  st = check_edge_arg(net, where, rod, edge, &lr);
+  if (st && st != RN_NOT_HERE) return st;
   if (!m) return rn_fail(net->ctx, RN_ERR_ARG, where, "material is NULL");
   if (!isfinite(m->E) || !isfinite(m->G) || !isfinite(m->density))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: material is not finite",
@@ -217,7 +234,8 @@ rn_status rn_network_set_material(rn_network *net, int rod, int edge,
         net->ctx, RN_ERR_ARG, where,
         "rod %d: need E > 0, G > 0, density >= 0 (E = %g, G = %g, density = %g)", rod,
         m->E, m->G, m->density);
-  r = &net->rods[rod];
+  if (st == RN_NOT_HERE) return RN_OK;
+  r = &net->rods[lr];
   for (int j = 0; j < r->ne; ++j) {
     if (edge != -1 && j != edge) continue;
     r->mat[j] = *m;
@@ -229,10 +247,12 @@ rn_status rn_network_set_material(rn_network *net, int rod, int edge,
 rn_status rn_network_set_section(rn_network *net, int rod, int edge,
                                  const rn_section *s) {
   static const char *where = "rn_network_set_section";
-  rn_status st;
+  rn_status st, here;
   rn_rod *r;
+  int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_edge_arg(net, where, rod, edge))) return st;
+  here = check_edge_arg(net, where, rod, edge, &lr);
+  if (here && here != RN_NOT_HERE) return here;
   if (!s) return rn_fail(net->ctx, RN_ERR_ARG, where, "section is NULL");
   st = rn_section_validate(s);
   if (st)
@@ -241,7 +261,8 @@ rn_status rn_network_set_section(rn_network *net, int rod, int edge,
         "rod %d: invalid section (need finite A, I11, I22, J > 0 and "
         "I11 I22 - I12^2 > 0; got A = %g, I11 = %g, I22 = %g, I12 = %g, J = %g)",
         rod, s->A, s->I11, s->I22, s->I12, s->J);
-  r = &net->rods[rod];
+  if (here == RN_NOT_HERE) return RN_OK;
+  r = &net->rods[lr];
   for (int j = 0; j < r->ne; ++j) {
     if (edge != -1 && j != edge) continue;
     r->sec[j] = *s;
@@ -251,26 +272,32 @@ rn_status rn_network_set_section(rn_network *net, int rod, int edge,
 }
 
 /* ---- rest shape overrides ---------------------------------------------------- */
-static rn_status check_rest_arg(const rn_network *net, const char *where, int rod,
-                                const double *v) {
-  rn_status st;
+/* Checks a rest-shape call on rod g with n values v (finite unless what is
+ * NULL); *lr as for check_edge_arg. */
+static rn_status check_rest_arg(const rn_network *net, const char *where, int g,
+                                const double *v, size_t n, const char *what, int *lr) {
+  rn_status st, here;
+  *lr = g;
   if ((st = rn_net_check_building(net, where))) return st;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
-  if (!v) return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d: array is NULL", rod);
-  return RN_OK;
+  here = rn_net_rod(net, where, lr);
+  if (here && here != RN_NOT_HERE) return here;
+  if (!v) return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d: array is NULL", g);
+  if (what && !rn_all_finite(n, v))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: %s is not finite", g,
+                   what);
+  return here;
 }
 
 rn_status rn_network_set_rest_curvature(rn_network *net, int rod, const double *kappa) {
   static const char *where = "rn_network_set_rest_curvature";
   rn_status st;
   size_t n;
+  int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_rest_arg(net, where, rod, kappa))) return st;
-  n = 2 * (size_t)(net->rods[rod].nv - 2);
-  if (!rn_all_finite(n, kappa))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: curvature is not finite",
-                   rod);
-  if (n) memcpy(net->rods[rod].kbar, kappa, n * sizeof(double));
+  n = 2 * (size_t)(rn_net_rod_nv(net, rod) > 2 ? rn_net_rod_nv(net, rod) - 2 : 0);
+  if ((st = check_rest_arg(net, where, rod, kappa, n, "curvature", &lr)))
+    return rn_not_here_ok(st);
+  if (n) memcpy(net->rods[lr].kbar, kappa, n * sizeof(double));
   return RN_OK;
 }
 
@@ -278,24 +305,24 @@ rn_status rn_network_set_rest_twist(rn_network *net, int rod, const double *tau)
   static const char *where = "rn_network_set_rest_twist";
   rn_status st;
   size_t n;
+  int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_rest_arg(net, where, rod, tau))) return st;
-  n = (size_t)(net->rods[rod].nv - 2);
-  if (!rn_all_finite(n, tau))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "rod %d: twist is not finite",
-                   rod);
-  if (n) memcpy(net->rods[rod].taubar, tau, n * sizeof(double));
+  n = (size_t)(rn_net_rod_nv(net, rod) > 2 ? rn_net_rod_nv(net, rod) - 2 : 0);
+  if ((st = check_rest_arg(net, where, rod, tau, n, "twist", &lr)))
+    return rn_not_here_ok(st);
+  if (n) memcpy(net->rods[lr].taubar, tau, n * sizeof(double));
   return RN_OK;
 }
 
 rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *len) {
   static const char *where = "rn_network_set_rest_lengths";
   rn_status st;
-  rn_rod *r;
+  int lr, ne;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_rest_arg(net, where, rod, len))) return st;
-  r = &net->rods[rod];
-  for (int j = 0; j < r->ne; ++j) {
+  st = check_rest_arg(net, where, rod, len, 0, NULL, &lr);
+  if (st && st != RN_NOT_HERE) return st;
+  ne = rn_net_rod_nv(net, rod) - 1;
+  for (int j = 0; j < ne; ++j) {
     if (!isfinite(len[j]))
       return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
                      "rod %d edge %d: rest length is not finite", rod, j);
@@ -303,7 +330,8 @@ rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *le
       return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
                      "rod %d edge %d: rest length must be > 0, got %g", rod, j, len[j]);
   }
-  memcpy(r->lbar, len, (size_t)r->ne * sizeof(double));
+  if (st == RN_NOT_HERE) return RN_OK;
+  memcpy(net->rods[lr].lbar, len, (size_t)ne * sizeof(double));
   return RN_OK;
 }
 
@@ -319,16 +347,18 @@ size_t rn_network_num_full_dofs(const rn_network *net) {
   return n + rn_joints_full_count(net);
 }
 
-int rn_network_num_rods(const rn_network *net) { return net ? net->nrods : 0; }
+int rn_network_num_rods(const rn_network *net) {
+  return net ? rn_net_num_rods_g(net) : 0;
+}
 
 int rn_network_rod_num_vertices(const rn_network *net, int rod) {
-  if (!net || rod < 0 || rod >= net->nrods) return 0;
-  return net->rods[rod].nv;
+  return net ? rn_net_rod_nv(net, rod) : 0;
 }
 
 const char *rn_network_rod_name(const rn_network *net, int rod) {
-  if (!net || rod < 0 || rod >= net->nrods || !net->rods[rod].name) return "";
-  return net->rods[rod].name;
+  if (!net || !rn_network_rod_is_local(net, rod)) return "";
+  if (net->part && rn_net_rod(net, "", &rod)) return "";
+  return net->rods[rod].name ? net->rods[rod].name : "";
 }
 
 rn_context *rn_network_context(const rn_network *net) { return net ? net->ctx : NULL; }

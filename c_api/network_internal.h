@@ -14,6 +14,10 @@
  * state.  ne = nv - 1 edges, nv - 2 interior vertices. */
 typedef struct rn_rod {
   char *name;
+  int gid;   /* index in the whole network (= the local index unless a part) */
+  int owner; /* part that owns it (part.c; 0 in a whole network) */
+  int ghost; /* 1: held for the joint stencils of this part only; its own
+                stencils are evaluated by its owner */
   int nv, ne;
   size_t off;             /* first full DOF (set at finalize) */
   double *x0;             /* initial vertices [3 nv] */
@@ -49,6 +53,7 @@ typedef struct rn_rod {
 
 /* A dead couple on the material frame of one edge. */
 typedef struct rn_moment {
+  int gid; /* index among all couples added to the whole network */
   int rod, vertex, edge;
   double M[3];
   double f0[9];  /* (t, d1, d2) at the last reference update */
@@ -62,6 +67,11 @@ typedef struct rn_moment {
  * reduced indices, and xfull keeps them equal to it). */
 typedef struct rn_joint {
   char *name;
+  int gid;        /* index in the whole network (= the local index unless a part) */
+  int owner;      /* part that owns it (part.c) */
+  int ghost;      /* 1: only its position is used here (aliased by the ends of
+                     local rods); its stencil belongs to its owner, and only
+                     the ends at local rods are listed */
   int model;      /* rn_joint_model */
   int valence;    /* >= 1 */
   int *rod, *end; /* incident rod ends [valence] */
@@ -127,7 +137,64 @@ struct rn_network {
   size_t nhzero;
   size_t nnz;
   size_t bandwidth;
+  struct rn_part_data *part; /* NULL: a whole network (part.c) */
 };
+
+/* ---- parts of a network (part.c) ------------------------------------------
+ * A network built in graph-only mode records the rod graph and nothing else; a
+ * part holds the rods and joints that one part of a partition needs (owned and
+ * ghost ones, in increasing whole-network index) under their whole-network
+ * indices at the API.  Internally rods and joints are indexed locally; gid
+ * gives the whole-network index (used in every message). */
+typedef struct rn_part_data rn_part_data;
+/* Map entry of a full DOF that a part does not hold (a ghost rod's DOF that no
+ * stencil of the part reads, a ghost joint's rotation). */
+enum { RN_DOF_ABSENT = -3 };
+/* Internal status of an API call that concerns a rod or joint another part
+ * holds: the call is accepted and has no effect here. */
+#define RN_NOT_HERE ((rn_status)1000)
+static inline rn_status rn_not_here_ok(rn_status st) {
+  return st == RN_NOT_HERE ? RN_OK : st;
+}
+/* Whole-network number of rods / joints added so far (or of the partition). */
+int rn_net_num_rods_g(const rn_network *net);
+int rn_net_num_joints_g(const rn_network *net);
+/* Rods / joints added so far (whole-network count). */
+int rn_net_rods_added(const rn_network *net);
+int rn_net_joints_added(const rn_network *net);
+/* Vertices of rod gid (also of rods another part holds); 0 if out of range. */
+int rn_net_rod_nv(const rn_network *net, int gid);
+/* Translates the whole-network rod index *rod into the local index: RN_OK, an
+ * RN_ERR_RANGE error (recorded; where names the caller) if it is out of range,
+ * or RN_NOT_HERE if another part holds it.  The same for joints. */
+rn_status rn_net_rod(const rn_network *net, const char *where, int *rod);
+rn_status rn_net_joint(const rn_network *net, const char *where, int *joint);
+/* Hooks of the building calls: add_rod asks whether rod gid is held here (1)
+ * and records its vertex count; add_joint whether the joint is held and which
+ * of its ends are (keep[k]; ghost joints list only the ends at local rods);
+ * add_moment numbers the couples. */
+rn_status rn_part_add_rod(rn_network *net, int nv, const double *xyz, int *keep);
+rn_status rn_part_add_joint(rn_network *net, const char *name, int n_ends,
+                            const int *rods, const int *ends, int *keep, int *keep_end);
+/* Graph-only finalize: coincident joints (the check every part cannot make). */
+rn_status rn_part_graph_validate(const rn_network *net, const char *where);
+int rn_part_next_moment(rn_network *net);
+/* Sets gid/owner/ghost of the rod or joint just added locally. */
+void rn_part_tag_rod(const rn_network *net, rn_rod *r);
+void rn_part_tag_joint(const rn_network *net, rn_joint *J);
+/* Finalize of a part: marks the full DOFs no evaluated stencil reads with
+ * RN_DOF_ABSENT in net->map (called after fixed and aliased entries are
+ * marked, before numbering) and returns 1 if full entry a (canonical) is owned
+ * by this part (numbering order: owned first). */
+void rn_part_mark_absent(rn_network *net);
+int rn_part_entry_owned(const rn_network *net, size_t a);
+/* Global keys of the reduced DOFs (after numbering); RN_ERR_ALLOC. */
+rn_status rn_part_begin_numbering(rn_network *net);
+rn_status rn_part_build_keys(rn_network *net);
+void rn_part_free(rn_part_data **p);
+/* 1 if the stencils of rod ir / joint ij / moment im are evaluated here. */
+static inline int rn_rod_evaluated(const rn_rod *r) { return !r->ghost; }
+static inline int rn_joint_evaluated(const rn_joint *J) { return !J->ghost; }
 
 /* ---- errors -------------------------------------------------------------- */
 /* Record "where: what" in ctx (ctx may be NULL) and return s. */
@@ -138,7 +205,9 @@ rn_status rn_fail(rn_context *ctx, rn_status s, const char *where, const char *f
     ;
 
 /* Checks shared by the API entry points; each records an error on failure. */
-rn_status rn_net_check_rod(const rn_network *net, const char *where, int rod);
+/* Range check and translation of a whole-network rod index into the local one;
+ * RN_ERR_RANGE also for a rod held by another part. */
+rn_status rn_net_check_rod(const rn_network *net, const char *where, int *rod);
 rn_status rn_net_check_building(const rn_network *net, const char *where);
 rn_status rn_net_check_final(const rn_network *net, const char *where);
 int rn_all_finite(size_t n, const double *v);
@@ -260,6 +329,16 @@ size_t rn_joints_full_count(const rn_network *net);
  * (validate); kernel parameters and stencil index lists (build, after the
  * DOF offsets are set); the fit at the initial state (check_initial). */
 rn_status rn_joints_validate(const rn_network *net, const char *where);
+/* Initial position, shortest incident terminal edge, index and name of a joint;
+ * the coincidence check (the first pair closer than RN_JOINT_COINCIDE_TOL of
+ * their shorter lmin is an RN_ERR_GEOMETRY error naming both). */
+typedef struct rn_joint_point {
+  double x0[3], lmin;
+  int gid;
+  const char *name;
+} rn_joint_point;
+rn_status rn_joint_points_check(rn_context *ctx, const char *where, int n,
+                                const rn_joint_point *p);
 rn_status rn_joints_build(rn_network *net);
 rn_status rn_joints_check_initial(const rn_network *net, const char *where);
 void rn_joints_unbuild(rn_network *net);

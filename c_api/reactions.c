@@ -51,22 +51,22 @@ rn_status rn_network_dof_info(const rn_network *net, rn_dof_info *info) {
     for (int v = 0; v < r->nv; ++v)
       for (int k = 0; k < RN_DOFS_PER_VERTEX; ++k) {
         const int64_t m = net->map[rn_dof_vertex(r->off, v) + (size_t)k];
-        if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, ir, -1, v, k};
+        if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, r->gid, -1, v, k};
       }
     for (int j = 0; j < r->ne; ++j) {
       const int64_t m = net->map[rn_dof_theta(r->off, j)];
-      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_THETA, ir, -1, j, 0};
+      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_THETA, r->gid, -1, j, 0};
     }
   }
   for (int ij = 0; ij < net->njoints; ++ij) {
     const rn_joint *J = &net->joints[ij];
     for (int k = 0; k < 3; ++k) {
       const int64_t m = net->map[rn_dof_joint_position(J->off) + (size_t)k];
-      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, -1, ij, 0, k};
+      if (m >= 0) info[m] = (rn_dof_info){RN_DOF_POSITION, -1, J->gid, 0, k};
       const int64_t w = rn_joint_has_rotation(J)
                             ? net->map[rn_dof_joint_rotation(J->off) + (size_t)k]
                             : -1;
-      if (w >= 0) info[w] = (rn_dof_info){RN_DOF_ROTATION, -1, ij, 0, k};
+      if (w >= 0) info[w] = (rn_dof_info){RN_DOF_ROTATION, -1, J->gid, 0, k};
     }
   }
   return RN_OK;
@@ -248,6 +248,12 @@ static void reaction_visit(const rn_network *net, const rn_reaction *proto, void
       add_theta_moment(c, r, j, R);
     }
   }
+  /* reported with whole-network indices (a part numbers its rods and joints
+     locally; the same in a whole network) */
+  if (proto->kind == RN_SUPPORT_JOINT)
+    R->index = net->joints[proto->index].gid;
+  else
+    R->rod = net->rods[proto->rod].gid;
 }
 
 rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reaction *out,

@@ -57,14 +57,38 @@ static rn_status ref_update_alloc(const rn_network *net, ref_update *u) {
 }
 
 /* New twists and frames of one rod into tw[nv-2] and fr[ne]. */
+/* A ghost rod of a part updates only the frames of the terminal edges its
+ * part's joints read (every DOF of the edge held), and keeps its twists. */
+static int edge_held(const rn_network *net, const rn_rod *r, int j) {
+  size_t s = rn_dof_edge_stencil(r->off, j);
+  for (int k = 0; k < RN_EDGE_STENCIL; ++k)
+    if (net->map[s + (size_t)k] == RN_DOF_ABSENT) return 0;
+  return 1;
+}
+
 static rn_status update_rod(const rn_network *net, int ir, const double *full, double *tw,
                             rnk_frame *fr) {
   const rn_rod *r = &net->rods[ir];
+  if (r->ghost) {
+    if (r->nv > 2) memcpy(tw, r->ref_twist, (size_t)(r->nv - 2) * sizeof(double));
+    for (int j = 0; j < r->ne; ++j) {
+      const double *q = full + rn_dof_edge_stencil(r->off, j);
+      double e[3];
+      fr[j] = r->ref[j];
+      if (!edge_held(net, r, j)) continue;
+      for (int k = 0; k < 3; ++k)
+        e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
+      if (rnk_frame_update(e, &fr[j]) != RNK_OK)
+        return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
+                       r->gid, j);
+    }
+    return RN_OK;
+  }
   for (int i = 1; i < r->nv - 1; ++i) {
     const double *q = full + rn_dof_vertex_stencil(r->off, i);
     if (rnk_reference_twist(q, &r->ref[i - 1], r->ref_twist[i - 1], &tw[i - 1]) != RNK_OK)
       return rn_fail(net->ctx, RN_DEGENERATE, where,
-                     "rod %d vertex %d: degenerate reference twist", ir, i);
+                     "rod %d vertex %d: degenerate reference twist", r->gid, i);
   }
   for (int j = 0; j < r->ne; ++j) {
     const double *q = full + rn_dof_edge_stencil(r->off, j);
@@ -73,7 +97,7 @@ static rn_status update_rod(const rn_network *net, int ir, const double *full, d
     fr[j] = r->ref[j];
     if (rnk_frame_update(e, &fr[j]) != RNK_OK)
       return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
-                     ir, j);
+                     r->gid, j);
   }
   return RN_OK;
 }
@@ -88,6 +112,11 @@ static rn_status update_moments(const rn_network *net, const double *full,
     const rnk_frame *ref = &r->ref[mo->edge];
     rnk_moment_param p;
     double alpha = 0.0, e[3], *f0 = u->f0 + 9 * im;
+    if (r->ghost) { /* its owner updates it */
+      u->angles[im] = mo->angle0;
+      memcpy(f0, mo->f0, sizeof(mo->f0));
+      continue;
+    }
     memcpy(p.M, mo->M, sizeof(p.M));
     memcpy(p.f0, mo->f0, sizeof(p.f0));
     memcpy(p.b, mo->b, sizeof(p.b));
@@ -96,11 +125,11 @@ static rn_status update_moments(const rn_network *net, const double *full,
     if ((mo->M[0] != 0.0 || mo->M[1] != 0.0 || mo->M[2] != 0.0) &&
         rnk_moment_angle(q, ref, &p, &alpha) != RNK_OK)
       return rn_fail(net->ctx, RN_DEGENERATE, where,
-                     "rod %d vertex %d: degenerate moment angle", mo->rod, mo->vertex);
+                     "rod %d vertex %d: degenerate moment angle", r->gid, mo->vertex);
     u->angles[im] = mo->angle0 + alpha;
     if (rnk_material_frame(e, ref, q[RN_EDGE_LOCAL_THETA], f0, f0 + 3, f0 + 6) != RNK_OK)
       return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
-                     mo->rod, mo->edge);
+                     r->gid, mo->edge);
   }
   return RN_OK;
 }
@@ -114,6 +143,12 @@ static rn_status update_joint(const rn_network *net, int ij, const double *full,
   rnk_joint kj;
   double alpha = 0.0;
   int rc;
+  if (J->ghost) { /* a ghost joint of a part: its owner updates it */
+    for (int k = 0; k < J->valence; ++k) tw[k] = J->ends[k].twist.ref_twist;
+    *angle = J->angle0;
+    memcpy(Q, J->f0, sizeof(J->f0));
+    return RN_OK;
+  }
   if (rn_joint_scratch_init(J, &s))
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
@@ -125,14 +160,15 @@ static rn_status update_joint(const rn_network *net, int ij, const double *full,
   rn_joint_scratch_free(&s);
   if (rc != RNK_OK)
     return rn_fail(net->ctx, RN_DEGENERATE, where, "joint %d ('%s'): degenerate joint",
-                   ij, rn_network_joint_name(net, ij));
+                   J->gid, J->name ? J->name : "");
   *angle = J->angle0 + alpha;
   return RN_OK;
 }
 
-/* A rigid joint whose rotation is free: its rotation moves into Qhat. */
+/* A rigid joint whose rotation is free: its rotation moves into Qhat (by its
+ * owner, in a part). */
 static int rotation_moves(const rn_joint *J) {
-  return J->model == RN_JOINT_RIGID && !J->clamped;
+  return J->model == RN_JOINT_RIGID && !J->clamped && !J->ghost;
 }
 
 static rn_status update_joints(const rn_network *net, ref_update *u) {

@@ -6,7 +6,7 @@
 
 #include "network_internal.h"
 
-static rn_status check_result(const rn_network *net, const char *where, int rod) {
+static rn_status check_result(const rn_network *net, const char *where, int *rod) {
   rn_status st;
   if ((st = rn_net_check_final(net, where))) return st;
   return rn_net_check_rod(net, where, rod);
@@ -17,7 +17,7 @@ rn_status rn_network_rod_vertices(const rn_network *net, int rod, double *xyz) {
   const rn_rod *r;
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, rod))) return st;
+  if ((st = check_result(net, where, &rod))) return st;
   if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
   r = &net->rods[rod];
   for (int v = 0; v < r->nv; ++v)
@@ -30,7 +30,7 @@ rn_status rn_network_rod_theta(const rn_network *net, int rod, double *theta) {
   const rn_rod *r;
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, rod))) return st;
+  if ((st = check_result(net, where, &rod))) return st;
   if (!theta) return rn_fail(net->ctx, RN_ERR_ARG, where, "theta is NULL");
   r = &net->rods[rod];
   for (int j = 0; j < r->ne; ++j) theta[j] = net->xfull[rn_dof_theta(r->off, j)];
@@ -41,7 +41,7 @@ rn_status rn_network_rod_initial_vertices(const rn_network *net, int rod, double
   static const char *where = "rn_network_rod_initial_vertices";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if ((st = rn_net_check_rod(net, where, &rod))) return st;
   if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
   memcpy(xyz, net->rods[rod].x0, 3 * (size_t)net->rods[rod].nv * sizeof(double));
   return RN_OK;
@@ -52,7 +52,7 @@ rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1, doub
   const rn_rod *r;
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, rod))) return st;
+  if ((st = check_result(net, where, &rod))) return st;
   r = &net->rods[rod];
   for (int j = 0; j < r->ne; ++j) {
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
@@ -72,7 +72,7 @@ rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
   const rn_rod *r;
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, rod))) return st;
+  if ((st = check_result(net, where, &rod))) return st;
   r = &net->rods[rod];
   for (int j = 0; strain && j < r->ne; ++j) {
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
@@ -102,7 +102,7 @@ rn_status rn_network_rod_rest_lengths(const rn_network *net, int rod, double *le
   static const char *where = "rn_network_rod_rest_lengths";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if ((st = rn_net_check_rod(net, where, &rod))) return st;
   if (!len) return rn_fail(net->ctx, RN_ERR_ARG, where, "len is NULL");
   memcpy(len, net->rods[rod].lbar, (size_t)net->rods[rod].ne * sizeof(double));
   return RN_OK;
@@ -124,7 +124,7 @@ rn_status rn_network_rod_vertex_fields(const rn_network *net, int rod, double *m
   const rn_rod *r;
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, rod))) return st;
+  if ((st = check_result(net, where, &rod))) return st;
   r = &net->rods[rod];
   for (int i = 1; i < r->nv - 1; ++i) {
     const double *q = net->xfull + rn_dof_vertex_stencil(r->off, i);
@@ -154,7 +154,7 @@ rn_status rn_network_rod_edge_fields(const rn_network *net, int rod, double *axi
   const rn_rod *r;
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, rod))) return st;
+  if ((st = check_result(net, where, &rod))) return st;
   r = &net->rods[rod];
   for (int j = 0; j < r->ne; ++j) {
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);

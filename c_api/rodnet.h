@@ -405,6 +405,87 @@ rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m
 rn_status rn_network_joint_position(const rn_network *net, int joint, double x[3]);
 rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9]);
 
+/* ---- parts of a network (distributed solves; docs/parallel.md) -----------
+ * A distributed solve gives every rod to one part (rank) and builds on each
+ * rank only what its part needs.  The scene is built twice through the same
+ * calls: first into a network in graph-only mode, which records the rod graph
+ * (vertices per rod, the rod ends of each joint) and nothing else; the graph is
+ * partitioned (rn_partition_rods in rodnet_solve.h); then into a network made a
+ * part of that partition by rn_network_set_part before anything is added.
+ *
+ * A part holds its owned rods and joints (a joint is owned by the part holding
+ * most of its rod ends, ties to the smallest part), whose stencils it alone
+ * evaluates, and ghost rods and joints that those stencils read (a ghost rod is
+ * held with its geometry and properties, but only the DOFs next to owned
+ * joints are in the part's DOF vector).  Every call keeps its meaning with
+ * WHOLE-network rod and joint indices: a call about a rod or joint the part
+ * does not hold is checked as far as possible (index ranges, vertex ranges,
+ * finite values) and then accepted without effect; results of such a rod or
+ * joint are RN_ERR_RANGE.  rn_network_num_rods / _num_joints give the whole
+ * network's counts.  The part's reduced DOF vector (rn_network_num_dofs
+ * entries) holds its owned DOFs first (owned rods in order, each contiguous,
+ * then owned joints), then its ghost DOFs; evaluation functions return the
+ * energy, gradient, Hessian-vector product and Hessian of the owned stencils
+ * only, at a full local vector (owned and ghost values), so that summing over
+ * the parts by global DOF gives the whole network's.  Validation at finalize
+ * sees only the part's rods and joints.  Nothing here is collective. */
+
+/* Make the empty network record the rod graph only (RN_ERR_STATE if not empty).
+ * Building calls are checked as far as the graph allows and store nothing;
+ * rn_network_finalize then only freezes it. */
+rn_status rn_network_set_graph_only(rn_network *net);
+/* The graph recorded in graph-only mode (borrowed, valid until destroy):
+ * rod_nv[nrods], joint j's rods joint_rods[joint_ptr[j] .. joint_ptr[j+1]-1]
+ * in the order of its ends.  RN_ERR_STATE for other networks. */
+rn_status rn_network_rod_graph(const rn_network *net, int *nrods, const int **rod_nv,
+                               int *njoints, const int **joint_ptr,
+                               const int **joint_rods);
+/* Make the empty network part `part` of nparts: rod r is owned by part
+ * rod_part[r]; the graph (rod_nv, joint_ptr, joint_rods, as recorded by
+ * rn_network_rod_graph) must be the one the building calls then describe
+ * (RN_ERR_ARG at the first rod that differs).  Arrays are copied. */
+rn_status rn_network_set_part(rn_network *net, int nparts, int part, int nrods,
+                              const int *rod_nv, const int *rod_part, int njoints,
+                              const int *joint_ptr, const int *joint_rods);
+/* 1 if the network is a part / in graph-only mode. */
+int rn_network_is_part(const rn_network *net);
+int rn_network_is_graph_only(const rn_network *net);
+/* 1 if the rod's data is held here (owned or ghost; always in a whole
+ * network); the part owning a rod / joint (0 in a whole network, -1 if out of
+ * range or in graph-only mode). */
+int rn_network_rod_is_local(const rn_network *net, int rod);
+int rn_network_rod_owner(const rn_network *net, int rod);
+int rn_network_joint_owner(const rn_network *net, int joint);
+
+/* Sizes and work of a finalized part (of a whole network: one part owning
+ * everything).  owned_stencils counts the stencils evaluated here: stretched
+ * edges, bend-twist vertices, couples on rods, joints. */
+typedef struct rn_part_info {
+  int nparts, part;
+  int owned_rods, ghost_rods, owned_joints, ghost_joints;
+  size_t owned_dofs, ghost_dofs; /* owned_dofs + ghost_dofs = num_dofs */
+  long owned_stencils;
+} rn_part_info;
+rn_status rn_network_part_info(const rn_network *net, rn_part_info *info);
+/* The part's reduced DOFs: the first *n_owned are owned; keys[num_dofs] gives
+ * each DOF's key (its canonical index in the whole network's full DOF layout:
+ * rods concatenated in order, 4 nv - 1 entries each, then 6 entries per joint;
+ * equal keys on different parts are the same DOF) and owners[num_dofs] the
+ * part that owns it.  Borrowed; RN_ERR_STATE unless a finalized part. */
+rn_status rn_network_part_dofs(const rn_network *net, size_t *n_owned,
+                               const int64_t **keys, const int **owners);
+/* The state of the rods, joints and couples a finalized part owns (current
+ * positions and angles, reference frames and twists, joint rotations and
+ * reference data, couple frames and angles) packed into buf[*n] doubles (buf
+ * NULL: only *n), for another process. */
+rn_status rn_network_part_state_pack(const rn_network *net, double *buf, size_t *n);
+/* Installs such a packed state into a finalized network holding those rods,
+ * joints and couples (a whole network built from the same scene, at the same
+ * load factor): afterwards its results (rn_network_rod_*, rn_network_joint_*,
+ * energies) are those of the part's owner.  RN_ERR_ARG if a record does not match
+ * the network. */
+rn_status rn_network_part_state_unpack(rn_network *net, const double *buf, size_t n);
+
 /* ---- equilibrium: DOF kinds, applied loads, reactions --------------------
  * The gradient of the energy is the out-of-balance generalised force: a force
  * at a position DOF, a moment at a material angle (about the edge tangent) or

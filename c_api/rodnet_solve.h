@@ -3,8 +3,11 @@
  * rn_solve minimises the network energy over the reduced DOFs, starting from
  * the network's current state, and leaves the solution as the current state
  * (with the reference frames updated).  No C++ exception crosses this API.
- * Not yet distributed: rn_solve runs on the calling process (MPI_COMM_SELF
- * semantics) and is safe to call with or without MPI initialised.
+ * On a whole network rn_solve runs on the calling process alone and is safe to
+ * call with or without MPI initialised.  On a part of a network
+ * (rn_network_set_part, docs/parallel.md) it is collective over MPI_COMM_WORLD:
+ * every rank calls it with its part and the same options, and only solver
+ * kinds for which rn_solver_is_distributed() holds can run.
  */
 #ifndef RODNET_SOLVE_H
 #define RODNET_SOLVE_H
@@ -30,26 +33,41 @@ typedef enum rn_solver_kind {
    * nonpositive curvature, or at an inexact-Newton forcing tolerance; any SPD
    * preconditioner (rn_preconditioner); leaves saddles; scales to large and
    * distributed problems.  tr-minres stays the exact reference. */
-  RN_SOLVER_TR_KRYLOV = 3
+  RN_SOLVER_TR_KRYLOV = 3,
+  /* NOX Newton on grad E = 0 (full steps) with Belos MINRES (Stratimikos),
+   * left-preconditioned by the same SPD preconditioner as RN_SOLVER_TR_KRYLOV:
+   * finds stationary points (minima, saddles or maxima alike; it neither
+   * measures the energy nor follows negative curvature), an alternative for
+   * comparisons, not a minimiser. */
+  RN_SOLVER_NOX = 4
 } rn_solver_kind;
 
 /* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
  * the trust-region norm (docs/solvers.md). */
 typedef enum rn_preconditioner {
-  RN_PRECOND_AUTO = 0,   /* the default for the problem: dd */
-  RN_PRECOND_FACTOR = 1, /* Cholesky of H + sigma D (rn_factorization), sigma the
-                            smallest shift that factors: exact when H is positive
-                            definite (one MINRES iteration); one rank only */
-  RN_PRECOND_DD = 2,     /* rod-level domain decomposition: banded Cholesky of every
-                            rod's interior, exact static condensation onto the joints,
-                            the coarse problem by sparse Cholesky (on rank 0) or, when
-                            that costs more than 5e10 flops, one algebraic-multigrid
-                            V-cycle; exact when H is positive definite and the coarse
-                            solve direct (one MINRES iteration) */
-  RN_PRECOND_MUELU = 3,  /* one MueLu smoothed-aggregation V-cycle on the whole
-                            Hessian (rigid-body near-null space) */
-  RN_PRECOND_IFPACK2 = 4 /* Ifpack2 additive Schwarz, one subdomain per rank with
-                            overlap 1, local sparse LU (exact on one rank) */
+  RN_PRECOND_AUTO = 0,     /* the default for the problem: dd */
+  RN_PRECOND_FACTOR = 1,   /* Cholesky of H + sigma D (rn_factorization), sigma the
+                              smallest shift that factors: exact when H is positive
+                              definite (one MINRES iteration); one rank only */
+  RN_PRECOND_LOCAL = 2,    /* block Jacobi over the ranks: each rank's sparse
+                              Cholesky of its owned block H_pp + sigma_p D_p (the
+                              factor preconditioner on one rank); docs/parallel.md */
+  RN_PRECOND_GATHERED = 3, /* the factor preconditioner's matrix on any number of
+                              ranks: the whole Hessian gathered on rank 0 and
+                              factored there (exact; not scalable: for tests and
+                              small problems); docs/parallel.md */
+  RN_PRECOND_DD = 4,       /* rod-level domain decomposition: banded Cholesky of every
+                              rod's interior, exact static condensation onto the
+                              joints, the coarse problem by sparse Cholesky (on rank
+                              0) or, when that costs more than 5e10 flops, one
+                              algebraic-multigrid V-cycle; exact when H is positive
+                              definite and the coarse solve direct (one MINRES
+                              iteration); any number of ranks */
+  RN_PRECOND_MUELU = 5,    /* one MueLu smoothed-aggregation V-cycle on the whole
+                              Hessian (rigid-body near-null space); MPI runtime */
+  RN_PRECOND_IFPACK2 = 6   /* Ifpack2 additive Schwarz, one subdomain per rank with
+                              overlap 1, local sparse LU (exact on one rank); MPI
+                              runtime */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
@@ -121,7 +139,7 @@ typedef struct rn_solve_options {
    * (shifted if not positive definite); x + s is accepted only if it lowers
    * the energy at t.  0: off (the step starts at x). */
   int predictor;
-  rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV; default AUTO */
+  rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV, RN_SOLVER_NOX; default AUTO */
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -162,11 +180,17 @@ typedef struct rn_solve_report {
 const char *rn_solve_stop_name(rn_solve_stop s);
 const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
+/* 1 if the solver kind can solve a network distributed over MPI ranks (its
+ * Newton systems never need the whole Hessian on one process), 0 otherwise.
+ * TR-KRYLOV and NOX; TR-MINRES and the ROL kinds factor the whole Hessian: one
+ * process only. */
+int rn_solver_is_distributed(rn_solver_kind k);
 /* Name of a factorisation ("auto", "banded", "sparse") and its parse
  * (RN_ERR_ARG if unknown). */
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
-/* Name of a preconditioner ("auto", "factor", "dd", "muelu", "ifpack2") and its
+/* Name of a preconditioner ("auto", "factor", "local", "gathered", "dd", "muelu",
+ * "ifpack2") and its
  * parse (RN_ERR_ARG if unknown). */
 const char *rn_preconditioner_name(rn_preconditioner p);
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p);
@@ -228,6 +252,42 @@ void rn_runtime_finalize(void);
  * with rn_hessian_min_eigenvalue).  A network without free DOFs is converged
  * at once (iterations 0). */
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep);
+
+/* ---- distributed solves (docs/parallel.md) ----------------------------------
+ * Partition the rod graph (as rn_network_rod_graph gives it) into nparts:
+ * rod_part[nrods] receives each rod's part.  METIS_PartGraphKway on the graph
+ * whose vertices are the rods, weighted by their DOF counts (4 nv - 1), and whose
+ * edges join rods sharing a joint, with a fixed seed (every rank and every run
+ * computes the same partition) and contiguous parts when the graph is connected.
+ * nparts = 1: every rod in part 0 (no METIS call); nparts >= nrods: rod r in part
+ * r; no shared joints: heaviest rod first into the lightest part.  *edge_cut (may
+ * be NULL): rod pairs sharing a joint that the partition separates.  Not
+ * collective.  RN_ERR_ARG for a malformed graph. */
+rn_status rn_partition_rods(int nrods, const int *rod_nv, int njoints,
+                            const int *joint_ptr, const int *joint_rods, int nparts,
+                            int *rod_part, long *edge_cut);
+
+/* Rank and number of ranks of MPI_COMM_WORLD once the runtime is initialised
+ * (rank 0 of 1 without MPI). */
+void rn_runtime_ranks(int *rank, int *size);
+
+/* Collective over MPI_COMM_WORLD: agree on the statuses of one step that every
+ * rank ran.  Returns RN_OK if every rank passed RN_OK, else the status of the
+ * lowest-numbered rank that did not, whose context message (prefixed "rank R: "
+ * on other ranks when there are several) is then recorded in ctx on every rank. */
+rn_status rn_dist_agree(rn_context *ctx, rn_status local);
+
+/* Collective: the partition's sizes per rank, gathered on every rank:
+ * owned_dofs[ranks] and owned_stencils[ranks] (arrays of at least *ranks entries
+ * allocated by the caller: call with owned_dofs = NULL first to get *ranks). */
+rn_status rn_dist_part_sizes(const rn_network *net, int *ranks, long *owned_dofs,
+                             long *owned_stencils);
+
+/* Collective: the states of every rank's part (rn_network_part_state_pack)
+ * installed on rank 0 into whole, a network of the whole scene at the same load
+ * factor (ignored, may be NULL, on the other ranks), so that rank 0 can write the
+ * results.  The status is rank 0's (use rn_dist_agree to share it). */
+rn_status rn_dist_gather_state(const rn_network *part, rn_network *whole);
 
 /* Smallest eigenvalue of the reduced Hessian at the current state; used by
  * stability checks (e.g. buckling).  Half bandwidth kd =

@@ -1,5 +1,6 @@
 /* cli_solve.c - `rodnet solve SCENE.json -o RESULT.json [options]`. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "atomic_file.h"
@@ -36,12 +37,18 @@ static const char solve_help[] =
     "                        MINRES stopped at the trust-region boundary, on\n"
     "                        nonpositive curvature or at an inexact-Newton\n"
     "                        tolerance (docs/solvers.md)\n"
-    "      --preconditioner NAME  preconditioner of tr-krylov (it defines the\n"
-    "                      trust-region norm): auto (default: dd), factor\n"
-    "                      (Cholesky of the shifted Hessian, one rank), dd (rod-\n"
-    "                      level domain decomposition), muelu (algebraic\n"
+    "                      nox: NOX Newton on grad E = 0 with MINRES and the\n"
+    "                        same preconditioner: finds stationary points\n"
+    "                        (minima, saddles or maxima alike), not a minimiser\n"
+    "      --preconditioner NAME  preconditioner of tr-krylov and nox (it defines the\n"
+    "                      trust-region norm): auto (default: dd), dd (rod-level\n"
+    "                      domain decomposition), factor (Cholesky of the\n"
+    "                      shifted Hessian, one rank), local (each rank's\n"
+    "                      Cholesky of its own block, block Jacobi),\n"
+    "                      gathered (factor's matrix on rank 0: exact, not\n"
+    "                      scalable; docs/parallel.md), muelu (algebraic\n"
     "                      multigrid on the whole Hessian), ifpack2 (additive\n"
-    "                      Schwarz, local LU)\n"
+    "                      Schwarz, local LU); muelu, ifpack2 need MPI\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
@@ -156,10 +163,17 @@ static void progress(void *user, const rn_iteration_info *it) {
   fflush(stderr);
 }
 
-static int make_options(const solve_args *a, const rn_scene *scene,
-                        rn_solve_options *opt) {
+/* The solve options: defaults, the scene's solver block, the command line.  A
+ * bad name is a usage error, printed only if loud (one rank of several). */
+static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_options *opt,
+                        int loud) {
   rn_solve_options_default(opt);
   rn_scene_apply_solver(scene, opt);
+  if (!loud &&
+      ((a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK) ||
+       (a->factorization &&
+        rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)))
+    return RN_EXIT_USAGE;
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
@@ -167,9 +181,10 @@ static int make_options(const solve_args *a, const rn_scene *scene,
                               a->solver);
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
-    return rn_cli_usage_error(
-        "solve", "unknown preconditioner '%s' (known: auto, factor, dd, muelu, ifpack2)",
-        a->preconditioner);
+    return rn_cli_usage_error("solve",
+                              "unknown preconditioner '%s' (known: auto, factor, "
+                              "local, gathered, dd, muelu, ifpack2)",
+                              a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
     return rn_cli_usage_error("solve",
@@ -189,8 +204,13 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
   in->solver = rn_solver_name(opt->solver);
   in->factorization = rn_factorization_name(rep->factorization);
-  if (opt->solver == RN_SOLVER_TR_KRYLOV)
+  if (opt->solver == RN_SOLVER_TR_KRYLOV || opt->solver == RN_SOLVER_NOX)
     in->preconditioner = rn_preconditioner_name(rep->preconditioner);
+  in->finds =
+      opt->solver == RN_SOLVER_NOX ? "stationary point"
+      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON)
+          ? "stationary point, energy decreasing"
+          : "local minimum";
   in->stop = rn_solve_stop_name(rep->stop);
   in->converged = rep->converged;
   in->iterations = rep->iterations;
@@ -211,6 +231,34 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->moment_residual = rep->moment_residual;
   in->moment_scale = rep->moment_scale;
   in->moment_tolerance = rep->moment_tolerance;
+}
+
+/* The partition block of one rank: everything owned by it. */
+typedef struct part_block {
+  long dofs1, stencils1; /* one rank */
+  long *dofs, *stencils; /* [ranks], allocated (distributed) */
+} part_block;
+
+static void fill_serial_partition(rn_network *net, part_block *pb, rn_result_info *in) {
+  rn_part_info pi;
+  memset(&pi, 0, sizeof pi);
+  rn_network_part_info(net, &pi);
+  pb->dofs1 = (long)pi.owned_dofs;
+  pb->stencils1 = pi.owned_stencils;
+  in->part_ranks = 1;
+  in->part_dofs = &pb->dofs1;
+  in->part_stencils = &pb->stencils1;
+  in->edge_cut = 0;
+  in->imbalance = 1.0;
+}
+
+static void print_partition(const rn_result_info *in) {
+  if (in->part_ranks < 2) return;
+  printf("  partition    %d ranks, owned DOFs", in->part_ranks);
+  for (int q = 0; q < in->part_ranks; q++) printf(" %ld", in->part_dofs[q]);
+  printf(", owned stencils");
+  for (int q = 0; q < in->part_ranks; q++) printf(" %ld", in->part_stencils[q]);
+  printf(", edge cut %ld, imbalance %.3f\n", in->edge_cut, in->imbalance);
 }
 
 static void print_summary(const solve_args *a, const rn_scene *scene,
@@ -237,6 +285,7 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
          "%.3e, tolerance %.3e)\n",
          in->force_residual, in->force_scale, in->force_tolerance, in->moment_residual,
          in->moment_scale, in->moment_tolerance);
+  print_partition(in);
   printf("  time         %.3f s\n", in->time_s);
   printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");
 }
@@ -254,7 +303,7 @@ static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *s
 
 static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
   rn_solve_options opt;
-  int rc = make_options(a, scene, &opt);
+  int rc = make_options(a, scene, &opt, 1);
   if (rc) return rc;
   progress_state ps = {0};
   if (!a->quiet) {
@@ -270,13 +319,200 @@ static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
     return RN_EXIT_INTERNAL;
   }
   rn_result_info in;
+  part_block pb;
   fill_info(&rep, &opt, &in);
+  fill_serial_partition(rn_scene_network(scene), &pb, &in);
   if ((rc = write_outputs(ctx, a, scene, &in))) return rc;
   print_summary(a, scene, &in);
   return rep.converged ? RN_EXIT_OK : RN_EXIT_NOT_CONVERGED;
 }
 
+/* ---- under mpirun: one part of the network per rank (docs/parallel.md) ---- */
+
+/* 1 if an MPI launcher started this process as one of several (the runtime is
+ * then initialised before the scene is read, to know the ranks). */
+static int in_mpi_job(void) {
+  static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", NULL};
+  for (int i = 0; vars[i]; i++) {
+    const char *v = getenv(vars[i]);
+    if (v && atoi(v) > 1) return 1;
+  }
+  return getenv("PMIX_RANK") != NULL;
+}
+
+/* Everything one distributed run holds on a rank. */
+typedef struct dist_run {
+  rn_context *ctx;
+  int rank, size;
+  rn_scene *graph, *part, *whole;
+  int *rod_part;
+  long edge_cut;
+  part_block pb;
+} dist_run;
+
+/* Agree on a step's status over the ranks; rank 0 prints the (first failing
+ * rank's) message with prefix.  Returns the agreed status. */
+static rn_status agree(dist_run *d, rn_status st, const char *prefix) {
+  st = rn_dist_agree(d->ctx, st);
+  if (st && d->rank == 0)
+    fprintf(stderr, "%s%s\n", prefix, rn_context_last_error(d->ctx));
+  return st;
+}
+
+/* Graph pass: the scene's rod graph and options, and the output paths. */
+static int load_graph(dist_run *d, const solve_args *a) {
+  rn_scene_part sp;
+  memset(&sp, 0, sizeof sp);
+  sp.mode = RN_SCENE_GRAPH;
+  rn_status st = rn_scene_load_part(d->ctx, a->scene, &sp, &d->graph);
+  if ((st = agree(d, st, ""))) return rn_cli_load_exit_code(st);
+  st = d->rank == 0 ? rn_file_probe_writable(d->ctx, a->output) : RN_OK;
+  if (!st && d->rank == 0 && a->vtk) st = rn_file_probe_writable(d->ctx, a->vtk);
+  if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INPUT;
+  return 0;
+}
+
+/* Partition of the graph, then the part pass.  0 or an exit status. */
+static int load_part(dist_run *d, const solve_args *a) {
+  rn_scene_part sp;
+  const int *nv = NULL, *jp = NULL, *jr = NULL;
+  int nr = 0, nj = 0;
+  rn_status st;
+  memset(&sp, 0, sizeof sp);
+  rn_network_rod_graph(rn_scene_network(d->graph), &nr, &nv, &nj, &jp, &jr);
+  d->rod_part = malloc(((size_t)nr + 1) * sizeof(int));
+  st = d->rod_part
+           ? rn_partition_rods(nr, nv, nj, jp, jr, d->size, d->rod_part, &d->edge_cut)
+           : RN_ERR_ALLOC;
+  if (st)
+    rn_context_set_error(d->ctx, st, "%s: cannot partition the rod graph (%s)", a->scene,
+                         rn_status_name(st));
+  if ((st = agree(d, st, "rodnet solve: "))) return RN_EXIT_INTERNAL;
+  sp.mode = RN_SCENE_PART;
+  sp.nparts = d->size;
+  sp.part = d->rank;
+  sp.nrods = nr;
+  sp.njoints = nj;
+  sp.rod_nv = nv;
+  sp.rod_part = d->rod_part;
+  sp.joint_ptr = jp;
+  sp.joint_rods = jr;
+  st = rn_scene_load_part(d->ctx, a->scene, &sp, &d->part);
+  if ((st = agree(d, st, ""))) return rn_cli_load_exit_code(st);
+  return 0;
+}
+
+/* The partition block (gathered on every rank). */
+static rn_status partition_info(dist_run *d, rn_result_info *in) {
+  rn_network *net = rn_scene_network(d->part);
+  int ranks = d->size;
+  double sum = 0.0, mx = 0.0;
+  d->pb.dofs = calloc((size_t)ranks, sizeof(long));
+  d->pb.stencils = calloc((size_t)ranks, sizeof(long));
+  if (!d->pb.dofs || !d->pb.stencils) return RN_ERR_ALLOC;
+  rn_status st = rn_dist_part_sizes(net, &ranks, d->pb.dofs, d->pb.stencils);
+  for (int q = 0; q < ranks; q++) {
+    sum += (double)d->pb.dofs[q];
+    if ((double)d->pb.dofs[q] > mx) mx = (double)d->pb.dofs[q];
+  }
+  in->part_ranks = ranks;
+  in->part_dofs = d->pb.dofs;
+  in->part_stencils = d->pb.stencils;
+  in->edge_cut = d->edge_cut;
+  in->imbalance = sum > 0.0 ? mx * ranks / sum : 1.0;
+  return st;
+}
+
+/* Rank 0 reads the whole scene and receives every part's state; then writes. */
+static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in) {
+  rn_network *part = rn_scene_network(d->part);
+  rn_status st = RN_OK;
+  if (d->rank == 0) {
+    st = rn_scene_load(d->ctx, a->scene, &d->whole);
+    if (!st)
+      st = rn_network_set_load_factor(rn_scene_network(d->whole),
+                                      rn_network_load_factor(part));
+  }
+  if (agree(d, st, "rodnet solve: cannot gather the result: ")) return RN_EXIT_INTERNAL;
+  st = rn_dist_gather_state(part, d->whole ? rn_scene_network(d->whole) : NULL);
+  if (agree(d, st, "rodnet solve: cannot gather the result: ")) return RN_EXIT_INTERNAL;
+  st = partition_info(d, in);
+  if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INTERNAL;
+  int rc = d->rank == 0 ? write_outputs(d->ctx, a, d->whole, in) : RN_EXIT_OK;
+  if (agree(d, rc ? RN_ERR_IO : RN_OK, "")) return RN_EXIT_INTERNAL;
+  if (d->rank == 0) print_summary(a, d->whole, in);
+  return 0;
+}
+
+static int run_distributed(dist_run *d, const solve_args *a) {
+  rn_solve_options opt;
+  int rc = load_graph(d, a);
+  if (rc) return rc;
+  /* the scene's solver block is read in the graph pass too */
+  rc = make_options(a, d->graph, &opt, d->rank == 0);
+  if (rc) return rc; /* the same on every rank: its message printed by rank 0 */
+  if (!rn_solver_is_distributed(opt.solver)) {
+    if (d->rank == 0)
+      fprintf(stderr,
+              "rodnet solve: solver '%s' factors the whole Hessian on one process and "
+              "cannot run on %d MPI ranks; run it without mpirun (one process), or "
+              "choose a distributed solver (docs/parallel.md)\n",
+              rn_solver_name(opt.solver), d->size);
+    return RN_EXIT_USAGE;
+  }
+  if ((rc = load_part(d, a))) return rc;
+  progress_state ps = {0};
+  if (!a->quiet && d->rank == 0) {
+    opt.progress = progress;
+    opt.progress_user = &ps;
+  }
+  rn_solve_report rep;
+  memset(&rep, 0, sizeof rep);
+  rn_status st = rn_solve(rn_scene_network(d->part), &opt, &rep);
+  if (agree(d, st, "rodnet solve: solver failed: ")) return RN_EXIT_INTERNAL;
+  rn_result_info in;
+  fill_info(&rep, &opt, &in);
+  if ((rc = gather_and_write(d, a, &in))) return rc;
+  return rep.converged ? RN_EXIT_OK : RN_EXIT_NOT_CONVERGED;
+}
+
+/* Every rank returns the same exit status; only rank 0 prints. */
+static int solve_distributed(const solve_args *a, int rank, int size) {
+  dist_run d;
+  memset(&d, 0, sizeof d);
+  d.rank = rank;
+  d.size = size;
+  int rc = rn_context_create(&d.ctx) == RN_OK ? 0 : RN_EXIT_INTERNAL;
+  if (agree(&d, rc ? RN_ERR_ALLOC : RN_OK, "rodnet solve: out of memory"))
+    rc = RN_EXIT_INTERNAL;
+  if (!rc) rc = run_distributed(&d, a);
+  rn_scene_destroy(&d.whole);
+  rn_scene_destroy(&d.part);
+  rn_scene_destroy(&d.graph);
+  free(d.rod_part);
+  free(d.pb.dofs);
+  free(d.pb.stencils);
+  rn_context_destroy(&d.ctx);
+  rn_runtime_finalize();
+  return rc;
+}
+
+static int solve_scene_serial(const solve_args *a);
+
 static int solve_scene(const solve_args *a) {
+  if (in_mpi_job()) { /* the runtime first, to know the ranks */
+    int rank = 0, size = 1;
+    if (rn_runtime_initialize(NULL, NULL) != RN_OK) {
+      fprintf(stderr, "rodnet solve: cannot start the MPI runtime\n");
+      return RN_EXIT_INTERNAL;
+    }
+    rn_runtime_ranks(&rank, &size);
+    if (size > 1) return solve_distributed(a, rank, size);
+  }
+  return solve_scene_serial(a);
+}
+
+static int solve_scene_serial(const solve_args *a) {
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) {
     fprintf(stderr, "rodnet solve: out of memory\n");

@@ -94,7 +94,9 @@ static uint64_t scaled(uint64_t m, int e, int p) {
       N = (uint64_t)quot;
       cmp = rem > half ? 2 : rem == half ? 1 : 0;
     } else {
-      big b = {{m}, 1};
+      big b;
+      b.w[0] = m;
+      b.n = 1;
       int r = p;
       for (; r >= 19; r -= 19) big_mul(&b, pow10_u64[19]);
       if (r) big_mul(&b, pow10_u64[r]);
@@ -184,12 +186,28 @@ size_t rn_format_g17(double x, char *buf) {
     e = -1074;
   }
   /* floor(log2 |x|), then k = floor(log10 |x|) or one less */
-  const int e2 = e + bit_length(m) - 1;
-  int k = (int)floor((double)e2 * 0.30102999566398119521);
+  if (fabs(x) < 9007199254740992.0) { /* integers below 2^53: "%.17g" is "%lld" */
+    const long long i = (long long)x;
+    if ((double)i == x) return rn_format_long((long)i, buf);
+  }
+  /* k from log2 |x| = e2 + log2(1 + f) ~ e2 + f + 0.3466 f (1 - f) (error < 0.005);
+   * a wrong guess near a power of 10 is corrected by the digit count of N */
+  const int mbits = bit_length(m), e2 = e + mbits - 1;
+  const double f = (double)((m << (53 - mbits)) - (UINT64_C(1) << 52)) * 0x1p-52;
+  const double t = ((double)e2 + f + 0.3466 * f * (1.0 - f)) * 0.30102999566398119521;
+  int k = (int)t;
+  if ((double)k > t) k -= 1; /* floor */
   uint64_t N = scaled(m, e, 16 - k);
-  if (N >= pow10_u64[17]) { /* k was one too small (or N rounded up to 10^17) */
+  if (N >= pow10_u64[17]) { /* k one too small (or N rounded up to 10^17) */
     k += 1;
     N = scaled(m, e, 16 - k);
+  } else if (N <= pow10_u64[16]) { /* k one too large: |x| 10^p below 10^16 (even if
+                                       it rounds up to 10^16) */
+    const uint64_t N1 = scaled(m, e, 17 - k);
+    if (N1 >= pow10_u64[16] && N1 < pow10_u64[17]) {
+      k -= 1;
+      N = N1;
+    }
   }
   if (N < pow10_u64[16] || N >= pow10_u64[17]) /* out of the exact range */
     return (size_t)snprintf(buf, RN_NUM_BUF, "%.17g", x);

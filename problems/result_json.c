@@ -122,6 +122,10 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"preconditioner\": ", f);
     put_str(f, in->preconditioner);
   }
+  if (in->finds) {
+    fputs(",\n  \"finds\": ", f);
+    put_str(f, in->finds);
+  }
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);
@@ -138,6 +142,17 @@ static void put_summary(json_out *o, rn_network *net) {
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
   put_equilibrium(o);
+  if (in->part_ranks > 0) {
+    fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", in->part_ranks);
+    for (int q = 0; q < in->part_ranks; q++)
+      fprintf(f, "%s%ld", q ? ", " : "", in->part_dofs[q]);
+    fputs("], \"owned_stencils\": [", f);
+    for (int q = 0; q < in->part_ranks; q++)
+      fprintf(f, "%s%ld", q ? ", " : "", in->part_stencils[q]);
+    fprintf(f, "], \"edge_cut\": %ld, \"imbalance\": ", in->edge_cut);
+    put_num(o, in->imbalance);
+    fputs("},\n", f);
+  }
 }
 
 static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
@@ -148,25 +163,40 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_rod_name(net, rod));
   fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
-  char row[3 * RN_NUM_BUF + 16];
+  /* rows go through a 16 KiB chunk: one fwrite per chunk, not per row */
+  enum { ROW = 3 * RN_NUM_BUF + 16, CHUNK = 1 << 14 };
+  char chunk[CHUNK];
+  size_t n = 0;
   static const char sep[] = ",\n       "; /* the first row has no comma */
   for (int i = 0; i < nv; i++) {
-    size_t n = i ? 9 : 8;
-    memcpy(row, i ? sep : sep + 1, n);
-    n += vec_text(o, &buf[3 * i], row + n);
-    fwrite(row, 1, n, f);
+    if (n + ROW > CHUNK) {
+      fwrite(chunk, 1, n, f);
+      n = 0;
+    }
+    memcpy(chunk + n, i ? sep : sep + 1, i ? 9 : 8);
+    n += i ? 9 : 8;
+    n += vec_text(o, &buf[3 * i], chunk + n);
   }
-  fputs("],\n     \"theta\": [", f);
+  static const char theta_key[] = "],\n     \"theta\": [";
+  if (n + sizeof theta_key > CHUNK) {
+    fwrite(chunk, 1, n, f);
+    n = 0;
+  }
+  memcpy(chunk + n, theta_key, sizeof theta_key - 1);
+  n += sizeof theta_key - 1;
   if ((st = rn_network_rod_theta(net, rod, buf))) return st;
   for (int i = 0; i + 1 < nv; i++) {
-    size_t n = 0;
-    if (i) {
-      n = i % 8 ? 2 : 10; /* a line break after every 8 values */
-      memcpy(row, ", \n       ", n);
+    if (n + ROW > CHUNK) {
+      fwrite(chunk, 1, n, f);
+      n = 0;
     }
-    n += num_text(o, buf[i], row + n);
-    fwrite(row, 1, n, f);
+    if (i) { /* a line break after every 8 values */
+      memcpy(chunk + n, ", \n       ", i % 8 ? 2 : 10);
+      n += i % 8 ? 2 : 10;
+    }
+    n += num_text(o, buf[i], chunk + n);
   }
+  fwrite(chunk, 1, n, f);
   fputs("]}", f);
   return RN_OK;
 }

@@ -21,9 +21,20 @@ typedef struct rn_result_info {
   double force_residual, force_scale, force_tolerance;
   double moment_residual, moment_scale, moment_tolerance;
   const char *preconditioner; /* tr-krylov's preconditioner ("factor", ...), or NULL */
+  /* what the solver looks for: "local minimum" (trust regions that leave
+   * saddles), "stationary point, energy decreasing" (ROL kinds: may stop at a
+   * saddle) or "stationary point" (NOX: minima, saddles or maxima alike) */
+  const char *finds;
+  /* the partition over MPI ranks (docs/parallel.md); part_ranks = 0: no block */
+  int part_ranks;
+  const long *part_dofs, *part_stencils; /* [part_ranks] owned per rank */
+  long edge_cut;                         /* rod pairs sharing a joint, separated */
+  double imbalance;                      /* max owned DOFs / mean owned DOFs */
 } rn_result_info;
 
-/* Write the result JSON for the scene's current state: the summary of info,
+/* Write the result JSON for the scene's current state: the summary of info
+ * (with "partition": {"ranks", "owned_dofs", "owned_stencils", "edge_cut",
+ * "imbalance"} when info->part_ranks > 0),
  * energy by term and load factor (from the network), per rod its name,
  * vertices [[x, y, z], ...] and material angles theta, and per joint its
  * name, model, valence, position [x, y, z] and rotation (3 rows of the

@@ -362,10 +362,16 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
                                            {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
                                            {"tr-krylov", RN_SOLVER_TR_KRYLOV},
+                                           {"nox", RN_SOLVER_NOX},
                                            {NULL, 0}};
-static const named_value preconditioner_names[] = {
-    {"auto", RN_PRECOND_AUTO},   {"factor", RN_PRECOND_FACTOR},   {"dd", RN_PRECOND_DD},
-    {"muelu", RN_PRECOND_MUELU}, {"ifpack2", RN_PRECOND_IFPACK2}, {NULL, 0}};
+static const named_value preconditioner_names[] = {{"auto", RN_PRECOND_AUTO},
+                                                   {"factor", RN_PRECOND_FACTOR},
+                                                   {"local", RN_PRECOND_LOCAL},
+                                                   {"gathered", RN_PRECOND_GATHERED},
+                                                   {"dd", RN_PRECOND_DD},
+                                                   {"muelu", RN_PRECOND_MUELU},
+                                                   {"ifpack2", RN_PRECOND_IFPACK2},
+                                                   {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},
                                                   {"sparse", RN_FACTOR_SPARSE},
@@ -552,11 +558,22 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   return st ? rn_scene_finalize_error(p, st) : rn_scene_check_finite(p);
 }
 
-static rn_status scene_new(rn_context *ctx, const char *label, rn_scene **out) {
+/* The network's mode (part NULL: whole). */
+static rn_status set_mode(rn_network *net, const rn_scene_part *part) {
+  if (!part || part->mode == RN_SCENE_WHOLE) return RN_OK;
+  if (part->mode == RN_SCENE_GRAPH) return rn_network_set_graph_only(net);
+  return rn_network_set_part(net, part->nparts, part->part, part->nrods, part->rod_nv,
+                             part->rod_part, part->njoints, part->joint_ptr,
+                             part->joint_rods);
+}
+
+static rn_status scene_new(rn_context *ctx, const char *label, const rn_scene_part *part,
+                           rn_scene **out) {
   rn_scene *s = calloc(1, sizeof *s);
   if (!s) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", label);
   s->label = dup_string(label);
   rn_status st = s->label ? rn_network_create(ctx, &s->net) : RN_ERR_ALLOC;
+  if (!st) st = set_mode(s->net, part);
   if (st) {
     rn_scene_destroy(&s);
     return rn_context_set_error(ctx, st, "%s: cannot create the network", label);
@@ -565,8 +582,8 @@ static rn_status scene_new(rn_context *ctx, const char *label, rn_scene **out) {
   return RN_OK;
 }
 
-rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, size_t len,
-                         rn_scene **out) {
+static rn_status scene_parse(rn_context *ctx, const char *label, const char *text,
+                             size_t len, const rn_scene_part *part, rn_scene **out) {
   if (!out) return RN_ERR_ARG;
   *out = NULL;
   if (!ctx || !text) return RN_ERR_ARG;
@@ -575,7 +592,7 @@ rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, s
   rn_status st = parse_json(ctx, label, text, len, &root);
   if (st) return st;
   rn_scene *s = NULL;
-  st = scene_new(ctx, label, &s);
+  st = scene_new(ctx, label, part, &s);
   if (!st) {
     rn_scene_parser p;
     memset(&p, 0, sizeof p);
@@ -596,7 +613,13 @@ rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, s
   return st;
 }
 
-rn_status rn_scene_load(rn_context *ctx, const char *path, rn_scene **out) {
+rn_status rn_scene_parse(rn_context *ctx, const char *label, const char *text, size_t len,
+                         rn_scene **out) {
+  return scene_parse(ctx, label, text, len, NULL, out);
+}
+
+rn_status rn_scene_load_part(rn_context *ctx, const char *path, const rn_scene_part *part,
+                             rn_scene **out) {
   if (!out) return RN_ERR_ARG;
   *out = NULL;
   if (!ctx || !path) return RN_ERR_ARG;
@@ -604,9 +627,13 @@ rn_status rn_scene_load(rn_context *ctx, const char *path, rn_scene **out) {
   size_t len = 0;
   rn_status st = read_file(ctx, path, &text, &len);
   if (st) return st;
-  st = rn_scene_parse(ctx, path, text, len, out);
+  st = scene_parse(ctx, path, text, len, part, out);
   free(text);
   return st;
+}
+
+rn_status rn_scene_load(rn_context *ctx, const char *path, rn_scene **out) {
+  return rn_scene_load_part(ctx, path, NULL, out);
 }
 
 void rn_scene_destroy(rn_scene **sp) {

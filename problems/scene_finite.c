@@ -44,6 +44,7 @@ static rn_status check_rods(rn_scene_parser *p, rn_network *net, double *buf) {
   rn_status st = RN_OK;
   for (int r = 0; r < nrods && !st; r++) {
     size_t nv = (size_t)rn_network_rod_num_vertices(net, r);
+    if (!rn_network_rod_is_local(net, r)) continue; /* another part checks it */
     double *a = buf, *b = buf + 3 * nv;
     st = judge(p, rn_network_rod_vertices(net, r, a), a, 3 * nv, "position of a vertex");
     if (st) break;

@@ -1,8 +1,10 @@
 /* vtk.c - .vtu writer (VTK XML UnstructuredGrid, ASCII).  Each data array is
  * one field: a function that fills the values of one rod, written rod after
  * rod (the field table is in vtk.h's order).  The stencil quantities that several
- * fields share (rn_network_rod_vertex_fields, rn_network_rod_strains) are computed
- * once per rod before writing, 8 doubles per interior vertex. */
+ * fields share (rn_network_rod_vertex_fields, rn_network_rod_strains,
+ * rn_network_rod_frames) are computed once per rod before writing, 8 doubles per
+ * interior vertex and 6 per edge.  The text goes through a 64 KiB buffer of the
+ * writer's own (one fwrite per block, not per row). */
 #include "vtk.h"
 
 #include <math.h>
@@ -13,7 +15,7 @@
 #include "atomic_file.h"
 #include "num_format.h"
 
-enum { VTK_VERTEX = 1, VTK_LINE = 3, N_WORK = 4 };
+enum { VTK_VERTEX = 1, VTK_LINE = 3, N_WORK = 4, OUT_CAP = 1 << 16 };
 
 typedef struct vtk_out {
   FILE *f;
@@ -27,6 +29,9 @@ typedef struct vtk_out {
                            per rod: moments (m1, m2), twisting moment, bending and twisting
                            energy, as rn_network_rod_vertex_fields returns them */
   double *kt;           /* blocks of 3 per rod: curvature (kappa1, kappa2), twist (tau) */
+  double *fr;           /* per edge, in blocks of 6 (edge count) per rod: d1, then d2 */
+  char *buf;            /* output not yet handed to f: len bytes of OUT_CAP */
+  size_t len;
 } vtk_out;
 
 /* Cached stencil fields of rod (vtk_out.vf): moment[2 n], twist_moment[n],
@@ -37,6 +42,12 @@ static const double *rod_vertex_fields(const vtk_out *o, int rod) {
 
 static const double *rod_strains(const vtk_out *o, int rod) {
   return o->kt + 3 * o->first[rod];
+}
+
+/* Cached directors of rod: d1[3 ne], then d2[3 ne] (ne edges; the rod's first
+ * edge has index first[rod] + rod among all edges). */
+static const double *rod_frames(const vtk_out *o, int rod) {
+  return o->fr + 6 * (o->first[rod] + (size_t)rod);
 }
 
 /* Fills the caches: one rn_network_rod_vertex_fields and one rn_network_rod_strains
@@ -53,13 +64,16 @@ static rn_status cache_stencil_fields(vtk_out *o) {
   o->first[nrods] = total;
   o->vf = malloc((5 * total + 1) * sizeof *o->vf);
   o->kt = malloc((3 * total + 1) * sizeof *o->kt);
-  if (!o->vf || !o->kt) return RN_ERR_ALLOC;
+  o->fr = malloc((6 * (total + (size_t)nrods) + 1) * sizeof *o->fr);
+  if (!o->vf || !o->kt || !o->fr) return RN_ERR_ALLOC;
   rn_status st = RN_OK;
   for (int r = 0; r < nrods && !st; r++) {
     const size_t n = o->first[r + 1] - o->first[r];
     double *v = o->vf + 5 * o->first[r], *k = o->kt + 3 * o->first[r];
+    double *d = o->fr + 6 * (o->first[r] + (size_t)r);
     st = rn_network_rod_vertex_fields(o->net, r, v, v + 2 * n, v + 3 * n, v + 4 * n);
     if (!st) st = rn_network_rod_strains(o->net, r, NULL, k, k + 2 * n);
+    if (!st) st = rn_network_rod_frames(o->net, r, d, d + 3 * (n + 1));
   }
   return st;
 }
@@ -151,9 +165,7 @@ static rn_status fill_moment(vtk_out *o, int rod, double *val) {
 static rn_status fill_moment_vector(vtk_out *o, int rod, double *val) {
   int nv = rn_network_rod_num_vertices(o->net, rod);
   const double *m = rod_vertex_fields(o, rod);
-  double *d1 = o->work[1], *d2 = o->work[2];
-  rn_status st = rn_network_rod_frames(o->net, rod, d1, d2);
-  if (st) return st;
+  const double *d1 = rod_frames(o, rod), *d2 = d1 + 3 * (nv - 1);
   memset(val, 0, 3 * (size_t)nv * sizeof *val);
   for (int i = 1; i + 1 < nv; i++) {
     double e1[3], e2[3];
@@ -196,11 +208,15 @@ static rn_status fill_stretch(vtk_out *o, int rod, double *val) {
 }
 
 static rn_status fill_d1(vtk_out *o, int rod, double *val) {
-  return rn_network_rod_frames(o->net, rod, val, NULL);
+  size_t n = 3 * (size_t)(rn_network_rod_num_vertices(o->net, rod) - 1);
+  memcpy(val, rod_frames(o, rod), n * sizeof *val);
+  return RN_OK;
 }
 
 static rn_status fill_d2(vtk_out *o, int rod, double *val) {
-  return rn_network_rod_frames(o->net, rod, NULL, val);
+  size_t n = 3 * (size_t)(rn_network_rod_num_vertices(o->net, rod) - 1);
+  memcpy(val, rod_frames(o, rod) + n, n * sizeof *val);
+  return RN_OK;
 }
 
 /* Mean twist rate (as in twist_rate) of the edge's interior end vertices. */
@@ -284,12 +300,30 @@ enum { N_FIELDS = (int)(sizeof fields / sizeof fields[0]) };
 
 /* ---- writing ------------------------------------------------------------------- */
 
-/* Rows of up to 9 numbers, each written with one fwrite. */
-enum { ROW_MAX = 10 + 9 * RN_NUM_BUF };
+/* Hands the buffered text to the file. */
+static void out_flush(vtk_out *o) {
+  if (o->len) fwrite(o->buf, 1, o->len, o->f);
+  o->len = 0;
+}
+
+/* Room for n <= OUT_CAP more bytes at o->buf + o->len. */
+static char *out_reserve(vtk_out *o, size_t n) {
+  if (o->len + n > OUT_CAP) out_flush(o);
+  return o->buf + o->len;
+}
+
+static void out_str(vtk_out *o, const char *s) {
+  size_t n = strlen(s);
+  memcpy(out_reserve(o, n), s, n);
+  o->len += n;
+}
+
+/* Rows of up to 9 numbers. */
+enum { ROW_MAX = 12 + 9 * RN_NUM_BUF };
 
 static void put_rows(vtk_out *o, const double *v, int rows, int ncomp) {
-  char row[ROW_MAX];
   for (int r = 0; r < rows; r++) {
+    char *row = out_reserve(o, ROW_MAX);
     size_t n = 10;
     memset(row, ' ', n);
     for (int k = 0; k < ncomp; k++) {
@@ -302,13 +336,13 @@ static void put_rows(vtk_out *o, const double *v, int rows, int ncomp) {
       n += rn_format_g17(x, row + n);
     }
     row[n++] = '\n';
-    fwrite(row, 1, n, o->f);
+    o->len += n;
   }
 }
 
 /* One row "          a[ b]\n" of one or two integers (b < 0: none). */
-static void put_ints(FILE *f, long a, long b) {
-  char row[16 + 2 * RN_NUM_BUF];
+static void put_ints(vtk_out *o, long a, long b) {
+  char *row = out_reserve(o, 16 + 2 * RN_NUM_BUF);
   size_t n = 10;
   memset(row, ' ', n);
   n += rn_format_long(a, row + n);
@@ -317,7 +351,7 @@ static void put_ints(FILE *f, long a, long b) {
     n += rn_format_long(b, row + n);
   }
   row[n++] = '\n';
-  fwrite(row, 1, n, f);
+  o->len += n;
 }
 
 /* The row of joint j in field fld: position, displacement, rotation and
@@ -351,10 +385,12 @@ static rn_status joint_rows(vtk_out *o, const vtk_field *fld) {
 }
 
 static rn_status data_array(vtk_out *o, const vtk_field *fld) {
-  fprintf(o->f,
-          "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
-          "format=\"ascii\">\n",
-          fld->type, fld->name, fld->ncomp);
+  char head[256];
+  snprintf(head, sizeof head,
+           "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
+           "format=\"ascii\">\n",
+           fld->type, fld->name, fld->ncomp);
+  out_str(o, head);
   rn_status st = RN_OK;
   int nrods = rn_network_num_rods(o->net);
   for (int r = 0; r < nrods && !st; r++) {
@@ -363,7 +399,7 @@ static rn_status data_array(vtk_out *o, const vtk_field *fld) {
     if (!st) put_rows(o, o->val, rows, fld->ncomp);
   }
   if (!st) st = joint_rows(o, fld);
-  fputs("        </DataArray>\n", o->f);
+  out_str(o, "        </DataArray>\n");
   return st;
 }
 
@@ -375,50 +411,50 @@ static rn_status field_arrays(vtk_out *o, int on_edges) {
 }
 
 static void cell_arrays(vtk_out *o) {
-  FILE *f = o->f;
   int nrods = rn_network_num_rods(o->net);
   long base = 0, cells = 0;
-  fputs("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n", f);
+  out_str(o,
+          "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
   for (int r = 0; r < nrods; r++) {
     int nv = rn_network_rod_num_vertices(o->net, r);
-    for (int e = 0; e + 1 < nv; e++) put_ints(f, base + e, base + e + 1);
+    for (int e = 0; e + 1 < nv; e++) put_ints(o, base + e, base + e + 1);
     base += nv;
     cells += nv - 1;
   }
   int nj = rn_network_num_joints(o->net);
-  for (int j = 0; j < nj; j++) put_ints(f, base + j, -1);
-  fputs("        </DataArray>\n"
-        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
-        f);
-  for (long c = 1; c <= cells; c++) put_ints(f, 2 * c, -1);
-  for (int j = 1; j <= nj; j++) put_ints(f, 2 * cells + j, -1);
-  fputs("        </DataArray>\n"
-        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
-        f);
-  for (long c = 0; c < cells; c++) put_ints(f, VTK_LINE, -1);
-  for (int j = 0; j < nj; j++) put_ints(f, VTK_VERTEX, -1);
-  fputs("        </DataArray>\n", f);
+  for (int j = 0; j < nj; j++) put_ints(o, base + j, -1);
+  out_str(o, "        </DataArray>\n"
+             "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+  for (long c = 1; c <= cells; c++) put_ints(o, 2 * c, -1);
+  for (int j = 1; j <= nj; j++) put_ints(o, 2 * cells + j, -1);
+  out_str(o, "        </DataArray>\n"
+             "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+  for (long c = 0; c < cells; c++) put_ints(o, VTK_LINE, -1);
+  for (int j = 0; j < nj; j++) put_ints(o, VTK_VERTEX, -1);
+  out_str(o, "        </DataArray>\n");
 }
 
 static rn_status write_body(vtk_out *o, long npoints, long ncells) {
-  FILE *f = o->f;
   rn_status st;
-  fprintf(f,
-          "<?xml version=\"1.0\"?>\n"
-          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
-          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-          "  <UnstructuredGrid>\n"
-          "    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n"
-          "      <PointData Vectors=\"displacement\" Scalars=\"bending_moment\">\n",
-          npoints, ncells);
+  char head[512];
+  snprintf(head, sizeof head,
+           "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+           "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+           "  <UnstructuredGrid>\n"
+           "    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n"
+           "      <PointData Vectors=\"displacement\" Scalars=\"bending_moment\">\n",
+           npoints, ncells);
+  out_str(o, head);
   if ((st = field_arrays(o, 0))) return st;
-  fputs("      </PointData>\n      <CellData Scalars=\"energy_density\">\n", f);
+  out_str(o, "      </PointData>\n      <CellData Scalars=\"energy_density\">\n");
   if ((st = field_arrays(o, 1))) return st;
-  fputs("      </CellData>\n      <Points>\n", f);
+  out_str(o, "      </CellData>\n      <Points>\n");
   if ((st = data_array(o, &points_field))) return st;
-  fputs("      </Points>\n      <Cells>\n", f);
+  out_str(o, "      </Points>\n      <Cells>\n");
   cell_arrays(o);
-  fputs("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n", f);
+  out_str(o, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+  out_flush(o);
   return RN_OK;
 }
 
@@ -437,15 +473,19 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
   o->f = f;
   /* val: 9 values per vertex (joint_rotation); work: 3 each */
   double *mem = malloc(3 * (size_t)maxnv * (N_WORK + 3) * sizeof *mem);
+  o->buf = malloc(OUT_CAP);
+  o->len = 0;
   o->val = mem;
   for (int k = 0; k < N_WORK; k++)
     o->work[k] = mem ? mem + 3 * (size_t)maxnv * (k + 3) : NULL;
-  rn_status st = mem ? cache_stencil_fields(o) : RN_ERR_ALLOC;
+  rn_status st = mem && o->buf ? cache_stencil_fields(o) : RN_ERR_ALLOC;
   if (!st) st = write_body(o, npoints, ncells);
   free(mem);
+  free(o->buf);
   free(o->first);
   free(o->vf);
   free(o->kt);
+  free(o->fr);
   if (st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));

@@ -43,6 +43,8 @@ public:
   // Residual, scales and floor at the reduced state x with gradient g there (one
   // full-layout gradient for the reactions, one Hessian-vector product).
   EquilibriumView measure(const double *x, const double *g);
+  // Size of the structure: the diagonal of the bounding box of its initial vertices.
+  double size() const { return size_; }
   // RN_DOF_* kind of every reduced DOF.
   const std::vector<int> &kinds() const { return kind_; }
 

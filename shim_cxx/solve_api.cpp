@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "dist_system.hpp"
 #include "monitor.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
@@ -48,7 +49,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
   const int kind = enum_value(o.solver);
   if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
-      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV)
+      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV &&
+      kind != RN_SOLVER_NOX)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -94,15 +96,18 @@ struct SolveTotals {
   EquilibriumView eq; // at the last iterate checked
   double force_tol = 0.0, moment_tol = 0.0;
   rn_preconditioner preconditioner = RN_PRECOND_AUTO;
+  System *dist = nullptr; // the distributed System of a part (nullptr: whole network)
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
 // (0: the starting state); first the predictor (opt.predictor).
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
-  if (opt.predictor && (opt.solver == RN_SOLVER_TR_KRYLOV
-                            ? predict_step_krylov(p, opt, t_prev, t)
-                            : predict_load_step(p, tot.factorization, t_prev, t)))
+  // (the predictor factors the whole Hessian, or with tr-krylov uses its
+  // preconditioner and MINRES: not on a part)
+  if (opt.predictor && !tot.dist &&
+      (opt.solver == RN_SOLVER_TR_KRYLOV ? predict_step_krylov(p, opt, t_prev, t)
+                                         : predict_load_step(p, tot.factorization, t_prev, t)))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
@@ -117,7 +122,11 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
     run_rol_ls_newton(p, mon, opt);
     break;
   case RN_SOLVER_TR_KRYLOV:
-    tot.preconditioner = run_tr_krylov(p, mon, opt);
+    tot.preconditioner =
+        tot.dist ? run_tr_krylov(*tot.dist, mon, opt) : run_tr_krylov(p, mon, opt);
+    break;
+  case RN_SOLVER_NOX:
+    tot.preconditioner = tot.dist ? run_nox(*tot.dist, mon, opt) : run_nox(p, mon, opt);
     break;
   }
   tot.iterations += mon.iterations();
@@ -191,16 +200,17 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
 
 void fill_report(const Problem &p, const SolveTotals &tot, double g0, double seconds,
                  rn_solve_report *rep) {
+  const Counters &c = tot.dist ? tot.dist->counters : p.counters;
   rep->status = RN_OK;
   rep->stop = tot.stop;
   rep->converged = (tot.stop == RN_STOP_GRADIENT || tot.stop == RN_STOP_STEP ||
                     tot.stop == RN_STOP_ENERGY);
   rep->iterations = tot.iterations;
-  rep->energy_evals = p.counters.energy;
-  rep->gradient_evals = p.counters.gradient;
-  rep->hvp_evals = p.counters.hvp;
-  rep->hessian_evals = p.counters.hessian;
-  rep->factorizations = p.counters.factorizations;
+  rep->energy_evals = c.energy;
+  rep->gradient_evals = c.gradient;
+  rep->hvp_evals = c.hvp;
+  rep->hessian_evals = c.hessian;
+  rep->factorizations = c.factorizations;
   rep->krylov_iterations = tot.krylov;
   rep->load_steps = tot.load_steps;
   rep->energy = tot.energy;
@@ -225,14 +235,39 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   const double target = rn_network_load_factor(net);
   std::vector<double> x(p.size()), g(p.size());
   check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
-  if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
-    throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-  const double force_scale = norm2(p.size(), g.data());
+  // A part of a distributed network: its System on all ranks (collective from here;
+  // its graph is built once for the solve), the gradient norm over all ranks.
+  std::unique_ptr<DistSystem> dist;
+  if (rn_network_is_part(net)) dist = std::make_unique<DistSystem>(net, world_comm());
+  double force_scale = 0.0;
+  if (dist) {
+    TMV xd(dist->map(), 1), gd(dist->map(), 1);
+    dist->get_state(xd);
+    if (dist->gradient(xd, nullptr, gd) != RN_OK)
+      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
+    Teuchos::Array<double> nrm(1);
+    gd.norm2(nrm());
+    force_scale = nrm[0];
+  } else {
+    if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
+      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
+    force_scale = norm2(p.size(), g.data());
+  }
   SolveTotals tot;
+  tot.dist = dist.get();
   tot.factorization = choose_factor_kind(p, opt.factorization);
-  if (p.size() == 0) { // every DOF is prescribed: nothing to solve
+  if ((dist ? static_cast<size_t>(dist->global_size()) : p.size()) == 0) {
+    // every DOF is prescribed: nothing to solve
     double E = 0.0;
-    if (p.energy(x.data(), &E) != RN_OK)
+    rn_status st = RN_OK;
+    if (dist) {
+      TMV xd(dist->map(), 1);
+      dist->get_state(xd);
+      st = dist->energy(xd, &E);
+    } else {
+      st = p.energy(x.data(), &E);
+    }
+    if (st != RN_OK)
       throw Error(RN_ERR_GEOMETRY, "rn_solve: the prescribed state is degenerate");
     tot.stop = RN_STOP_GRADIENT;
     tot.energy = E;
@@ -324,13 +359,16 @@ const char *rn_solver_name(rn_solver_kind k) {
     return "rol-ls-newton";
   case RN_SOLVER_TR_KRYLOV:
     return "tr-krylov";
+  case RN_SOLVER_NOX:
+    return "nox";
   }
   return "unknown";
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
   const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
-                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV};
+                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV,
+                                  RN_SOLVER_NOX};
   return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 
@@ -360,6 +398,10 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "auto";
   case RN_PRECOND_FACTOR:
     return "factor";
+  case RN_PRECOND_LOCAL:
+    return "local";
+  case RN_PRECOND_GATHERED:
+    return "gathered";
   case RN_PRECOND_DD:
     return "dd";
   case RN_PRECOND_MUELU:
@@ -371,8 +413,10 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
-  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_DD,
-                                     RN_PRECOND_MUELU, RN_PRECOND_IFPACK2};
+  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO,     RN_PRECOND_FACTOR,
+                                     RN_PRECOND_LOCAL,    RN_PRECOND_GATHERED,
+                                     RN_PRECOND_DD,       RN_PRECOND_MUELU,
+                                     RN_PRECOND_IFPACK2};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 
@@ -389,6 +433,13 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
   rn_solve_options_default(&defaults);
   const rn_solve_options &o = opt ? *opt : defaults;
   rn_status s = rodnet::validate_options(o, rn_network_context(net));
+  if (s == RN_OK && rn_network_is_part(net) && !rn_solver_is_distributed(o.solver))
+    s = rn_context_set_error(
+        rn_network_context(net), RN_ERR_ARG,
+        "rn_solve: solver '%s' needs the whole network on one process; "
+        "a part of a distributed network needs a distributed solver "
+        "(docs/parallel.md)",
+        rn_solver_name(o.solver));
   if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, o, rep); });
   if (rep && s != RN_OK) {
     rep->status = s;

@@ -54,6 +54,8 @@
 #include "dof_blocks.hpp"
 #include "factor_preconditioner.hpp"
 #include "minres.hpp"
+#include "gathered_preconditioner.hpp"
+#include "local_preconditioner.hpp"
 #include "monitor.hpp"
 #include "predictor.hpp"
 #include "preconditioner.hpp"
@@ -497,29 +499,6 @@ void TrustRegionKrylov::run() {
   }
 }
 
-// The preconditioner of opt (RN_PRECOND_AUTO: the rod-level domain decomposition,
-// docs/solvers.md "Preconditioners for networks"); *kind the one chosen.
-std::unique_ptr<Preconditioner>
-make_tr_krylov_preconditioner(Problem &p, SerialSystem &sys, const rn_solve_options &opt,
-                              rn_preconditioner *kind_out) {
-  const rn_preconditioner kind =
-      opt.preconditioner == RN_PRECOND_AUTO ? RN_PRECOND_DD : opt.preconditioner;
-  *kind_out = kind;
-  std::unique_ptr<Preconditioner> prec;
-  if (kind == RN_PRECOND_FACTOR) {
-    prec.reset(new FactorPreconditioner(opt.factorization));
-  } else {
-    Teuchos::RCP<const TMV> modes;
-    if (kind == RN_PRECOND_MUELU) {
-      const NetworkDofs d = network_dofs(p.network());
-      modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
-    }
-    prec = make_preconditioner(rn_preconditioner_name(kind), modes);
-  }
-  if (!prec) throw Error(RN_ERR_ARG, "rn_solve: unknown preconditioner");
-  return prec;
-}
-
 // Adapts a Tpetra operator to MinresSolver's VectorOperator.
 class OperatorAdapter : public VectorOperator {
 public:
@@ -532,13 +511,48 @@ private:
 
 } // namespace
 
+std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
+                                                    const rn_solve_options &opt,
+                                                    rn_preconditioner *used) {
+  const auto *serial = dynamic_cast<const SerialSystem *>(&sys);
+  rn_preconditioner kind = opt.preconditioner;
+  // auto: the rod-level domain decomposition (docs/solvers.md, "Preconditioners for
+  // networks")
+  if (kind == RN_PRECOND_AUTO) kind = RN_PRECOND_DD;
+  if (kind == RN_PRECOND_FACTOR && !serial)
+    throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
+                            "use dd or local (docs/parallel.md)");
+  *used = kind;
+  switch (kind) {
+  case RN_PRECOND_GATHERED:
+    return std::make_unique<GatheredPreconditioner>();
+  case RN_PRECOND_LOCAL:
+    return std::make_unique<LocalPreconditioner>();
+  case RN_PRECOND_DD:
+  case RN_PRECOND_MUELU:
+  case RN_PRECOND_IFPACK2: {
+    Teuchos::RCP<const TMV> modes; // MueLu's near-null space (whole network only)
+    if (kind == RN_PRECOND_MUELU && serial) {
+      const NetworkDofs d = network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
+      modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
+    }
+    return make_preconditioner(rn_preconditioner_name(kind), modes);
+  }
+  default:
+    return std::make_unique<FactorPreconditioner>(opt.factorization);
+  }
+}
+
+rn_preconditioner run_tr_krylov(System &sys, Monitor &mon, const rn_solve_options &opt) {
+  rn_preconditioner used = RN_PRECOND_AUTO;
+  const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
+  TrustRegionKrylov(sys, *prec, mon, opt).run();
+  return used;
+}
+
 rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   SerialSystem sys(p);
-  rn_preconditioner kind = RN_PRECOND_AUTO;
-  std::unique_ptr<Preconditioner> prec =
-      make_tr_krylov_preconditioner(p, sys, opt, &kind);
-  TrustRegionKrylov(sys, *prec, mon, opt).run();
-  return kind;
+  return run_tr_krylov(sys, mon, opt);
 }
 
 bool predict_step_krylov(Problem &p, const rn_solve_options &opt, double t_prev,
@@ -552,8 +566,7 @@ bool predict_step_krylov(Problem &p, const rn_solve_options &opt, double t_prev,
         std::copy(s.begin(), s.end(), host_data(b));
         sys.assemble_hessian(xv);
         rn_preconditioner kind = RN_PRECOND_AUTO;
-        std::unique_ptr<Preconditioner> prec =
-            make_tr_krylov_preconditioner(q, sys, opt, &kind);
+        std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &kind);
         prec->setup(sys);
         MinresSolver minres(sys.map(), opt.krylov_tol, opt.krylov_max_iterations);
         const MinresResult r = minres.solve(OperatorAdapter(*sys.hessian()),

@@ -84,6 +84,7 @@ constexpr int kLanczosSteps = 30;
 // Tentative steps of the watchdog at most (measured: 1 step leaves the arch of
 // docs/solvers.md at 46 iterations, 2 or more give 14).
 constexpr int kWatchdogSteps = 2;
+constexpr double kSaddleRadius = 1e-2; // see saddle_radius()
 
 // y = (H + shift M) x with the assembled Hessian and the metric's CSR values m.
 class ShiftedHessian : public VectorOperator {
@@ -156,6 +157,7 @@ private:
   Step solve_subproblem(const double *g, double radius);
   double upper_multiplier(const double *g, double radius) const;
   double gradient_radius(const double *g) const;
+  double saddle_radius() const;
   double mdot(const double *a, const double *b);
   double mnorm(const double *a) { return std::sqrt(std::max(0.0, mdot(a, a))); }
   bool trial_step(const double *g, double lambda, double *ns);
@@ -251,6 +253,20 @@ double TrustRegionMinres::gradient_radius(const double *g) const {
   double gn = 0.0;
   for (size_t i = 0; i < n_; ++i) gn += g[i] * g[i] / d_[i];
   return std::sqrt(gn);
+}
+
+// Where a load step starts at an indefinite Hessian the first radius is at least a
+// displacement of kSaddleRadius times the structure's size at every position DOF,
+// in the D-norm.  The gradient says nothing about the size of a step there: the
+// load-step predictor often lands on the straight, unstable branch, where g ~ 1e-12
+// (the buckling column of shim_buckling.c), and the radius ||D^-1 g||_D then took 25
+// doublings to grow to a useful size (109 iterations; 34 with this floor; measured
+// 80 with 1e-3 and 91 with 3e-2, docs/solvers.md).
+double TrustRegionMinres::saddle_radius() const {
+  double dsum = 0.0;
+  for (size_t i = 0; i < n_; ++i)
+    if (equilibrium_.kinds()[i] == RN_DOF_POSITION) dsum += d_[i];
+  return std::max(kSaddleRadius * equilibrium_.size() * std::sqrt(dsum), 1e-8);
 }
 
 // Factor H + lambda M into fl_ and put s(lambda) = -(H + lambda M)^{-1} g in w_;
@@ -418,9 +434,9 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
       if (mon_.check(it)) break;
     }
     check = true;
-    if (!(radius > 0.0)) // automatic: the Newton step, or ||D^-1 g||_D
+    if (!(radius > 0.0)) // automatic: the Newton step, or see saddle_radius()
       radius = sigma0_ == 0.0 ? std::numeric_limits<double>::max()
-                              : std::max(gradient_radius(gp), 1e-8);
+                              : std::max(gradient_radius(gp), saddle_radius());
     Step st = solve_subproblem(gp, radius);
     const double snorm = mnorm(st.s.data());
     if (radius == std::numeric_limits<double>::max()) radius = std::max(snorm, 1e-300);

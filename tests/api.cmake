@@ -10,6 +10,10 @@ rn_add_test(api_joints SOURCES unit/api_joints.c LIBS rodnet LABELS unit)
 rn_add_test(api_overflow SOURCES unit/api_overflow.c LIBS rodnet LABELS unit)
 rn_add_test(api_components SOURCES unit/api_components.c LIBS rodnet m LABELS unit)
 rn_add_test(api_load_increment SOURCES unit/api_load_increment.c LIBS rodnet m LABELS unit)
+# Parts of a network (distributed solves) built in one process: sums of the
+# parts' energies, gradients, HVPs and Hessians by global DOF against the whole
+# network, before and after reference updates; ownership counts.
+rn_add_test(api_part SOURCES unit/api_part.c LIBS rodnet m LABELS unit)
 # Rod / interface classification of the reduced DOFs (domain decomposition).
 rn_add_test(api_dof_blocks SOURCES unit/api_dof_blocks.c LIBS rodnet m LABELS unit)
 # Equilibrium checks: DOF kinds, the full-layout gradient, support reactions

@@ -264,7 +264,7 @@ if(RN_WITH_TRILINOS)
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/factorization_${f}.json
                      --factorization ${f} --quiet)
   endforeach()
-  foreach(solver tr-minres rol-tr-tcg rol-ls-newton tr-krylov)
+  foreach(solver tr-minres rol-tr-tcg rol-ls-newton tr-krylov nox)
     rn_cli_test(problems_cli_solver_${solver} 0 "status +converged.*solver +${solver}"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/solver_${solver}.json --solver ${solver}
                      --quiet)
@@ -290,6 +290,39 @@ if(RN_WITH_TRILINOS)
     set_tests_properties(problems_example_${stem}_krylov_vs_exact PROPERTIES LABELS unit
       FIXTURES_REQUIRED "problems_example_${stem}_exact;problems_example_${stem}_krylov")
   endforeach()
+  # NOX (Newton on grad E = 0) converges to the same equilibrium on the example scenes
+  # that start in the basin of their minimum (not the pinned column shortened past
+  # buckling, where it finds the straight saddle, checked below, nor the strip whose
+  # clamp is moved in one step, where it lands on another stationary point); it is
+  # told what it finds in RESULT.json.
+  set(RN_NOX_SCENES arch_p4 arch_p8 cantilever cantilever_3201 end_moment
+      end_moment_circle helix portal_frame ribbon ring simply_supported stepped_beam)
+  # that start in the basin of their minimum; it is told what it finds in RESULT.json.
+  foreach(stem ${RN_NOX_SCENES})
+    rn_cli_test(problems_example_${stem}_nox 0 "status +converged.*solver +nox" TIMEOUT 900
+                ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/../problems/scenes/${stem}.json
+                     -o ${RN_CLI_OUT}/example_${stem}_nox.json --solver nox --quiet)
+    set_tests_properties(problems_example_${stem}_nox PROPERTIES
+                         FIXTURES_SETUP problems_example_${stem}_nox)
+    add_test(NAME problems_example_${stem}_nox_vs_exact
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/compare_results.py
+                     ${RN_CLI_OUT}/example_${stem}_nox.json
+                     ${RN_CLI_OUT}/example_${stem}.json)
+    set_tests_properties(problems_example_${stem}_nox_vs_exact PROPERTIES LABELS unit
+      FIXTURES_REQUIRED "problems_example_${stem}_exact;problems_example_${stem}_nox")
+  endforeach()
+  # The pinned column: NOX finds the straight saddle, tr-minres the buckled minimum.
+  rn_cli_test(problems_example_pinned_column_nox 0 "status +converged.*solver +nox"
+              ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/../problems/scenes/pinned_column.json
+                   -o ${RN_CLI_OUT}/example_pinned_column_nox.json --solver nox --quiet)
+  set_tests_properties(problems_example_pinned_column_nox PROPERTIES
+                       FIXTURES_SETUP problems_example_pinned_column_nox)
+  add_test(NAME problems_example_pinned_column_nox_saddle
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_nox_saddle.py
+                   ${RN_CLI_OUT}/example_pinned_column_nox.json
+                   ${RN_CLI_OUT}/example_pinned_column.json)
+  set_tests_properties(problems_example_pinned_column_nox_saddle PROPERTIES LABELS unit
+    FIXTURES_REQUIRED "problems_example_pinned_column_exact;problems_example_pinned_column_nox")
   # The .vtu fields of solved scenes: moments in equilibrium with the tip force
   # (cantilever) and the end couple (end_moment), energy density summing to the
   # elastic energy.

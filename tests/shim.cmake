@@ -95,3 +95,25 @@ target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
 rn_add_test(shim_newton_counts SOURCES unit/shim_newton_counts.c
             LIBS rodnet_problems LABELS unit ARGS ${PROJECT_SOURCE_DIR}/problems/scenes)
 target_include_directories(shim_newton_counts PRIVATE ${PROJECT_SOURCE_DIR}/problems)
+# The distributed evaluation layer (parts, Tpetra maps, Import/Export, CrsMatrix)
+# against the whole network on 1, 2 and 3 ranks (label mpi; 3 ranks: more ranks than
+# rods for some networks).
+add_executable(mpi_system unit/mpi_system.cpp)
+target_include_directories(mpi_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                              ${PROJECT_SOURCE_DIR}/c_api)
+target_include_directories(mpi_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                     ${Trilinos_TPL_INCLUDE_DIRS})
+target_link_libraries(mpi_system PRIVATE rodnet rodnet_shim_deps)
+target_compile_options(mpi_system PRIVATE -O2)
+if(MPIEXEC_EXECUTABLE)
+  foreach(np 1 2 3)
+    add_test(NAME mpi_system_np${np}
+             COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} $<TARGET_FILE:mpi_system>)
+    set_tests_properties(mpi_system_np${np} PROPERTIES LABELS "mpi" TIMEOUT 300
+      PROCESSORS ${np} ENVIRONMENT
+      "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+  endforeach()
+endif()
+# The METIS partition of the rod graph (rn_partition_rods): balance, contiguity,
+# determinism, the special cases (one part, more parts than rods, no joints).
+rn_add_test(shim_partition SOURCES unit/shim_partition.c LIBS rodnet LABELS unit)

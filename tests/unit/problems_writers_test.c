@@ -73,6 +73,7 @@ int main(int argc, char **argv) {
   CHECK_STATUS(rn_scene_load(ctx, argv[1], &s), RN_OK);
   if (!s) return rn_test_finish("problems_writers");
   rn_network *net = rn_scene_network(s);
+  static const long part_dofs[2] = {30, 40}, part_stencils[2] = {50, 60};
   rn_result_info info = {"max_iterations",
                          "tr-minres",
                          "sparse",
@@ -96,7 +97,13 @@ int main(int argc, char **argv) {
                          3e-10,
                          1.5,
                          4e-9,
-                         "factor"};
+                         "factor",
+                         "local minimum",
+                         2,
+                         part_dofs,
+                         part_stencils,
+                         7,
+                         1.25};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -107,6 +114,7 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
     CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
+    CHECK(strcmp(str(root, "finds"), "local minimum") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "scene"), argv[1]) == 0);
     CHECK(strcmp(str(root, "rodnet_version"), rn_version_string()) == 0);
@@ -133,6 +141,15 @@ int main(int argc, char **argv) {
     CHECK(num(terms, "stretch") == 0 && num(terms, "bend") == 0 &&
           num(terms, "twist") == 0);
     CHECK(isfinite(num(terms, "load")));
+    const cJSON *part = cJSON_GetObjectItemCaseSensitive(root, "partition");
+    const cJSON *pd = cJSON_GetObjectItemCaseSensitive(part, "owned_dofs");
+    const cJSON *ps = cJSON_GetObjectItemCaseSensitive(part, "owned_stencils");
+    CHECK(num(part, "ranks") == 2 && num(part, "edge_cut") == 7 &&
+          num(part, "imbalance") == 1.25);
+    CHECK(cJSON_GetArraySize(pd) == 2 && cJSON_GetArrayItem(pd, 0)->valuedouble == 30 &&
+          cJSON_GetArrayItem(pd, 1)->valuedouble == 40);
+    CHECK(cJSON_GetArraySize(ps) == 2 && cJSON_GetArrayItem(ps, 0)->valuedouble == 50 &&
+          cJSON_GetArrayItem(ps, 1)->valuedouble == 60);
     check_rods(root, net);
     cJSON_Delete(root);
   }

@@ -1,6 +1,7 @@
 /* shim_lazy_runtime.c - rn_solve without rn_runtime_initialize: the first solve
- * initialises Tpetra/Kokkos (and MPI) itself and finalises at exit.  Also run
- * under mpirun with one rank (ctest shim_lazy_runtime_mpirun).  A small-load
+ * initialises the runtime itself (Kokkos; MPI too under a launcher) and finalises
+ * it at exit.  Also run under mpirun with one rank (ctest shim_lazy_runtime_mpirun;
+ * which mode is chosen when is checked by shim_runtime).  A small-load
  * cantilever must converge twice in a row (second solve reuses the runtime) with
  * the tip deflection within 0.2 % of the linear value P Lc^3 / (3 E I), where
  * Lc = L - h/2 is the length from the clamp (the midpoint of the clamped edge,

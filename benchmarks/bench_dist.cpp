@@ -1,0 +1,212 @@
+// bench_dist.cpp - work per rank of a distributed Newton step (issue 7, section 5):
+// run under `mpirun -np P`.  The scene is read as in `rodnet solve` (graph pass,
+// METIS partition, each rank's part), then the evaluations of one Newton step of a
+// distributed solver are repeated on the distributed System (shim_cxx/dist_system.hpp):
+// gradient (energy, ghost import, gradient export), Hessian assembly (CSR values,
+// overlap matrix export), one trial energy and the accepted reference update.  The
+// linear solve is the solver's, not measured here.
+//
+// Rank 0 writes one CSV row per rank: the common columns (bench dist, case = scene
+// name, size = global DOFs, ranks, median and min wall time per step over the
+// repeats) and rank, owned_dofs, ghost_dofs, owned_stencils, owned_rods, ghost_rods,
+// bytes_per_step (payload the rank sent in imports, exports and reductions per step),
+// edge_cut, rss_mb (resident memory after the steps: the part, its System and
+// matrices) and peak_mb (the high-water mark, which includes the transient JSON tree
+// of the scene that every rank parses) and bytes_per_matvec (what one Hessian apply,
+// i.e. one Krylov iteration, sends: the ghost columns of x the other ranks import).  With
+// --callgrind the step loop is bracketed by CALLGRIND_START_INSTRUMENTATION / STOP: run
+// under `valgrind --tool=callgrind
+// --instr-atstart=no` to count the instructions of the steps alone, per rank
+// (benchmarks/bench_dist.sh).  Timings are reported, never asserted; the benchmark
+// checks that every evaluation succeeds and that the energy is finite.
+#include <mpi.h>
+#include <valgrind/callgrind.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <Tpetra_Core.hpp>
+
+extern "C" {
+#include "bench_config.h"
+#include "bench_util.h"
+#include "scene.h"
+}
+#include "dist_system.hpp"
+#include "rodnet_solve.h"
+
+namespace {
+
+struct Opts {
+  const char *scene = nullptr, *out = nullptr, *label = nullptr;
+  int repeats = 5;
+  bool callgrind = false;
+};
+
+int usage(const char *msg) {
+  std::fprintf(stderr,
+               "bench_dist: %s\nusage: mpirun -np P bench_dist SCENE.json [--repeats N] "
+               "[--label NAME] [--out CSV] [--callgrind]\n",
+               msg);
+  return 2;
+}
+
+int parse(int argc, char **argv, Opts &o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--repeats" && i + 1 < argc)
+      o.repeats = std::atoi(argv[++i]);
+    else if (a == "--out" && i + 1 < argc)
+      o.out = argv[++i];
+    else if (a == "--label" && i + 1 < argc)
+      o.label = argv[++i];
+    else if (a == "--callgrind")
+      o.callgrind = true;
+    else if (a[0] != '-' && !o.scene)
+      o.scene = argv[i];
+    else
+      return usage(("unknown argument " + a).c_str());
+  }
+  if (!o.scene) return usage("missing the scene");
+  if (o.repeats < 1) return usage("--repeats must be >= 1");
+  return 0;
+}
+
+// Graph pass, partition, part pass (as `rodnet solve` under mpirun).
+rn_scene *load_part(rn_context *ctx, const char *path, int rank, int size, long *cut) {
+  rn_scene_part sp;
+  std::memset(&sp, 0, sizeof sp);
+  sp.mode = RN_SCENE_GRAPH;
+  rn_scene *graph = nullptr, *part = nullptr;
+  if (rn_scene_load_part(ctx, path, &sp, &graph)) return nullptr;
+  const int *nv, *jp, *jr;
+  int nr, nj;
+  rn_network_rod_graph(rn_scene_network(graph), &nr, &nv, &nj, &jp, &jr);
+  std::vector<int> rp(static_cast<size_t>(nr) + 1);
+  if (rn_partition_rods(nr, nv, nj, jp, jr, size, rp.data(), cut) == RN_OK) {
+    sp.mode = RN_SCENE_PART;
+    sp.nparts = size;
+    sp.part = rank;
+    sp.nrods = nr;
+    sp.njoints = nj;
+    sp.rod_nv = nv;
+    sp.rod_part = rp.data();
+    sp.joint_ptr = jp;
+    sp.joint_rods = jr;
+    rn_scene_load_part(ctx, path, &sp, &part);
+  }
+  rn_scene_destroy(&graph);
+  return part;
+}
+
+// VmRSS and VmHWM of this process in MB (/proc/self/status; 0 if unknown).
+void memory_mb(double *rss, double *peak) {
+  *rss = *peak = 0.0;
+  FILE *f = std::fopen("/proc/self/status", "r");
+  if (!f) return;
+  char line[256];
+  while (std::fgets(line, sizeof line, f)) {
+    long kb = 0;
+    if (std::sscanf(line, "VmRSS: %ld kB", &kb) == 1)
+      *rss = static_cast<double>(kb) / 1024.0;
+    if (std::sscanf(line, "VmHWM: %ld kB", &kb) == 1)
+      *peak = static_cast<double>(kb) / 1024.0;
+  }
+  std::fclose(f);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  Opts o;
+  if (int rc = parse(argc, argv, o)) return rc;
+  auto comm = Tpetra::getDefaultComm();
+  const int rank = comm->getRank(), size = comm->getSize();
+  rn_context *ctx = nullptr;
+  rn_context_create(&ctx);
+  long cut = 0;
+  rn_scene *scene = load_part(ctx, o.scene, rank, size, &cut);
+  if (rn_dist_agree(ctx, scene ? RN_OK : RN_ERR_PARSE) != RN_OK) {
+    if (rank == 0) std::fprintf(stderr, "bench_dist: %s\n", rn_context_last_error(ctx));
+    rn_scene_destroy(&scene);
+    rn_context_destroy(&ctx);
+    return 1;
+  }
+  rn_network *net = rn_scene_network(scene);
+  int bad = 0;
+  enum { NCOL = 12 };
+  std::vector<double> row(NCOL, 0.0), times;
+  {
+    rodnet::DistSystem sys(net, comm);
+    rodnet::TMV x(sys.map(), 1), g(sys.map(), 1);
+    sys.get_state(x);
+    double E = 0.0;
+    sys.gradient(x, &E, g); // warm-up: first-touch allocations, Kokkos views
+    sys.assemble_hessian(x);
+    const rodnet::CommStats before = sys.comm_stats();
+    if (o.callgrind) CALLGRIND_START_INSTRUMENTATION;
+    for (int r = 0; r < o.repeats; ++r) {
+      comm->barrier();
+      const double t0 = rn_bench_now();
+      if (sys.gradient(x, &E, g) != RN_OK) bad = 1;
+      sys.assemble_hessian(x);
+      double Et = 0.0;
+      if (sys.energy(x, &Et) != RN_OK || !std::isfinite(Et)) bad = 1;
+      sys.accept(x);
+      comm->barrier();
+      times.push_back(rn_bench_now() - t0);
+    }
+    if (o.callgrind) CALLGRIND_STOP_INSTRUMENTATION;
+    rn_part_info info;
+    rn_network_part_info(net, &info);
+    const double bytes = (sys.comm_stats().bytes_sent - before.bytes_sent) / o.repeats;
+    row = {static_cast<double>(rank),
+           static_cast<double>(info.owned_dofs),
+           static_cast<double>(info.ghost_dofs),
+           static_cast<double>(info.owned_stencils),
+           static_cast<double>(info.owned_rods),
+           static_cast<double>(info.ghost_rods),
+           bytes,
+           static_cast<double>(sys.global_size()),
+           static_cast<double>(cut),
+           0.0,
+           0.0};
+    memory_mb(&row[9], &row[10]);
+    // a Krylov iteration's Hessian apply imports the ghost columns of x
+    auto imp = sys.hessian()->getCrsGraph()->getImporter();
+    row[11] = imp.is_null() ? 0.0 : 8.0 * static_cast<double>(imp->getNumExportIDs());
+  }
+  std::vector<double> rows(NCOL * static_cast<size_t>(size));
+  MPI_Gather(row.data(), NCOL, MPI_DOUBLE, rows.data(), NCOL, MPI_DOUBLE, 0,
+             MPI_COMM_WORLD);
+  int any_bad = bad;
+  MPI_Allreduce(&bad, &any_bad, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (rank == 0) {
+    double med = 0.0, mn = 0.0;
+    rn_bench_stats(times.data(), static_cast<int>(times.size()), &med, &mn);
+    FILE *f = o.out ? std::fopen(o.out, "a") : stdout;
+    static const char *const extra =
+        "rank,owned_dofs,ghost_dofs,owned_stencils,owned_rods,"
+        "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb,bytes_per_matvec";
+    if (f && (!o.out || std::ftell(f) == 0)) rn_bench_csv_header(f, extra);
+    const std::string label = o.label ? o.label : o.scene;
+    for (int q = 0; q < size && f; ++q) {
+      const double *r = &rows[NCOL * static_cast<size_t>(q)];
+      std::fprintf(f, "\"%s\",\"%s\",\"%s\",%d,dist,%s,%ld,%d,%.6e,%.6e", RN_BENCH_COMMIT,
+                   RN_BENCH_COMPILER, RN_BENCH_FLAGS, size, label.c_str(),
+                   static_cast<long>(r[7]), o.repeats, med, mn);
+      std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f,%.0f\n", q, r[1],
+                   r[2], r[3], r[4], r[5], r[6], r[8], r[9], r[10], r[11]);
+    }
+    if (f && o.out) std::fclose(f);
+  }
+  rn_scene_destroy(&scene);
+  rn_context_destroy(&ctx);
+  return any_bad;
+}

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""Solve one scene with `rodnet solve` on 1 rank and under `mpirun -np N`, then
+compare the two RESULT.json files (issue 7, the `mpi` tests):
+
+    check_mpi_solve.py --rodnet RODNET --mpiexec MPIEXEC --np N --scene S.json
+                       --solver NAME --out DIR [--max-share 0.55]
+                       [--args "common options"] [--args1 "one rank's"]
+                       [--argsn "N ranks' options"] [--same-iterations]
+
+- both runs exit with status 0 (converged);
+- energy and every vertex position agree to 1e-10 relative (positions relative to
+  the largest coordinate); with --same-iterations (the same preconditioner on both,
+  e.g. gathered) the Newton iterations and load steps are equal, otherwise they are
+  printed;
+- "partition": one rank has "ranks": 1 with one-element lists equal to the
+  network's free DOFs; N ranks have N-element lists whose sums are the one-rank
+  totals, and with more than one rod per rank no rank owns more than max-share of
+  the DOFs or of the stencils (max-share 1 turns that off, e.g. for a single rod).
+Prints what it compares; exits non-zero on the first difference."""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+
+def run(cmd):
+    print("running:", " ".join(cmd), flush=True)
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                       timeout=1200)
+    sys.stdout.write(p.stdout)
+    sys.stdout.write(p.stderr)
+    return p.returncode
+
+
+def fail(msg):
+    print("check_mpi_solve: FAIL:", msg)
+    sys.exit(1)
+
+
+def rel(a, b, scale):
+    return abs(a - b) / max(abs(scale), 1e-300)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rodnet", required=True)
+    ap.add_argument("--mpiexec", required=True)
+    ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--solver", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--max-share", type=float, default=0.55)
+    ap.add_argument("--args", default="")
+    ap.add_argument("--args1", default="")
+    ap.add_argument("--argsn", default="")
+    ap.add_argument("--same-iterations", action="store_true")
+    ap.add_argument("--label", default="")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    base = os.path.splitext(os.path.basename(a.scene))[0] + a.label
+    r1 = os.path.join(a.out, base + ".np1.json")
+    rn = os.path.join(a.out, base + ".np%d.json" % a.np)
+    args = ["solve", a.scene, "--solver", a.solver, "-q"] + a.args.split()
+    if run([a.rodnet] + args + a.args1.split() + ["-o", r1]) != 0:
+        fail("one rank did not converge")
+    if run([a.mpiexec, "-q", "-n", str(a.np), a.rodnet] + args + a.argsn.split() +
+           ["-o", rn]) != 0:
+        fail("%d ranks did not converge" % a.np)
+    one, many = json.load(open(r1)), json.load(open(rn))
+    e = rel(many["energy"], one["energy"], one["energy"])
+    print("energy %.17g vs %.17g (rel %.3g)" % (many["energy"], one["energy"], e))
+    if e > 1e-10:
+        fail("energies differ")
+    scale = max(abs(c) for r in one["rods"] for v in r["vertices"] for c in v)
+    worst = 0.0
+    for ra, rb in zip(one["rods"], many["rods"]):
+        for va, vb in zip(ra["vertices"], rb["vertices"]):
+            worst = max(worst, max(rel(x, y, scale) for x, y in zip(va, vb)))
+    print("positions: worst difference %.3g of the largest coordinate" % worst)
+    if len(one["rods"]) != len(many["rods"]) or worst > 1e-10:
+        fail("positions differ")
+    print("Newton iterations %d (one rank) and %d (%d ranks), load steps %d and %d" %
+          (one["iterations"], many["iterations"], a.np, one["load_steps"],
+           many["load_steps"]))
+    keys = ("iterations", "load_steps", "num_dofs") if a.same_iterations else ("num_dofs",)
+    for k in keys:
+        if one[k] != many[k]:
+            fail("%s: %s vs %s" % (k, one[k], many[k]))
+    p1, pn = one["partition"], many["partition"]
+    if p1["ranks"] != 1 or p1["owned_dofs"] != [one["num_dofs"]]:
+        fail("one-rank partition block %s" % p1)
+    if pn["ranks"] != a.np or len(pn["owned_dofs"]) != a.np:
+        fail("partition block %s" % pn)
+    for k in ("owned_dofs", "owned_stencils"):
+        if sum(pn[k]) != sum(p1[k]):
+            fail("%s sum %d vs %d" % (k, sum(pn[k]), sum(p1[k])))
+        share = max(pn[k]) / float(sum(pn[k]))
+        print("%s per rank %s (largest share %.3f)" % (k, pn[k], share))
+        if len(one["rods"]) > a.np and share > a.max_share:
+            fail("a rank owns %.3f of the %s" % (share, k))
+    print("check_mpi_solve: ok")
+
+
+if __name__ == "__main__":
+    main()
