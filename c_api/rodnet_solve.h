@@ -182,8 +182,8 @@ const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
 /* 1 if the solver kind can solve a network distributed over MPI ranks (its
  * Newton systems never need the whole Hessian on one process), 0 otherwise.
- * TR-KRYLOV and NOX; TR-MINRES and the ROL kinds factor the whole Hessian: one
- * process only. */
+ * TR-KRYLOV and NOX (with the local or gathered preconditioner there);
+ * TR-MINRES and the ROL kinds factor the whole Hessian: one process only. */
 int rn_solver_is_distributed(rn_solver_kind k);
 /* Name of a factorisation ("auto", "banded", "sparse") and its parse
  * (RN_ERR_ARG if unknown). */

@@ -350,6 +350,15 @@ void DistSystem::assemble_hessian(const TMV &x) {
   stats_.bytes_sent += 16.0 * ghost_nnz_;
 }
 
+void DistSystem::load_increment(const TMV &x, double t_prev, double t, TMV &dg) {
+  import_state(x);
+  agree(rn_network_load_increment(net_, col0(*xov_), t_prev, t, col0(*gov_)));
+  dg.putScalar(0.0);
+  dg.doExport(*gov_, *exporter_, Tpetra::ADD);
+  ++stats_.exports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+}
+
 void DistSystem::accept(TMV &x) {
   import_state(x);
   rn_state *saved = nullptr;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "dist_predictor.hpp"
 #include "dist_system.hpp"
 #include "monitor.hpp"
 #include "predictor.hpp"
@@ -96,18 +97,19 @@ struct SolveTotals {
   EquilibriumView eq; // at the last iterate checked
   double force_tol = 0.0, moment_tol = 0.0;
   rn_preconditioner preconditioner = RN_PRECOND_AUTO;
-  System *dist = nullptr; // the distributed System of a part (nullptr: whole network)
+  DistSystem *dist = nullptr; // the System of a part (nullptr: a whole network)
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
 // (0: the starting state); first the predictor (opt.predictor).
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
-  // (the predictor factors the whole Hessian, or with tr-krylov uses its
-  // preconditioner and MINRES: not on a part)
-  if (opt.predictor && !tot.dist &&
-      (opt.solver == RN_SOLVER_TR_KRYLOV ? predict_step_krylov(p, opt, t_prev, t)
-                                         : predict_load_step(p, tot.factorization, t_prev, t)))
+  // (with tr-krylov the predictor uses its preconditioner and MINRES, distributed on
+  // a part; the other kinds factor the whole Hessian)
+  if (opt.predictor &&
+      (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
+       : opt.solver == RN_SOLVER_TR_KRYLOV ? predict_step_krylov(p, opt, t_prev, t)
+                                           : predict_load_step(p, tot.factorization, t_prev, t)))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);

@@ -42,8 +42,8 @@ rn_mpi_cli(mpi_cli_more_ranks 3 2 "cannot run on 3 MPI ranks"
            solve ${CMAKE_SOURCE_DIR}/problems/scenes/cantilever.json
            -o ${RN_MPI_OUT}/mpi_cli_more_ranks.json)
 
-# The same scenes on 1 and 2 ranks with the distributed solver (tr-krylov, without
-# the load-step predictor, which is not distributed yet): a single rod, independent
+# The same scenes on 1 and 2 ranks with the distributed solver (tr-krylov, with the
+# load-step predictor, distributed on 2 ranks): a single rod, independent
 # rods, a honeycomb with rigid joints, an octet block, a chain with elastic and rigid
 # joints, a buckled column (tests/unit/check_mpi_solve.py):
 #  - mpi_solve_<scene>: the gathered preconditioner on both (the factor
@@ -54,11 +54,8 @@ rn_mpi_cli(mpi_cli_more_ranks 3 2 "cannot run on 3 MPI ranks"
 #    the round-off floor, the stopping test's own limit): energy and
 #    positions agree to 1e-10 (iterations printed: another preconditioner, another
 #    path);
-# and in both the partition adds up and no rank owns more than 55 %.  Registered
-# disabled (ctest lists them as "Not Run") if rodnet_solve.h has no RN_DIST_SOLVER.
+# and in both the partition adds up and no rank owns more than 55 %.
 set(RN_DIST_SOLVER "tr-krylov" CACHE STRING "distributed solver kind of the mpi tests")
-file(STRINGS ${PROJECT_SOURCE_DIR}/c_api/rodnet_solve.h rn_dist_solver_decl
-     REGEX "\"${RN_DIST_SOLVER}\"")
 set(RN_MPI_SCENES ${RN_MPI_OUT}/scenes)
 file(MAKE_DIRECTORY ${RN_MPI_SCENES})
 add_test(NAME mpi_solve_scenes
@@ -80,15 +77,12 @@ foreach(case "cantilever|${RN_SCENES}/cantilever.json|1.0"
       --scene ${scene} --solver ${RN_DIST_SOLVER} --out ${RN_MPI_OUT}/solve
       --max-share ${share})
   add_test(NAME mpi_solve_${name}
-           COMMAND ${rn_check} "--args=--no-predictor --preconditioner gathered"
+           COMMAND ${rn_check} "--args=--preconditioner gathered"
                    --same-iterations)
   add_test(NAME mpi_solve_local_${name}
-           COMMAND ${rn_check} "--args=--no-predictor --gtol 1e-14" --label .local)
+           COMMAND ${rn_check} "--args=--gtol 1e-14" --label .local)
   foreach(t mpi_solve_${name} mpi_solve_local_${name})
     set_tests_properties(${t} PROPERTIES LABELS mpi TIMEOUT 600 PROCESSORS 2
                          ENVIRONMENT "${RN_MPI_ENV}" FIXTURES_REQUIRED rn_mpi_scenes)
-    if(NOT rn_dist_solver_decl)
-      set_tests_properties(${t} PROPERTIES DISABLED TRUE)
-    endif()
   endforeach()
 endforeach()
