@@ -6,6 +6,7 @@
 
 #include "dist_system.hpp"
 #include "minres.hpp"
+#include "preconditioner.hpp"
 #include "shim_error.hpp"
 #include "solvers.hpp"
 

@@ -106,10 +106,10 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
   // (with tr-krylov the predictor uses its preconditioner and MINRES, distributed on
   // a part; the other kinds factor the whole Hessian)
-  if (opt.predictor &&
-      (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
-       : opt.solver == RN_SOLVER_TR_KRYLOV ? predict_step_krylov(p, opt, t_prev, t)
-                                           : predict_load_step(p, tot.factorization, t_prev, t)))
+  if (opt.predictor && (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
+                        : opt.solver == RN_SOLVER_TR_KRYLOV
+                            ? predict_step_krylov(p, opt, t_prev, t)
+                            : predict_load_step(p, tot.factorization, t_prev, t)))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
@@ -415,10 +415,9 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
-  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO,     RN_PRECOND_FACTOR,
-                                     RN_PRECOND_LOCAL,    RN_PRECOND_GATHERED,
-                                     RN_PRECOND_DD,       RN_PRECOND_MUELU,
-                                     RN_PRECOND_IFPACK2};
+  const rn_preconditioner kinds[] = {
+      RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,  RN_PRECOND_GATHERED,
+      RN_PRECOND_DD,   RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 

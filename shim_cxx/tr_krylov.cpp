@@ -533,7 +533,8 @@ std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
   case RN_PRECOND_IFPACK2: {
     Teuchos::RCP<const TMV> modes; // MueLu's near-null space (whole network only)
     if (kind == RN_PRECOND_MUELU && serial) {
-      const NetworkDofs d = network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
+      const NetworkDofs d =
+          network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
       modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
     }
     return make_preconditioner(rn_preconditioner_name(kind), modes);

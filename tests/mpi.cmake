@@ -49,11 +49,11 @@ rn_mpi_cli(mpi_cli_more_ranks 3 2 "cannot run on 3 MPI ranks"
 #  - mpi_solve_<scene>: the gathered preconditioner on both (the factor
 #    preconditioner's matrix, also on 2 ranks): energy and positions agree to 1e-10,
 #    Newton iterations and load steps are equal;
-#  - mpi_solve_local_<scene>: one rank with the default (factor) preconditioner, two
-#    with the default there (local, block Jacobi), gradient tolerance 1e-14 (down to
-#    the round-off floor, the stopping test's own limit): energy and
-#    positions agree to 1e-10 (iterations printed: another preconditioner, another
-#    path);
+#  - mpi_solve_dd_<scene>: the rod-level domain decomposition (the default) on both,
+#    gradient tolerance 1e-14 (down to the round-off floor, the stopping test's own
+#    limit): the preconditioner does not depend on the partition (rod blocks, exact
+#    coarse problem on the joints), so energy and positions agree to 1e-10 and the
+#    Newton iterations and load steps are equal;
 # and in both the partition adds up and no rank owns more than 55 %.
 set(RN_DIST_SOLVER "tr-krylov" CACHE STRING "distributed solver kind of the mpi tests")
 set(RN_MPI_SCENES ${RN_MPI_OUT}/scenes)
@@ -79,9 +79,10 @@ foreach(case "cantilever|${RN_SCENES}/cantilever.json|1.0"
   add_test(NAME mpi_solve_${name}
            COMMAND ${rn_check} "--args=--preconditioner gathered"
                    --same-iterations)
-  add_test(NAME mpi_solve_local_${name}
-           COMMAND ${rn_check} "--args=--gtol 1e-14" --label .local)
-  foreach(t mpi_solve_${name} mpi_solve_local_${name})
+  add_test(NAME mpi_solve_dd_${name}
+           COMMAND ${rn_check} "--args=--preconditioner dd --gtol 1e-14" --label .dd
+                   --same-iterations)
+  foreach(t mpi_solve_${name} mpi_solve_dd_${name})
     set_tests_properties(${t} PROPERTIES LABELS mpi TIMEOUT 600 PROCESSORS 2
                          ENVIRONMENT "${RN_MPI_ENV}" FIXTURES_REQUIRED rn_mpi_scenes)
   endforeach()
