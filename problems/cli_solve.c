@@ -177,7 +177,7 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton, tr-krylov)",
+                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox)",
                               a->solver);
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
@@ -451,6 +451,8 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   /* the scene's solver block is read in the graph pass too */
   rc = make_options(a, d->graph, &opt, d->rank == 0);
   if (rc) return rc; /* the same on every rank: its message printed by rank 0 */
+  /* no solver asked for (command line or scene): the distributed default */
+  if (!a->solver && !rn_scene_sets_solver_kind(d->graph)) opt.solver = RN_SOLVER_TR_KRYLOV;
   if (!rn_solver_is_distributed(opt.solver)) {
     if (d->rank == 0)
       fprintf(stderr,

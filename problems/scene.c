@@ -480,6 +480,10 @@ static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
   return st;
 }
 
+int rn_scene_sets_solver_kind(const rn_scene *s) {
+  return s && (s->solver_set & SOLVER_BIT_METHOD) ? 1 : 0;
+}
+
 void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
   rn_solve_options src = s->solver_opt;
   if (s->solver_set & SOLVER_BIT_METHOD) opt->solver = src.solver;

@@ -37,10 +37,17 @@ rn_mpi_cli(mpi_cli_gap_joint 2 3 "rod ends do not meet"
 rn_mpi_cli(mpi_cli_unwritable 2 3 "cannot"
            solve ${RN_MPI_DATA}/chain.json -o /nonexistent-dir/result.json)
 rn_mpi_cli(mpi_cli_serial_solver 2 2 "solver 'tr-minres' .*cannot run on 2 MPI ranks"
-           solve ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
-rn_mpi_cli(mpi_cli_more_ranks 3 2 "cannot run on 3 MPI ranks"
-           solve ${CMAKE_SOURCE_DIR}/problems/scenes/cantilever.json
-           -o ${RN_MPI_OUT}/mpi_cli_more_ranks.json)
+           solve ${RN_MPI_DATA}/chain.json --solver tr-minres
+           -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
+# No solver asked for: under mpirun the default is the distributed tr-krylov (dd).
+add_test(NAME mpi_cli_default_solver
+         COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
+                 "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@2@@${CMAKE_BINARY_DIR}/rodnet@@solve@@${RN_MPI_DATA}/chain.json@@-o@@${RN_MPI_OUT}/mpi_cli_default_solver.json"
+                 -DEXPECT_RC=0
+                 "-DEXPECT_REGEX=solver +tr-krylov .*preconditioner dd.*partition +2 ranks"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+set_tests_properties(mpi_cli_default_solver PROPERTIES LABELS mpi TIMEOUT 120
+                     PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}")
 
 # The same scenes on 1 and 2 ranks with the distributed solver (tr-krylov, with the
 # load-step predictor, distributed on 2 ranks): a single rod, independent
@@ -87,3 +94,13 @@ foreach(case "cantilever|${RN_SCENES}/cantilever.json|1.0"
                          ENVIRONMENT "${RN_MPI_ENV}" FIXTURES_REQUIRED rn_mpi_scenes)
   endforeach()
 endforeach()
+# More ranks than rods: a single rod on 3 ranks (two ranks own nothing) gives the
+# one-rank result (default solver and preconditioner), no error and no hang.
+add_test(NAME mpi_solve_more_ranks
+         COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_mpi_solve.py
+                 --rodnet ${CMAKE_BINARY_DIR}/rodnet --mpiexec ${MPIEXEC_EXECUTABLE}
+                 --np 3 --scene ${RN_SCENES}/cantilever.json --solver tr-krylov
+                 --out ${RN_MPI_OUT}/solve --max-share 1.0 --label .more
+                 --same-iterations)
+set_tests_properties(mpi_solve_more_ranks PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                     ENVIRONMENT "${RN_MPI_ENV}")
