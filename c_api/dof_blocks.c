@@ -59,6 +59,13 @@ rn_status rn_network_dof_blocks(const rn_network *net, int32_t *block, double *p
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_final(net, where))) return st;
   if (!block && net->nred) return rn_fail(net->ctx, RN_ERR_ARG, where, "block is NULL");
+  /* a DOF of neither a rod nor a joint (none today) is an interface DOF at the
+   * origin: never left unset */
+  for (size_t m = 0; m < net->nred; ++m) {
+    block[m] = RN_DOF_INTERFACE;
+    if (point) memset(point + 3 * m, 0, 3 * sizeof(double));
+    if (axis) memset(axis + 3 * m, 0, 3 * sizeof(double));
+  }
   for (int ir = 0; ir < net->nrods; ++ir) classify_rod(net, ir, block, point, axis);
   for (int ij = 0; ij < net->njoints; ++ij) {
     const rn_joint *J = &net->joints[ij];
