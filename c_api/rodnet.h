@@ -245,6 +245,18 @@ rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v
  * RN_DEGENERATE at a degenerate x. */
 rn_status rn_network_load_increment(rn_network *net, const double *x, double t_prev,
                                     double t, double *dg);
+/* Second-order stretching error of a step s (a reduced direction) from x:
+ * for every rod edge j, with L_j its length and a_j = dL_j/dx at x,
+ *   r_j = L_j(x + s) - L_j(x) - a_j . s   (the stretch a step gives beyond its
+ *                                          linearisation, O(|s|^2)),
+ *   f = sum_j (E A_j / lbar_j) r_j a_j    (f[num_dofs], reduced DOFs).
+ * -f is the stretching force a quadratic model at x misses at x + s; a
+ * trust-region solver corrects the step with -(H + lambda D)^{-1} f (a
+ * second-order correction, docs/solvers.md).  In a part: the part's own rods.
+ * Pure.  RN_ERR_NOT_FINITE for NaN or infinite x or s, RN_DEGENERATE if an
+ * edge has zero length at x or x + s. */
+rn_status rn_network_stretch_correction(const rn_network *net, const double *x,
+                                        const double *s, double *f);
 /* Energy split by term: E[RN_TERM_COUNT].  The bending and twisting energy
  * of joints (between terminal and connection edges) counts as RN_TERM_BEND;
  * forces and couples on joints as RN_TERM_LOAD. */

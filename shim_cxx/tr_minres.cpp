@@ -26,9 +26,30 @@
 //     that factors (exact preconditioner when sigma = 0).
 //  5. Ratio test rho = (E(x) - E(x+s)) / (-(g's + s'Hs/2)) (with the usual 10 eps |E|
 //     safeguard), accept if rho > 1e-4, radius /4 if rho < 1/4, x2 if rho > 3/4 on
-//     the boundary.  A degenerate trial point (rn_network_energy > 0) is rejected and
-//     the radius shrinks.  Accepted steps call update(x, Accept), i.e.
-//     rn_network_update_reference.
+//     the boundary.  A degenerate trial point (rn_network_energy > 0) is rejected
+//     and the radius shrinks.  Accepted steps call update(x, Accept), i.e.
+//     rn_network_update_reference.  Second-order correction: a step the ratio test
+//     rejects is corrected for the stretching, x + s + c replacing x + s (and its
+//     ratio, with the same predicted decrease) if its energy is lower.  A Newton
+//     step linearises rotations, so it stretches the very stiff edges to second order in
+//     the step (energy ~ EA |s|^4) while it is right to first order in the soft bending
+//     directions (the Maratos effect of stiff, penalty-like terms).  The
+//     correction puts the exact edge lengths into the model, keeping everything
+//     else quadratic: sigma = s + c solves (H + lambda M) sigma = -g - f(sigma),
+//     f(sigma) = sum_j (EA_j / lbar_j) r_j(sigma) dL_j/dx, r_j the length edge j
+//     gets from the step beyond its linearisation at x (rn_network_stretch_
+//     correction), by fixed-point iteration with the factorisation already there
+//     (a solve and one pass over the edges per iteration, no Hessian).  The
+//     forces act along the edges at x, which H(x) resists with the stretching
+//     stiffness; the correction with the residual g(x + s) - g - Hs instead (the
+//     textbook one) has stiff forces along the rotated edges, whose transverse
+//     part meets only the soft bending stiffness of H(x) (measured: energies 1e5
+//     to 1e20).  Measured in docs/solvers.md: arch P = 8 95 -> 8 iterations.
+//     Correcting every step (steps with rho ~ 1 stretch too, which shows in the
+//     next gradient) saved a few more iterations (arch 7, 10x10 honeycomb 24
+//     instead of 27) but changed the last Newton steps, and the 3201-vertex
+//     cantilever then stopped at 1.3 times the round-off floor of the residual,
+//     1.6e-4 away from the equilibrium tr-krylov finds.
 //  5a. Watchdog (nonmonotone acceptance; Chamberlain, Powell, Lemarechal and Pedersen
 //     1982).  A step that fails the ratio test only because its trial point has a
 //     higher energy (finite) is taken tentatively: x becomes the trial point
@@ -44,9 +65,8 @@
 //     the radius shrinks to what the stretching allows (the Maratos effect of stiff,
 //     penalty-like terms).  The next Newton step, from the stretched point, removes
 //     the stretch (measured in docs/solvers.md: cantilever alpha = 5, 45 -> 7
-//     iterations).  A second-order correction with the anchor's Hessian does not
-//     work here: the residual's stiff forces along the rotated edges meet only the
-//     soft bending stiffness of the old Hessian (measured: energies 1e5 to 1e20).
+//     iterations); where the second-order correction of step 5 does not suffice,
+//     the watchdog still does.
 //  6. Monitor::check once per iteration; no convergence test passes while the
 //     pencil has a significant negative eigenvalue (mu < -1e3 eps), so a saddle is
 //     never reported as a solution.  A rejected step at the round-off size of x
@@ -85,6 +105,15 @@ constexpr int kLanczosSteps = 30;
 // docs/solvers.md at 46 iterations, 2 or more give 14).
 constexpr int kWatchdogSteps = 2;
 constexpr double kSaddleRadius = 1e-2; // see saddle_radius()
+// Second-order correction (step 5 at the top): its fixed-point iteration stops at a
+// relative change of kCorrectionTol or after kCorrectionIts solves.  Measured on the
+// arch P = 8 of docs/solvers.md: 1e-1, 1e-2, 1e-3, 1e-4 give 60, 36, 18, 8
+// iterations, smaller tolerances 8; stopping as soon as the change grows instead
+// (the map need not be a contraction from the start) made the 10x10 honeycomb worse
+// (36 -> 41).
+constexpr double kCorrectionTol = 1e-4;
+constexpr int kCorrectionIts = 50;
+constexpr double kCorrectionGrowth = 1e3; // change / first change: diverging
 
 // y = (H + shift M) x with the assembled Hessian and the metric's CSR values m.
 class ShiftedHessian : public VectorOperator {
@@ -163,6 +192,7 @@ private:
   bool trial_step(const double *g, double lambda, double *ns);
   void minres_step(const double *g, double lambda, Step &st);
   void add_curvature_direction(const double *g, double radius, Step &st);
+  bool correct_step(const double *x, const Step &st, RolVector &xc);
   double model(const double *g, const double *s);
 
   Problem &p_;
@@ -185,7 +215,7 @@ private:
   MinresSolver minres_;
   Equilibrium equilibrium_;
   MV rhs_, sol_;
-  std::vector<double> w_, q_, hs_, ms_;
+  std::vector<double> w_, q_, hs_, ms_, sigma_;
 };
 
 // Hessian analysis at the accepted x: positive definiteness and, if H is not, the
@@ -397,11 +427,61 @@ Step TrustRegionMinres::solve_subproblem(const double *g, double radius) {
   return st;
 }
 
+// The second-order correction of the step st from x (step 5 at the top):
+// xc = x + sigma, sigma the fixed point of
+//   sigma = s - (H + lambda M)^{-1} f(x, sigma),
+// f(x, sigma) = sum_j (E A_j / lbar_j) r_j(sigma) dL_j/dx the stretching force of
+// the lengths the step gives beyond their linearisation (rn_network_stretch_
+// correction), iterated from sigma = s with the factorisation of the step (H +
+// lambda M, or its shifted preconditioner) until the change is below
+// kCorrectionTol of ||sigma - s||_M, at most kCorrectionIts solves (then the last
+// iterate: the energy decides).  False if there is no exact factorisation, an edge
+// degenerates or the iteration diverges (a change kCorrectionGrowth times the
+// first).
+bool TrustRegionMinres::correct_step(const double *x, const Step &st, RolVector &xc) {
+  // Only with the exact factorisation of H + lambda M, and not where H is singular
+  // without significant negative curvature (rigid motions of a free rod: lambda is
+  // then at round-off and the solve amplifies round-off along the rigid motions).
+  // Measured on the free rods of val_rest_curvature: with a shifted factorisation
+  // the iteration diverged (energies up to 1e193), and with the exact one at such a
+  // lambda the corrected points kept the watchdog cycling until max_iterations.
+  if (sigma0_ > 0.0 && !negcurv_) return false;
+  const SpdFactor *f = nullptr;
+  if (st.lambda == 0.0 && sigma0_ == 0.0)
+    f = f0_.get();
+  else if (st.lambda > 0.0 && fl_lambda_ == st.lambda && fl_->factored())
+    f = fl_.get();
+  if (!f) return false;
+  const auto dnorm = [&](const std::vector<double> &v) { // ||v||_M, M = D diagonal
+    double sum = 0.0;
+    for (size_t i = 0; i < n_; ++i) sum += d_[i] * v[i] * v[i];
+    return std::sqrt(sum);
+  };
+  sigma_ = st.s;
+  double first = 0.0; // the change of the first pass, ||c_1||_M
+  for (int k = 0; k < kCorrectionIts; ++k) {
+    if (check_status(
+            rn_network_stretch_correction(p_.network(), x, sigma_.data(), w_.data()),
+            "rn_network_stretch_correction") != RN_OK)
+      return false;
+    f->solve(w_.data()); // sigma_new = s - w
+    for (size_t i = 0; i < n_; ++i) q_[i] = st.s[i] - w_[i] - sigma_[i];
+    const double change = dnorm(q_);
+    if (k == 0) first = change;
+    if (!(change <= kCorrectionGrowth * first)) return false; // diverges
+    for (size_t i = 0; i < n_; ++i) sigma_[i] += q_[i];
+    if (change <= kCorrectionTol * dnorm(w_)) break;
+  }
+  double *xcp = host_data(xc);
+  for (size_t i = 0; i < n_; ++i) xcp[i] = x[i] + sigma_[i];
+  return true;
+}
+
 void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
                             std::ostream & /*out*/) {
   double tol = std::sqrt(ROL::ROL_EPSILON<double>());
   initialize(x, g);
-  ROL::Ptr<RolVector> xtrial = x.clone(), gvec = state_->gradientVec;
+  ROL::Ptr<RolVector> xtrial = x.clone(), xcorr = x.clone(), gvec = state_->gradientVec;
   auto take_state = [&](const RolVector &xnew, ROL::UpdateType type) {
     x.set(xnew);
     obj.update(x, type, state_->iter);
@@ -446,12 +526,25 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     xtrial->set(x);
     xtrial->plus(*state_->stepVec);
     obj.update(*xtrial, ROL::UpdateType::Trial, state_->iter);
-    const double ftrial = obj.value(*xtrial, tol);
+    double ftrial = obj.value(*xtrial, tol);
     state_->nfval++;
     const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(state_->value));
-    const double rho = std::isfinite(ftrial)
-                           ? (state_->value - ftrial + safe) / (pred + safe)
-                           : -std::numeric_limits<double>::infinity();
+    const auto ratio = [&](double f) {
+      return std::isfinite(f) ? (state_->value - f + safe) / (pred + safe)
+                              : -std::numeric_limits<double>::infinity();
+    };
+    double rho = ratio(ftrial);
+    // Second-order correction of the stretching (step 5 at the top) of a rejected
+    // step: x + s + c replaces x + s if its energy is lower.
+    if (!(rho > kAccept) && std::isfinite(ftrial) && correct_step(xp, st, *xcorr)) {
+      const double fc = obj.value(*xcorr, tol);
+      state_->nfval++;
+      if (std::isfinite(fc) && fc < ftrial) {
+        xtrial->set(*xcorr);
+        ftrial = fc;
+        rho = ratio(fc);
+      }
+    }
     state_->iter++;
     state_->snorm = norm2(n_, st.s.data());
     // What to do with the trial point: accept it (for good), take it tentatively

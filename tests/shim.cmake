@@ -93,7 +93,8 @@ target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
                                                       ${Trilinos_TPL_INCLUDE_DIRS})
 # Newton iteration counts of issue 8's scenes (counts, never times).
 rn_add_test(shim_newton_counts SOURCES unit/shim_newton_counts.c
-            LIBS rodnet_problems LABELS unit ARGS ${PROJECT_SOURCE_DIR}/problems/scenes)
+            LIBS rodnet_problems LABELS unit
+            ARGS ${PROJECT_SOURCE_DIR}/problems/scenes ${CMAKE_CURRENT_BINARY_DIR})
 target_include_directories(shim_newton_counts PRIVATE ${PROJECT_SOURCE_DIR}/problems)
 # The distributed evaluation layer (parts, Tpetra maps, Import/Export, CrsMatrix)
 # against the whole network on 1, 2 and 3 ranks (label mpi; 3 ranks: more ranks than

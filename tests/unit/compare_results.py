@@ -11,7 +11,13 @@ times the largest compliance (1 / lowest Hessian eigenvalue): on the soft 215-de
 arch (lowest eigenvalue 0.02, force tolerance 1e-6) up to 5e-5.  Hence --rtol 1e-5
 by default; the energies, stationary there, agree to 1e-8 and closer.
 
-    compare_results.py A.json B.json [--rtol 1e-5] [--energy-rtol 1e-8]
+--twin: the scene is a single rod symmetric under the inversion through the midpoint
+of its end vertices (the strip whose clamp is moved, strip_displaced.json: its two
+S-shaped equilibria are such twins, with equal energies, and which one a solver finds
+depends on its path); B's image under it (vertex order reversed, p -> p_0 + p_n - p)
+is accepted as well.
+
+    compare_results.py A.json B.json [--rtol 1e-5] [--energy-rtol 1e-8] [--twin]
 """
 import argparse
 import json
@@ -35,6 +41,7 @@ def main():
     ap.add_argument("--rtol", type=float, default=1e-5)
     ap.add_argument("--energy-rtol", type=float, default=1e-8)
     ap.add_argument("--energy-atol", type=float, default=1e-20)
+    ap.add_argument("--twin", action="store_true")
     args = ap.parse_args()
     with open(args.a) as f:
         a = json.load(f)
@@ -50,6 +57,16 @@ def main():
         return 1
     scale = max(max(abs(v) for v in xb), 1e-300)
     dx = max(abs(p - q) for p, q in zip(xa, xb))
+    if args.twin:
+        if len(b["rods"]) != 1 or b.get("joints"):
+            print("compare_results: --twin needs a single rod")
+            return 1
+        v = b["rods"][0]["vertices"]
+        image = [[v[0][k] + v[-1][k] - p[k] for k in range(3)] for p in reversed(v)]
+        dt = max(abs(p - q) for p, q in zip(xa, [c for p in image for c in p]))
+        if dt < dx:
+            print("compare_results: B's twin (inversion through the chord midpoint)")
+            dx = dt
     ea, eb = a["energy"], b["energy"]
     de = abs(ea - eb) / max(abs(eb), 1e-300)
     print("compare_results: %s vs %s: positions differ by %.3e of %.3e, energies %.17g and "

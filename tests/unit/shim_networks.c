@@ -133,7 +133,9 @@ static void check_cutback(rn_context *ctx) {
   rn_network_destroy(&net0);
   rn_solve_options_default(&opt);
   solve_one(ctx, rigid_portal, &opt, &direct);
-  opt.max_iterations = direct.rep.iterations - 2;
+  /* one iteration fewer than the direct solve needs forces a cut (the direct solve
+   * takes 5 with the second-order correction: 3 were too few for the load steps) */
+  opt.max_iterations = direct.rep.iterations - 1;
   solve_one(ctx, rigid_portal, &opt, &cut);
   d = state_diff(&cut, &direct, state0);
   printf("rigid portal, max_iterations %d: %d load steps, %d iterations, difference "
