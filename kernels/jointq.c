@@ -668,8 +668,20 @@ int rnk_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
   return joint_eval(q, j, OP_G, work, E, g, NULL, NULL, NULL);
 }
 
+/* The blocks above are symmetric up to rounding (projections applied to
+ * rows, then columns; the elastic end-end blocks L_k R_l); the mean of H and
+ * H^T makes them exactly so, as the assembled Hessian and its Cholesky
+ * factor assume (the jets' rigid blocks were exactly symmetric). */
+static void symmetrize(double *H, int n) {
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      H[a * n + b] = H[b * n + a] = 0.5 * (H[a * n + b] + H[b * n + a]);
+}
+
 int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H) {
-  return joint_eval(q, j, OP_H, work, NULL, NULL, H, NULL, NULL);
+  int st = joint_eval(q, j, OP_H, work, NULL, NULL, H, NULL, NULL);
+  if (st == RNK_OK) symmetrize(H, (int)rnk_joint_stencil_size(j));
+  return st;
 }
 
 int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const double *v,
@@ -766,6 +778,7 @@ int rnk_joint_end_hess(const double q[10], const rnk_frame *ref,
   double qj[10], Hj[100];
   end_joint(q, ref, p, &en, &j, qj);
   int st = joint_eval(qj, &j, OP_H, NULL, NULL, NULL, Hj, NULL, NULL);
+  if (st == RNK_OK) symmetrize(Hj, 10);
   for (int a = 0; a < 10; ++a)
     for (int b = 0; b < 10; ++b) H[10 * end_perm[a] + end_perm[b]] = Hj[10 * a + b];
   return st;

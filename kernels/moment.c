@@ -252,6 +252,9 @@ int rnk_moment_hess(const double q[7], const rnk_frame *ref, const rnk_moment_pa
           double sa = a < 3 ? (x ? 1.0 : -1.0) : 1.0, sb = b < 3 ? (y ? 1.0 : -1.0) : 1.0;
           H[7 * idx[a][x] + idx[b][y]] += sa * sb * Hy[a][b];
         }
+  for (int a = 0; a < 7; ++a) /* exactly symmetric (projections: rounding) */
+    for (int b = a + 1; b < 7; ++b)
+      H[7 * a + b] = H[7 * b + a] = 0.5 * (H[7 * a + b] + H[7 * b + a]);
   return RNK_OK;
 }
 
