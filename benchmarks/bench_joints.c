@@ -12,7 +12,7 @@
  * Timings are never asserted.
  *
  *   bench_joints [--valences 1,2,3,4,6,8,12] [--joints 200] [--repeats 7]
- *                [--impl closed,jets] [--out FILE.csv]
+ *                [--impl closed,jets] [--models rigid,elastic] [--out FILE.csv]
  *
  * CSV: bench "joints", case "<model>-<impl>-<op>", size the valence; extra
  * columns model, impl, op, stencil (DOFs of the joint stencil), ns_median,
@@ -166,14 +166,16 @@ static int check_batch(joint_case *b, int nb, double *work, const double *v, dou
 static int usage(const char *msg) {
   fprintf(stderr,
           "bench_joints: %s\nusage: bench_joints [--valences 1,2,3,4,6,8,12] "
-          "[--joints 200] [--repeats 7] [--impl closed,jets] [--out FILE.csv]\n",
+          "[--joints 200] [--repeats 7] [--impl closed,jets] [--models rigid,elastic]\n"
+          "       [--out FILE.csv]\n",
           msg);
   return 1;
 }
 
 int main(int argc, char **argv) {
   long val[MAX_LIST] = {1, 2, 3, 4, 6, 8, 12};
-  int nval = 7, nb = 200, repeats = 7, impl_closed = 1, impl_jets = 1;
+  int nval = 7, nb = 200, repeats = 7, impl_closed = 1, impl_jets = 1, model_rigid = 1,
+      model_elastic = 1;
   const char *out = NULL;
   for (int i = 1; i < argc; ++i) {
     const char *a = argv[i], *x = i + 1 < argc ? argv[i + 1] : NULL;
@@ -191,6 +193,10 @@ int main(int argc, char **argv) {
       impl_closed = strstr(x, "closed") != NULL;
       impl_jets = strstr(x, "jets") != NULL;
       if (!impl_closed && !impl_jets) return usage("bad --impl");
+    } else if (!strcmp(a, "--models")) {
+      model_rigid = strstr(x, "rigid") != NULL;
+      model_elastic = strstr(x, "elastic") != NULL;
+      if (!model_rigid && !model_elastic) return usage("bad --models");
     } else if (!strcmp(a, "--out")) {
       out = x;
     } else {
@@ -203,7 +209,7 @@ int main(int argc, char **argv) {
   double *t = malloc(sizeof(double) * (size_t)repeats);
   int rc = 0;
   for (int rigid = 1; rigid >= 0 && !rc; --rigid)
-    for (int iv = 0; iv < nval && !rc; ++iv) {
+    for (int iv = 0; iv < nval && !rc && (rigid ? model_rigid : model_elastic); ++iv) {
       int v = (int)val[iv];
       joint_case *b = calloc((size_t)nb, sizeof *b);
       size_t nwork = 0;

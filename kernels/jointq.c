@@ -494,22 +494,34 @@ static void end_factors(const jq_fit *F, const rq_edge *T, double J[4][4],
 /* ---- the whole joint ------------------------------------------------------------ */
 enum { OP_E = 0, OP_G = 1, OP_H = 2, OP_HV = 3 };
 
+/* The connection frames' reference rotation Qref (rigid: Qhat; elastic: the
+ * fit Q0, then F is set) and P(w) with its derivatives to order ord (w the
+ * rotation DOFs, or 0 for elastic joints). */
+static int joint_setup(const double *q, const rnk_joint *j, int ord, jq_fit *F, fq_rot *R,
+                       const double **Qref) {
+  double w[3] = {0, 0, 0};
+  int st;
+  *Qref = j->Qhat;
+  if (j->rigid) {
+    memcpy(w, q + 3, sizeof w);
+  } else {
+    if ((st = fit_init(q, j, F))) return st;
+    *Qref = F->Q0;
+  }
+  fq_rot_eval(w, ord, R);
+  return RNK_OK;
+}
+
 static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
                       double *E, double *g, double *H, const double *v, double *Hv) {
   int n = (int)rnk_joint_stencil_size(j), nv = j->valence, st;
   int ord = op == OP_HV ? 2 : op;
-  double w[3] = {0, 0, 0}, Gw[3] = {0, 0, 0}, Hww[3][3] = {{0}}, Etot = 0.0;
-  const double *Qref = j->Qhat;
+  double Gw[3] = {0, 0, 0}, Hww[3][3] = {{0}}, Etot = 0.0;
+  const double *Qref;
   jq_fit F;
   fq_rot R;
   jq_end X;
-  if (j->rigid) {
-    memcpy(w, q + 3, sizeof w);
-  } else {
-    if ((st = fit_init(q, j, &F))) return st;
-    Qref = F.Q0;
-  }
-  fq_rot_eval(w, ord, &R);
+  if ((st = joint_setup(q, j, ord, &F, &R, &Qref))) return st;
   if (g) memset(g, 0, sizeof(double) * (size_t)n);
   if (H) memset(H, 0, sizeof(double) * (size_t)n * (size_t)n);
   if (Hv) memset(Hv, 0, sizeof(double) * (size_t)n);
@@ -691,19 +703,12 @@ int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const doubl
 
 /* Twists of every end and the couple's angle at the current state. */
 int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist) {
-  double w[3] = {0, 0, 0};
-  const double *Qref = j->Qhat;
+  const double *Qref;
   jq_fit F;
   fq_rot R;
   jq_end X;
   int st;
-  if (j->rigid) {
-    memcpy(w, q + 3, sizeof w);
-  } else {
-    if ((st = fit_init(q, j, &F))) return st;
-    Qref = F.Q0;
-  }
-  fq_rot_eval(w, 0, &R);
+  if ((st = joint_setup(q, j, 0, &F, &R, &Qref))) return st;
   for (int k = 0; k < j->valence; ++k) {
     double cq[4];
     end_edge(q, j, k, &X.T, &X.s);
@@ -715,18 +720,12 @@ int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist) {
 }
 
 int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha) {
-  double w[3] = {0, 0, 0}, E = 0.0;
-  const double *Qref = j->Qhat;
+  double E = 0.0;
+  const double *Qref;
   jq_fit F;
   fq_rot R;
   int st;
-  if (j->rigid) {
-    memcpy(w, q + 3, sizeof w);
-  } else {
-    if ((st = fit_init(q, j, &F))) return st;
-    Qref = F.Q0;
-  }
-  fq_rot_eval(w, 0, &R);
+  if ((st = joint_setup(q, j, 0, &F, &R, &Qref))) return st;
   return couple_eval(j, Qref, &R, 0, &E, NULL, NULL, alpha);
 }
 
