@@ -306,14 +306,13 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
     a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
     scatter_grad(net, a, s->loc, 0, J->idx, s->n);
     break;
-  case OP_HVP: /* dense block times the gathered direction */
-    if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
+  case OP_HVP: /* matrix-free: the kernel never forms the block */
     if (a->vfull)
       rn_gather_fixed_dir_idx(net, a->vfull, J->idx, s->n, s->v);
     else
       rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
-    rnk_block_mv(s->n, s->loc, s->v, s->q);
-    rn_scatter_add_idx(net, s->q, J->idx, s->n, a->Hv);
+    if ((rc = rnk_joint_hvp(s->q, kj, s->work, s->v, s->loc)) != RNK_OK) return rc;
+    rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->Hv);
     break;
   case OP_HESS:
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;

@@ -7,7 +7,9 @@
  * Directions d have entries L r or r with r uniform in [-1, 1) (splitmix64
  * from the seed: deterministic).  For each point and
  * direction and h in 1e-2 .. 1e-5 (half decades):
- *   gradient: e(h) = |(E(x+hd) - E(x-hd)) / 2h - g.d| / max(|g.d|, |g| |d| / sqrt(n))
+ *   gradient: e(h) = |(E(x+hd) - E(x-hd)) / 2h - g.d| / max(|g.d|, |g| |d| / sqrt(n)),
+ *             |H d| |d| instead when that is below 1e3 eps |H d| |d| (a
+ *             gradient at round-off, as at rest)
  *   HVP:      e(h) = |(g(x+hd) - g(x-hd)) / 2h - H d| / |H d|
  * (absolute when the denominator is 0).  The error of a case is its minimum
  * over h (the best h); the report holds the worst case.  The observed order
@@ -133,6 +135,11 @@ static rn_status check_direction(const rn_network *net, check_work *w,
   double h[N_SWEEP], eg[N_SWEEP], eh[N_SWEEP], rg[N_SWEEP], rh[N_SWEEP];
   double gd = dot(n, w->g, w->d), hvn = norm2(n, w->hv);
   double den_g = fmax(fabs(gd), norm2(n, w->g) * norm2(n, w->d) / sqrt((double)n));
+  /* a gradient at round-off (at rest: the kernels' rounding, ~eps times the
+   * stiffness) is zero: then the scale is |H d| |d|, the energy's curvature
+   * along d */
+  double hd = hvn * norm2(n, w->d);
+  if (den_g <= 1e3 * DBL_EPSILON * hd) den_g = hd;
   if (!(den_g > 0.0)) den_g = 1.0;
   if (!(hvn > 0.0)) hvn = 1.0;
   for (int k = 0; k < N_SWEEP; ++k) {

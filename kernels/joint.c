@@ -1,7 +1,8 @@
 /* joint.c - bending and twisting where a rod end meets a joint through a
  * connection edge rigidly attached to the joint's rotation
  * Q = exp([w]) Q_hat (seed 001 sections 2-4).  Jets over 7 variables: the
- * terminal edge (e[3], theta) and the rotation vector w[3]. */
+ * terminal edge (e[3], theta) and the rotation vector w[3].  The test oracle
+ * of the closed forms (jointq.c): rnk_jet_joint_end_*. */
 #include <math.h>
 
 #include "rnk.h"
@@ -210,8 +211,8 @@ static void scatter(const rnk_joint_end_param *p, const jet *E, double *g, doubl
   }
 }
 
-int rnk_joint_end_energy(const double q[10], const rnk_frame *ref,
-                         const rnk_joint_end_param *p, double *E) {
+int rnk_jet_joint_end_energy(const double q[10], const rnk_frame *ref,
+                             const rnk_joint_end_param *p, double *E) {
   jet e;
   int st = joint_eval(q, ref, p, 0, &e);
   if (st) return st;
@@ -219,8 +220,8 @@ int rnk_joint_end_energy(const double q[10], const rnk_frame *ref,
   return RNK_OK;
 }
 
-int rnk_joint_end_grad(const double q[10], const rnk_frame *ref,
-                       const rnk_joint_end_param *p, double *E, double g[10]) {
+int rnk_jet_joint_end_grad(const double q[10], const rnk_frame *ref,
+                           const rnk_joint_end_param *p, double *E, double g[10]) {
   jet e;
   int st = joint_eval(q, ref, p, 1, &e);
   if (st) return st;
@@ -229,8 +230,8 @@ int rnk_joint_end_grad(const double q[10], const rnk_frame *ref,
   return RNK_OK;
 }
 
-int rnk_joint_end_hess(const double q[10], const rnk_frame *ref,
-                       const rnk_joint_end_param *p, double H[100]) {
+int rnk_jet_joint_end_hess(const double q[10], const rnk_frame *ref,
+                           const rnk_joint_end_param *p, double H[100]) {
   jet e;
   int st = joint_eval(q, ref, p, 2, &e);
   if (st) return st;
@@ -238,17 +239,19 @@ int rnk_joint_end_hess(const double q[10], const rnk_frame *ref,
   return RNK_OK;
 }
 
-int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref,
-                      const rnk_joint_end_param *p, const double v[10], double Hv[10]) {
+int rnk_jet_joint_end_hvp(const double q[10], const rnk_frame *ref,
+                          const rnk_joint_end_param *p, const double v[10],
+                          double Hv[10]) {
   double H[100];
-  int st = rnk_joint_end_hess(q, ref, p, H);
+  int st = rnk_jet_joint_end_hess(q, ref, p, H);
   if (st) return st;
   rnk_block_mv(10, H, v, Hv);
   return RNK_OK;
 }
 
-int rnk_joint_end_strains(const double q[10], const rnk_frame *ref,
-                          const rnk_joint_end_param *p, double kappa[2], double *twist) {
+int rnk_jet_joint_end_strains(const double q[10], const rnk_frame *ref,
+                              const rnk_joint_end_param *p, double kappa[2],
+                              double *twist) {
   joint_frames f;
   jet k[2], tau;
   int st = joint_frames_eval(q, ref, p, 0, &f);

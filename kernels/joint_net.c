@@ -12,7 +12,8 @@
  * the 9 entries of M (Newton iteration for the polar factor, then
  * phi = f(u) axial(P - P^T), P = Q Q0^T, u = (3 - tr P)/2,
  * f(u) = theta / (2 sin theta) = 1/2 + u/6 + u^2/15 + ...) and from the
- * terminal edges' frame jets. */
+ * terminal edges' frame jets.  The test oracle of the closed forms
+ * (jointq.c): rnk_jet_joint_*. */
 #include <math.h>
 #include <string.h>
 
@@ -23,7 +24,7 @@ size_t rnk_joint_stencil_size(const rnk_joint *j) {
   return (size_t)(3 + (j->rigid ? 3 : 0) + 4 * j->valence);
 }
 
-size_t rnk_joint_work_size(const rnk_joint *j) {
+size_t rnk_jet_joint_work_size(const rnk_joint *j) {
   size_t ny = 4 * (size_t)j->valence, n = rnk_joint_stencil_size(j);
   /* dphi/dY [3 ny], d2phi/dY2 [3 ny ny], Phi [3 n], cross C [n 3] */
   return 3 * ny + 3 * ny * ny + 3 * n + 3 * n + 16;
@@ -205,14 +206,14 @@ static void end_setup(const double *q, const rnk_joint *j, int k, const double Q
   p->twist = en->twist;
 }
 
-int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist) {
+int rnk_jet_joint_twists(const double *q, const rnk_joint *j, double *twist) {
   double Q[9], w0[3] = {0, 0, 0}, q10[10];
   rnk_joint_end_param p;
   int st = joint_rotation(q, j, Q, NULL);
   if (st) return st;
   for (int k = 0; k < j->valence; ++k) {
     end_setup(q, j, k, Q, w0, q10, &p);
-    st = rnk_joint_end_strains(q10, &j->refs[k], &p, NULL, &twist[k]);
+    st = rnk_jet_joint_end_strains(q10, &j->refs[k], &p, NULL, &twist[k]);
     if (st) return st;
   }
   return RNK_OK;
@@ -239,7 +240,7 @@ static int couple_jet(const rnk_joint *j, const double Qref[9], const double w[3
   return RNK_OK;
 }
 
-int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha) {
+int rnk_jet_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha) {
   double Q[9], w0[3] = {0, 0, 0};
   int st = joint_rotation(q, j, Q, NULL);
   if (st) return st;
@@ -368,13 +369,13 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
     rnk_joint_end_param p;
     end_setup(q, j, k, Qref, w, q10, &p);
     if (ord == 0)
-      st = rnk_joint_end_energy(q10, &j->refs[k], &p, &Ek);
+      st = rnk_jet_joint_end_energy(q10, &j->refs[k], &p, &Ek);
     else
-      st = rnk_joint_end_grad(q10, &j->refs[k], &p, &Ek, g10);
+      st = rnk_jet_joint_end_grad(q10, &j->refs[k], &p, &Ek, g10);
     if (st) return st;
     Etot += Ek;
     if (ord >= 2) {
-      st = rnk_joint_end_hess(q10, &j->refs[k], &p, H10);
+      st = rnk_jet_joint_end_hess(q10, &j->refs[k], &p, H10);
       if (st) return st;
     }
     for (int l = 0; l < 10 && ord >= 1; ++l) {
@@ -485,15 +486,15 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
   return RNK_OK;
 }
 
-int rnk_joint_energy(const double *q, const rnk_joint *j, double *work, double *E) {
+int rnk_jet_joint_energy(const double *q, const rnk_joint *j, double *work, double *E) {
   return joint_eval(q, j, 0, work, E, NULL, NULL);
 }
 
-int rnk_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
-                   double *g) {
+int rnk_jet_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
+                       double *g) {
   return joint_eval(q, j, 1, work, E, g, NULL);
 }
 
-int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H) {
+int rnk_jet_joint_hess(const double *q, const rnk_joint *j, double *work, double *H) {
   return joint_eval(q, j, 2, work, NULL, NULL, H);
 }

@@ -224,6 +224,17 @@ int rnk_moment_hvp(const double q[7], const rnk_frame *ref, const rnk_moment_par
 /* Rotation angle alpha of the current frame about M's axis since f0. */
 int rnk_moment_angle(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
                      double *alpha);
+/* Closed forms above (moment.c); the jet oracle of the tests: */
+int rnk_jet_moment_energy(const double q[7], const rnk_frame *ref,
+                          const rnk_moment_param *p, double *E);
+int rnk_jet_moment_grad(const double q[7], const rnk_frame *ref,
+                        const rnk_moment_param *p, double *E, double g[7]);
+int rnk_jet_moment_hess(const double q[7], const rnk_frame *ref,
+                        const rnk_moment_param *p, double H[49]);
+int rnk_jet_moment_hvp(const double q[7], const rnk_frame *ref, const rnk_moment_param *p,
+                       const double v[7], double Hv[7]);
+int rnk_jet_moment_angle(const double q[7], const rnk_frame *ref,
+                         const rnk_moment_param *p, double *alpha);
 
 /* ---- joint stencil: a rod end meeting a joint (connection edge) ----------
  * The rod's terminal edge (between the joint position x_J and the rod vertex
@@ -294,17 +305,44 @@ typedef struct rnk_joint {
 size_t rnk_joint_stencil_size(const rnk_joint *j);
 /* Doubles of workspace the functions below need (caller allocates). */
 size_t rnk_joint_work_size(const rnk_joint *j);
+/* Closed forms (jointq.c, docs/energy.md): cost a small multiple of the
+ * energy's, linear in the valence except the Hessian block of elastic joints
+ * (dense: quadratic).  The HVP never forms the block. */
 int rnk_joint_energy(const double *q, const rnk_joint *j, double *work, double *E);
-/* g[n], H[n*n] with n = rnk_joint_stencil_size(j). */
+/* g[n], H[n*n], v[n], Hv[n] with n = rnk_joint_stencil_size(j). */
 int rnk_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
                    double *g);
 int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H);
+int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const double *v,
+                  double *Hv);
 /* Current rotation Q (row-major), the twists at the joint vertex of every
  * end (for the reference update: ends[k].twist.ref_twist <- twist[k]) and the
  * couple's rotation angle since f0. */
 int rnk_joint_rotation(const double *q, const rnk_joint *j, double R[9]);
 int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist);
 int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha);
+
+/* Test oracle: the same functions evaluated with second-order jets
+ * (joint.c, joint_net.c; slow).  rnk_jet_joint_work_size doubles of work. */
+size_t rnk_jet_joint_work_size(const rnk_joint *j);
+int rnk_jet_joint_energy(const double *q, const rnk_joint *j, double *work, double *E);
+int rnk_jet_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
+                       double *g);
+int rnk_jet_joint_hess(const double *q, const rnk_joint *j, double *work, double *H);
+int rnk_jet_joint_twists(const double *q, const rnk_joint *j, double *twist);
+int rnk_jet_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha);
+int rnk_jet_joint_end_energy(const double q[10], const rnk_frame *ref,
+                             const rnk_joint_end_param *p, double *E);
+int rnk_jet_joint_end_grad(const double q[10], const rnk_frame *ref,
+                           const rnk_joint_end_param *p, double *E, double g[10]);
+int rnk_jet_joint_end_hess(const double q[10], const rnk_frame *ref,
+                           const rnk_joint_end_param *p, double H[100]);
+int rnk_jet_joint_end_hvp(const double q[10], const rnk_frame *ref,
+                          const rnk_joint_end_param *p, const double v[10],
+                          double Hv[10]);
+int rnk_jet_joint_end_strains(const double q[10], const rnk_frame *ref,
+                              const rnk_joint_end_param *p, double kappa[2],
+                              double *twist);
 
 /* Polar factor R of M (M = R U, U symmetric positive definite), by Newton
  * iteration; RNK_DEGENERATE if M is (nearly) singular or det M <= 0. */

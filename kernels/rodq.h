@@ -340,6 +340,32 @@ RQ_INLINE void rq_curv_add(const rq_edge *E, const double gt[3], const double de
       il2 * (tg * pd[k] + E->t[k] * pgd + pg[k] * td);
 }
 
+/* G = d2E/dr2 (4 x 4, symmetric) of a vertex evaluated with ord >= 1. */
+RQ_INLINE void rq_vert_G(const rq_vert *V, double G[4][4]) {
+  const double *r = V->r;
+  /* G: gradients of kappa1, kappa2, tau in r, and the second-derivative part */
+  double y = r[2], z = r[3], a = V->u1[0], b = V->u1[1];
+  double phw = -V->u2[0], phx = V->u2[1];
+  double phww = 2.0 * V->u3[0], phwx = -2.0 * V->u3[1];
+  double aww = -V->u2[1], awx = -V->u2[0];
+  double s = V->m1 * z - V->m2 * y, mt = V->mt;
+  double k1[4] = {2.0 * z * phw, 2.0 * z * phx, 0.0, 2.0 * a};
+  double k2[4] = {-2.0 * y * phw, -2.0 * y * phx, -2.0 * a, 0.0};
+  double tw[4] = {2.0 * b, 2.0 * a, 0.0, 0.0};
+  RQ_UNROLL for (int i = 0; i < 4; ++i) RQ_UNROLL for (int j = i; j < 4; ++j) G[i][j] =
+      V->B[0] * k1[i] * k1[j] + V->B[1] * (k1[i] * k2[j] + k2[i] * k1[j]) +
+      V->B[2] * k2[i] * k2[j] + V->beta * tw[i] * tw[j];
+  G[0][0] += 2.0 * (s * phww + mt * aww);
+  G[0][1] += 2.0 * (s * phwx + mt * awx);
+  G[1][1] += 2.0 * (-s * phww - mt * aww); /* phi and arg are harmonic */
+  G[0][2] += -2.0 * V->m2 * phw;
+  G[1][2] += -2.0 * V->m2 * phx;
+  G[0][3] += 2.0 * V->m1 * phw;
+  G[1][3] += 2.0 * V->m1 * phx;
+  RQ_UNROLL for (int i = 0; i < 4; ++i) RQ_UNROLL for (int j = 0; j < i; ++j) G[i][j] =
+      G[j][i];
+}
+
 /* Hessian in y = (t0, theta0, t1, theta1), explicitly: J^T G J + S with J =
  * dr/dy (columns D0k* (x) h1, -X (x) r / 2, h0* (x) D1k, r (x) X / 2 where
  * D_jk = dq_j/dt_k (x) g_j), G = d2E/dr2 and S = mu . d2r/dy2 (nonzero only in
@@ -367,28 +393,8 @@ RQ_INLINE void rq_hess_y(const rq_edge *E0, const rq_edge *E1, const rq_vert *V,
     J[3][k] *= -0.5;
     J[7][k] *= 0.5;
   }
-  /* G: gradients of kappa1, kappa2, tau in r, and the second-derivative part */
-  double y = r[2], z = r[3], a = V->u1[0], b = V->u1[1];
-  double phw = -V->u2[0], phx = V->u2[1];
-  double phww = 2.0 * V->u3[0], phwx = -2.0 * V->u3[1];
-  double aww = -V->u2[1], awx = -V->u2[0];
-  double s = V->m1 * z - V->m2 * y, mt = V->mt;
-  double k1[4] = {2.0 * z * phw, 2.0 * z * phx, 0.0, 2.0 * a};
-  double k2[4] = {-2.0 * y * phw, -2.0 * y * phx, -2.0 * a, 0.0};
-  double tw[4] = {2.0 * b, 2.0 * a, 0.0, 0.0};
   double G[4][4];
-  RQ_UNROLL for (int i = 0; i < 4; ++i) RQ_UNROLL for (int j = i; j < 4; ++j) G[i][j] =
-      V->B[0] * k1[i] * k1[j] + V->B[1] * (k1[i] * k2[j] + k2[i] * k1[j]) +
-      V->B[2] * k2[i] * k2[j] + V->beta * tw[i] * tw[j];
-  G[0][0] += 2.0 * (s * phww + mt * aww);
-  G[0][1] += 2.0 * (s * phwx + mt * awx);
-  G[1][1] += 2.0 * (-s * phww - mt * aww); /* phi and arg are harmonic */
-  G[0][2] += -2.0 * V->m2 * phw;
-  G[1][2] += -2.0 * V->m2 * phx;
-  G[0][3] += 2.0 * V->m1 * phw;
-  G[1][3] += 2.0 * V->m1 * phx;
-  RQ_UNROLL for (int i = 0; i < 4; ++i) RQ_UNROLL for (int j = 0; j < i; ++j) G[i][j] =
-      G[j][i];
+  rq_vert_G(V, G);
   RQ_UNROLL for (int c = 0; c < 8; ++c) RQ_UNROLL for (int i = 0; i < 4; ++i) GJ[c][i] =
       G[i][0] * J[c][0] + G[i][1] * J[c][1] + G[i][2] * J[c][2] + G[i][3] * J[c][3];
   RQ_UNROLL for (int c = 0; c < 8; ++c) RQ_UNROLL for (int d = c; d < 8; ++d) Hy[c][d] =

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench.sh: build (scripts/setup.sh), run the benchmarks at full size and plot them.
-# Writes benchmarks/results/{kernels,solve,lattice,startup,io}.{csv,png}.
+# Writes benchmarks/results/{kernels,joints,solve,lattice,startup,io}.{csv,png}.
 #
 #   bash scripts/bench.sh            # full: kernels 1e2..1e5 vertices, solve 101/401/3201,
 #                                    # honeycombs 10x10 and 30x30, rigid and elastic joints
@@ -25,6 +25,10 @@ fi
 ./build/benchmarks/bench_kernels --sizes 100,1000,10000,100000 "${kargs[@]}" \
   --out "$out/kernels.csv"
 "$py" benchmarks/plot.py "$out/kernels.csv" -o "$out/kernels.png"
+# Whole-joint kernels by valence, closed forms against the jets (the test oracle).
+./build/benchmarks/bench_joints --repeats "$([ "${RN_BENCH_QUICK:-0}" = 1 ] && echo 3 || echo 7)" \
+  --out "$out/joints.csv"
+"$py" benchmarks/plot_joints.py "$out/joints.csv" -o "$out/joints.png"
 if [ -x ./build/benchmarks/bench_solve ]; then
   ./build/benchmarks/bench_solve --sizes 101,401,3201 "${sargs[@]}" --out "$out/solve.csv"
   "$py" benchmarks/plot.py "$out/solve.csv" -o "$out/solve.png"

@@ -1,9 +1,10 @@
 /* kernels_joint_net.c - whole-joint kernels (rnk_joint_*) for both models at
- * valence 1..8: central-difference gradient and Hessian (h-sweep, second
- * order), symmetry, zero energy and gradient at rest, invariance under
- * rigid motions; the polar factor on its own (recovery of R from R S) and
- * the first and second derivatives of the elastic fit through the joint
- * energy (the FD checks of elastic joints exercise them). */
+ * valence 1..8: central-difference gradient and Hessian-vector product (the
+ * matrix-free rnk_joint_hvp, which must equal the block rnk_joint_hess times
+ * the direction; h-sweep, second order), symmetry, zero energy and gradient at rest,
+ * invariance under rigid motions; the polar factor on its own (recovery of R from R S)
+ * and the first and second derivatives of the elastic fit through the joint energy (the
+ * FD checks of elastic joints exercise them). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -122,7 +123,10 @@ static void fd_check(const star *s, double *worst_g, double *worst_h, double *og
     for (int i = 0; i < n; ++i) vv[i] = rnd();
     double nv = norm(n, vv);
     for (int i = 0; i < n; ++i) vv[i] /= nv;
-    rnk_block_mv(n, H, vv, Hv);
+    /* the matrix-free HVP is the block times the direction */
+    CHECK_STATUS(rnk_joint_hvp(s->q, &s->j, work, vv, Hv), RNK_OK);
+    rnk_block_mv(n, H, vv, qp);
+    for (int i = 0; i < n; ++i) CHECK_NEAR(Hv[i], qp[i], 1e-13 * hmax * sqrt(n));
     double gv = 0;
     for (int i = 0; i < n; ++i) gv += g[i] * vv[i];
     double hs[5], eg[5], eh[5], sg = norm(n, g) + norm(n, Hv), sh = norm(n, Hv) + 1e-300;
