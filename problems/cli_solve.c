@@ -452,7 +452,8 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   rc = make_options(a, d->graph, &opt, d->rank == 0);
   if (rc) return rc; /* the same on every rank: its message printed by rank 0 */
   /* no solver asked for (command line or scene): the distributed default */
-  if (!a->solver && !rn_scene_sets_solver_kind(d->graph)) opt.solver = RN_SOLVER_TR_KRYLOV;
+  if (!a->solver && !rn_scene_sets_solver_kind(d->graph))
+    opt.solver = RN_SOLVER_TR_KRYLOV;
   if (!rn_solver_is_distributed(opt.solver)) {
     if (d->rank == 0)
       fprintf(stderr,
