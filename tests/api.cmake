@@ -17,3 +17,6 @@ rn_add_test(api_part SOURCES unit/api_part.c LIBS rodnet m LABELS unit)
 # Equilibrium checks: DOF kinds, the full-layout gradient, support reactions
 # (FD h-sweep in the load factor of prescribed motions, balance at equilibrium).
 rn_add_test(api_reactions SOURCES unit/api_reactions.c LIBS rodnet m LABELS unit)
+# Periodic cells: rod ends at periodic images, macroscopic strain DOFs (FD
+# h-sweeps over fluctuation and strain DOFs, images, uniform strain, errors).
+rn_add_test(api_periodic SOURCES unit/api_periodic.c LIBS rodnet m LABELS unit)
