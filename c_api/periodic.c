@@ -615,3 +615,39 @@ void rn_joint_gather_full(const rn_network *net, const rn_joint *J, const double
     q[i] = full[im->base + (size_t)(J->img[i] % 3)] + sh[J->img[i] % 3];
   }
 }
+
+/* In-plane extent of edge j of rod r: the equivalent rectangle of the section
+ * about the axis normal to the cell plane, t = sqrt(12 I_n / A), I_n the second
+ * moment about the edge's in-plane normal direction (exact for rectangles). */
+static double inplane_thickness(const rn_rod *r, int j) {
+  const rn_section *s = &r->sec[j];
+  double t[3], d1[3], d2[3], n[3], z[3] = {0.0, 0.0, 1.0}, nn, n1, n2, In;
+  double e[3];
+  for (int k = 0; k < 3; ++k) e[k] = r->x0[3 * (j + 1) + k] - r->x0[3 * j + k];
+  if (rnk_material_frame(e, &r->ref_base[j], 0.0, t, d1, d2) != RNK_OK) return 0.0;
+  n[0] = z[1] * t[2] - z[2] * t[1]; /* z x t: in plane, normal to the edge */
+  n[1] = z[2] * t[0] - z[0] * t[2];
+  n[2] = z[0] * t[1] - z[1] * t[0];
+  nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(nn > 0.0)) return 0.0;
+  n1 = (n[0] * d1[0] + n[1] * d1[1] + n[2] * d1[2]) / nn;
+  n2 = (n[0] * d2[0] + n[1] * d2[1] + n[2] * d2[2]) / nn;
+  In = n1 * n1 * s->I11 + 2.0 * n1 * n2 * s->I12 + n2 * n2 * s->I22;
+  return sqrt(12.0 * In / s->A);
+}
+
+rn_status rn_network_cell_relative_density(const rn_network *net, double *rho) {
+  static const char *where = "rn_network_cell_relative_density";
+  rn_status st;
+  double sum = 0.0;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_cell(net, where, 0))) return st;
+  if (!rho) return rn_fail(net->ctx, RN_ERR_ARG, where, "rho is NULL");
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    for (int j = 0; j < r->ne; ++j)
+      sum += r->lbar[j] * (net->cell->dim == 3 ? r->sec[j].A : inplane_thickness(r, j));
+  }
+  *rho = sum / net->cell->measure;
+  return RN_OK;
+}

@@ -433,6 +433,12 @@ rn_status rn_network_cell_strain(const rn_network *net, const double *x, double 
  * equilibrium of the fluctuations this is the homogenised stress).  Force per
  * length in 2D, per area in 3D.  stress[nstrain]. */
 rn_status rn_network_cell_stress(const rn_network *net, const double *x, double *stress);
+/* Relative density of the cell: 3D, the solid volume sum A l (rest lengths) over
+ * the cell volume; 2D, the in-plane solid area sum t l over the cell area, t =
+ * sqrt(12 I_n / A) the in-plane thickness of the section's equivalent
+ * rectangle (I_n its second moment about the in-plane normal of the edge;
+ * exact for rectangles, sqrt(3) r for a circle of radius r). */
+rn_status rn_network_cell_relative_density(const rn_network *net, double *rho);
 
 /* ---- parts of a network (distributed solves; docs/parallel.md) -----------
  * A distributed solve gives every rod to one part (rank) and builds on each
