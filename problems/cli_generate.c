@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "lattice.h"
 #include "lattice_scene.h"
+#include "periodic_cell.h"
 
 static const char generate_help[] =
     "Usage: rodnet generate KIND [options] -o SCENE.json\n"
@@ -20,6 +21,8 @@ static const char generate_help[] =
     "Kinds:\n"
     "  square, triangular, honeycomb, kagome   planar, in the xy plane\n"
     "  cubic, bcc, octet                       3D blocks\n"
+    "  reentrant                               re-entrant (auxetic) honeycomb,\n"
+    "                                          --periodic only\n"
     "\n"
     "Options:\n"
     "  -o, --output FILE        scene to write (required)\n"
@@ -44,6 +47,16 @@ static const char generate_help[] =
     "                           pull-x|y|z:FORCE      total FORCE on the max face,\n"
     "                             -FORCE on the min face whose centre joint is\n"
     "                             clamped (free lateral contraction)\n"
+    "      --periodic           write a periodic cell instead of a finite block:\n"
+    "                           the --cells cells on the torus of their lattice\n"
+    "                           vectors, rod ends at periodic images (\"image\"),\n"
+    "                           no loads; for rodnet homogenize\n"
+    "                           (docs/homogenization.md)\n"
+    "      --slenderness T      (--periodic) strut thickness t = T times the mean\n"
+    "                           bar length: square section t x t in 2D, circle of\n"
+    "                           diameter t in 3D (default 0.05 without --section)\n"
+    "      --relative-density R (--periodic) the same sections with t chosen so\n"
+    "                           that the relative density is R\n"
     "  -q, --quiet              no summary\n"
     "  -h, --help               show this help\n"
     "\n"
@@ -53,8 +66,8 @@ static const char generate_help[] =
 typedef struct gen_args {
   const char *kind_name, *output, *section, *load;
   rn_lattice_kind kind;
-  int cells[3], ncells, quiet;
-  double a;
+  int cells[3], ncells, quiet, periodic, reentrant;
+  double a, slenderness, density;
   rn_lattice_scene sc;
 } gen_args;
 
@@ -174,12 +187,13 @@ static int parse_joint_model(gen_args *a, const char *v) {
 
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
-  static const char *const names[] = {"--output",        "--cells",   "--cell-size",
-                                      "--edges-per-rod", "--section", "--material",
-                                      "--joint-model",   "--load"};
+  static const char *const names[] = {"--output",          "--cells",   "--cell-size",
+                                      "--edges-per-rod",   "--section", "--material",
+                                      "--joint-model",     "--load",    "--slenderness",
+                                      "--relative-density"};
   const char *v = NULL;
   int m = 0, which = -1;
-  for (int k = 0; k < 8 && m == 0; k++) {
+  for (int k = 0; k < 10 && m == 0; k++) {
     m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
                             &v);
     which = k;
@@ -209,6 +223,17 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
   case 6:
     *rc = parse_joint_model(a, v);
     break;
+  case 8:
+    *rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
+    break;
+  case 9:
+    *rc = rn_cli_parse_double("generate", "--relative-density", v, 0.0, &a->density);
+    if (!*rc && !(a->density < 1.0))
+      *rc = rn_cli_usage_error("generate",
+                               "--relative-density expects a value in (0, 1), "
+                               "got '%s'",
+                               v);
+    break;
   default:
     *rc = parse_load(a, v);
     break;
@@ -230,7 +255,22 @@ static void set_defaults(gen_args *a) {
 
 static int check_args(gen_args *a) {
   if (!a->kind_name) return rn_cli_usage_error("generate", "missing the lattice KIND");
-  if (rn_lattice_kind_from_name(a->kind_name, &a->kind) != 0)
+  a->reentrant = strcmp(a->kind_name, "reentrant") == 0;
+  if (a->reentrant && !a->periodic)
+    return rn_cli_usage_error("generate", "the reentrant lattice needs --periodic");
+  if (!a->periodic && (a->slenderness > 0.0 || a->density > 0.0))
+    return rn_cli_usage_error("generate",
+                              "--slenderness and --relative-density need --periodic");
+  if (a->periodic && a->sc.load != RN_LLOAD_NONE)
+    return rn_cli_usage_error("generate", "--load does not apply to a periodic cell");
+  if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
+    return rn_cli_usage_error("generate", "give at most one of --section, --slenderness "
+                                          "and --relative-density");
+  if (a->periodic && a->ncells == 0) /* one cell unless --cells asks for a supercell */
+    a->cells[0] = a->cells[1] = a->cells[2] = 1;
+  if (a->reentrant) {
+    a->kind = RN_LATTICE_HONEYCOMB; /* planar; the cell is built by rn_pcell_reentrant */
+  } else if (rn_lattice_kind_from_name(a->kind_name, &a->kind) != 0)
     return rn_cli_usage_error("generate",
                               "unknown lattice '%s' (known: square, triangular, "
                               "honeycomb, kagome, cubic, bcc, octet)",
@@ -263,6 +303,8 @@ static int parse_generate_args(int argc, char **argv, gen_args *a) {
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
       a->quiet = 1;
+    else if (strcmp(s, "--periodic") == 0)
+      a->periodic = 1;
     else if (parse_value_option(argc, argv, &i, a, &rc)) {
       if (rc) return rc;
     } else if (s[0] == '-' && s[1] != '\0')
@@ -295,7 +337,9 @@ static void describe(const gen_args *a, char *buf, size_t n) {
                     a->a, a->sc.edges_per_rod, section, a->sc.E, a->sc.nu,
                     a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
   if (a->load && len > 0 && (size_t)len < n)
-    snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
+    len += snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
+  if (a->periodic && len > 0 && (size_t)len < n)
+    snprintf(buf + len, n - (size_t)len, " --periodic");
 }
 
 static void print_summary(const gen_args *a, const rn_lattice *lat) {
@@ -315,6 +359,44 @@ static void print_summary(const gen_args *a, const rn_lattice *lat) {
   printf("); wrote %s\n", a->output);
 }
 
+/* Square (2D) or round (3D) struts of thickness t from --slenderness or
+ * --relative-density (or the default slenderness 0.05). */
+static void pcell_section(gen_args *a, const rn_pcell *c) {
+  double L, V, t;
+  if (a->section) return;
+  rn_pcell_measures(c, &L, &V);
+  if (a->density > 0.0)
+    t = c->dim == 2 ? a->density * V / L
+                    : sqrt(4.0 * a->density * V / (3.14159265358979323846 * L));
+  else
+    t = (a->slenderness > 0.0 ? a->slenderness : 0.05) * L / c->nbars;
+  a->sc.shape = c->dim == 2 ? RN_LSEC_RECTANGLE : RN_LSEC_CIRCLE;
+  a->sc.section[0] = c->dim == 2 ? t : 0.5 * t;
+  a->sc.section[1] = t;
+}
+
+static int generate_periodic(gen_args *a, rn_context *ctx) {
+  rn_pcell c;
+  rn_status st = a->reentrant ? rn_pcell_reentrant(ctx, a->cells, a->a, &c)
+                              : rn_pcell_from_lattice(ctx, a->kind, a->cells, a->a, &c);
+  if (!st) {
+    pcell_section(a, &c);
+    st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc);
+  }
+  if (st) {
+    fprintf(stderr, "rodnet generate: %s\n", rn_context_last_error(ctx));
+    rn_pcell_free(&c);
+    return st == RN_ERR_IO                            ? RN_EXIT_INPUT
+           : (st == RN_ERR_ARG || st == RN_ERR_RANGE) ? RN_EXIT_USAGE
+                                                      : RN_EXIT_INTERNAL;
+  }
+  if (!a->quiet)
+    printf("rodnet generate: periodic %s cell (%dD), %d rods, %d joints; wrote %s\n",
+           a->kind_name, c.dim, c.nbars, c.nnodes, a->output);
+  rn_pcell_free(&c);
+  return RN_EXIT_OK;
+}
+
 int rn_cli_generate(int argc, char **argv) {
   gen_args a;
   int rc = parse_generate_args(argc, argv, &a);
@@ -326,6 +408,11 @@ int rn_cli_generate(int argc, char **argv) {
   if (rn_context_create(&ctx) != RN_OK) {
     fprintf(stderr, "rodnet generate: out of memory\n");
     return RN_EXIT_INTERNAL;
+  }
+  if (a.periodic) {
+    rc = generate_periodic(&a, ctx);
+    rn_context_destroy(&ctx);
+    return rc;
   }
   rn_lattice *lat = NULL;
   rn_status st = rn_lattice_build(ctx, a.kind, a.cells, a.a, &lat);

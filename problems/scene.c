@@ -526,7 +526,7 @@ static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
 static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   static const char *const keys[] = {"description", "materials", "sections",    "graph",
                                      "rods",        "joints",    "constraints", "loads",
-                                     "solver",      NULL};
+                                     "solver",      "periodic",  NULL};
   static const char *const steps[] = {"materials", "sections",    "graph", "rods",
                                       "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
@@ -536,6 +536,11 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
+    size_t mark = rn_jwalk_key(w, "periodic");
+    st = rn_scene_read_periodic(p, rn_jm_get(root, "periodic"));
+    rn_jwalk_pop(w, mark);
+  }
   for (int i = 0; i < 8 && !st; i++) {
     const cJSON *v = rn_jm_get(root, steps[i]);
     if (!v) {
