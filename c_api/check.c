@@ -140,8 +140,8 @@ static rn_status check_direction(const rn_network *net, check_work *w,
   double gd = dot(n, w->g, w->d), hvn = norm2(n, w->hv);
   double den_g = fmax(fabs(gd), norm2(n, w->g) * norm2(n, w->d) / sqrt((double)n));
   /* at an equilibrium the gradient is round-off: measure against the
-   * directional gradient a step 1e-6 away instead (d . H d 1e-6) */
-  den_g = fmax(den_g, 1e-6 * fabs(dot(n, w->d, w->hv)));
+   * directional gradient at the largest step of the sweep, 1e-2 d . H d */
+  den_g = fmax(den_g, 1e-2 * fabs(dot(n, w->d, w->hv)));
   if (!(den_g > 0.0)) den_g = 1.0;
   if (!(hvn > 0.0)) hvn = 1.0;
   for (int k = 0; k < N_SWEEP; ++k) {

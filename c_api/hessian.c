@@ -327,6 +327,8 @@ static rn_status build_rod_direct(rn_network *net) {
     size_t best_a = 0, best_b = 0, a = 0; /* runs [a, b) of the full slice */
     for (size_t i = 0; i <= n; ++i) {
       int64_t mi = i < n ? net->map[r->off + i] : -1;
+      if (i < n && net->cell && net->cell->slot[r->off + i] >= 0)
+        mi = -1; /* a periodic image end: its value needs the shift (periodic.c) */
       int joins = i > a && mi >= 0 && mi == net->map[r->off + i - 1] + 1;
       if (i == a && mi >= 0) continue; /* a run starts */
       if (joins) continue;

@@ -105,6 +105,23 @@ static void cell2d(cell_spec *c) {
   c->bars[2] = (bar){1, 0, {0, 1, 0}, 2, 0.0}; /* one edge, image on one end */
 }
 
+/* Honeycomb cell with elastic-joint ordering traps: the last rod ends at the
+ * image of joint 1, whose position DOFs directly follow that rod's DOFs when
+ * joint 0 is the pinned anchor (the in-place rod evaluation must stop before
+ * an image end). */
+static void cellhc(cell_spec *c) {
+  memset(c, 0, sizeof(*c));
+  c->dim = 2;
+  double v[9] = {1.7320508075688772, 0, 0, 0.8660254037844386, 1.5, 0, 0, 0, 0};
+  memcpy(c->vec, v, sizeof(v));
+  c->nj = 2;
+  c->p[1][1] = 1.0;
+  c->nb = 3;
+  c->bars[0] = (bar){0, 1, {0, 0, 0}, NV, 0.02};
+  c->bars[1] = (bar){0, 1, {0, -1, 0}, NV, -0.02};
+  c->bars[2] = (bar){0, 1, {1, -1, 0}, NV, 0.03};
+}
+
 /* Skew 3D cell: one joint with three bars to its images and a diagonal. */
 static void cell3d(cell_spec *c) {
   memset(c, 0, sizeof(*c));
@@ -143,7 +160,7 @@ static void deform(const rn_network *net, double *x, double amp, uint64_t seed) 
 /* FD of energy -> gradient and gradient -> HVP along random directions
  * (including the strain DOFs), h-sweep, by the library's self-check. */
 static void test_derivatives(rn_context *ctx) {
-  for (int d = 2; d <= 3; ++d)
+  for (int d = 2; d <= 4; ++d) /* 4: the honeycomb cell */
     for (int model = 0; model < 2; ++model)
       for (int aniso = 0; aniso < 2; ++aniso) {
         cell_spec c;
@@ -151,8 +168,10 @@ static void test_derivatives(rn_context *ctx) {
         double x[MAXN];
         if (d == 2)
           cell2d(&c);
-        else
+        else if (d == 3)
           cell3d(&c);
+        else
+          cellhc(&c);
         rn_network *net = build(ctx, &c, model, aniso);
         CHECK(rn_network_num_dofs(net) < MAXN);
         CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);

@@ -1,0 +1,48 @@
+#!/usr/bin/env python3
+"""Checks a `rodnet homogenize` RESULT.json of the periodic regular honeycomb
+(`rodnet generate honeycomb --periodic --joint-model rigid --edges-per-rod 16
+--slenderness T`, square t x t struts, E_s = 1): the contract keys, a symmetric
+tensor, and E, nu within 1 % of the frame closed forms
+E = 16 sqrt(3) (EI/l^3)/(1+36 s), nu = (1-12 s)/(1+36 s), s = EI/(EA l^2)
+(docs/homogenization.md); the PNG exists and is a PNG.
+
+Usage: check_homogenize.py RESULT.json T [PNG]"""
+import json
+import math
+import sys
+
+
+def main():
+    r = json.load(open(sys.argv[1]))
+    T = float(sys.argv[2])
+    for key in ("C", "constants", "area", "relative_density"):
+        assert key in r, "missing key " + key
+    for key in ("E1", "E2", "nu12", "G12"):
+        assert key in r["constants"], "missing constant " + key
+    C = r["C"]
+    assert len(C) == 3 and all(len(row) == 3 for row in C)
+    for i in range(3):
+        for j in range(3):
+            assert C[i][j] == C[j][i], "C is not symmetric"
+    l = 1.0 / math.sqrt(3.0)  # cell size 1: bar length a / sqrt(3)
+    t = T * l
+    EA, EI = t * t, t * t ** 3 / 12.0
+    s = EI / (EA * l * l)
+    E = 16.0 * math.sqrt(3.0) * EI / l ** 3 / (1.0 + 36.0 * s)
+    nu = (1.0 - 12.0 * s) / (1.0 + 36.0 * s)
+    c = r["constants"]
+    print("E1/E = %.6f E2/E = %.6f nu12 = %.6f (closed form %.6f) rho = %.6f (%.6f)"
+          % (c["E1"] / E, c["E2"] / E, c["nu12"], nu, r["relative_density"],
+             2.0 / math.sqrt(3.0) * T))
+    assert abs(c["E1"] / E - 1.0) < 0.01 and abs(c["E2"] / E - 1.0) < 0.01
+    assert abs(c["nu12"] / nu - 1.0) < 0.01
+    assert abs(r["relative_density"] / (2.0 / math.sqrt(3.0) * T) - 1.0) < 1e-12
+    assert abs(r["area"] - math.sqrt(3.0) / 2.0) < 1e-12
+    if len(sys.argv) > 3:
+        with open(sys.argv[3], "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
