@@ -110,6 +110,8 @@ void SerialSystem::build_blocks() {
     if (d.joint >= 0) {
       check_status(rn_network_joint_position(net, d.joint, f.point),
                    "rn_network_joint_position");
+    } else if (d.rod < 0) { // a macroscopic strain DOF of a periodic cell
+      for (int k = 0; k < 3; ++k) f.point[k] = 0.0;
     } else { // a vertex, or the midpoint of the edge of an angle
       const std::vector<double> &v = verts[static_cast<size_t>(d.rod)];
       for (int k = 0; k < 3; ++k)
