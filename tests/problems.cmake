@@ -223,6 +223,32 @@ if(RN_WITH_TRILINOS)
                    ${gen}/hom_hc_result.json 0.05 ${gen}/hom_hc.png)
   set_tests_properties(problems_cli_homogenize_hc_result PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_hom_hc_result)
+  # A supercell gives the cell's tensor: a 3 x 2 honeycomb and a 2 x 2 x 1 octet
+  # against their single cells.
+  foreach(sc "honeycomb:1:3,2" "octet:1:2,2,1")
+    string(REPLACE ":" ";" e "${sc}")
+    list(GET e 0 kind)
+    list(GET e 2 cells)
+    foreach(c 1 ${cells})
+      string(REPLACE "," "x" tag "${c}")
+      rn_cli_test(problems_cli_homogenize_${kind}_${tag}_gen 0 "wrote"
+                  FIXTURE_SETUP problems_hom_${kind}_${tag}
+                  ARGS generate ${kind} --periodic --cells ${c} --joint-model rigid
+                       --edges-per-rod 6 -o ${gen}/hom_${kind}_${tag}.json)
+      rn_cli_test(problems_cli_homogenize_${kind}_${tag} 0 "wrote"
+                  FIXTURE_SETUP problems_hom_${kind}_${tag}_res
+                  ARGS homogenize ${gen}/hom_${kind}_${tag}.json
+                       -o ${gen}/hom_${kind}_${tag}_result.json)
+      set_tests_properties(problems_cli_homogenize_${kind}_${tag} PROPERTIES
+                           FIXTURES_REQUIRED problems_hom_${kind}_${tag})
+    endforeach()
+    string(REPLACE "," "x" tag "${cells}")
+    add_test(NAME problems_cli_homogenize_${kind}_supercell
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_homogenize.py
+                     --same ${gen}/hom_${kind}_${tag}_result.json ${gen}/hom_${kind}_1_result.json)
+    set_tests_properties(problems_cli_homogenize_${kind}_supercell PROPERTIES LABELS unit
+                         FIXTURES_REQUIRED "problems_hom_${kind}_1_res;problems_hom_${kind}_${tag}_res")
+  endforeach()
 endif()
 
 if(RN_WITH_TRILINOS)

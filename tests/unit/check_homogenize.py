@@ -6,13 +6,28 @@ tensor, and E, nu within 1 % of the frame closed forms
 E = 16 sqrt(3) (EI/l^3)/(1+36 s), nu = (1-12 s)/(1+36 s), s = EI/(EA l^2)
 (docs/homogenization.md); the PNG exists and is a PNG.
 
-Usage: check_homogenize.py RESULT.json T [PNG]"""
+Usage: check_homogenize.py RESULT.json T [PNG]
+       check_homogenize.py --same RESULT.json OTHER.json
+         (a supercell gives the cell's tensor: C equal to 1e-9 of max |C|)"""
 import json
 import math
 import sys
 
 
+def same(a, b):
+    ra, rb = json.load(open(a)), json.load(open(b))
+    Ca, Cb = ra["C"], rb["C"]
+    cmax = max(abs(v) for row in Ca for v in row)
+    worst = max(abs(x - y) for ra_, rb_ in zip(Ca, Cb) for x, y in zip(ra_, rb_)) / cmax
+    print("C of %s against %s: worst difference %.2e of max |C|" % (a, b, worst))
+    assert worst < 1e-9, "the supercell's tensor differs from the cell's"
+    assert abs(ra["relative_density"] / rb["relative_density"] - 1.0) < 1e-12
+    print("ok")
+
+
 def main():
+    if sys.argv[1] == "--same":
+        return same(sys.argv[2], sys.argv[3])
     r = json.load(open(sys.argv[1]))
     T = float(sys.argv[2])
     for key in ("C", "constants", "area", "relative_density"):
