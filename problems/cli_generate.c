@@ -57,6 +57,10 @@ static const char generate_help[] =
     "                           diameter t in 3D (default 0.05 without --section)\n"
     "      --relative-density R (--periodic) the same sections with t chosen so\n"
     "                           that the relative density is R\n"
+    "      --perturb AMP        (--periodic) move every joint by a random vector\n"
+    "                           with components in [-AMP, AMP] times the mean bar\n"
+    "                           length (in plane for 2D cells): a disordered cell\n"
+    "      --seed N             seed of --perturb (default 1)\n"
     "  -q, --quiet              no summary\n"
     "  -h, --help               show this help\n"
     "\n"
@@ -67,7 +71,8 @@ typedef struct gen_args {
   const char *kind_name, *output, *section, *load;
   rn_lattice_kind kind;
   int cells[3], ncells, quiet, periodic, reentrant;
-  double a, slenderness, density;
+  double a, slenderness, density, perturb;
+  int seed;
   rn_lattice_scene sc;
 } gen_args;
 
@@ -187,13 +192,13 @@ static int parse_joint_model(gen_args *a, const char *v) {
 
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
-  static const char *const names[] = {"--output",          "--cells",   "--cell-size",
-                                      "--edges-per-rod",   "--section", "--material",
-                                      "--joint-model",     "--load",    "--slenderness",
-                                      "--relative-density"};
+  static const char *const names[] = {"--output",           "--cells",   "--cell-size",
+                                      "--edges-per-rod",    "--section", "--material",
+                                      "--joint-model",      "--load",    "--slenderness",
+                                      "--relative-density", "--perturb", "--seed"};
   const char *v = NULL;
   int m = 0, which = -1;
-  for (int k = 0; k < 10 && m == 0; k++) {
+  for (int k = 0; k < 12 && m == 0; k++) {
     m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
                             &v);
     which = k;
@@ -234,6 +239,15 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
                                "got '%s'",
                                v);
     break;
+  case 10:
+    *rc = rn_cli_parse_double("generate", "--perturb", v, 0.0, &a->perturb);
+    if (!*rc && !(a->perturb < 0.5))
+      *rc = rn_cli_usage_error("generate",
+                               "--perturb expects a value in (0, 0.5), got '%s'", v);
+    break;
+  case 11:
+    *rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
+    break;
   default:
     *rc = parse_load(a, v);
     break;
@@ -251,6 +265,7 @@ static void set_defaults(gen_args *a) {
   a->sc.nu = 0.3;
   a->sc.shape = RN_LSEC_CIRCLE;
   a->sc.load = RN_LLOAD_NONE;
+  a->seed = 1;
 }
 
 static int check_args(gen_args *a) {
@@ -258,9 +273,10 @@ static int check_args(gen_args *a) {
   a->reentrant = strcmp(a->kind_name, "reentrant") == 0;
   if (a->reentrant && !a->periodic)
     return rn_cli_usage_error("generate", "the reentrant lattice needs --periodic");
-  if (!a->periodic && (a->slenderness > 0.0 || a->density > 0.0))
+  if (!a->periodic && (a->slenderness > 0.0 || a->density > 0.0 || a->perturb > 0.0))
     return rn_cli_usage_error("generate",
-                              "--slenderness and --relative-density need --periodic");
+                              "--slenderness, --relative-density and --perturb need "
+                              "--periodic");
   if (a->periodic && a->sc.load != RN_LLOAD_NONE)
     return rn_cli_usage_error("generate", "--load does not apply to a periodic cell");
   if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
@@ -380,6 +396,7 @@ static int generate_periodic(gen_args *a, rn_context *ctx) {
   rn_status st = a->reentrant ? rn_pcell_reentrant(ctx, a->cells, a->a, &c)
                               : rn_pcell_from_lattice(ctx, a->kind, a->cells, a->a, &c);
   if (!st) {
+    if (a->perturb > 0.0) rn_pcell_perturb(&c, a->perturb, (unsigned long)a->seed);
     pcell_section(a, &c);
     st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc);
   }

@@ -176,6 +176,23 @@ rn_status rn_pcell_reentrant(rn_context *ctx, const int cells[2], double a,
   return rn_pcell_tile(ctx, &prim, rep, out);
 }
 
+static double uniform(unsigned long long *state) { /* splitmix64 -> [-1, 1) */
+  unsigned long long z = (*state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  return (double)(z >> 11) / 4503599627370496.0 - 1.0;
+}
+
+void rn_pcell_perturb(rn_pcell *c, double amp, unsigned long seed) {
+  double L, V;
+  unsigned long long state = seed;
+  rn_pcell_measures(c, &L, &V);
+  const double d = amp * L / (c->nbars ? c->nbars : 1);
+  for (int n = 0; n < c->nnodes; n++)
+    for (int k = 0; k < c->dim; k++) c->xyz[3 * n + k] += d * uniform(&state);
+}
+
 void rn_pcell_measures(const rn_pcell *c, double *length, double *measure) {
   const double *A = c->vec;
   double L = 0.0;

@@ -32,6 +32,10 @@ rn_status rn_pcell_reentrant(rn_context *ctx, const int cells[2], double a,
 rn_status rn_pcell_tile(rn_context *ctx, const rn_pcell *prim, const int rep[3],
                         rn_pcell *out);
 void rn_pcell_free(rn_pcell *c);
+/* Imperfections: every node moved by a uniform random vector with components in
+ * [-amp, amp] times the mean bar length (2D cells: in plane only), from a
+ * deterministic generator seeded by seed. */
+void rn_pcell_perturb(rn_pcell *c, double amp, unsigned long seed);
 /* Sum of the bar lengths and the cell area (2D) or volume (3D). */
 void rn_pcell_measures(const rn_pcell *c, double *length, double *measure);
 /* Write the cell as a JSON scene (top-level "periodic", rods "e<k>", joints

@@ -195,7 +195,7 @@ rn_cli_test(problems_cli_periodic_supercell 0 "periodic honeycomb cell \\(2D\\),
 rn_cli_test(problems_cli_periodic_reentrant_needs_periodic 2 "the reentrant lattice needs --periodic"
             ARGS generate reentrant -o ${gen}/x.json)
 rn_cli_test(problems_cli_periodic_slenderness_needs_periodic 2
-            "--slenderness and --relative-density need --periodic"
+            "--slenderness, --relative-density and --perturb need --periodic"
             ARGS generate square --slenderness 0.1 -o ${gen}/x.json)
 rn_cli_test(problems_cli_periodic_no_load 2 "--load does not apply to a periodic cell"
             ARGS generate square --periodic --load stretch-x:0.1 -o ${gen}/x.json)
