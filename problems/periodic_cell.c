@@ -39,57 +39,121 @@ static void fractional(const rn_pcell *c, const double p[3], double f[3]) {
   }
 }
 
-/* Wraps the graph (nn nodes p, nb bars b[2 nb]) onto the cell c (vec, dim set). */
-static rn_status wrap(rn_context *ctx, rn_pcell *c, int nn, const double *p, int nb,
-                      const int *b) {
-  int *canon = malloc((size_t)(nn ? nn : 1) * sizeof(int));
-  int *img = malloc(3 * (size_t)(nn ? nn : 1) * sizeof(int));
-  c->xyz = malloc(3 * (size_t)(nn ? nn : 1) * sizeof(double));
-  c->bar = malloc(5 * (size_t)(nb ? nb : 1) * sizeof(int));
-  if (!canon || !img || !c->xyz || !c->bar) {
-    free(canon);
-    free(img);
-    return rn_context_set_error(ctx, RN_ERR_ALLOC, "generate: out of memory");
-  }
+/* Sort keys: nodes by canonical x; bars by their canonical (u, v, image). */
+typedef struct node_key {
+  double x;
+  int n;
+} node_key;
+typedef struct bar_key {
+  int k[5];
+  int e;
+} bar_key;
+
+static int node_cmp(const void *a, const void *b) {
+  const node_key *p = a, *q = b;
+  return (p->x > q->x) - (p->x < q->x);
+}
+
+static int bar_cmp(const void *a, const void *b) {
+  const bar_key *p = a, *q = b;
+  for (int i = 0; i < 5; i++)
+    if (p->k[i] != q->k[i]) return (p->k[i] > q->k[i]) - (p->k[i] < q->k[i]);
+  return (p->e > q->e) - (p->e < q->e);
+}
+
+/* Canonical copy of every node in the cell: rep[n] = the node's cluster (nodes
+ * within 1e-9 of the cell size after the shift; sweep over x), q[3 n] its
+ * position in the cell, img[3 n] its lattice shift. */
+static rn_status canonical_nodes(const rn_pcell *c, int nn, const double *p, double *q,
+                                 int *img, int *rep) {
   double scale = 0.0;
+  node_key *key = malloc((size_t)(nn ? nn : 1) * sizeof(*key));
+  if (!key) return RN_ERR_ALLOC;
   for (int k = 0; k < 9; k++) scale = fmax(scale, fabs(c->vec[k]));
-  c->nnodes = c->nbars = 0;
-  for (int n = 0; n < nn; n++) { /* canonical copy of each node in the cell */
-    double f[3], q[3];
+  const double tol = 1e-9 * scale;
+  for (int n = 0; n < nn; n++) {
+    double f[3];
     fractional(c, p + 3 * n, f);
     for (int m = 0; m < 3; m++) img[3 * n + m] = m < c->dim ? (int)floor(f[m] + 1e-9) : 0;
     for (int k = 0; k < 3; k++) {
-      q[k] = p[3 * n + k];
-      for (int m = 0; m < c->dim; m++) q[k] -= img[3 * n + m] * c->vec[3 * m + k];
+      q[3 * n + k] = p[3 * n + k];
+      for (int m = 0; m < c->dim; m++) q[3 * n + k] -= img[3 * n + m] * c->vec[3 * m + k];
     }
-    canon[n] = -1;
-    for (int i = 0; i < c->nnodes && canon[n] < 0; i++) {
-      double d = fabs(q[0] - c->xyz[3 * i]) + fabs(q[1] - c->xyz[3 * i + 1]) +
-                 fabs(q[2] - c->xyz[3 * i + 2]);
-      if (d <= 1e-9 * scale) canon[n] = i;
-    }
-    if (canon[n] < 0) {
-      memcpy(c->xyz + 3 * c->nnodes, q, sizeof q);
-      canon[n] = c->nnodes++;
+    key[n].x = q[3 * n];
+    key[n].n = n;
+  }
+  qsort(key, (size_t)nn, sizeof(*key), node_cmp);
+  for (int i = 0; i < nn; i++) {
+    const int a = key[i].n;
+    rep[a] = a;
+    for (int j = i - 1; j >= 0 && key[j].x >= key[i].x - tol; j--) {
+      const int b = key[j].n;
+      double d = fabs(q[3 * a] - q[3 * b]) + fabs(q[3 * a + 1] - q[3 * b + 1]) +
+                 fabs(q[3 * a + 2] - q[3 * b + 2]);
+      if (d <= tol) {
+        rep[a] = rep[b];
+        break;
+      }
     }
   }
-  for (int e = 0; e < nb; e++) { /* bars, periodic copies merged */
-    int u = canon[b[2 * e]], v = canon[b[2 * e + 1]], r[3], dup = 0;
-    for (int m = 0; m < 3; m++) r[m] = img[3 * b[2 * e + 1] + m] - img[3 * b[2 * e] + m];
-    for (int i = 0; i < c->nbars && !dup; i++) {
-      const int *o = c->bar + 5 * i;
-      dup = (o[0] == u && o[1] == v && o[2] == r[0] && o[3] == r[1] && o[4] == r[2]) ||
-            (o[0] == v && o[1] == u && o[2] == -r[0] && o[3] == -r[1] && o[4] == -r[2]);
-    }
-    if (dup) continue;
-    int *o = c->bar + 5 * c->nbars++;
-    o[0] = u;
-    o[1] = v;
-    memcpy(o + 2, r, sizeof r);
-  }
-  free(canon);
-  free(img);
+  free(key);
   return RN_OK;
+}
+
+/* Wraps the graph (nn nodes p, nb bars b[2 nb]) onto the cell c (vec, dim set):
+ * nodes numbered in order of first appearance, bars that are periodic copies of
+ * an earlier one dropped (O((nn + nb) log)). */
+static rn_status wrap(rn_context *ctx, rn_pcell *c, int nn, const double *p, int nb,
+                      const int *b) {
+  size_t n1 = (size_t)(nn ? nn : 1), b1 = (size_t)(nb ? nb : 1);
+  int *canon = malloc(n1 * sizeof(int)), *rep = malloc(n1 * sizeof(int));
+  int *img = malloc(3 * n1 * sizeof(int)), *keep = malloc(b1 * sizeof(int));
+  double *q = malloc(3 * n1 * sizeof(double));
+  bar_key *bk = malloc(b1 * sizeof(*bk));
+  rn_status st = RN_ERR_ALLOC;
+  c->xyz = malloc(3 * n1 * sizeof(double));
+  c->bar = malloc(5 * b1 * sizeof(int));
+  if (!canon || !rep || !img || !keep || !q || !bk || !c->xyz || !c->bar) goto done;
+  if (canonical_nodes(c, nn, p, q, img, rep)) goto done;
+  c->nnodes = c->nbars = 0;
+  for (int n = 0; n < nn; n++) canon[n] = -1;
+  for (int n = 0; n < nn; n++) /* numbers in order of first appearance */
+    if (canon[rep[n]] < 0) {
+      memcpy(c->xyz + 3 * c->nnodes, q + 3 * rep[n], 3 * sizeof(double));
+      canon[rep[n]] = c->nnodes++;
+    }
+  for (int e = 0; e < nb; e++) {
+    int u = canon[rep[b[2 * e]]], v = canon[rep[b[2 * e + 1]]], r[3], flip = 0;
+    for (int m = 0; m < 3; m++) r[m] = img[3 * b[2 * e + 1] + m] - img[3 * b[2 * e] + m];
+    if (u > v ||
+        (u == v && (r[0] < 0 || (r[0] == 0 && (r[1] < 0 || (r[1] == 0 && r[2] < 0))))))
+      flip = 1;
+    bk[e].k[0] = flip ? v : u;
+    bk[e].k[1] = flip ? u : v;
+    for (int m = 0; m < 3; m++) bk[e].k[2 + m] = flip ? -r[m] : r[m];
+    bk[e].e = e;
+    keep[e] = 1;
+  }
+  qsort(bk, (size_t)nb, sizeof(*bk), bar_cmp);
+  for (int i = 1; i < nb; i++) /* the first of equal keys (lowest e) stays */
+    if (memcmp(bk[i].k, bk[i - 1].k, sizeof(bk[i].k)) == 0) keep[bk[i].e] = 0;
+  for (int e = 0; e < nb; e++) {
+    if (!keep[e]) continue;
+    int *o = c->bar + 5 * c->nbars++;
+    o[0] = canon[rep[b[2 * e]]];
+    o[1] = canon[rep[b[2 * e + 1]]];
+    for (int m = 0; m < 3; m++)
+      o[2 + m] = img[3 * b[2 * e + 1] + m] - img[3 * b[2 * e] + m];
+  }
+  st = RN_OK;
+done:
+  free(canon);
+  free(rep);
+  free(img);
+  free(keep);
+  free(q);
+  free(bk);
+  return st ? rn_context_set_error(ctx, st, "generate: out of memory") : RN_OK;
 }
 
 rn_status rn_pcell_from_lattice(rn_context *ctx, rn_lattice_kind kind, const int cells[3],

@@ -192,6 +192,17 @@ endforeach()
 # supercells: --cells tiles the cell (a 3 x 2 honeycomb: 18 rods, 12 joints)
 rn_cli_test(problems_cli_periodic_supercell 0 "periodic honeycomb cell \\(2D\\), 18 rods, 12 joints"
             ARGS generate honeycomb --periodic --cells 3,2 -o ${gen}/periodic_hc32.json)
+# a disordered supercell (random joint displacements) and a large 3D supercell
+rn_cli_test(problems_cli_periodic_perturb 0 "periodic honeycomb cell \\(2D\\), 27 rods, 18 joints"
+            REMOVE ${gen}/periodic_dis.json FIXTURE_SETUP problems_periodic_dis
+            ARGS generate honeycomb --periodic --cells 3,3 --perturb 0.1 --seed 5
+                 --edges-per-rod 3 -o ${gen}/periodic_dis.json)
+rn_cli_test(problems_cli_periodic_perturb_check 0 "PASS"
+            ARGS check ${gen}/periodic_dis.json --random 1)
+set_tests_properties(problems_cli_periodic_perturb_check PROPERTIES
+                     FIXTURES_REQUIRED problems_periodic_dis)
+rn_cli_test(problems_cli_periodic_octet_5 0 "periodic octet cell \\(3D\\), 3000 rods, 500 joints"
+            ARGS generate octet --periodic --cells 5 --edges-per-rod 2 -o ${gen}/periodic_oc5.json)
 rn_cli_test(problems_cli_periodic_reentrant_needs_periodic 2 "the reentrant lattice needs --periodic"
             ARGS generate reentrant -o ${gen}/x.json)
 rn_cli_test(problems_cli_periodic_slenderness_needs_periodic 2
