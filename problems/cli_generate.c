@@ -61,6 +61,8 @@ static const char generate_help[] =
     "                           with components in [-AMP, AMP] times the mean bar\n"
     "                           length (in plane for 2D cells): a disordered cell\n"
     "      --seed N             seed of --perturb (default 1)\n"
+    "      --repeat M,N[,K]     (--periodic) write \"repeat\": the scene reader tiles\n"
+    "                           the cell M x N (x K) times\n"
     "  -q, --quiet              no summary\n"
     "  -h, --help               show this help\n"
     "\n"
@@ -72,7 +74,7 @@ typedef struct gen_args {
   rn_lattice_kind kind;
   int cells[3], ncells, quiet, periodic, reentrant;
   double a, slenderness, density, perturb;
-  int seed;
+  int seed, repeat[3], nrepeat;
   rn_lattice_scene sc;
 } gen_args;
 
@@ -192,13 +194,16 @@ static int parse_joint_model(gen_args *a, const char *v) {
 
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
-  static const char *const names[] = {"--output",           "--cells",   "--cell-size",
-                                      "--edges-per-rod",    "--section", "--material",
-                                      "--joint-model",      "--load",    "--slenderness",
-                                      "--relative-density", "--perturb", "--seed"};
+  static const char *const names[] = {"--output",      "--cells",
+                                      "--cell-size",   "--edges-per-rod",
+                                      "--section",     "--material",
+                                      "--joint-model", "--load",
+                                      "--slenderness", "--relative-density",
+                                      "--perturb",     "--seed",
+                                      "--repeat"};
   const char *v = NULL;
   int m = 0, which = -1;
-  for (int k = 0; k < 12 && m == 0; k++) {
+  for (int k = 0; k < 13 && m == 0; k++) {
     m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
                             &v);
     which = k;
@@ -248,6 +253,20 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
   case 11:
     *rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
     break;
+  case 12: {
+    double r[3];
+    int n = 0, ok = parse_list(v, 3, r, &n) == 0;
+    for (int k = 0; ok && k < n; k++)
+      ok = r[k] == floor(r[k]) && r[k] >= 1 && r[k] <= 1000;
+    if (!ok) {
+      *rc = rn_cli_usage_error(
+          "generate", "--repeat expects M,N[,K] with integers in [1, 1000], got '%s'", v);
+      break;
+    }
+    for (int k = 0; k < 3; k++) a->repeat[k] = (int)(k < n ? r[k] : 1);
+    a->nrepeat = n;
+    break;
+  }
   default:
     *rc = parse_load(a, v);
     break;
@@ -277,6 +296,8 @@ static int check_args(gen_args *a) {
     return rn_cli_usage_error("generate",
                               "--slenderness, --relative-density and --perturb need "
                               "--periodic");
+  if (a->nrepeat && !a->periodic)
+    return rn_cli_usage_error("generate", "--repeat needs --periodic");
   if (a->periodic && a->sc.load != RN_LLOAD_NONE)
     return rn_cli_usage_error("generate", "--load does not apply to a periodic cell");
   if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
@@ -293,6 +314,9 @@ static int check_args(gen_args *a) {
                               a->kind_name);
   if (!a->output) return rn_cli_usage_error("generate", "missing -o SCENE.json");
   int dim = rn_lattice_kind_dimension(a->kind);
+  if (a->nrepeat && a->nrepeat != dim)
+    return rn_cli_usage_error("generate",
+                              "--repeat: give one count per lattice vector (%d)", dim);
   if (a->ncells > dim)
     return rn_cli_usage_error("generate",
                               "--cells: the %s lattice is planar, give "
@@ -398,7 +422,7 @@ static int generate_periodic(gen_args *a, rn_context *ctx) {
   if (!st) {
     if (a->perturb > 0.0) rn_pcell_perturb(&c, a->perturb, (unsigned long)a->seed);
     pcell_section(a, &c);
-    st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc);
+    st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc, a->nrepeat ? a->repeat : NULL);
   }
   if (st) {
     fprintf(stderr, "rodnet generate: %s\n", rn_context_last_error(ctx));

@@ -282,6 +282,7 @@ void rn_pcell_measures(const rn_pcell *c, double *length, double *measure) {
 typedef struct pcell_out {
   const rn_pcell *c;
   const rn_lattice_scene *opt;
+  const int *repeat;
 } pcell_out;
 
 static void put_vec3(FILE *f, const double *v) {
@@ -300,7 +301,13 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
     if (m) fputs(", ", f);
     put_vec3(f, c->vec + 3 * m);
   }
-  fputs("]},\n", f);
+  fputc(']', f);
+  if (o->repeat) {
+    fprintf(f, ", \"repeat\": [%d, %d", o->repeat[0], o->repeat[1]);
+    if (c->dim == 3) fprintf(f, ", %d", o->repeat[2]);
+    fputc(']', f);
+  }
+  fputs("},\n", f);
   fprintf(f, "  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n", opt->E,
           opt->nu);
   fputs("  \"sections\": {\"section\": ", f);
@@ -359,7 +366,7 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
 }
 
 rn_status rn_pcell_write_scene(rn_context *ctx, const char *path, const rn_pcell *c,
-                               const rn_lattice_scene *opt) {
-  pcell_out o = {c, opt};
+                               const rn_lattice_scene *opt, const int *repeat) {
+  pcell_out o = {c, opt, repeat};
   return rn_file_write_atomic(ctx, path, write_pcell, &o);
 }

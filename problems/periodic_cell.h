@@ -39,8 +39,9 @@ void rn_pcell_perturb(rn_pcell *c, double amp, unsigned long seed);
 /* Sum of the bar lengths and the cell area (2D) or volume (3D). */
 void rn_pcell_measures(const rn_pcell *c, double *length, double *measure);
 /* Write the cell as a JSON scene (top-level "periodic", rods "e<k>", joints
- * "v<k>" with "image" on the ends at images), atomically; opt->load ignored. */
+ * "v<k>" with "image" on the ends at images), atomically; opt->load ignored;
+ * repeat (NULL: none) is written as "periodic": {"repeat": [...]}. */
 rn_status rn_pcell_write_scene(rn_context *ctx, const char *path, const rn_pcell *c,
-                               const rn_lattice_scene *opt);
+                               const rn_lattice_scene *opt, const int *repeat);
 
 #endif

@@ -523,7 +523,7 @@ static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
   }
 }
 
-static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
+static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   static const char *const keys[] = {"description", "materials", "sections",    "graph",
                                      "rods",        "joints",    "constraints", "loads",
                                      "solver",      "periodic",  NULL};
@@ -558,6 +558,16 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   st = rn_network_finalize(p->scene->net);
   return st ? rn_scene_finalize_error(p, st) : rn_scene_check_finite(p);
+}
+
+/* A scene, or the supercell its "periodic.repeat" asks for. */
+static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
+  cJSON *super = NULL;
+  rn_status st = rn_scene_expand_repeat(p, root, &super);
+  if (st || !super) return st ? st : read_scene_tree(p, root);
+  st = read_scene_tree(p, super);
+  cJSON_Delete(super);
+  return st;
 }
 
 /* The network's mode (part NULL: whole). */

@@ -118,6 +118,10 @@ rn_status rn_scene_read_periodic(rn_scene_parser *p, const cJSON *per);
  * without a cell and for a wrong count.  The shift sum image_m a_m. */
 rn_status rn_scene_read_image(rn_scene_parser *p, const cJSON *end, int *image);
 void rn_scene_image_shift(const rn_scene *s, const int *image, double shift[3]);
+/* "periodic": {"repeat": [m, n(, k)]}: *out is a new tree of the supercell (rods
+ * and joints copied per cell, the copy of cell (0, 0) keeps the names, the others
+ * are "name@i,j"; images rewired; the vectors multiplied), NULL without repeat. */
+rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **out);
 /* v (at the walker's path) / obj[key] is a vertex (edge when edges != 0) index of rod,
  * negative counting from the end; the resolved index in *out. */
 rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod, int edges,

@@ -236,15 +236,21 @@ if(RN_WITH_TRILINOS)
                        FIXTURES_REQUIRED problems_hom_hc_result)
   # A supercell gives the cell's tensor: a 3 x 2 honeycomb and a 2 x 2 x 1 octet
   # against their single cells.
-  foreach(sc "honeycomb:1:3,2" "octet:1:2,2,1")
+  # "rep" runs use the scene key "periodic": {"repeat": [...]} (--repeat) instead.
+  foreach(sc "honeycomb:1:3,2" "octet:1:2,2,1" "kagome:rep:2,3" "bcc:rep:1,2,2")
     string(REPLACE ":" ";" e "${sc}")
     list(GET e 0 kind)
+    list(GET e 1 how)
     list(GET e 2 cells)
     foreach(c 1 ${cells})
       string(REPLACE "," "x" tag "${c}")
+      set(tiling --cells ${c})
+      if(how STREQUAL "rep" AND NOT c STREQUAL "1")
+        set(tiling --repeat ${c})
+      endif()
       rn_cli_test(problems_cli_homogenize_${kind}_${tag}_gen 0 "wrote"
                   FIXTURE_SETUP problems_hom_${kind}_${tag}
-                  ARGS generate ${kind} --periodic --cells ${c} --joint-model rigid
+                  ARGS generate ${kind} --periodic ${tiling} --joint-model rigid
                        --edges-per-rod 6 -o ${gen}/hom_${kind}_${tag}.json)
       rn_cli_test(problems_cli_homogenize_${kind}_${tag} 0 "wrote"
                   FIXTURE_SETUP problems_hom_${kind}_${tag}_res
