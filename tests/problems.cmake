@@ -234,6 +234,16 @@ if(RN_WITH_TRILINOS)
                    ${gen}/hom_hc_result.json 0.05 ${gen}/hom_hc.png)
   set_tests_properties(problems_cli_homogenize_hc_result PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_hom_hc_result)
+  # rodnet solve of a stress-controlled cell: RESULT.json "cell"
+  rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
+              REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress
+              ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json
+                   -o ${gen}/hc_stress_result.json)
+  add_test(NAME problems_cli_periodic_solve_stress_cell
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_homogenize.py
+                   --cell ${gen}/hc_stress_result.json 1e-10)
+  set_tests_properties(problems_cli_periodic_solve_stress_cell PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_periodic_stress)
   # A supercell gives the cell's tensor: a 3 x 2 honeycomb and a 2 x 2 x 1 octet
   # against their single cells.
   # "rep" runs use the scene key "periodic": {"repeat": [...]} (--repeat) instead.

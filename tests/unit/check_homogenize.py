@@ -7,6 +7,9 @@ E = 16 sqrt(3) (EI/l^3)/(1+36 s), nu = (1-12 s)/(1+36 s), s = EI/(EA l^2)
 (docs/homogenization.md); the PNG exists and is a PNG.
 
 Usage: check_homogenize.py RESULT.json T [PNG]
+       check_homogenize.py --cell SOLVE_RESULT.json STRESS11
+         (rodnet solve of a stress-controlled cell: "cell" has the applied stress
+         (s, 0, 0) to 1e-6 and a stretch along x)
        check_homogenize.py --same RESULT.json OTHER.json
          (a supercell gives the cell's tensor: C equal to 1e-9 of max |C|)"""
 import json
@@ -25,7 +28,19 @@ def same(a, b):
     print("ok")
 
 
+def cell(path, s11):
+    c = json.load(open(path))["cell"]
+    print("cell:", c)
+    assert c["dimension"] == 2 and len(c["strain"]) == 3 and len(c["stress"]) == 3
+    assert abs(c["stress"][0] / s11 - 1.0) < 1e-6
+    assert abs(c["stress"][1]) < 1e-6 * s11 and abs(c["stress"][2]) < 1e-6 * s11
+    assert c["strain"][0] > 0 and c["strain"][1] < 0  # the honeycomb's nu ~ 1
+    print("ok")
+
+
 def main():
+    if sys.argv[1] == "--cell":
+        return cell(sys.argv[2], float(sys.argv[3]))
     if sys.argv[1] == "--same":
         return same(sys.argv[2], sys.argv[3])
     r = json.load(open(sys.argv[1]))
