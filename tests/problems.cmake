@@ -244,6 +244,12 @@ if(RN_WITH_TRILINOS)
                    --cell ${gen}/hc_stress_result.json 1e-10)
   set_tests_properties(problems_cli_periodic_solve_stress_cell PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_periodic_stress)
+  # docs/homog_sweep.py (the sweep figure of the docs): a smoke run of 3 points
+  add_test(NAME problems_homog_sweep
+           COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/docs/homog_sweep.py ${RN_CLI}
+                   ${gen}/sweep.csv ${gen}/sweep.png 3 4)
+  set_tests_properties(problems_homog_sweep PROPERTIES LABELS unit
+                       PASS_REGULAR_EXPRESSION "wrote .*sweep.csv and .*sweep.png \\(3 points\\)")
   # A supercell gives the cell's tensor: a 3 x 2 honeycomb and a 2 x 2 x 1 octet
   # against their single cells.
   # "rep" runs use the scene key "periodic": {"repeat": [...]} (--repeat) instead.
