@@ -8,6 +8,8 @@
  * - zero energy and gradient at rest; image end positions x_J + F s after
  *   set_dofs and reference updates; energy unchanged by a reference update;
  * - a prescribed uniform strain on a square cell of bars: energy EA/2 (e a)^2 / a;
+ * - the load-step predictor (rn_network_load_increment) with a prescribed strain
+ *   against the load-factor derivative of the gradient (h-sweep, second order);
  * - errors: degenerate cell, 2D cell out of plane, image without a cell, image
  *   component beyond the cell's dimension, an end off its image. */
 #include <math.h>
@@ -320,6 +322,52 @@ static void test_uniform_strain(rn_context *ctx) {
   rn_network_destroy(&net);
 }
 
+/* The load-step predictor with a prescribed strain: rn_network_load_increment
+ * (t_prev -> t) over (t - t_prev) equals the load-factor derivative of the
+ * gradient at fixed free DOFs (central differences, h-sweep, second order). */
+static void test_load_increment(rn_context *ctx) {
+  for (int model = 0; model < 2; ++model) {
+    cell_spec c;
+    rn_network *net;
+    int fixed[3] = {1, 0, 1};
+    double strain[3] = {0.02, 0.0, -0.03}, x[MAXN], dg[MAXN], gp[MAXN], gm[MAXN];
+    double hs[3] = {1e-2, 5e-3, 2.5e-3}, err[3];
+    const double t0 = 0.5;
+    cell2d(&c);
+    CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+    CHECK_STATUS(rn_network_set_periodic(net, 2, c.vec), RN_OK);
+    add_bars(net, &c, model, 1);
+    CHECK_STATUS(rn_network_set_cell_strain(net, fixed, strain), RN_OK);
+    CHECK_STATUS(rn_network_finalize(net), RN_OK);
+    CHECK_STATUS(rn_network_set_load_factor(net, t0), RN_OK);
+    size_t n = rn_network_num_dofs(net);
+    CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+    deform(net, x, 0.03, 17);
+    CHECK_STATUS(rn_network_load_increment(net, x, t0, t0 + 0.1, dg), RN_OK);
+    double scale = 0.0;
+    for (size_t i = 0; i < n; ++i) scale = fmax(scale, fabs(dg[i]) / 0.1);
+    for (int k = 0; k < 3; ++k) {
+      double worst = 0.0;
+      CHECK_STATUS(rn_network_set_load_factor(net, t0 + hs[k]), RN_OK);
+      CHECK_STATUS(rn_network_gradient(net, x, NULL, gp), RN_OK);
+      CHECK_STATUS(rn_network_set_load_factor(net, t0 - hs[k]), RN_OK);
+      CHECK_STATUS(rn_network_gradient(net, x, NULL, gm), RN_OK);
+      for (size_t i = 0; i < n; ++i)
+        worst = fmax(worst, fabs((gp[i] - gm[i]) / (2 * hs[k]) - dg[i] / 0.1));
+      err[k] = worst / scale;
+    }
+    CHECK_STATUS(rn_network_set_load_factor(net, t0), RN_OK);
+    double slope = rn_test_loglog_slope(3, hs, err);
+    if (getenv("RN_VERBOSE"))
+      fprintf(stderr, "load increment model %d: FD errors %.2e %.2e %.2e order %.2f\n",
+              model, err[0], err[1], err[2], slope);
+    CHECK(scale > 0.0);
+    CHECK(err[2] < 1e-5);
+    CHECK(slope > 1.8 && slope < 2.2);
+    rn_network_destroy(&net);
+  }
+}
+
 static void test_errors(rn_context *ctx) {
   rn_network *net;
   double flat[6] = {1, 0, 0, 2, 0, 0}, tilted[6] = {1, 0, 0, 0, 1, 0.1};
@@ -365,6 +413,7 @@ int main(void) {
   test_strain_block(ctx);
   test_rest_and_images(ctx);
   test_uniform_strain(ctx);
+  test_load_increment(ctx);
   test_errors(ctx);
   rn_context_destroy(&ctx);
   return rn_test_finish("api_periodic");
