@@ -196,6 +196,16 @@ rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **
   }
   if (!st && copies > 100000)
     st = rn_jwalk_error(w, "%ld copies of the cell: at most 100000", copies);
+  if (!st) { /* the tiled scene's size: at most 2e6 rods and joints */
+    const cJSON *ro = rn_jm_get(root, "rods"), *jo = rn_jm_get(root, "joints");
+    long items = (cJSON_IsArray(ro) ? cJSON_GetArraySize(ro) : 0) +
+                 (cJSON_IsArray(jo) ? cJSON_GetArraySize(jo) : 0);
+    if (items * copies > 2000000L)
+      st = rn_jwalk_error(w,
+                          "%ld copies of %ld rods and joints: at most 2000000 in the "
+                          "tiled scene",
+                          copies, items);
+  }
   if (!st && rn_jm_get(root, "graph"))
     st = rn_jwalk_error(w, "\"repeat\" needs explicit \"rods\" and \"joints\" (not a "
                            "\"graph\")");
