@@ -3,13 +3,16 @@
 // METIS partition, each rank's part), then the evaluations of one Newton step of a
 // distributed solver are repeated on the distributed System (shim_cxx/dist_system.hpp):
 // gradient (energy, ghost import, gradient export), Hessian assembly (CSR values,
-// overlap matrix export), one trial energy and the accepted reference update.  The
-// linear solve is the solver's, not measured here.
+// overlap matrix export), the preconditioner's setup and the Newton system H s = -g
+// by preconditioned MINRES to the relative tolerance 1e-8 (--precond NAME, default
+// dd, the solve's default; --precond none: no linear solve), one trial energy and the
+// accepted reference update.
 //
 // Rank 0 writes one CSV row per rank: the common columns (bench dist, case = scene
 // name, size = global DOFs, ranks, median and min wall time per step over the
 // repeats) and rank, owned_dofs, ghost_dofs, owned_stencils, owned_rods, ghost_rods,
-// bytes_per_step (payload the rank sent in imports, exports and reductions per step),
+// bytes_per_step (payload the rank sent in imports, exports and reductions per step,
+// the preconditioner's own communication not included),
 // edge_cut, rss_mb (resident memory after the steps: the part, its System and
 // matrices) and peak_mb (the high-water mark, which includes the transient JSON tree
 // of the scene that every rank parses) and bytes_per_matvec (what one Hessian apply,
@@ -38,12 +41,15 @@ extern "C" {
 #include "scene.h"
 }
 #include "dist_system.hpp"
+#include "minres.hpp"
+#include "preconditioner.hpp"
 #include "rodnet_solve.h"
+#include "solvers.hpp"
 
 namespace {
 
 struct Opts {
-  const char *scene = nullptr, *out = nullptr, *label = nullptr;
+  const char *scene = nullptr, *out = nullptr, *label = nullptr, *precond = "dd";
   int repeats = 5;
   bool callgrind = false;
 };
@@ -51,7 +57,7 @@ struct Opts {
 int usage(const char *msg) {
   std::fprintf(stderr,
                "bench_dist: %s\nusage: mpirun -np P bench_dist SCENE.json [--repeats N] "
-               "[--label NAME] [--out CSV] [--callgrind]\n",
+               "[--label NAME] [--out CSV] [--precond NAME|none] [--callgrind]\n",
                msg);
   return 2;
 }
@@ -65,6 +71,8 @@ int parse(int argc, char **argv, Opts &o) {
       o.out = argv[++i];
     else if (a == "--label" && i + 1 < argc)
       o.label = argv[++i];
+    else if (a == "--precond" && i + 1 < argc)
+      o.precond = argv[++i];
     else if (a == "--callgrind")
       o.callgrind = true;
     else if (a[0] != '-' && !o.scene)
@@ -74,6 +82,9 @@ int parse(int argc, char **argv, Opts &o) {
   }
   if (!o.scene) return usage("missing the scene");
   if (o.repeats < 1) return usage("--repeats must be >= 1");
+  rn_preconditioner p;
+  if (std::strcmp(o.precond, "none") != 0 && rn_preconditioner_from_name(o.precond, &p))
+    return usage("unknown --precond");
   return 0;
 }
 
@@ -103,6 +114,16 @@ rn_scene *load_part(rn_context *ctx, const char *path, int rank, int size, long 
   rn_scene_destroy(&graph);
   return part;
 }
+
+// y = A x for MINRES from a Tpetra operator (the Hessian, a preconditioner's inverse).
+class OpAdapter : public rodnet::VectorOperator {
+public:
+  explicit OpAdapter(const Tpetra::Operator<> &A) : A_(A) {}
+  void apply(const rodnet::MV &x, rodnet::MV &y) const override { A_.apply(x, y); }
+
+private:
+  const Tpetra::Operator<> &A_;
+};
 
 // VmRSS and VmHWM of this process in MB (/proc/self/status; 0 if unknown).
 void memory_mb(double *rss, double *peak) {
@@ -140,12 +161,27 @@ int main(int argc, char **argv) {
   }
   rn_network *net = rn_scene_network(scene);
   int bad = 0;
-  enum { NCOL = 12 };
+  enum { NCOL = 13 };
+  double minres_its = 0.0;
   std::vector<double> row(NCOL, 0.0), times;
   {
     rodnet::DistSystem sys(net, comm);
-    rodnet::TMV x(sys.map(), 1), g(sys.map(), 1);
+    rodnet::TMV x(sys.map(), 1), g(sys.map(), 1), s(sys.map(), 1);
     sys.get_state(x);
+    std::unique_ptr<rodnet::Preconditioner> prec;
+    rodnet::MinresSolver minres(sys.map(), 1e-8, 1000);
+    if (std::strcmp(o.precond, "none") != 0) {
+      rn_solve_options opt;
+      rn_solve_options_default(&opt);
+      rn_preconditioner_from_name(o.precond, &opt.preconditioner);
+      rn_preconditioner used;
+      try {
+        prec = rodnet::make_preconditioner(sys, opt, &used);
+      } catch (const std::exception &e) {
+        if (rank == 0) std::fprintf(stderr, "bench_dist: %s\n", e.what());
+        bad = 1;
+      }
+    }
     double E = 0.0;
     sys.gradient(x, &E, g); // warm-up: first-touch allocations, Kokkos views
     sys.assemble_hessian(x);
@@ -156,6 +192,14 @@ int main(int argc, char **argv) {
       const double t0 = rn_bench_now();
       if (sys.gradient(x, &E, g) != RN_OK) bad = 1;
       sys.assemble_hessian(x);
+      if (prec) {
+        prec->setup(sys);
+        g.scale(-1.0);
+        const rodnet::MinresResult mr =
+            minres.solve(OpAdapter(*sys.hessian()), OpAdapter(*prec->inverse()), g, s);
+        minres_its += mr.iterations;
+        if (!mr.converged) bad = 1;
+      }
       double Et = 0.0;
       if (sys.energy(x, &Et) != RN_OK || !std::isfinite(Et)) bad = 1;
       sys.accept(x);
@@ -176,7 +220,9 @@ int main(int argc, char **argv) {
            static_cast<double>(sys.global_size()),
            static_cast<double>(cut),
            0.0,
-           0.0};
+           0.0,
+           0.0,
+           minres_its / o.repeats};
     memory_mb(&row[9], &row[10]);
     // a Krylov iteration's Hessian apply imports the ghost columns of x
     auto imp = sys.hessian()->getCrsGraph()->getImporter();
@@ -193,7 +239,8 @@ int main(int argc, char **argv) {
     FILE *f = o.out ? std::fopen(o.out, "a") : stdout;
     static const char *const extra =
         "rank,owned_dofs,ghost_dofs,owned_stencils,owned_rods,"
-        "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb,bytes_per_matvec";
+        "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb,bytes_per_matvec,precond,"
+        "minres_its";
     if (f && (!o.out || std::ftell(f) == 0)) rn_bench_csv_header(f, extra);
     const std::string label = o.label ? o.label : o.scene;
     for (int q = 0; q < size && f; ++q) {
@@ -201,8 +248,9 @@ int main(int argc, char **argv) {
       std::fprintf(f, "\"%s\",\"%s\",\"%s\",%d,dist,%s,%ld,%d,%.6e,%.6e", RN_BENCH_COMMIT,
                    RN_BENCH_COMPILER, RN_BENCH_FLAGS, size, label.c_str(),
                    static_cast<long>(r[7]), o.repeats, med, mn);
-      std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f,%.0f\n", q, r[1],
-                   r[2], r[3], r[4], r[5], r[6], r[8], r[9], r[10], r[11]);
+      std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f,%.0f,%s,%.1f\n",
+                   q, r[1], r[2], r[3], r[4], r[5], r[6], r[8], r[9], r[10], r[11],
+                   o.precond, r[12]);
     }
     if (f && o.out) std::fclose(f);
   }

@@ -13,12 +13,14 @@
  *   bench_lattice [--kind honeycomb] [--cells 10,30,100] [--models rigid,elastic]
  *                 [--edges-per-rod 8] [--load stretch-x:1e-3] [--repeats N]
  *                 [--solver NAME] [--factorization auto|banded|sparse]
+ *                 [--preconditioner NAME]
  *                 [--dump-system PREFIX] [--out FILE.csv]
  *
  * --dump-system writes, for each case, the Newton system at the initial state to
  * PREFIX-<case>-<cells>.bin for shim_cxx/study/precond_study.cpp (dump_system).
  */
 #include <math.h>
+#include <sys/resource.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +33,8 @@
 
 #define MAX_LIST 16
 
+static double peak_rss_mb(void);
+
 typedef struct bench_opts {
   rn_lattice_kind kind;
   long cells[MAX_LIST];
@@ -42,6 +46,7 @@ typedef struct bench_opts {
   double load_value;
   const char *load_text;
   rn_solver_kind solver;
+  rn_preconditioner preconditioner;
   rn_factorization factorization;
   const char *out, *dump;
 } bench_opts;
@@ -175,6 +180,7 @@ static double solve_once(rn_context *ctx, const bench_opts *o, long cells, int m
   memset(&res->log, 0, sizeof res->log);
   rn_solve_options_default(&opt);
   opt.solver = o->solver;
+  opt.preconditioner = o->preconditioner;
   opt.factorization = o->factorization;
   opt.progress = on_progress;
   opt.progress_user = &res->log;
@@ -218,14 +224,16 @@ static int bench_case(rn_context *ctx, const bench_opts *o, long cells, int mode
            model_name(model));
   /* Iteration counts are deterministic: those of the last repeat. */
   rn_bench_csv_begin(out, "lattice", case_name, (long)res.dofs, o->repeats, med, mn);
-  fprintf(out, ",%s,%ld,%s,%d,%s,%d,%d,%s,%s,%d,%ld,%.4f,%d,%ld,%d,%s,%.6e,%.10e\n",
+  fprintf(out,
+          ",%s,%ld,%s,%d,%s,%d,%d,%s,%s,%d,%ld,%.4f,%d,%ld,%d,%s,%.6e,%.10e,%s,%.1f\n",
           rn_lattice_kind_name(o->kind), cells, model_name(model), o->edges_per_rod,
           o->load_text, res.rods, res.joints, rn_solver_name(o->solver),
           rn_factorization_name(res.rep.factorization), res.rep.iterations,
           res.rep.krylov_iterations,
           res.log.steps ? (double)res.log.total / (double)res.log.steps : 0.0,
           res.log.max, res.rep.factorizations, res.rep.load_steps,
-          rn_solve_stop_name(res.rep.stop), res.rep.gradient_norm, res.rep.energy);
+          rn_solve_stop_name(res.rep.stop), res.rep.gradient_norm, res.rep.energy,
+          rn_preconditioner_name(res.rep.preconditioner), peak_rss_mb());
   fflush(out);
   fprintf(stderr,
           "bench_lattice: %s %ld^%d cells %-7s %8zu DOFs  %9.3f s (min %.3f)  %d "
@@ -238,6 +246,13 @@ static int bench_case(rn_context *ctx, const bench_opts *o, long cells, int mode
   return 0;
 }
 
+/* Peak resident size of the process so far (MB). */
+static double peak_rss_mb(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return (double)ru.ru_maxrss / 1024.0;
+}
+
 static int usage(const char *msg) {
   fprintf(stderr,
           "bench_lattice: %s\n"
@@ -245,6 +260,7 @@ static int usage(const char *msg) {
           "                     [--models rigid,elastic] [--edges-per-rod 8]\n"
           "                     [--load stretch-x:1e-3] [--repeats N] [--solver NAME]\n"
           "                     [--factorization auto|banded|sparse]\n"
+          "                     [--preconditioner auto|factor|dd|muelu|ifpack2]\n"
           "                     [--dump-system PREFIX] [--out FILE.csv]\n",
           msg);
   return 2;
@@ -296,6 +312,7 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   parse_load("stretch-x:1e-3", o);
   o->solver = RN_SOLVER_TR_MINRES;
   o->factorization = RN_FACTOR_AUTO;
+  o->preconditioner = RN_PRECOND_AUTO;
   for (int i = 1; i < argc; ++i) {
     const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("lattice solve"), 1;
@@ -317,6 +334,9 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
     } else if (!strcmp(a, "--factorization")) {
       if (rn_factorization_from_name(val, &o->factorization))
         return usage("unknown --factorization"), -1;
+    } else if (!strcmp(a, "--preconditioner")) {
+      if (rn_preconditioner_from_name(val, &o->preconditioner))
+        return usage("unknown --preconditioner"), -1;
     } else if (!strcmp(a, "--dump-system"))
       o->dump = val;
     else if (!strcmp(a, "--out"))
@@ -346,7 +366,7 @@ int main(int argc, char **argv) {
   rn_bench_csv_header(out, "lattice,cells,joint_model,edges_per_rod,load,rods,joints,"
                            "solver,factorization,newton_iterations,minres_iterations,"
                            "minres_per_newton,minres_max,factorizations,load_steps,"
-                           "stop,gradient_norm,energy");
+                           "stop,gradient_norm,energy,preconditioner,peak_rss_mb");
   for (int k = 0; k < o.n_cells && !rc; ++k)
     for (int m = 0; m < o.n_models && !rc; ++m)
       rc = bench_case(ctx, &o, o.cells[k], o.models[m], path, out);

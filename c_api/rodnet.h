@@ -261,6 +261,28 @@ rn_status rn_network_hessian_values(const rn_network *net, const double *x, doub
 /* Half bandwidth of the pattern: max |i - j| over nonzeros. */
 size_t rn_network_hessian_bandwidth(const rn_network *net);
 
+/* ---- domain decomposition: rods and interface ----------------------------
+ * Classification of the reduced DOFs for rod-level domain decomposition
+ * (docs/solvers.md).  block[i] is the rod whose interior DOF i is, or
+ * RN_DOF_INTERFACE: joint positions and rotations, and every rod DOF that a
+ * stencil couples with another rod (with elastic joints the vertex next to the
+ * joint and the terminal edge's angle of every end, which the joint's rotation
+ * fit couples; with rigid joints, whose energy is a sum of one term per end,
+ * those stay rod-interior).  No Hessian entry couples the interiors of two
+ * different rods (the pattern of a rigid joint's stencil is dense, its values
+ * between two ends are zero).  point[3 i]: the point DOF i moves at the
+ * current state (vertex or joint position; for a material angle the midpoint
+ * of its edge); axis[3 i]: the unit tangent of the edge of a material angle,
+ * zero otherwise.  With the DOF kinds (rn_network_dof_info), an infinitesimal
+ * rigid motion (translation t, rotation w about the origin) changes a position
+ * DOF by t + w x point, a joint rotation DOF by w and a material angle by
+ * w . axis (the rigid-body modes, e.g. the near-null space of algebraic
+ * multigrid).  point and axis may be NULL; arrays have num_dofs (times 3)
+ * entries.  RN_ERR_STATE before finalize. */
+#define RN_DOF_INTERFACE (-1)
+rn_status rn_network_dof_blocks(const rn_network *net, int32_t *block, double *point,
+                                double *axis);
+
 /* Accept x as the new state: x becomes current, reference frames are moved by
  * time-parallel transport, reference twists and moment angles are continued.
  * x is updated in place: the rotation DOFs of rigid joints are reset to 0 as

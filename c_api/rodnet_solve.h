@@ -45,18 +45,29 @@ typedef enum rn_solver_kind {
 /* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
  * the trust-region norm (docs/solvers.md). */
 typedef enum rn_preconditioner {
-  RN_PRECOND_AUTO = 0,    /* the default for the problem: factor on a whole
-                             network, local on a part of a distributed one */
-  RN_PRECOND_FACTOR = 1,  /* Cholesky of H + sigma D (rn_factorization), sigma the
-                             smallest shift that factors: exact when H is positive
-                             definite (one MINRES iteration); one rank only */
-  RN_PRECOND_LOCAL = 2,   /* block Jacobi over the ranks: each rank's sparse
-                             Cholesky of its owned block H_pp + sigma_p D_p (the
-                             factor preconditioner on one rank); docs/parallel.md */
-  RN_PRECOND_GATHERED = 3 /* the factor preconditioner's matrix on any number of
-                             ranks: the whole Hessian gathered on rank 0 and
-                             factored there (exact; not scalable: for tests and
-                             small problems); docs/parallel.md */
+  RN_PRECOND_AUTO = 0,     /* the default for the problem: dd */
+  RN_PRECOND_FACTOR = 1,   /* Cholesky of H + sigma D (rn_factorization), sigma the
+                              smallest shift that factors: exact when H is positive
+                              definite (one MINRES iteration); one rank only */
+  RN_PRECOND_LOCAL = 2,    /* block Jacobi over the ranks: each rank's sparse
+                              Cholesky of its owned block H_pp + sigma_p D_p (the
+                              factor preconditioner on one rank); docs/parallel.md */
+  RN_PRECOND_GATHERED = 3, /* the factor preconditioner's matrix on any number of
+                              ranks: the whole Hessian gathered on rank 0 and
+                              factored there (exact; not scalable: for tests and
+                              small problems); docs/parallel.md */
+  RN_PRECOND_DD = 4,       /* rod-level domain decomposition: banded Cholesky of every
+                              rod's interior, exact static condensation onto the
+                              joints, the coarse problem by sparse Cholesky (on rank
+                              0) or, when that costs more than 5e10 flops, one
+                              algebraic-multigrid V-cycle; exact when H is positive
+                              definite and the coarse solve direct (one MINRES
+                              iteration); any number of ranks */
+  RN_PRECOND_MUELU = 5,    /* one MueLu smoothed-aggregation V-cycle on the whole
+                              Hessian (rigid-body near-null space); MPI runtime */
+  RN_PRECOND_IFPACK2 = 6   /* Ifpack2 additive Schwarz, one subdomain per rank with
+                              overlap 1, local sparse LU (exact on one rank); MPI
+                              runtime */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
@@ -171,15 +182,16 @@ const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
 /* 1 if the solver kind can solve a network distributed over MPI ranks (its
  * Newton systems never need the whole Hessian on one process), 0 otherwise.
- * TR-KRYLOV and NOX; TR-MINRES and the ROL kinds factor the whole Hessian: one
- * process only. */
+ * TR-KRYLOV and NOX (with the local or gathered preconditioner there);
+ * TR-MINRES and the ROL kinds factor the whole Hessian: one process only. */
 int rn_solver_is_distributed(rn_solver_kind k);
 /* Name of a factorisation ("auto", "banded", "sparse") and its parse
  * (RN_ERR_ARG if unknown). */
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
-/* Name of a preconditioner ("auto", "factor") and its parse (RN_ERR_ARG if
- * unknown). */
+/* Name of a preconditioner ("auto", "factor", "local", "gathered", "dd", "muelu",
+ * "ifpack2") and its
+ * parse (RN_ERR_ARG if unknown). */
 const char *rn_preconditioner_name(rn_preconditioner p);
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p);
 

@@ -41,12 +41,14 @@ static const char solve_help[] =
     "                        same preconditioner: finds stationary points\n"
     "                        (minima, saddles or maxima alike), not a minimiser\n"
     "      --preconditioner NAME  preconditioner of tr-krylov and nox (it defines the\n"
-    "                      trust-region norm): auto (default: factor on one\n"
-    "                      rank, local under mpirun), factor (Cholesky of the\n"
+    "                      trust-region norm): auto (default: dd), dd (rod-level\n"
+    "                      domain decomposition), factor (Cholesky of the\n"
     "                      shifted Hessian, one rank), local (each rank's\n"
     "                      Cholesky of its own block, block Jacobi),\n"
     "                      gathered (factor's matrix on rank 0: exact, not\n"
-    "                      scalable; docs/parallel.md)\n"
+    "                      scalable; docs/parallel.md), muelu (algebraic\n"
+    "                      multigrid on the whole Hessian), ifpack2 (additive\n"
+    "                      Schwarz, local LU); muelu, ifpack2 need MPI\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
@@ -175,13 +177,13 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton, tr-krylov)",
+                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox)",
                               a->solver);
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown preconditioner '%s' (known: auto, factor, "
-                              "local, gathered)",
+                              "local, gathered, dd, muelu, ifpack2)",
                               a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
@@ -449,6 +451,9 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   /* the scene's solver block is read in the graph pass too */
   rc = make_options(a, d->graph, &opt, d->rank == 0);
   if (rc) return rc; /* the same on every rank: its message printed by rank 0 */
+  /* no solver asked for (command line or scene): the distributed default */
+  if (!a->solver && !rn_scene_sets_solver_kind(d->graph))
+    opt.solver = RN_SOLVER_TR_KRYLOV;
   if (!rn_solver_is_distributed(opt.solver)) {
     if (d->rank == 0)
       fprintf(stderr,

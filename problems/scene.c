@@ -364,11 +364,11 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"tr-krylov", RN_SOLVER_TR_KRYLOV},
                                            {"nox", RN_SOLVER_NOX},
                                            {NULL, 0}};
-static const named_value preconditioner_names[] = {{"auto", RN_PRECOND_AUTO},
-                                                   {"factor", RN_PRECOND_FACTOR},
-                                                   {"local", RN_PRECOND_LOCAL},
-                                                   {"gathered", RN_PRECOND_GATHERED},
-                                                   {NULL, 0}};
+static const named_value preconditioner_names[] = {
+    {"auto", RN_PRECOND_AUTO},       {"factor", RN_PRECOND_FACTOR},
+    {"local", RN_PRECOND_LOCAL},     {"gathered", RN_PRECOND_GATHERED},
+    {"dd", RN_PRECOND_DD},           {"muelu", RN_PRECOND_MUELU},
+    {"ifpack2", RN_PRECOND_IFPACK2}, {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},
                                                   {"sparse", RN_FACTOR_SPARSE},
@@ -478,6 +478,10 @@ static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
     if (present) s->solver_set |= 1u << i;
   }
   return st;
+}
+
+int rn_scene_sets_solver_kind(const rn_scene *s) {
+  return s && (s->solver_set & SOLVER_BIT_METHOD) ? 1 : 0;
 }
 
 void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {

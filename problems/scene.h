@@ -74,5 +74,7 @@ long rn_scene_num_vertices(const rn_scene *s);
 /* Override the fields of opt that the scene's "solver" block sets (call
  * rn_solve_options_default first, then this, then command-line options). */
 void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt);
+/* 1 if the scene's "solver" block names the solver kind ("method"), else 0. */
+int rn_scene_sets_solver_kind(const rn_scene *s);
 
 #endif

@@ -11,6 +11,7 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_CrsGraph.hpp>
 
+#include "dof_blocks.hpp"
 #include "shim_error.hpp"
 
 namespace rodnet {
@@ -350,6 +351,15 @@ void DistSystem::assemble_hessian(const TMV &x) {
   stats_.bytes_sent += 16.0 * ghost_nnz_;
 }
 
+void DistSystem::load_increment(const TMV &x, double t_prev, double t, TMV &dg) {
+  import_state(x);
+  agree(rn_network_load_increment(net_, col0(*xov_), t_prev, t, col0(*gov_)));
+  dg.putScalar(0.0);
+  dg.doExport(*gov_, *exporter_, Tpetra::ADD);
+  ++stats_.exports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+}
+
 void DistSystem::accept(TMV &x) {
   import_state(x);
   rn_state *saved = nullptr;
@@ -378,57 +388,14 @@ const DofBlocks &DistSystem::blocks() const {
   return blocks_;
 }
 
-// As SerialSystem::build_blocks on the owned rows of the part's pattern (columns may
-// be ghost DOFs): a DOF is interior to its rod when every DOF it couples with belongs
-// to that rod or to a joint; rods numbered by their order among the owned rods.
+// As SerialSystem::build_blocks (rn_network_dof_blocks) on the owned DOFs of the
+// part: the classification sees every joint stencil a rod end takes part in, owned
+// here or not (a ghost joint lists the ends at the rods held here), so rod interiors
+// never couple across rods in the assembled Hessian.
 void DistSystem::build_blocks() const {
-  std::vector<rn_dof_info> info(n_local_);
-  agree(n_local_ ? rn_network_dof_info(net_, info.data()) : RN_OK);
-  size_t nnz = 0;
-  const int64_t *rowptr = nullptr;
-  const int32_t *col = nullptr;
-  check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
-               "rn_network_hessian_pattern");
-  std::vector<int> owned_rods; // whole-network indices, increasing
-  for (int r = 0; r < rn_network_num_rods(net_); ++r)
-    if (rn_network_rod_owner(net_, r) == comm_->getRank() || !rn_network_is_part(net_))
-      owned_rods.push_back(r);
-  blocks_.num_rods = static_cast<int>(owned_rods.size());
-  blocks_.block.assign(n_owned_, -1);
-  for (size_t i = 0; i < n_owned_; ++i) {
-    int owner = info[i].rod;
-    for (int64_t k = rowptr[i]; k < rowptr[i + 1] && owner >= 0; ++k) {
-      const int other = info[static_cast<size_t>(col[k])].rod;
-      if (other >= 0 && other != owner) owner = -1;
-    }
-    if (owner >= 0)
-      owner =
-          static_cast<int>(std::lower_bound(owned_rods.begin(), owned_rods.end(), owner) -
-                           owned_rods.begin());
-    blocks_.block[i] = owner;
-  }
-  for (size_t i = 0; i < n_owned_; ++i) {
-    if (blocks_.block[i] >= 0) continue;
-    DofBlocks::Interface f;
-    const rn_dof_info &d = info[i];
-    f.local = static_cast<LO>(i);
-    f.kind = d.kind == RN_DOF_POSITION   ? d.component
-             : d.kind == RN_DOF_ROTATION ? 3 + d.component
-                                         : 6;
-    if (d.joint >= 0) {
-      rn_network_joint_position(net_, d.joint, f.point);
-    } else { // a vertex, or the midpoint of the edge of an angle
-      std::vector<double> v(
-          3 * static_cast<size_t>(rn_network_rod_num_vertices(net_, d.rod)));
-      rn_network_rod_vertices(net_, d.rod, v.data());
-      for (size_t k = 0; k < 3; ++k)
-        f.point[k] = d.kind == RN_DOF_THETA
-                         ? 0.5 * (v[3 * static_cast<size_t>(d.index) + k] +
-                                  v[3 * static_cast<size_t>(d.index + 1) + k])
-                         : v[3 * static_cast<size_t>(d.index) + k];
-    }
-    blocks_.interface.push_back(f);
-  }
+  std::vector<GO> owned(n_owned_);
+  for (size_t i = 0; i < n_owned_; ++i) owned[i] = static_cast<GO>(i);
+  blocks_ = n_local_ ? make_dof_blocks(network_dofs(net_), owned) : DofBlocks{};
   blocks_done_ = true;
 }
 

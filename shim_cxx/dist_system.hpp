@@ -64,6 +64,9 @@ public:
   // supports are summed over the parts (each sees the stencils it owns).
   EquilibriumView equilibrium(const TMV &x, const TMV &g) override;
 
+  // dg = rn_network_load_increment summed over the parts (owned entries) at x.
+  void load_increment(const TMV &x, double t_prev, double t, TMV &dg);
+
   rn_network *network() const { return net_; }
   const Teuchos::RCP<const Teuchos::Comm<int>> &comm() const { return comm_; }
   const CommStats &comm_stats() const { return stats_; }

@@ -10,6 +10,9 @@
 #ifndef RODNET_SHIM_PREDICTOR_HPP
 #define RODNET_SHIM_PREDICTOR_HPP
 
+#include <functional>
+#include <vector>
+
 #include "problem.hpp"
 #include "rodnet_solve.h"
 
@@ -19,6 +22,14 @@ namespace rodnet {
 // else unchanged (false).  The network's state must be at load factor t_prev's
 // prescribed values (its current load factor is ignored).  Throws Error.
 bool predict_load_step(Problem &p, rn_factorization kind, double t_prev, double t);
+
+// The same with the linear solve given: solve(p, x, s) replaces s by (an SPD
+// approximation of, converged to a tolerance) H(x)^{-1} s, assembling H itself;
+// false: no step.  The Newton-Krylov trust region's preconditioned MINRES
+// (predict_step_krylov, solvers.hpp) avoids factoring the whole Hessian.
+using PredictorSolve =
+    std::function<bool(Problem &p, const std::vector<double> &x, std::vector<double> &s)>;
+bool predict_load_step(Problem &p, const PredictorSolve &solve, double t_prev, double t);
 
 } // namespace rodnet
 

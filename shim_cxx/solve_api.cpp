@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "dist_predictor.hpp"
 #include "dist_system.hpp"
 #include "monitor.hpp"
 #include "predictor.hpp"
@@ -79,10 +80,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "unknown factorization";
   else if (o.predictor != 0 && o.predictor != 1)
     bad = "predictor must be 0 or 1";
-  else if (enum_value(o.preconditioner) != RN_PRECOND_AUTO &&
-           enum_value(o.preconditioner) != RN_PRECOND_FACTOR &&
-           enum_value(o.preconditioner) != RN_PRECOND_LOCAL &&
-           enum_value(o.preconditioner) != RN_PRECOND_GATHERED)
+  else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
+           enum_value(o.preconditioner) > RN_PRECOND_IFPACK2)
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -98,15 +97,19 @@ struct SolveTotals {
   EquilibriumView eq; // at the last iterate checked
   double force_tol = 0.0, moment_tol = 0.0;
   rn_preconditioner preconditioner = RN_PRECOND_AUTO;
-  System *dist = nullptr; // the distributed System of a part (nullptr: whole network)
+  DistSystem *dist = nullptr; // the System of a part (nullptr: a whole network)
 };
 
 // One minimisation at load factor t from the current state, converged at t_prev
 // (0: the starting state); first the predictor (opt.predictor).
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
-  // (the predictor factors the whole Hessian: not on a part)
-  if (opt.predictor && !tot.dist && predict_load_step(p, tot.factorization, t_prev, t))
+  // (with tr-krylov the predictor uses its preconditioner and MINRES, distributed on
+  // a part; the other kinds factor the whole Hessian)
+  if (opt.predictor && (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
+                        : opt.solver == RN_SOLVER_TR_KRYLOV
+                            ? predict_step_krylov(p, opt, t_prev, t)
+                            : predict_load_step(p, tot.factorization, t_prev, t)))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
@@ -401,13 +404,20 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "local";
   case RN_PRECOND_GATHERED:
     return "gathered";
+  case RN_PRECOND_DD:
+    return "dd";
+  case RN_PRECOND_MUELU:
+    return "muelu";
+  case RN_PRECOND_IFPACK2:
+    return "ifpack2";
   }
   return "unknown";
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
-  const rn_preconditioner kinds[] = {RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,
-                                     RN_PRECOND_GATHERED};
+  const rn_preconditioner kinds[] = {
+      RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,  RN_PRECOND_GATHERED,
+      RN_PRECOND_DD,   RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 

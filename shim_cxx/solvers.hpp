@@ -22,9 +22,9 @@ class Preconditioner;
 void run_tr_minres(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_tr_tcg(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_ls_newton(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
-// The preconditioner opt.preconditioner names for sys (auto: factor on a
-// SerialSystem, local on a distributed System; factor on several ranks is RN_ERR_ARG);
-// *used is the kind chosen (tr_krylov.cpp).
+// The preconditioner opt.preconditioner names for sys (auto: dd, the rod-level domain
+// decomposition; factor on several ranks is RN_ERR_ARG); *used is the kind chosen
+// (tr_krylov.cpp).
 std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
                                                     const rn_solve_options &opt,
                                                     rn_preconditioner *used);
@@ -41,6 +41,11 @@ rn_preconditioner run_nox(Problem &problem, Monitor &monitor,
 rn_preconditioner run_nox(System &system, Monitor &monitor, const rn_solve_options &opt);
 void run_nox(System &system, Preconditioner &prec, Monitor &monitor,
              const rn_solve_options &opt);
+// The load-step predictor for tr-krylov: its preconditioner (opt.preconditioner) and
+// preconditioned MINRES to opt.krylov_tol instead of a factorisation of the whole
+// Hessian (predictor.hpp).
+bool predict_step_krylov(Problem &problem, const rn_solve_options &opt, double t_prev,
+                         double t);
 
 } // namespace rodnet
 

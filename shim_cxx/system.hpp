@@ -53,11 +53,15 @@ struct DofBlocks {
   int num_rods = 0; // rods owned by this rank
   // Interface DOFs: the point they move (joint or vertex position, for rigid-body
   // near-null-space vectors) and what they are: 0, 1, 2 a position component,
-  // 3, 4, 5 a rotation-vector component, 6 a material angle.
+  // 3, 4, 5 a rotation-vector component, 6 a material angle; axis: the unit
+  // tangent of a material angle's edge (zero otherwise).  A rigid motion
+  // (translation t, rotation w) moves them by t + w x point, w, w . axis
+  // (rn_network_dof_blocks).
   struct Interface {
     LO local = 0;
     int kind = 0;
     double point[3] = {0.0, 0.0, 0.0};
+    double axis[3] = {0.0, 0.0, 0.0};
   };
   std::vector<Interface> interface;
 };

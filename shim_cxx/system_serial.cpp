@@ -6,6 +6,7 @@
 
 #include <Tpetra_CrsGraph.hpp>
 
+#include "dof_blocks.hpp"
 #include "minres.hpp"
 #include "shim_error.hpp"
 
@@ -75,53 +76,13 @@ void SerialSystem::restore_state() {
                "rn_network_state_restore");
 }
 
-// Rod interiors and interface DOFs: a joint's DOFs, and rod DOFs that the Hessian
-// couples with another rod's (terminal edges at elastic joints).
+// Rod interiors and interface DOFs (rn_network_dof_blocks: a joint's DOFs, and the
+// terminal-edge DOFs at elastic joints; at rigid joints, whose stencil pattern is
+// dense but whose values between two ends are zero, the ends stay rod-interior).
 void SerialSystem::build_blocks() {
-  rn_network *net = p_.network();
-  const size_t n = p_.size();
-  std::vector<rn_dof_info> info(n);
-  if (n) check_status(rn_network_dof_info(net, info.data()), "rn_network_dof_info");
-  blocks_.num_rods = rn_network_num_rods(net);
-  blocks_.block.assign(n, -1);
-  for (size_t i = 0; i < n; ++i) {
-    int owner = info[i].rod;
-    for (int64_t k = p_.rowptr()[i]; k < p_.rowptr()[i + 1] && owner >= 0; ++k) {
-      const int other = info[static_cast<size_t>(p_.col()[k])].rod;
-      if (other >= 0 && other != owner) owner = -1;
-    }
-    blocks_.block[i] = owner;
-  }
-  std::vector<std::vector<double>> verts(static_cast<size_t>(blocks_.num_rods));
-  for (int r = 0; r < blocks_.num_rods; ++r) {
-    verts[static_cast<size_t>(r)].resize(
-        3 * static_cast<size_t>(rn_network_rod_num_vertices(net, r)));
-    check_status(rn_network_rod_vertices(net, r, verts[static_cast<size_t>(r)].data()),
-                 "rn_network_rod_vertices");
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (blocks_.block[i] >= 0) continue;
-    DofBlocks::Interface f;
-    const rn_dof_info &d = info[i];
-    f.local = static_cast<LO>(i);
-    f.kind = d.kind == RN_DOF_POSITION   ? d.component
-             : d.kind == RN_DOF_ROTATION ? 3 + d.component
-                                         : 6;
-    if (d.joint >= 0) {
-      check_status(rn_network_joint_position(net, d.joint, f.point),
-                   "rn_network_joint_position");
-    } else if (d.rod < 0) { // a macroscopic strain DOF of a periodic cell
-      for (int k = 0; k < 3; ++k) f.point[k] = 0.0;
-    } else { // a vertex, or the midpoint of the edge of an angle
-      const std::vector<double> &v = verts[static_cast<size_t>(d.rod)];
-      for (int k = 0; k < 3; ++k)
-        f.point[k] = d.kind == RN_DOF_THETA
-                         ? 0.5 * (v[3 * static_cast<size_t>(d.index) + k] +
-                                  v[3 * static_cast<size_t>(d.index + 1) + k])
-                         : v[3 * static_cast<size_t>(d.index) + k];
-    }
-    blocks_.interface.push_back(f);
-  }
+  std::vector<GO> all(p_.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<GO>(i);
+  blocks_ = make_dof_blocks(network_dofs(p_.network()), all);
 }
 
 } // namespace rodnet

@@ -50,10 +50,14 @@
 
 #include <Teuchos_Array.hpp>
 
+#include "alt_preconditioners.hpp"
+#include "dof_blocks.hpp"
 #include "factor_preconditioner.hpp"
+#include "minres.hpp"
 #include "gathered_preconditioner.hpp"
 #include "local_preconditioner.hpp"
 #include "monitor.hpp"
+#include "predictor.hpp"
 #include "preconditioner.hpp"
 #include "shim_error.hpp"
 #include "solvers.hpp"
@@ -330,12 +334,15 @@ private:
 
 // Negative curvature at x (step 1): Lanczos on (H, M) when the preconditioner had to
 // modify an indefinite piece, or when the stopping test is about to pass and the
-// preconditioner cannot certify positive definiteness (only "factor" can: it is the
-// Cholesky factorisation of H itself when unshifted).
+// preconditioner cannot certify positive definiteness ("factor" can: it is the
+// Cholesky factorisation of H itself when unshifted; so can "dd" with unshifted rod
+// blocks and an unshifted direct coarse solve, an exact block factorisation of H).
 void TrustRegionKrylov::analyse(const IterationView &it) {
   negcurv_ = have_v_ = false;
   mu_ = 0.0;
-  const bool certified = prec_.name() == "factor" && !prec_.stats().shifted;
+  const auto *dd = dynamic_cast<const DdPreconditioner *>(&prec_);
+  const bool certified =
+      !prec_.stats().shifted && (prec_.name() == "factor" || (dd && dd->exact()));
   if (!prec_.stats().shifted && (certified || !mon_.equilibrium_passes(it))) return;
   int steps = 0;
   mu_ = PencilLanczos(sys_, *prec_.inverse()).lowest(v_, Mv_, &steps);
@@ -492,23 +499,46 @@ void TrustRegionKrylov::run() {
   }
 }
 
+// Adapts a Tpetra operator to MinresSolver's VectorOperator.
+class OperatorAdapter : public VectorOperator {
+public:
+  explicit OperatorAdapter(const Tpetra::Operator<> &A) : A_(A) {}
+  void apply(const MV &x, MV &y) const override { A_.apply(x, y); }
+
+private:
+  const Tpetra::Operator<> &A_;
+};
+
 } // namespace
 
 std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
                                                     const rn_solve_options &opt,
                                                     rn_preconditioner *used) {
-  const bool serial = dynamic_cast<const SerialSystem *>(&sys) != nullptr;
+  const auto *serial = dynamic_cast<const SerialSystem *>(&sys);
   rn_preconditioner kind = opt.preconditioner;
-  if (kind == RN_PRECOND_AUTO) kind = serial ? RN_PRECOND_FACTOR : RN_PRECOND_LOCAL;
+  // auto: the rod-level domain decomposition (docs/solvers.md, "Preconditioners for
+  // networks")
+  if (kind == RN_PRECOND_AUTO) kind = RN_PRECOND_DD;
   if (kind == RN_PRECOND_FACTOR && !serial)
     throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
-                            "use local (docs/parallel.md)");
+                            "use dd or local (docs/parallel.md)");
   *used = kind;
   switch (kind) {
   case RN_PRECOND_GATHERED:
     return std::make_unique<GatheredPreconditioner>();
   case RN_PRECOND_LOCAL:
     return std::make_unique<LocalPreconditioner>();
+  case RN_PRECOND_DD:
+  case RN_PRECOND_MUELU:
+  case RN_PRECOND_IFPACK2: {
+    Teuchos::RCP<const TMV> modes; // MueLu's near-null space (whole network only)
+    if (kind == RN_PRECOND_MUELU && serial) {
+      const NetworkDofs d =
+          network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
+      modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
+    }
+    return make_preconditioner(rn_preconditioner_name(kind), modes);
+  }
   default:
     return std::make_unique<FactorPreconditioner>(opt.factorization);
   }
@@ -524,6 +554,29 @@ rn_preconditioner run_tr_krylov(System &sys, Monitor &mon, const rn_solve_option
 rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
   SerialSystem sys(p);
   return run_tr_krylov(sys, mon, opt);
+}
+
+bool predict_step_krylov(Problem &p, const rn_solve_options &opt, double t_prev,
+                         double t) {
+  return predict_load_step(
+      p,
+      [&opt](Problem &q, const std::vector<double> &x, std::vector<double> &s) {
+        SerialSystem sys(q);
+        TMV xv(sys.map(), 1), b(sys.map(), 1), sv(sys.map(), 1);
+        std::copy(x.begin(), x.end(), host_data(xv));
+        std::copy(s.begin(), s.end(), host_data(b));
+        sys.assemble_hessian(xv);
+        rn_preconditioner kind = RN_PRECOND_AUTO;
+        std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &kind);
+        prec->setup(sys);
+        MinresSolver minres(sys.map(), opt.krylov_tol, opt.krylov_max_iterations);
+        const MinresResult r = minres.solve(OperatorAdapter(*sys.hessian()),
+                                            OperatorAdapter(*prec->inverse()), b, sv);
+        q.counters.krylov += r.iterations;
+        std::copy(host_data(sv), host_data(sv) + s.size(), s.begin());
+        return true;
+      },
+      t_prev, t);
 }
 
 } // namespace rodnet

@@ -14,6 +14,8 @@ rn_add_test(api_load_increment SOURCES unit/api_load_increment.c LIBS rodnet m L
 # parts' energies, gradients, HVPs and Hessians by global DOF against the whole
 # network, before and after reference updates; ownership counts.
 rn_add_test(api_part SOURCES unit/api_part.c LIBS rodnet m LABELS unit)
+# Rod / interface classification of the reduced DOFs (domain decomposition).
+rn_add_test(api_dof_blocks SOURCES unit/api_dof_blocks.c LIBS rodnet m LABELS unit)
 # Equilibrium checks: DOF kinds, the full-layout gradient, support reactions
 # (FD h-sweep in the load factor of prescribed motions, balance at equilibrium).
 rn_add_test(api_reactions SOURCES unit/api_reactions.c LIBS rodnet m LABELS unit)

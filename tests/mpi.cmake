@@ -37,28 +37,32 @@ rn_mpi_cli(mpi_cli_gap_joint 2 3 "rod ends do not meet"
 rn_mpi_cli(mpi_cli_unwritable 2 3 "cannot"
            solve ${RN_MPI_DATA}/chain.json -o /nonexistent-dir/result.json)
 rn_mpi_cli(mpi_cli_serial_solver 2 2 "solver 'tr-minres' .*cannot run on 2 MPI ranks"
-           solve ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
-rn_mpi_cli(mpi_cli_more_ranks 3 2 "cannot run on 3 MPI ranks"
-           solve ${CMAKE_SOURCE_DIR}/problems/scenes/cantilever.json
-           -o ${RN_MPI_OUT}/mpi_cli_more_ranks.json)
+           solve ${RN_MPI_DATA}/chain.json --solver tr-minres
+           -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
+# No solver asked for: under mpirun the default is the distributed tr-krylov (dd).
+add_test(NAME mpi_cli_default_solver
+         COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
+                 "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@2@@${CMAKE_BINARY_DIR}/rodnet@@solve@@${RN_MPI_DATA}/chain.json@@-o@@${RN_MPI_OUT}/mpi_cli_default_solver.json"
+                 -DEXPECT_RC=0
+                 "-DEXPECT_REGEX=solver +tr-krylov .*preconditioner dd.*partition +2 ranks"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+set_tests_properties(mpi_cli_default_solver PROPERTIES LABELS mpi TIMEOUT 120
+                     PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}")
 
-# The same scenes on 1 and 2 ranks with the distributed solver (tr-krylov, without
-# the load-step predictor, which is not distributed yet): a single rod, independent
+# The same scenes on 1 and 2 ranks with the distributed solver (tr-krylov, with the
+# load-step predictor, distributed on 2 ranks): a single rod, independent
 # rods, a honeycomb with rigid joints, an octet block, a chain with elastic and rigid
 # joints, a buckled column (tests/unit/check_mpi_solve.py):
 #  - mpi_solve_<scene>: the gathered preconditioner on both (the factor
 #    preconditioner's matrix, also on 2 ranks): energy and positions agree to 1e-10,
 #    Newton iterations and load steps are equal;
-#  - mpi_solve_local_<scene>: one rank with the default (factor) preconditioner, two
-#    with the default there (local, block Jacobi), gradient tolerance 1e-14 (down to
-#    the round-off floor, the stopping test's own limit): energy and
-#    positions agree to 1e-10 (iterations printed: another preconditioner, another
-#    path);
-# and in both the partition adds up and no rank owns more than 55 %.  Registered
-# disabled (ctest lists them as "Not Run") if rodnet_solve.h has no RN_DIST_SOLVER.
+#  - mpi_solve_dd_<scene>: the rod-level domain decomposition (the default) on both,
+#    gradient tolerance 1e-14 (down to the round-off floor, the stopping test's own
+#    limit): the preconditioner does not depend on the partition (rod blocks, exact
+#    coarse problem on the joints), so energy and positions agree to 1e-10 and the
+#    Newton iterations and load steps are equal;
+# and in both the partition adds up and no rank owns more than 55 %.
 set(RN_DIST_SOLVER "tr-krylov" CACHE STRING "distributed solver kind of the mpi tests")
-file(STRINGS ${PROJECT_SOURCE_DIR}/c_api/rodnet_solve.h rn_dist_solver_decl
-     REGEX "\"${RN_DIST_SOLVER}\"")
 set(RN_MPI_SCENES ${RN_MPI_OUT}/scenes)
 file(MAKE_DIRECTORY ${RN_MPI_SCENES})
 add_test(NAME mpi_solve_scenes
@@ -80,15 +84,23 @@ foreach(case "cantilever|${RN_SCENES}/cantilever.json|1.0"
       --scene ${scene} --solver ${RN_DIST_SOLVER} --out ${RN_MPI_OUT}/solve
       --max-share ${share})
   add_test(NAME mpi_solve_${name}
-           COMMAND ${rn_check} "--args=--no-predictor --preconditioner gathered"
+           COMMAND ${rn_check} "--args=--preconditioner gathered"
                    --same-iterations)
-  add_test(NAME mpi_solve_local_${name}
-           COMMAND ${rn_check} "--args=--no-predictor --gtol 1e-14" --label .local)
-  foreach(t mpi_solve_${name} mpi_solve_local_${name})
+  add_test(NAME mpi_solve_dd_${name}
+           COMMAND ${rn_check} "--args=--preconditioner dd --gtol 1e-14" --label .dd
+                   --same-iterations)
+  foreach(t mpi_solve_${name} mpi_solve_dd_${name})
     set_tests_properties(${t} PROPERTIES LABELS mpi TIMEOUT 600 PROCESSORS 2
                          ENVIRONMENT "${RN_MPI_ENV}" FIXTURES_REQUIRED rn_mpi_scenes)
-    if(NOT rn_dist_solver_decl)
-      set_tests_properties(${t} PROPERTIES DISABLED TRUE)
-    endif()
   endforeach()
 endforeach()
+# More ranks than rods: a single rod on 3 ranks (two ranks own nothing) gives the
+# one-rank result (default solver and preconditioner), no error and no hang.
+add_test(NAME mpi_solve_more_ranks
+         COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_mpi_solve.py
+                 --rodnet ${CMAKE_BINARY_DIR}/rodnet --mpiexec ${MPIEXEC_EXECUTABLE}
+                 --np 3 --scene ${RN_SCENES}/cantilever.json --solver tr-krylov
+                 --out ${RN_MPI_OUT}/solve --max-share 1.0 --label .more
+                 --same-iterations)
+set_tests_properties(mpi_solve_more_ranks PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                     ENVIRONMENT "${RN_MPI_ENV}")

@@ -32,6 +32,27 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
+# The rod-level domain-decomposition preconditioner (C++: internal classes of the shim
+# through the shared library), on one rank and under mpirun on two.
+rn_add_test(shim_dd SOURCES unit/shim_dd.cpp LIBS rodnet rodnet_problems rodnet_shim_deps
+            LABELS unit)
+target_include_directories(shim_dd PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
+                                           ${PROJECT_SOURCE_DIR}/problems)
+target_include_directories(shim_dd SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
+                                                  ${Trilinos_TPL_INCLUDE_DIRS})
+# rn_solve's tr-krylov with every preconditioner on lattices: the exact equilibrium.
+rn_add_test(shim_dd_solve SOURCES unit/shim_dd_solve.c LIBS rodnet rodnet_problems m
+            LABELS unit)
+target_include_directories(shim_dd_solve PRIVATE ${PROJECT_SOURCE_DIR}/problems)
+add_test(NAME shim_dd_solve_mpi_runtime COMMAND shim_dd_solve mpi)
+set_tests_properties(shim_dd_solve_mpi_runtime PROPERTIES LABELS unit TIMEOUT 600
+  ENVIRONMENT "RODNET_MPI=1")
+if(MPIEXEC_EXECUTABLE)
+  add_test(NAME shim_dd_2ranks
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:shim_dd>)
+  set_tests_properties(shim_dd_2ranks PROPERTIES LABELS "mpi" TIMEOUT 600 PROCESSORS 2
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+endif()
 # The runtime uses MPI exactly in an MPI job (launcher variables, RODNET_MPI, or MPI
 # initialised by the program); same solution either way; finalize / re-initialize.
 rn_add_test(shim_runtime SOURCES unit/shim_runtime.c LIBS rodnet MPI::MPI_C

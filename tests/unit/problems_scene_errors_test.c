@@ -350,7 +350,8 @@ static const bad_case cases[] = {
      ": $.solver.factorization: ", "expected a string"},
     {"unknown preconditioner", SCENE(", 'solver': {'preconditioner': 'ilu'}"),
      ": $.solver.preconditioner: ",
-     "unknown preconditioner \"ilu\" (known: auto, factor, local, gathered)"},
+     "unknown preconditioner \"ilu\" (known: auto, factor, local, gathered, dd, muelu, "
+     "ifpack2)"},
     {"predictor not a boolean", SCENE(", 'solver': {'predictor': 1}"),
      ": $.solver.predictor: ", "expected true or false"},
     {"zero iterations", SCENE(", 'solver': {'max_iterations': 0}"),

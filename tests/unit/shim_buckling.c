@@ -15,7 +15,8 @@
  *    (their failed factorisations drive the multiplier search and the inverse
  *    iteration): converged, stable, the same energy to 1e-10;
  *  - the same with the Newton-Krylov trust region (tr-krylov, factor
- *    preconditioner): converged, stable, the same energy to 1e-10. */
+ *    preconditioner, and the default dd one): converged, stable, the same energy to
+ *    1e-10. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -133,19 +134,25 @@ int main(int argc, char **argv) {
     CHECK_REL(rep.energy, E_final, 1e-10);
   }
 
-  /* the Newton-Krylov trust region (factor preconditioner) leaves the saddle too */
-  rn_network_destroy(&net);
-  net = column(ctx, &P);
-  rn_solve_options_default(&opt);
-  opt.solver = RN_SOLVER_TR_KRYLOV;
-  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
-  CHECK(rep.converged == 1 && rep.preconditioner == RN_PRECOND_FACTOR);
-  CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin_final), RN_OK);
-  printf("tr-krylov: stop=%s its=%d krylov=%ld E=%.10e lowest eigenvalue %.6e\n",
-         rn_solve_stop_name(rep.stop), rep.iterations, rep.krylov_iterations, rep.energy,
-         lmin_final);
-  CHECK(lmin_final > 0.0);
-  CHECK_REL(rep.energy, E_final, 1e-10);
+  /* the Newton-Krylov trust region leaves the saddle too, with the default (dd) and
+   * with the factor preconditioner */
+  for (int k = 0; k < 2; ++k) {
+    const rn_preconditioner pk = k == 0 ? RN_PRECOND_AUTO : RN_PRECOND_FACTOR;
+    rn_network_destroy(&net);
+    net = column(ctx, &P);
+    rn_solve_options_default(&opt);
+    opt.solver = RN_SOLVER_TR_KRYLOV;
+    opt.preconditioner = pk;
+    CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+    CHECK(rep.converged == 1);
+    CHECK(rep.preconditioner == (k == 0 ? RN_PRECOND_DD : RN_PRECOND_FACTOR));
+    CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin_final), RN_OK);
+    printf("tr-krylov, %s: stop=%s its=%d krylov=%ld E=%.10e lowest eigenvalue %.6e\n",
+           rn_preconditioner_name(rep.preconditioner), rn_solve_stop_name(rep.stop),
+           rep.iterations, rep.krylov_iterations, rep.energy, lmin_final);
+    CHECK(lmin_final > 0.0);
+    CHECK_REL(rep.energy, E_final, 1e-10);
+  }
 
   free(x0);
   free(x);

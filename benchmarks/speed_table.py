@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""speed_table.py - assemble issue 8's table from the CSVs of speed_table.sh.
+
+    python3 benchmarks/speed_table.py --dir TMP --commit C --out speed_table.csv
+
+Reads TMP/{kernels,cantilever,arch4,arch8,startup,io}.csv and TMP/hc20-*.json (RESULT.json
+of `rodnet solve`), writes one CSV row per measurement (the common benchmark
+columns plus unit and target) and prints the table as Markdown on stdout."""
+import argparse
+import csv
+import glob
+import json
+import os
+import statistics
+
+
+def rows(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--dir", required=True)
+    ap.add_argument("--commit", default="")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    out = []  # (label, case, size, repeats, median, min, unit, target, meta)
+
+    def add(label, case, size, reps, med, mn, unit, target, meta):
+        out.append((label, case, size, reps, med, mn, unit, target, meta))
+
+    meta = None
+    for r in rows(os.path.join(a.dir, "kernels.csv")):
+        meta = meta or r
+        names = {"energy": ("energy per vertex", 15),
+                 "gradient": ("energy + gradient per vertex", 50),
+                 "hvp": ("Hessian-vector product per vertex", 100),
+                 "hessian_values": ("Hessian block values per vertex (CSR)", 300)}
+        if r["op"] in names:
+            lab, tgt = names[r["op"]]
+            add(lab, "kernels:" + r["op"], int(r["size"]), int(r["repeats"]),
+                1e9 * float(r["median_per_vertex"]), 1e9 * float(r["min_per_vertex"]),
+                "ns", tgt, r)
+    for r in rows(os.path.join(a.dir, "cantilever.csv")):
+        n = int(r["size"])
+        add("cantilever alpha = 5: Newton iterations", "cantilever:newton", n,
+            int(r["repeats"]), float(r["newton_iterations"]),
+            float(r["newton_iterations"]), "iterations", 12, r)
+        add("cantilever alpha = 5: solve time (time_s)", "cantilever:time", n,
+            int(r["repeats"]), 1e3 * float(r["median"]), 1e3 * float(r["min"]), "ms",
+            7 if n == 401 else 58, r)
+    for r in rows(os.path.join(a.dir, "startup.csv")):
+        if r["case"] == "solve":
+            add("rodnet solve whole process minus time_s", "startup", int(r["size"]),
+                int(r["repeats"]), 1e3 * float(r["median"]), 1e3 * float(r["min"]),
+                "ms", 30, r)
+    hc = sorted(glob.glob(os.path.join(a.dir, "hc20-*.json")))
+    if hc:
+        res = [json.load(open(p)) for p in hc]
+        t = [d["time_s"] for d in res]
+        its = res[0]["iterations"]
+        add("honeycomb 20x20 compress-y:5e-2: Newton iterations", "honeycomb20:newton",
+            res[0]["num_vertices"], len(res), its, its, "iterations", 40, meta)
+        add("honeycomb 20x20 compress-y:5e-2: time (time_s)", "honeycomb20:time",
+            res[0]["num_vertices"], len(res), statistics.median(t), min(t), "s", 3, meta)
+    for r in rows(os.path.join(a.dir, "arch4.csv")) + rows(os.path.join(a.dir, "arch8.csv")):
+        P = float(r["load"])
+        add("arch 215 deg, P = %g EI/R^2: Newton iterations" % P, "arch:P%g" % P,
+            int(r["size"]), int(r["repeats"]), float(r["newton_iterations"]),
+            float(r["newton_iterations"]), "iterations", 15 if P == 4 else 40, r)
+    for r in rows(os.path.join(a.dir, "io.csv")):
+        if r["case"] in ("read", "write_json", "write_vtk", "generate"):
+            add("%s at %s vertices" % (r["case"], r["size"]), "io:" + r["case"],
+                int(r["size"]), int(r["repeats"]), float(r["median"]), float(r["min"]),
+                "s", "a few", r)
+    m = meta or {}
+    with open(a.out + ".tmp", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["commit", "compiler", "flags", "ranks", "bench", "case", "size",
+                    "repeats", "median", "min", "unit", "target", "what"])
+        for lab, case, size, reps, med, mn, unit, tgt, r in out:
+            r = r or m
+            w.writerow([a.commit or r.get("commit", ""), r.get("compiler", ""),
+                        r.get("flags", ""), 1, "speed_table", case, size, reps,
+                        "%.6g" % med, "%.6g" % mn, unit, tgt, lab])
+    os.replace(a.out + ".tmp", a.out)
+    print("| measurement | size | median | min | target |")
+    print("|---|---|---|---|---|")
+    for lab, case, size, reps, med, mn, unit, tgt, r in out:
+        print("| %s | %s | %.4g %s | %.4g %s | %s %s |" % (lab, size, med, unit, mn, unit,
+                                                       tgt, unit))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,401 @@
+// shim_dd.cpp - the rod-level domain-decomposition preconditioner
+// (shim_cxx/dd_preconditioner.hpp) on a System over 1 or more ranks
+// (shim_cxx/replicated_system.hpp; run under mpirun -np 2 too):
+//  - exact static condensation: with the direct coarse solve and a positive definite
+//    Hessian, M^-1 b equals the sparse Cholesky solution of H x = b to 1e-9
+//    relative (backward error of M^-1 b below 1e-12), no shift is applied and
+//    preconditioned MINRES converges in at most 2 iterations, on a honeycomb with
+//    rigid joints, one with elastic joints, a single rod and an octet block;
+//  - M is SPD in every case: symmetry u'M^-1 v = v'M^-1 u to 1e-12 and positivity
+//    v'M^-1 v > 0 on random vectors, also for the indefinite H - D/2 (shifted rod
+//    blocks and coarse matrix; MINRES still converges) and with the AMG coarse
+//    solve;
+//  - a second setup with other values on the same structure gives that system's
+//    solution (the coarse matrix is refilled, not rebuilt);
+//  - with the AMG coarse solve, MINRES iterations on honeycombs of 12x12, 24x24 and
+//    36x36 cells stay bounded (the largest at most 1.5x the smallest); the automatic
+//    coarse solve is the direct one unless its factorisation costs too much.
+//  - MueLu on the whole Hessian and Ifpack2 additive Schwarz: SPD, MINRES converges
+//    with the true residual to match.
+// The results do not depend on the number of ranks (random vectors are functions of
+// the global DOF index); every rank checks its own part and all must pass.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Tpetra_Core.hpp>
+
+#include "alt_preconditioners.hpp"
+#include "dd_preconditioner.hpp"
+#include "minres.hpp"
+#include "replicated_system.hpp"
+#include "sparse_cholesky.hpp"
+#include "spd_factor.hpp"
+
+extern "C" {
+#include "shim_lattices.h"
+}
+
+namespace {
+
+using namespace rodnet;
+using Comm = Teuchos::Comm<int>;
+
+int g_rank = 0;
+
+// Deterministic pseudo-random value in [-1, 1) of a global index and a seed.
+double rnd(GO g, unsigned seed) {
+  unsigned long long h =
+      static_cast<unsigned long long>(g) * 0x9E3779B97F4A7C15ull + seed;
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  h ^= h >> 33;
+  return static_cast<double>(h >> 11) / 4503599627370496.0 - 1.0;
+}
+
+void random_vector(TMV &v, unsigned seed) {
+  auto map = v.getMap();
+  auto d = v.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (size_t i = 0; i < d.extent(0); ++i)
+    d(i, 0) = rnd(map->getGlobalElement(static_cast<LO>(i)), seed);
+}
+
+double dot(const TMV &a, const TMV &b) {
+  Teuchos::Array<double> d(1);
+  a.dot(b, d());
+  return d[0];
+}
+
+double norm(const TMV &a) { return std::sqrt(dot(a, a)); }
+
+// A lattice of `rodnet generate` under stretch along x (1e-3), 4 edges per rod.
+rn_scene *lattice(rn_context *ctx, rn_lattice_kind kind, int cells, int model,
+                  int edges = 4) {
+  char path[256];
+  std::snprintf(path, sizeof path, "shim_dd_scene_%d.json", g_rank);
+  return shim_lattice(ctx, kind, cells, model, edges, path);
+}
+
+// A clamped cantilever of 40 edges with a tip force (single rod: no interface).
+rn_network *single_rod(rn_context *ctx) {
+  rn_network *net = nullptr;
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, f[3] = {0, 1e-3, 2e-3};
+  rn_material m;
+  rn_section sec;
+  int rod = -1;
+  std::vector<double> xyz;
+  for (int i = 0; i <= 40; ++i)
+    for (int k = 0; k < 3; ++k) xyz.push_back(a[k] + (b[k] - a[k]) * i / 40.0);
+  CHECK_STATUS(rn_material_from_E_nu(1e7, 0.3, 0.0, &m), RN_OK);
+  CHECK_STATUS(rn_section_circle(0.01, &sec), RN_OK);
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "rod", 41, xyz.data(), nullptr, &rod), RN_OK);
+  CHECK_STATUS(rn_network_set_material(net, rod, -1, &m), RN_OK);
+  CHECK_STATUS(rn_network_set_section(net, rod, -1, &sec), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_START), RN_OK);
+  CHECK_STATUS(rn_network_add_force(net, 0, -1, f), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  return net;
+}
+
+class CrsOp : public VectorOperator {
+public:
+  explicit CrsOp(Teuchos::RCP<const Tpetra::Operator<>> A) : A_(std::move(A)) {}
+  void apply(const MV &x, MV &y) const override { A_->apply(x, y); }
+
+private:
+  Teuchos::RCP<const Tpetra::Operator<>> A_;
+};
+
+// Replace H's values by H - c D (D = |diag H|) or, identity = true, by H - c I.
+void shift_hessian(ReplicatedSystem &sys, double c, bool identity = false) {
+  auto H = sys.hessian_nonconst();
+  TMV d(H->getRowMap(), 1);
+  H->getLocalDiagCopy(*d.getVectorNonConst(0));
+  H->resumeFill();
+  auto dv = d.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < dv.extent(0); ++i) {
+    const GO g = H->getRowMap()->getGlobalElement(static_cast<LO>(i));
+    const double add = -c * (identity ? 1.0 : std::fabs(dv(i, 0)));
+    H->sumIntoGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
+                           Teuchos::ArrayView<const double>(&add, 1));
+  }
+  H->fillComplete(H->getDomainMap(), H->getRangeMap());
+}
+
+// Lowest eigenvalue mu of the pencil (H, D), D = |diag H|, of the assembled Hessian
+// (positive definite), by bisection on the inertia: H - s D factors iff s < mu.
+double pencil_min_eigenvalue(ReplicatedSystem &sys) {
+  Problem &p = sys.problem();
+  const size_t n = p.size();
+  std::vector<double> d(p.rowptr()[n], 0.0);
+  for (size_t i = 0; i < n; ++i)
+    for (int64_t q = p.rowptr()[i]; q < p.rowptr()[i + 1]; ++q)
+      if (static_cast<size_t>(p.col()[q]) == i) d[q] = -std::fabs(p.values()[q]);
+  auto an = std::make_shared<SparseAnalysis>(n, p.rowptr(), p.col());
+  SparseCholesky chol(an);
+  double lo = 0.0, hi = 1.0;
+  CHECK(!chol.factor(p.values(), hi, d.data()));
+  for (int k = 0; k < 50; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if (chol.factor(p.values(), mid, d.data()))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+// x = H^-1 b by the sparse Cholesky of the whole (replicated) Hessian, owned part.
+// c != 0: of H - c |diag H| (H the assembled Hessian).
+void reference_solve(ReplicatedSystem &sys, double c, const TMV &b, TMV &x) {
+  Problem &p = sys.problem();
+  const size_t n = p.size();
+  std::vector<double> vals(p.values(), p.values() + p.rowptr()[n]);
+  for (size_t i = 0; i < n; ++i)
+    for (int64_t q = p.rowptr()[i]; q < p.rowptr()[i + 1]; ++q)
+      if (static_cast<size_t>(p.col()[q]) == i) vals[q] -= c * std::fabs(vals[q]);
+  auto an = std::make_shared<SparseAnalysis>(n, p.rowptr(), p.col());
+  SparseCholesky chol(an);
+  CHECK(chol.factor(vals.data(), 0.0, nullptr));
+  // gather b
+  std::vector<double> full(n, 0.0), sum(n, 0.0);
+  auto map = b.getMap();
+  {
+    auto bv = b.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < bv.extent(0); ++i)
+      full[static_cast<size_t>(map->getGlobalElement(static_cast<LO>(i)))] = bv(i, 0);
+  }
+  Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(n),
+                     full.data(), sum.data());
+  chol.solve(sum.data());
+  auto xv = x.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (size_t i = 0; i < xv.extent(0); ++i)
+    xv(i, 0) = sum[static_cast<size_t>(map->getGlobalElement(static_cast<LO>(i)))];
+}
+
+// Symmetry and positivity of M^-1 on random vectors.
+// sym_tol: 1e-12 for the exact DD; 1e-10 with the AMG coarse solve, whose V-cycle
+// (Chebyshev polynomials of the coarse matrix) is symmetric only up to round-off
+// amplified by the coarse matrix's conditioning (measured 1e-13 .. 1.2e-12).
+void check_spd(const Tpetra::Operator<> &Minv, const Teuchos::RCP<const TMap> &map,
+               const char *name, double sym_tol = 1e-12) {
+  TMV u(map, 1), v(map, 1), Mu(map, 1), Mv(map, 1);
+  double worst_sym = 0.0, min_pos = 1.0;
+  for (unsigned s = 0; s < 5; ++s) {
+    random_vector(u, 100 + s);
+    random_vector(v, 200 + s);
+    Minv.apply(u, Mu);
+    Minv.apply(v, Mv);
+    const double a = dot(v, Mu), b = dot(u, Mv);
+    const double scale = std::sqrt(dot(u, Mu) * dot(v, Mv));
+    worst_sym = std::max(worst_sym, std::fabs(a - b) / scale);
+    min_pos = std::min(min_pos, dot(u, Mu) / (norm(u) * norm(Mu)));
+  }
+  if (g_rank == 0)
+    std::printf("  %s: symmetry %.2e, min v'M^-1 v / (|v| |M^-1 v|) %.2e\n", name,
+                worst_sym, min_pos);
+  CHECK(worst_sym <= sym_tol);
+  CHECK(min_pos > 0.0);
+}
+
+int minres_iterations(ReplicatedSystem &sys, const Tpetra::Operator<> &Minv, double tol) {
+  auto map = sys.map();
+  TMV b(map, 1), x(map, 1);
+  random_vector(b, 7);
+  MinresSolver solver(map, tol, 2000);
+  CrsOp A(sys.hessian()), P(Teuchos::rcpFromRef(Minv));
+  MinresResult r = solver.solve(A, P, b, x);
+  // true residual
+  TMV Hx(map, 1);
+  sys.hessian()->apply(x, Hx);
+  Hx.update(-1.0, b, 1.0);
+  const double rel = norm(Hx) / norm(b); // collective: outside the rank-0 print
+  if (g_rank == 0)
+    std::printf("  MINRES: %d iterations, converged %d, |Hx - b| / |b| = %.2e\n",
+                r.iterations, r.converged ? 1 : 0, rel);
+  CHECK(r.converged);
+  return r.iterations;
+}
+
+// The exact DD on a positive definite H and on H - D/2.
+void check_exact(rn_network *net, const Teuchos::RCP<const Comm> &comm,
+                 const char *name) {
+  ReplicatedSystem sys(net, comm);
+  auto map = sys.map();
+  TMV x(map, 1);
+  sys.get_state(x);
+  sys.assemble_hessian(x);
+  DdOptions opt;
+  opt.coarse = DdOptions::Coarse::Direct;
+  DdPreconditioner dd(opt);
+  dd.setup(sys);
+  if (g_rank == 0)
+    std::printf("%s: %lld DOFs, %lld coarse rows, rods shifted %lld, coarse shift %g\n",
+                name, static_cast<long long>(sys.global_size()), dd.coarse_rows(),
+                dd.rods_shifted(), dd.coarse_shift());
+  CHECK(dd.rods_shifted() == 0);
+  CHECK(dd.coarse_shift() == 0.0);
+  auto Minv = dd.inverse();
+  for (int pass = 0; pass < 2; ++pass) {
+    const double c = pass == 0 ? 0.0 : -1.0;
+    if (pass == 1) { // a second setup on other values: H + D
+      shift_hessian(sys, c);
+      dd.setup(sys);
+    }
+    TMV b(map, 1), y(map, 1), yref(map, 1), Hy(map, 1);
+    random_vector(b, 11);
+    Minv->apply(b, y);
+    reference_solve(sys, c, b, yref);
+    sys.hessian()->apply(y, Hy);
+    Hy.update(-1.0, b, 1.0);
+    const double backward = norm(Hy) / (sys.hessian()->getFrobeniusNorm() * norm(y));
+    yref.update(-1.0, y, 1.0);
+    const double forward = norm(yref) / norm(y);
+    if (g_rank == 0)
+      std::printf(
+          "  setup %d: |M^-1 b - H^-1 b| / |H^-1 b| = %.2e, backward error %.2e\n",
+          pass + 1, forward, backward);
+    CHECK(forward <= 1e-9);
+    CHECK(backward <= 1e-12);
+    CHECK(minres_iterations(sys, *Minv, 1e-10) <= 2);
+    check_spd(*Minv, map, "exact DD");
+  }
+  // Indefinite: H - D/2 (hundreds of negative eigenvalues): M stays SPD.
+  sys.assemble_hessian(x);
+  shift_hessian(sys, 0.5);
+  dd.setup(sys);
+  if (g_rank == 0)
+    std::printf("  H - D/2: rods shifted %lld, coarse shift %g\n", dd.rods_shifted(),
+                dd.coarse_shift());
+  CHECK(dd.rods_shifted() > 0 || dd.coarse_shift() > 0.0);
+  check_spd(*Minv, map, "exact DD, H - D/2");
+  // Mildly indefinite: H - 1.5 mu D, mu the lowest eigenvalue of the pencil (H, D)
+  // (a few negative eigenvalues, as past a buckling load): MINRES converges in a few
+  // iterations.
+  sys.assemble_hessian(x);
+  const double mu = pencil_min_eigenvalue(sys);
+  shift_hessian(sys, 1.5 * mu);
+  dd.setup(sys);
+  if (g_rank == 0)
+    std::printf("  H - 1.5 mu D (mu %.3e): rods shifted %lld, coarse shift %g\n", mu,
+                dd.rods_shifted(), dd.coarse_shift());
+  CHECK(dd.rods_shifted() > 0 || dd.coarse_shift() > 0.0);
+  check_spd(*Minv, map, "exact DD, H - 1.5 mu D");
+  CHECK(minres_iterations(sys, *Minv, 1e-8) <= 60);
+}
+
+// The AMG coarse solve: SPD, and MINRES iterations for growing honeycombs (coarse
+// matrices of more rows than MueLu's coarsest level, so that the V-cycle is not
+// exact); the automatic choice.
+void check_amg(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
+  std::vector<int> its;
+  for (int cells : {12, 24, 36}) {
+    rn_scene *scene = lattice(ctx, RN_LATTICE_HONEYCOMB, cells, RN_JOINT_RIGID);
+    ReplicatedSystem sys(rn_scene_network(scene), comm);
+    TMV x(sys.map(), 1);
+    sys.get_state(x);
+    sys.assemble_hessian(x);
+    DdOptions opt;
+    opt.coarse = DdOptions::Coarse::Amg;
+    DdPreconditioner dd(opt);
+    dd.setup(sys);
+    if (g_rank == 0)
+      std::printf(
+          "honeycomb %dx%d rigid, AMG coarse: %lld DOFs, %lld coarse rows, shift %g\n",
+          cells, cells, static_cast<long long>(sys.global_size()), dd.coarse_rows(),
+          dd.coarse_shift());
+    CHECK(dd.coarse_solver() == "amg");
+    check_spd(*dd.inverse(), sys.map(), "AMG DD", 1e-10);
+    its.push_back(minres_iterations(sys, *dd.inverse(), 1e-8));
+    if (cells == 12) {
+      shift_hessian(sys, 1.5 * pencil_min_eigenvalue(sys));
+      dd.setup(sys);
+      if (g_rank == 0)
+        std::printf("  H - 1.5 mu D: rods shifted %lld, coarse shift %g\n",
+                    dd.rods_shifted(), dd.coarse_shift());
+      check_spd(*dd.inverse(), sys.map(), "AMG DD, H - 1.5 mu D", 1e-10);
+      minres_iterations(sys, *dd.inverse(), 1e-8);
+      // automatic choice: direct by default, AMG when the factorisation is too costly
+      sys.assemble_hessian(x);
+      DdPreconditioner autodd;
+      autodd.setup(sys);
+      CHECK(autodd.coarse_solver() == "direct");
+      DdOptions cheap;
+      cheap.direct_max_flops = 1e3;
+      DdPreconditioner autoamg(cheap);
+      autoamg.setup(sys);
+      CHECK(autoamg.coarse_solver() == "amg");
+      CHECK(minres_iterations(sys, *autoamg.inverse(), 1e-8) == its.back());
+    }
+    rn_scene_destroy(&scene);
+  }
+  CHECK(its.back() <= 1.5 * its.front());
+}
+
+// The alternatives measured against the DD (alt_preconditioners.hpp): SPD, and
+// MINRES reaches the tolerance with a true residual to match, on 1 and 2 ranks
+// (Ifpack2's subdomain solves are rank-local Amesos2 KLU2 factorisations).
+void check_alternatives(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
+  for (int model : {RN_JOINT_RIGID, RN_JOINT_ELASTIC}) {
+    rn_scene *scene = lattice(ctx, RN_LATTICE_HONEYCOMB, 6, model);
+    ReplicatedSystem sys(rn_scene_network(scene), comm);
+    TMV x(sys.map(), 1);
+    sys.get_state(x);
+    sys.assemble_hessian(x);
+    for (const char *name : {"muelu", "ifpack2"}) {
+      auto P = make_preconditioner(name, sys.rigid_body_modes());
+      CHECK(P != nullptr);
+      P->setup(sys);
+      if (g_rank == 0)
+        std::printf("%s, honeycomb 6x6 %s:\n", name,
+                    model == RN_JOINT_RIGID ? "rigid" : "elastic");
+      check_spd(*P->inverse(), sys.map(), name, 1e-10);
+      CHECK(minres_iterations(sys, *P->inverse(), 1e-8) < 1000);
+    }
+    rn_scene_destroy(&scene);
+  }
+  CHECK(make_preconditioner("no-such-preconditioner") == nullptr);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  Tpetra::ScopeGuard guard(&argc, &argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  {
+    auto comm = Tpetra::getDefaultComm();
+    g_rank = comm->getRank();
+    rn_context *ctx = nullptr;
+    CHECK_STATUS(rn_context_create(&ctx), RN_OK);
+    {
+      rn_scene *s = lattice(ctx, RN_LATTICE_HONEYCOMB, 3, RN_JOINT_RIGID);
+      check_exact(rn_scene_network(s), comm, "honeycomb 3x3 rigid");
+      rn_scene_destroy(&s);
+      s = lattice(ctx, RN_LATTICE_HONEYCOMB, 3, RN_JOINT_ELASTIC);
+      check_exact(rn_scene_network(s), comm, "honeycomb 3x3 elastic");
+      rn_scene_destroy(&s);
+      s = lattice(ctx, RN_LATTICE_OCTET, 2, RN_JOINT_RIGID);
+      check_exact(rn_scene_network(s), comm, "octet 2x2x2 rigid");
+      rn_scene_destroy(&s);
+      s = lattice(ctx, RN_LATTICE_OCTET, 2, RN_JOINT_ELASTIC, 2);
+      check_exact(rn_scene_network(s), comm, "octet 2x2x2 elastic, 2 edges per rod");
+      rn_scene_destroy(&s);
+      rn_network *net = single_rod(ctx);
+      check_exact(net, comm, "single rod");
+      rn_network_destroy(&net);
+    }
+    check_amg(ctx, comm);
+    check_alternatives(ctx, comm);
+    rn_context_destroy(&ctx);
+    int failed = rn_test_failures > 0 ? 1 : 0, any = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, failed, Teuchos::outArg(any));
+    if (any && !failed) rn_test_failures = 1; // another rank failed
+  }
+  return rn_test_finish("shim_dd");
+}
