@@ -52,35 +52,39 @@ static void gather_dir(const rn_network *net, const eval_args *a, size_t s, int 
 
 /* Accumulates a local gradient of n DOFs at full index s (or by index list idx). */
 static void scatter_grad(const rn_network *net, eval_args *a, const double *gl, size_t s,
-                         const size_t *idx, int n) {
+                         const size_t *idx, const int32_t *img, int n) {
   double mag[RN_VERTEX_STENCIL];
   if (a->magnitude) { /* stencils of rods and loads only (joints: by blocks below) */
     for (int b = 0; b < n; b += RN_VERTEX_STENCIL) {
       const int m = n - b < RN_VERTEX_STENCIL ? n - b : RN_VERTEX_STENCIL;
       for (int k = 0; k < m; ++k) mag[k] = fabs(gl[b + k]);
-      if (idx)
+      if (idx) {
         rn_scatter_add_idx(net, mag, idx + b, m, a->g);
-      else
+        if (img) rn_cell_scatter(net, mag, 0, idx + b, img + b, m, a->g);
+      } else
         rn_scatter_add(net, mag, s + (size_t)b, m, a->g);
     }
     return;
   }
-  if (a->gfull)
+  if (a->gfull) {
     for (int k = 0; k < n; ++k) a->gfull[idx ? idx[k] : s + (size_t)k] += gl[k];
-  else if (idx)
+    if (net->cell) rn_cell_scatter_full(net, gl, s, idx, img, n, a->gfull);
+  } else if (idx) {
     rn_scatter_add_idx(net, gl, idx, n, a->g);
-  else
+    if (img) rn_cell_scatter(net, gl, 0, idx, img, n, a->g);
+  } else
     rn_scatter_add(net, gl, s, n, a->g);
 }
 
 /* Accumulates a local gradient / HVP / Hessian block of a stencil. */
 static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
                        const double *loc) {
-  if (a->op == OP_GRAD) scatter_grad(net, a, loc, s, NULL, n);
+  if (a->op == OP_GRAD) scatter_grad(net, a, loc, s, NULL, NULL, n);
   if (a->op == OP_HVP) rn_scatter_add(net, loc, s, n, a->Hv);
   if (a->op == OP_HESS) {
     a->unbounded |= !rn_all_bounded((size_t)n * (size_t)n, loc);
     rn_csr_add_block(net, s, n, loc, a->vals);
+    if (net->cell) rn_cell_hess_block(net, s, NULL, NULL, n, loc, a->vals);
   }
 }
 
@@ -128,8 +132,10 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
     break;
   case OP_HESS:
     memset(band, 0, (size_t)n * RNK_BAND * sizeof(double));
-    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK)
+    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK) {
       a->unbounded |= !rn_csr_add_band(net, s, n, band, a->vals);
+      if (net->cell) rn_cell_hess_band(net, s, n, band, a->vals);
+    }
     break;
   }
   if (rc != RNK_OK) return rod_degenerate(net, a, ir, j0, bad);
@@ -183,7 +189,7 @@ static rn_status rod_stencils_grad_each(const rn_network *net, int ir, eval_args
     if (rnk_stretch_grad(q, &r->sp[j], &E, gl) != RNK_OK)
       return degenerate(net, a, "stretching", ir, "edge", j);
     a->E[RN_TERM_STRETCH] += E;
-    scatter_grad(net, a, gl, s, NULL, RN_EDGE_STENCIL);
+    scatter_grad(net, a, gl, s, NULL, NULL, RN_EDGE_STENCIL);
   }
   for (int i = 1; i < r->nv - 1; ++i) {
     size_t s = rn_dof_vertex_stencil(r->off, i);
@@ -193,7 +199,7 @@ static rn_status rod_stencils_grad_each(const rn_network *net, int ir, eval_args
     if (rnk_bendtwist_grad(q, &r->ref[i - 1], &r->bp[i - 1], &tp, &E, gl) != RNK_OK)
       return degenerate(net, a, "bending/twist", ir, "vertex", i);
     a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
-    scatter_grad(net, a, gl, s, NULL, RN_VERTEX_STENCIL);
+    scatter_grad(net, a, gl, s, NULL, NULL, RN_VERTEX_STENCIL);
   }
   return RN_OK;
 }
@@ -272,7 +278,7 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
     a->E[RN_TERM_LOAD] += rnk_force_energy(xv, f);
     if (a->op == OP_GRAD) {
       rnk_force_grad(f, gl);
-      scatter_grad(net, a, gl, s, NULL, RN_DOFS_PER_VERTEX);
+      scatter_grad(net, a, gl, s, NULL, NULL, RN_DOFS_PER_VERTEX);
     }
   }
 }
@@ -304,20 +310,25 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
   case OP_GRAD:
     if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, s->loc)) != RNK_OK) return rc;
     a->E[RN_TERM_BEND] += E; /* the sum is what counts here */
-    scatter_grad(net, a, s->loc, 0, J->idx, s->n);
+    scatter_grad(net, a, s->loc, 0, J->idx, J->img, s->n);
     break;
   case OP_HVP: /* matrix-free: the kernel never forms the block */
-    if (a->vfull)
+    if (a->vfull) {
       rn_gather_fixed_dir_idx(net, a->vfull, J->idx, s->n, s->v);
-    else
+      rn_cell_gather_fixed_dir(net, a->vfull, 0, J->idx, J->img, s->n, s->v);
+    } else {
       rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
+      rn_cell_gather_dir(net, a->v, 0, J->idx, J->img, s->n, s->v);
+    }
     if ((rc = rnk_joint_hvp(s->q, kj, s->work, s->v, s->loc)) != RNK_OK) return rc;
     rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->Hv);
+    rn_cell_scatter(net, s->loc, 0, J->idx, J->img, s->n, a->Hv);
     break;
   case OP_HESS:
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
     a->unbounded |= !rn_all_bounded((size_t)s->n * (size_t)s->n, s->loc);
     rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
+    rn_cell_hess_block(net, 0, J->idx, J->img, s->n, s->loc, a->vals);
     break;
   }
   return rc;
@@ -335,6 +346,7 @@ static int joint_couple_grad(const rn_network *net, const rn_joint *J,
   if ((rc = rnk_joint_grad(s->q, kj, s->work, &E, g0)) != RNK_OK) return rc;
   for (int k = 0; k < s->n; ++k) s->loc[k] -= g0[k];
   rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->g);
+  rn_cell_scatter(net, s->loc, 0, J->idx, J->img, s->n, a->g);
   return RNK_OK;
 }
 
@@ -352,6 +364,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
     return rn_fail(net->ctx, RN_ERR_ALLOC, a->where, "out of memory");
   rn_joint_kernel(net, ij, a->lambda, s.refs, &kj);
   rn_gather_idx(net, a->x, J->idx, s.n, s.q);
+  rn_cell_gather(net, a->x, 0, J->idx, J->img, s.n, s.q);
   rc = a->loads_only ? joint_couple_grad(net, J, &s, &kj, a)
                      : joint_kernel_op(net, J, &s, &kj, a);
   rn_joint_scratch_free(&s);
@@ -368,7 +381,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   a->E[RN_TERM_LOAD] += rnk_force_energy(xj, f);
   if (a->op == OP_GRAD) {
     rnk_force_grad(f, gl);
-    scatter_grad(net, a, gl, p, NULL, RN_DOFS_PER_VERTEX);
+    scatter_grad(net, a, gl, p, NULL, NULL, RN_DOFS_PER_VERTEX);
   }
   return RN_OK;
 }
@@ -398,6 +411,10 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
                         net->moments[im].vertex);
   for (int ij = 0; ij < net->njoints; ++ij)
     if (rn_joint_evaluated(&net->joints[ij]) && (st = joint_eval(net, ij, a))) return st;
+  if (net->cell && a->op != OP_HVP && a->op != OP_HESS && !a->magnitude)
+    a->E[RN_TERM_LOAD] +=
+        rn_cell_load(net, a->x, a->lambda, a->op == OP_GRAD && !a->gfull ? a->g : NULL,
+                     a->op == OP_GRAD ? a->gfull : NULL);
   /* Finite inputs can still overflow (huge stiffness times strain, huge
    * loads): never hand back NaN or inf with RN_OK.  Recoverable, so a solver
    * rejects such a trial point. */

@@ -208,6 +208,7 @@ static void continue_twist_near(rn_network *net, rn_rod *r, int j) {
 }
 
 rn_status rn_apply_load_factor(rn_network *net) {
+  rn_cell_place(net);   /* first: image ends are placed from the strain */
   rn_joints_place(net); /* first: rod stencils near joints read their position */
   for (int ir = 0; ir < net->nrods; ++ir) {
     rn_rod *r = &net->rods[ir];

@@ -86,6 +86,12 @@ static void dof_scales(const rn_network *net, double *scale) {
       if (m >= 0) scale[m] = 1.0;
     }
   }
+  for (size_t v = 0; v < rn_cell_full_count(net); ++v) { /* strain moving an image
+                                                          by one edge length */
+    int64_t m = net->map[net->cell->off + v];
+    if (m >= 0)
+      scale[m] = lsum / (double)ne / pow(net->cell->measure, 1.0 / net->cell->dim);
+  }
 }
 
 static void random_scaled(check_work *w, double *v) {

@@ -132,6 +132,10 @@ static rn_status build_dof_map(rn_network *net) {
     net->joints[ij].off = off;
     off += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[ij]));
   }
+  if (net->cell) { /* periodic: the macroscopic strain follows the joints */
+    net->cell->off = off;
+    off += rn_cell_full_count(net);
+  }
   net->nfull = off;
   net->map = malloc((off ? off : 1) * sizeof(int64_t)); /* a part may hold nothing */
   net->xfull = calloc(off ? off : 1, sizeof(double));
@@ -143,6 +147,7 @@ static rn_status build_dof_map(rn_network *net) {
       memcpy(net->xfull + rn_dof_vertex(r->off, v), r->x0 + 3 * v, 3 * sizeof(double));
   }
   for (int ij = 0; ij < net->njoints; ++ij) mark_joint(net, &net->joints[ij]);
+  rn_cell_mark(net);
   alias_joint_ends(net, 1);
   if (net->part) { /* a part: what it does not read is absent, owned DOFs first */
     if (rn_part_begin_numbering(net)) return RN_ERR_ALLOC;
@@ -195,6 +200,11 @@ static void undo_finalize(rn_network *net) {
     r->tp = NULL;
   }
   rn_joints_unbuild(net);
+  if (net->cell) {
+    free(net->cell->slot);
+    net->cell->slot = NULL;
+    net->cell->nimg = 0;
+  }
   free(net->map);
   free(net->red2full);
   free(net->xfull);
@@ -215,6 +225,7 @@ rn_status rn_network_finalize(rn_network *net) {
   }
   if (rn_net_num_rods_g(net) == 0)
     return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
+  rn_cell_anchor(net); /* periodic: one joint pinned unless a BC fixes a position */
   if ((st = rn_joints_validate(net, where))) return st;
   for (int ir = 0; ir < net->nrods; ++ir)
     if ((st = validate_rod(net, ir))) return st;
@@ -225,7 +236,7 @@ rn_status rn_network_finalize(rn_network *net) {
     }
     rn_rod_lump_forces(net, &net->rods[ir]);
   }
-  if (build_dof_map(net) || (st = rn_joints_build(net))) {
+  if (build_dof_map(net) || (st = rn_joints_build(net)) || rn_cell_build(net)) {
     undo_finalize(net);
     if (st) return st;
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");

@@ -144,7 +144,8 @@ static int push(col_buf *b, int64_t c) {
 
 /* Candidate columns of row r appended to b (unsorted, with duplicates). */
 static int row_candidates(const rn_network *net, const row_lists *L, const size_t *lo,
-                          const size_t *hi, size_t r, col_buf *b) {
+                          const size_t *hi, const unsigned char *touch, size_t r,
+                          col_buf *b) {
   for (size_t p = L->fptr[r]; p < L->fptr[r + 1]; ++p) {
     size_t a = L->full[p];
     for (size_t c = lo[a]; c <= hi[a]; ++c)
@@ -155,17 +156,23 @@ static int row_candidates(const rn_network *net, const row_lists *L, const size_
     for (int k = 0; k < joint_stencil_n(J); ++k)
       if (net->map[J->idx[k]] >= 0 && push(b, net->map[J->idx[k]])) return -1;
   }
+  if (touch && touch[r]) { /* periodic: rows coupled to the strain DOFs */
+    for (size_t q = 0; q < net->nred; ++q)
+      if (touch[q] == 2 || (touch[r] == 2 && touch[q])) {
+        if (push(b, (int64_t)q)) return -1;
+      }
+  }
   return 0;
 }
 
 /* Rows in order: candidates sorted and made unique in place at the end of
  * the column buffer (for plain rods they are already sorted and unique). */
 static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo,
-                           const size_t *hi, col_buf *b) {
+                           const size_t *hi, const unsigned char *touch, col_buf *b) {
   for (size_t row = 0; row < net->nred; ++row) {
     size_t start = b->n, u = start;
     net->rowptr[row] = (int64_t)start;
-    if (row_candidates(net, L, lo, hi, row, b)) return RN_ERR_ALLOC;
+    if (row_candidates(net, L, lo, hi, touch, row, b)) return RN_ERR_ALLOC;
     if (!increasing(b->c + start, b->n - start)) /* rows away from joints are */
       sort_columns(b->c + start, b->n - start);
     for (size_t p = start; p < b->n; ++p) {
@@ -320,6 +327,8 @@ static rn_status build_rod_direct(rn_network *net) {
     size_t best_a = 0, best_b = 0, a = 0; /* runs [a, b) of the full slice */
     for (size_t i = 0; i <= n; ++i) {
       int64_t mi = i < n ? net->map[r->off + i] : -1;
+      if (i < n && net->cell && net->cell->slot[r->off + i] >= 0)
+        mi = -1; /* a periodic image end: its value needs the shift (periodic.c) */
       int joins = i > a && mi >= 0 && mi == net->map[r->off + i - 1] + 1;
       if (i == a && mi >= 0) continue; /* a run starts */
       if (joins) continue;
@@ -344,12 +353,18 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   size_t *hi = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   row_lists L = {NULL, NULL, NULL, NULL};
   col_buf b = {NULL, 0, 0};
+  unsigned char *touch = NULL;
   rn_status st = RN_ERR_ALLOC;
   net->rowptr = malloc((net->nred + 1) * sizeof(int64_t));
   if (!lo || !hi || !net->rowptr || row_lists_build(net, &L)) goto done;
   stencil_ranges(net, lo, hi);
   net->bandwidth = 0;
-  if (fill_rows(net, &L, lo, hi, &b)) goto done;
+  if (net->cell) { /* rows of the stencils at periodic images, strain rows */
+    touch = calloc(net->nred ? net->nred : 1, 1);
+    if (!touch) goto done;
+    rn_cell_pattern_flags(net, lo, hi, touch);
+  }
+  if (fill_rows(net, &L, lo, hi, touch, &b)) goto done;
   net->nnz = b.n;
   { /* shrink to fit (also allocates when there are no entries) */
     int32_t *p = realloc(b.c, (b.n ? b.n : 1) * sizeof(int32_t));
@@ -361,6 +376,7 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   if (st == RN_OK) st = build_rod_direct(net);
   if (st == RN_OK) st = build_assign(net);
 done:
+  free(touch);
   free(b.c);
   free(lo);
   free(hi);

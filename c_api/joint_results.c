@@ -43,7 +43,7 @@ rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9
   if (rn_joint_scratch_init(J, &s))
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   rn_joint_kernel(net, joint, net->lambda, s.refs, &kj);
-  for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
+  rn_joint_gather_full(net, J, net->xfull, s.q);
   rc = rnk_joint_rotation(s.q, &kj, R);
   rn_joint_scratch_free(&s);
   if (rc != RNK_OK)

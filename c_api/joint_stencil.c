@@ -188,8 +188,10 @@ void rn_joints_unbuild(rn_network *net) {
     rn_joint *J = &net->joints[ij];
     free(J->ends);
     free(J->idx);
+    free(J->img);
     J->ends = NULL;
     J->idx = NULL;
+    J->img = NULL;
   }
 }
 
@@ -256,6 +258,11 @@ void rn_joints_sync(rn_network *net) {
       const rn_rod *r = &net->rods[J->rod[k]];
       double *xv = net->xfull + rn_dof_vertex(r->off, rn_end_vertex(r->nv, J->end[k]));
       memcpy(xv, xj, 3 * sizeof(double));
+      if (J->image) { /* periodic image: x_J + F s */
+        double off[3];
+        rn_cell_image_offset(net, J->image + 3 * k, net->xfull, off);
+        for (int c = 0; c < 3; ++c) xv[c] += off[c];
+      }
     }
   }
 }
@@ -268,7 +275,7 @@ static void continue_joint_twists(rn_network *net, int ij) {
   rnk_joint kj;
   if (rn_joint_scratch_init(J, &s)) return;
   rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
-  for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
+  rn_joint_gather_full(net, J, net->xfull, s.q);
   if (rnk_joint_twists(s.q, &kj, s.v) == RNK_OK)
     for (int k = 0; k < J->valence; ++k) J->ends[k].twist.ref_twist = s.v[k];
   rn_joint_scratch_free(&s);
@@ -311,7 +318,7 @@ rn_status rn_joints_check_initial(const rn_network *net, const char *where) {
     if (rn_joint_scratch_init(J, &s))
       return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
     rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
-    for (int i = 0; i < s.n; ++i) s.q[i] = net->xfull[J->idx[i]];
+    rn_joint_gather_full(net, J, net->xfull, s.q);
     rc = rnk_joint_rotation(s.q, &kj, R);
     if (rc == RNK_OK) rc = rnk_joint_grad(s.q, &kj, s.work, &E, s.loc);
     rn_joint_scratch_free(&s);

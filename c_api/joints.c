@@ -14,6 +14,8 @@ void rn_joint_free(rn_joint *J) {
   free(J->end);
   free(J->ends);
   free(J->idx);
+  free(J->image);
+  free(J->img);
   memset(J, 0, sizeof(*J));
 }
 
@@ -73,13 +75,20 @@ static rn_status check_coincide(const rn_network *net, const char *where,
     if (l < lmin) lmin = l;
   }
   J->lmin = lmin;
-  {
-    const rn_rod *r0 = &net->rods[J->rod[0]];
-    memcpy(J->x0, r0->x0 + 3 * rn_end_vertex(r0->nv, J->end[0]), sizeof(J->x0));
-  }
-  for (int k = 1; k < J->valence; ++k) {
+  for (int k = 0; k < J->valence; ++k) {
     const rn_rod *r = &net->rods[J->rod[k]];
-    double d = dist3(J->x0, r->x0 + 3 * rn_end_vertex(r->nv, J->end[k]));
+    double p[3]; /* the end vertex shifted back from its image (periodic) */
+    memcpy(p, r->x0 + 3 * rn_end_vertex(r->nv, J->end[k]), sizeof(p));
+    if (J->image) {
+      double off[3];
+      rn_cell_image_offset(net, J->image + 3 * k, NULL, off);
+      for (int c = 0; c < 3; ++c) p[c] -= off[c];
+    }
+    if (k == 0) {
+      memcpy(J->x0, p, sizeof(J->x0));
+      continue;
+    }
+    double d = dist3(J->x0, p);
     if (!(d <= RN_JOINT_COINCIDE_TOL * lmin))
       return rn_fail(net->ctx, RN_ERR_GEOMETRY, where,
                      "joint %d ('%s'): the %s of rod %d ('%s') is %g away from the "
@@ -133,9 +142,56 @@ static int local_ends(const rn_network *net, int n, const int *rods, const int *
   return m;
 }
 
+/* Images of the ends of a new joint: checked and copied into J->image (NULL
+ * when every shift is zero). */
+static rn_status set_images(const rn_network *net, const char *where, const char *name,
+                            int n, const int *images, rn_joint *J) {
+  int any = 0, dim = net->cell ? net->cell->dim : 0;
+  if (!images) return RN_OK;
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) {
+      int v = images[3 * k + c];
+      if (v == 0) continue;
+      if (!net->cell)
+        return rn_fail(net->ctx, RN_ERR_STATE, where,
+                       "joint '%s' end %d: an image needs a periodic network "
+                       "(rn_network_set_periodic)",
+                       name ? name : "", k);
+      if (c >= dim)
+        return rn_fail(net->ctx, RN_ERR_ARG, where,
+                       "joint '%s' end %d: image component %d of a %dD cell must be 0",
+                       name ? name : "", k, c, dim);
+      any = 1;
+    }
+  if (!any) return RN_OK;
+  J->image = malloc(3 * (size_t)n * sizeof(int));
+  if (!J->image) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  memcpy(J->image, images, 3 * (size_t)n * sizeof(int));
+  return RN_OK;
+}
+
+static rn_status add_joint(rn_network *net, const char *where, const char *name,
+                           rn_joint_model model, int n_ends, const int *rods,
+                           const int *ends, const int *images, int *joint);
+
 rn_status rn_network_add_joint(rn_network *net, const char *name, rn_joint_model model,
                                int n_ends, const int *rods, const int *ends, int *joint) {
-  static const char *where = "rn_network_add_joint";
+  if (!net) return RN_ERR_ARG;
+  return add_joint(net, "rn_network_add_joint", name, model, n_ends, rods, ends, NULL,
+                   joint);
+}
+
+rn_status rn_network_add_joint_images(rn_network *net, const char *name,
+                                      rn_joint_model model, int n_ends, const int *rods,
+                                      const int *ends, const int *images, int *joint) {
+  if (!net) return RN_ERR_ARG;
+  return add_joint(net, "rn_network_add_joint_images", name, model, n_ends, rods, ends,
+                   images, joint);
+}
+
+static rn_status add_joint(rn_network *net, const char *where, const char *name,
+                           rn_joint_model model, int n_ends, const int *rods,
+                           const int *ends, const int *images, int *joint) {
   rn_joint J;
   rn_status st;
   int keep, m, *buf;
@@ -175,7 +231,8 @@ rn_status rn_network_add_joint(rn_network *net, const char *name, rn_joint_model
   }
   J.model = (int)model;
   rn_part_tag_joint(net, &J);
-  if ((st = check_coincide(net, where, name, &J))) {
+  if ((st = set_images(net, where, name, n_ends, images, &J)) ||
+      (st = check_coincide(net, where, name, &J))) {
     rn_joint_free(&J);
     free(buf);
     return st;

@@ -108,6 +108,7 @@ void rn_network_destroy(rn_network **net) {
   free(n->xfull);
   rn_hessian_pattern_free(n);
   rn_part_free(&n->part);
+  rn_cell_free(&n->cell);
   free(n);
   *net = NULL;
 }
@@ -391,6 +392,7 @@ void rn_gather(const rn_network *net, const double *x, size_t s, int n, double *
     int64_t m = net->map[s + (size_t)k];
     q[k] = m >= 0 ? x[m] : net->xfull[s + (size_t)k];
   }
+  if (net->cell) rn_cell_gather(net, x, s, NULL, NULL, n, q);
 }
 
 void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, double *q) {
@@ -398,12 +400,14 @@ void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, doub
     int64_t m = net->map[s + (size_t)k];
     q[k] = m >= 0 ? v[m] : 0.0;
   }
+  if (net->cell) rn_cell_gather_dir(net, v, s, NULL, NULL, n, q);
 }
 
 void rn_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s, int n,
                          double *q) {
   for (int k = 0; k < n; ++k)
     q[k] = net->map[s + (size_t)k] >= 0 ? 0.0 : vfull[s + (size_t)k];
+  if (net->cell) rn_cell_gather_fixed_dir(net, vfull, s, NULL, NULL, n, q);
 }
 
 void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, double *g) {
@@ -411,6 +415,7 @@ void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, do
     int64_t m = net->map[s + (size_t)k];
     if (m >= 0) g[m] += gl[k];
   }
+  if (net->cell) rn_cell_scatter(net, gl, s, NULL, NULL, n, g);
 }
 
 void rn_expand_state(const rn_network *net, const double *x, double *full) {
@@ -418,6 +423,7 @@ void rn_expand_state(const rn_network *net, const double *x, double *full) {
     int64_t m = net->map[a];
     full[a] = m >= 0 ? x[m] : net->xfull[a];
   }
+  if (net->cell) rn_cell_expand(net, full);
 }
 
 void rn_gather_idx(const rn_network *net, const double *x, const size_t *idx, int n,

@@ -88,6 +88,10 @@ typedef struct rn_joint {
   double f0[9];       /* rotation at the last reference update (couple) */
   double angle0;      /* couple angle accumulated up to that update */
   double couple_p[3]; /* vector the couple turns (rnk_joint.couple_p) */
+  int *image;         /* periodic cells: lattice shift (3 ints) of each end's
+                         joint copy [3 valence]; NULL: no image ends */
+  int32_t *img;       /* built at finalize: image record of each kernel stencil
+                         entry (periodic.c), -1 none; NULL: no image ends */
   /* built at finalize */
   rnk_joint_end *ends; /* kernel parameters [valence]; twist.ref_twist is the
                           reference twist stored at the last update */
@@ -138,6 +142,7 @@ struct rn_network {
   size_t nnz;
   size_t bandwidth;
   struct rn_part_data *part; /* NULL: a whole network (part.c) */
+  struct rn_cell *cell;      /* NULL: not periodic (periodic.c) */
 };
 
 /* ---- parts of a network (part.c) ------------------------------------------
@@ -195,6 +200,86 @@ void rn_part_free(rn_part_data **p);
 /* 1 if the stencils of rod ir / joint ij / moment im are evaluated here. */
 static inline int rn_rod_evaluated(const rn_rod *r) { return !r->ghost; }
 static inline int rn_joint_evaluated(const rn_joint *J) { return !J->ghost; }
+
+/* ---- periodic cells (periodic.c; docs/homogenization.md) ---------------------
+ * A periodic network has lattice vectors a_m (2 or 3) and macroscopic strain
+ * DOFs (Voigt, engineering shear: 3 in 2D, 6 in 3D) after the joints in the full
+ * layout; the cell deforms with F = I + sum_v eps_v B_v (symmetric).  A rod end
+ * at the image n of a joint (lattice shift s = sum n_m a_m) is the joint's
+ * position plus F s: its full slot aliases the joint position like any joint
+ * end, and every gather adds the shift s + T eps (T[c][v] = (B_v s)_c), every
+ * scatter adds T^T onto the strain DOFs.  The joint's own stencil sees the
+ * neighbour vertex of that end shifted by -F s. */
+typedef struct rn_image {
+  size_t base;    /* full index of the unshifted position (joint or vertex) */
+  double s[3];    /* shift at zero strain (sign included) */
+  double T[3][6]; /* d shift / d eps */
+} rn_image;
+typedef struct rn_cell {
+  int dim, nstrain;
+  double a[3][3];   /* lattice vectors (rows) */
+  double measure;   /* area (2D) or volume (3D) */
+  double B[6][9];   /* strain basis tensors (row-major) */
+  size_t off;       /* full index of the first strain DOF */
+  int fixed[6];     /* prescribed strain components */
+  double strain[6]; /* their prescribed values (unscaled by the load factor) */
+  double stress[6]; /* applied macroscopic stress (work conjugate, unscaled) */
+  int anchored;     /* 1: finalize pinned joint 0 (or rod 0's vertex 0) */
+  rn_image *img;    /* image records */
+  int nimg, cap_img;
+  int32_t *slot; /* [nfull]: 3 r + c for component c of record r, -1 */
+} rn_cell;
+void rn_cell_free(struct rn_cell **c);
+/* Number of full strain DOFs (0 if not periodic). */
+static inline size_t rn_cell_full_count(const rn_network *net) {
+  return net->cell ? (size_t)net->cell->nstrain : 0;
+}
+/* Finalize: marks the strain DOFs (map), after the joints' offsets are set. */
+void rn_cell_mark(rn_network *net);
+/* Finalize: image records and slots (after build_dof_map's numbering and
+ * rn_joints_build); anchor (before the DOF map). */
+rn_status rn_cell_build(rn_network *net);
+void rn_cell_anchor(rn_network *net);
+/* Fixed strain components of xfull at the load factor. */
+void rn_cell_place(rn_network *net);
+/* Shift of record r at the strain of the full state full. */
+void rn_cell_shift(const rn_network *net, const rn_image *im, const double *full,
+                   double out[3]);
+/* Gather / scatter corrections of a contiguous slice [s, s + n) (rod stencils)
+ * or of an index list with its image list img (joint stencils; img NULL: none). */
+void rn_cell_gather(const rn_network *net, const double *x, size_t s, const size_t *idx,
+                    const int32_t *img, int n, double *q);
+void rn_cell_gather_dir(const rn_network *net, const double *v, size_t s,
+                        const size_t *idx, const int32_t *img, int n, double *q);
+void rn_cell_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s,
+                              const size_t *idx, const int32_t *img, int n, double *q);
+void rn_cell_scatter(const rn_network *net, const double *gl, size_t s, const size_t *idx,
+                     const int32_t *img, int n, double *g);
+void rn_cell_scatter_full(const rn_network *net, const double *gl, size_t s,
+                          const size_t *idx, const int32_t *img, int n, double *gfull);
+/* Hessian: the strain rows and columns of a stencil's dense block H[n n]
+ * (contiguous at s, or by idx/img), or of rod band rows (rnk.h band storage). */
+void rn_cell_hess_block(const rn_network *net, size_t s, const size_t *idx,
+                        const int32_t *img, int n, const double *H, double *vals);
+void rn_cell_hess_band(const rn_network *net, size_t s, int n, const double *band,
+                       double *vals);
+/* Pattern: 1 if reduced column list of row r must include the strain DOFs;
+ * the extra candidates of a strain row (appends to buf via push). */
+int rn_cell_pattern_flags(const rn_network *net, const size_t *lo, const size_t *hi,
+                          unsigned char *touch);
+/* Energy and gradient of the applied macroscopic stress at x (load scale lambda):
+ * E -= lambda V sigma . eps. */
+double rn_cell_load(const rn_network *net, const double *x, double lambda, double *g,
+                    double *gfull);
+/* F s of the lattice shift n[3] at the strain of the full state (the offset of
+ * an image end from its joint), and the image slots of a full state set from
+ * their joints (after the other entries). */
+void rn_cell_image_offset(const rn_network *net, const int *n, const double *full,
+                          double out[3]);
+void rn_cell_expand(const rn_network *net, double *full);
+/* Joint stencil from a full state: q[k] = full[idx[k]] plus image shifts. */
+void rn_joint_gather_full(const rn_network *net, const rn_joint *J, const double *full,
+                          double *q);
 
 /* ---- errors -------------------------------------------------------------- */
 /* Record "where: what" in ctx (ctx may be NULL) and return s. */

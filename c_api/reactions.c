@@ -37,6 +37,10 @@ rn_status rn_network_dof_kinds(const rn_network *net, int *kind) {
       if (m >= 0) kind[m] = RN_DOF_ROTATION;
     }
   }
+  for (size_t v = 0; v < rn_cell_full_count(net); ++v) {
+    const int64_t m = net->map[net->cell->off + v];
+    if (m >= 0) kind[m] = RN_DOF_STRAIN;
+  }
   return RN_OK;
 }
 
@@ -68,6 +72,10 @@ rn_status rn_network_dof_info(const rn_network *net, rn_dof_info *info) {
                             : -1;
       if (w >= 0) info[w] = (rn_dof_info){RN_DOF_ROTATION, -1, J->gid, 0, k};
     }
+  }
+  for (size_t v = 0; v < rn_cell_full_count(net); ++v) {
+    const int64_t m = net->map[net->cell->off + v];
+    if (m >= 0) info[m] = (rn_dof_info){RN_DOF_STRAIN, -1, -1, 0, (int)v};
   }
   return RN_OK;
 }

@@ -153,7 +153,7 @@ static rn_status update_joint(const rn_network *net, int ij, const double *full,
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   rn_joint_kernel(net, ij, net->lambda, s.refs, &kj);
   memcpy(kj.M, J->M, sizeof(kj.M)); /* its axis (unscaled: lambda may be 0) */
-  for (int i = 0; i < s.n; ++i) s.q[i] = full[J->idx[i]];
+  rn_joint_gather_full(net, J, full, s.q);
   rc = rnk_joint_twists(s.q, &kj, tw);
   if (rc == RNK_OK) rc = rnk_joint_couple_angle(s.q, &kj, &alpha);
   if (rc == RNK_OK) rc = rnk_joint_rotation(s.q, &kj, Q);

@@ -417,6 +417,63 @@ rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m
 rn_status rn_network_joint_position(const rn_network *net, int joint, double x[3]);
 rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9]);
 
+/* ---- periodic cells (docs/homogenization.md) -----------------------------
+ * A periodic network is an infinite lattice given by one cell: lattice vectors
+ * a_1, a_2 (a 2D cell: both in the xy plane) or a_1, a_2, a_3 (3D), rods and
+ * joints of the cell, and rod ends attached to periodic images of joints (the
+ * copy of joint J shifted by i a_1 + j a_2 + k a_3).  The cell deforms with the
+ * macroscopic deformation gradient F = I + eps, eps the symmetric strain tensor
+ * of the strain DOFs (Voigt with engineering shear: 2D (e11, e22, g12), 3D
+ * (e11, e22, e33, g23, g13, g12)), applied to the lattice vectors, plus the
+ * periodic fluctuation of every DOF: a rod end at image n of joint J is at
+ * x_J + F (sum n_m a_m).  The strain DOFs follow the joints in the full layout
+ * and are reduced DOFs unless prescribed.  Symmetric F removes the rigid
+ * rotations (a 2D cell also keeps F_31 = F_32 = 0: no rotation out of plane);
+ * finalize pins joint 0 (rod 0's first vertex without joints), the anchor, if
+ * no boundary condition fixes a position.  A whole network only (not a part). */
+
+/* Make the empty network periodic with dim = 2 or 3 lattice vectors
+ * vectors[3 dim] (rows).  RN_ERR_GEOMETRY for a degenerate cell, RN_ERR_ARG for
+ * a 2D cell out of the xy plane, RN_ERR_STATE after rods were added. */
+rn_status rn_network_set_periodic(rn_network *net, int dim, const double *vectors);
+/* rn_network_add_joint where end k attaches to the image images[3 k .. 3 k + 2]
+ * (lattice shifts, components beyond the cell's dimension 0) of the joint: the
+ * end vertex must be at the joint's position plus the shift (the joint's
+ * position is the first end's vertex minus its shift).  images NULL: none.
+ * RN_ERR_STATE for a non-zero image in a network that is not periodic. */
+rn_status rn_network_add_joint_images(rn_network *net, const char *name,
+                                      rn_joint_model model, int n_ends, const int *rods,
+                                      const int *ends, const int *images, int *joint);
+/* Strain control before finalize: component v is prescribed (fixed[v] != 0,
+ * value strain[v] scaled by the load factor; strain may be NULL: 0) or a DOF
+ * (default: every component free).  nstrain entries each. */
+rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
+                                     const double *strain);
+/* Applied macroscopic stress (Voigt, work conjugate to the strain DOFs, per unit
+ * cell area / volume, scaled by the load factor): the energy gains
+ * -lambda measure sigma . eps (mixed control: stress on the free components). */
+rn_status rn_network_set_cell_stress(rn_network *net, const double *stress);
+/* Dimension (0 if not periodic), number of strain components, cell area (2D)
+ * or volume (3D), lattice vectors vectors[9] (rows; unused rows 0).  Any
+ * pointer may be NULL. */
+rn_status rn_network_cell_info(const rn_network *net, int *dim, int *nstrain,
+                               double *measure, double vectors[9]);
+/* Reduced index of each strain component (-1 if prescribed); idx[nstrain]. */
+rn_status rn_network_cell_strain_dofs(const rn_network *net, int64_t *idx);
+/* Strain at the reduced state x (NULL: the current state); strain[nstrain]. */
+rn_status rn_network_cell_strain(const rn_network *net, const double *x, double *strain);
+/* Macroscopic stress at x: (1 / measure) dE_elastic / d eps (the derivative of
+ * the energy without the applied stress, at fixed fluctuations; at an
+ * equilibrium of the fluctuations this is the homogenised stress).  Force per
+ * length in 2D, per area in 3D.  stress[nstrain]. */
+rn_status rn_network_cell_stress(const rn_network *net, const double *x, double *stress);
+/* Relative density of the cell: 3D, the solid volume sum A l (rest lengths) over
+ * the cell volume; 2D, the in-plane solid area sum t l over the cell area, t =
+ * sqrt(12 I_n / A) the in-plane thickness of the section's equivalent
+ * rectangle (I_n its second moment about the in-plane normal of the edge;
+ * exact for rectangles, sqrt(3) r for a circle of radius r). */
+rn_status rn_network_cell_relative_density(const rn_network *net, double *rho);
+
 /* ---- parts of a network (distributed solves; docs/parallel.md) -----------
  * A distributed solve gives every rod to one part (rank) and builds on each
  * rank only what its part needs.  The scene is built twice through the same
@@ -508,7 +565,9 @@ rn_status rn_network_part_state_unpack(rn_network *net, const double *buf, size_
 enum {
   RN_DOF_POSITION = 0, /* a vertex or joint coordinate: the gradient is a force */
   RN_DOF_THETA = 1,    /* a material angle: a moment about the edge tangent */
-  RN_DOF_ROTATION = 2  /* a joint rotation-vector component: a moment (global) */
+  RN_DOF_ROTATION = 2, /* a joint rotation-vector component: a moment (global) */
+  RN_DOF_STRAIN = 3    /* a macroscopic strain component of a periodic cell: the
+                          gradient is an energy (stress times cell measure) */
 };
 /* kind[num_dofs]: the RN_DOF_* kind of every reduced DOF. */
 rn_status rn_network_dof_kinds(const rn_network *net, int *kind);

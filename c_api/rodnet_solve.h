@@ -299,6 +299,26 @@ rn_status rn_dist_gather_state(const rn_network *part, rn_network *whole);
  * initialisation (no Tpetra). */
 rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
 
+/* Linear effective elasticity of a periodic cell (docs/homogenization.md). */
+typedef struct rn_homogenization {
+  int dim, nstrain;        /* 2 and 3, or 3 and 6 */
+  double measure;          /* cell area (2D) or volume (3D) */
+  double C[36];            /* effective stiffness, nstrain x nstrain row-major,
+                              Voigt with engineering shear, per unit measure:
+                              force per length in 2D, stress in 3D */
+  double relative_density; /* rn_network_cell_relative_density */
+  size_t fluctuation_dofs; /* size of the factored fluctuation block */
+} rn_homogenization;
+/* Effective stiffness at the current state of a periodic network (normally the
+ * rest state) by the Schur complement of the Hessian onto the strain DOFs,
+ * C = (K_ee - K_eu K_uu^-1 K_ue) / measure: one sparse Cholesky factorisation of
+ * the fluctuation block K_uu (METIS ordering) solves all strain load cases.
+ * Every strain component must be a DOF (RN_ERR_ARG otherwise); RN_ERR_SOLVER if
+ * K_uu is not positive definite (a mechanism: a zero-energy periodic
+ * fluctuation, or an unstable state).  Serial; needs no runtime
+ * initialisation. */
+rn_status rn_homogenize(rn_network *net, rn_homogenization *h);
+
 #ifdef __cplusplus
 }
 #endif

@@ -18,7 +18,9 @@ static const char main_help[] =
     "  check SCENE.json                  derivative self-test: gradient and Hessian of\n"
     "                                    the scene's energy against finite differences\n"
     "  generate KIND -o SCENE.json       write a lattice scene (square, triangular,\n"
-    "                                    honeycomb, kagome, cubic, bcc, octet)\n"
+    "                                    honeycomb, kagome, cubic, bcc, octet;\n"
+    "                                    --periodic: a periodic cell)\n"
+    "  homogenize SCENE.json -o RESULT.json  effective stiffness of a periodic cell\n"
     "\n"
     "Options:\n"
     "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
@@ -57,6 +59,7 @@ int rn_cli_main(int argc, char **argv) {
   if (strcmp(cmd, "solve") == 0) return rn_cli_solve(argc - 1, argv + 1);
   if (strcmp(cmd, "check") == 0) return rn_cli_check(argc - 1, argv + 1);
   if (strcmp(cmd, "generate") == 0) return rn_cli_generate(argc - 1, argv + 1);
+  if (strcmp(cmd, "homogenize") == 0) return rn_cli_homogenize(argc - 1, argv + 1);
   fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
   return RN_EXIT_USAGE;
 }

@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "lattice.h"
 #include "lattice_scene.h"
+#include "periodic_cell.h"
 
 static const char generate_help[] =
     "Usage: rodnet generate KIND [options] -o SCENE.json\n"
@@ -20,6 +21,8 @@ static const char generate_help[] =
     "Kinds:\n"
     "  square, triangular, honeycomb, kagome   planar, in the xy plane\n"
     "  cubic, bcc, octet                       3D blocks\n"
+    "  reentrant                               re-entrant (auxetic) honeycomb,\n"
+    "                                          --periodic only\n"
     "\n"
     "Options:\n"
     "  -o, --output FILE        scene to write (required)\n"
@@ -44,6 +47,22 @@ static const char generate_help[] =
     "                           pull-x|y|z:FORCE      total FORCE on the max face,\n"
     "                             -FORCE on the min face whose centre joint is\n"
     "                             clamped (free lateral contraction)\n"
+    "      --periodic           write a periodic cell instead of a finite block:\n"
+    "                           the --cells cells on the torus of their lattice\n"
+    "                           vectors, rod ends at periodic images (\"image\"),\n"
+    "                           no loads; for rodnet homogenize\n"
+    "                           (docs/homogenization.md)\n"
+    "      --slenderness T      (--periodic) strut thickness t = T times the mean\n"
+    "                           bar length: square section t x t in 2D, circle of\n"
+    "                           diameter t in 3D (default 0.05 without --section)\n"
+    "      --relative-density R (--periodic) the same sections with t chosen so\n"
+    "                           that the relative density is R\n"
+    "      --perturb AMP        (--periodic) move every joint by a random vector\n"
+    "                           with components in [-AMP, AMP] times the mean bar\n"
+    "                           length (in plane for 2D cells): a disordered cell\n"
+    "      --seed N             seed of --perturb (default 1)\n"
+    "      --repeat M,N[,K]     (--periodic) write \"repeat\": the scene reader tiles\n"
+    "                           the cell M x N (x K) times\n"
     "  -q, --quiet              no summary\n"
     "  -h, --help               show this help\n"
     "\n"
@@ -53,8 +72,9 @@ static const char generate_help[] =
 typedef struct gen_args {
   const char *kind_name, *output, *section, *load;
   rn_lattice_kind kind;
-  int cells[3], ncells, quiet;
-  double a;
+  int cells[3], ncells, quiet, periodic, reentrant;
+  double a, slenderness, density, perturb;
+  int seed, repeat[3], nrepeat;
   rn_lattice_scene sc;
 } gen_args;
 
@@ -174,12 +194,16 @@ static int parse_joint_model(gen_args *a, const char *v) {
 
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
-  static const char *const names[] = {"--output",        "--cells",   "--cell-size",
-                                      "--edges-per-rod", "--section", "--material",
-                                      "--joint-model",   "--load"};
+  static const char *const names[] = {"--output",      "--cells",
+                                      "--cell-size",   "--edges-per-rod",
+                                      "--section",     "--material",
+                                      "--joint-model", "--load",
+                                      "--slenderness", "--relative-density",
+                                      "--perturb",     "--seed",
+                                      "--repeat"};
   const char *v = NULL;
   int m = 0, which = -1;
-  for (int k = 0; k < 8 && m == 0; k++) {
+  for (int k = 0; k < 13 && m == 0; k++) {
     m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
                             &v);
     which = k;
@@ -209,6 +233,40 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
   case 6:
     *rc = parse_joint_model(a, v);
     break;
+  case 8:
+    *rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
+    break;
+  case 9:
+    *rc = rn_cli_parse_double("generate", "--relative-density", v, 0.0, &a->density);
+    if (!*rc && !(a->density < 1.0))
+      *rc = rn_cli_usage_error("generate",
+                               "--relative-density expects a value in (0, 1), "
+                               "got '%s'",
+                               v);
+    break;
+  case 10:
+    *rc = rn_cli_parse_double("generate", "--perturb", v, 0.0, &a->perturb);
+    if (!*rc && !(a->perturb < 0.5))
+      *rc = rn_cli_usage_error("generate",
+                               "--perturb expects a value in (0, 0.5), got '%s'", v);
+    break;
+  case 11:
+    *rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
+    break;
+  case 12: {
+    double r[3];
+    int n = 0, ok = parse_list(v, 3, r, &n) == 0;
+    for (int k = 0; ok && k < n; k++)
+      ok = r[k] == floor(r[k]) && r[k] >= 1 && r[k] <= 1000;
+    if (!ok) {
+      *rc = rn_cli_usage_error(
+          "generate", "--repeat expects M,N[,K] with integers in [1, 1000], got '%s'", v);
+      break;
+    }
+    for (int k = 0; k < 3; k++) a->repeat[k] = (int)(k < n ? r[k] : 1);
+    a->nrepeat = n;
+    break;
+  }
   default:
     *rc = parse_load(a, v);
     break;
@@ -226,17 +284,39 @@ static void set_defaults(gen_args *a) {
   a->sc.nu = 0.3;
   a->sc.shape = RN_LSEC_CIRCLE;
   a->sc.load = RN_LLOAD_NONE;
+  a->seed = 1;
 }
 
 static int check_args(gen_args *a) {
   if (!a->kind_name) return rn_cli_usage_error("generate", "missing the lattice KIND");
-  if (rn_lattice_kind_from_name(a->kind_name, &a->kind) != 0)
+  a->reentrant = strcmp(a->kind_name, "reentrant") == 0;
+  if (a->reentrant && !a->periodic)
+    return rn_cli_usage_error("generate", "the reentrant lattice needs --periodic");
+  if (!a->periodic && (a->slenderness > 0.0 || a->density > 0.0 || a->perturb > 0.0))
+    return rn_cli_usage_error("generate",
+                              "--slenderness, --relative-density and --perturb need "
+                              "--periodic");
+  if (a->nrepeat && !a->periodic)
+    return rn_cli_usage_error("generate", "--repeat needs --periodic");
+  if (a->periodic && a->sc.load != RN_LLOAD_NONE)
+    return rn_cli_usage_error("generate", "--load does not apply to a periodic cell");
+  if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
+    return rn_cli_usage_error("generate", "give at most one of --section, --slenderness "
+                                          "and --relative-density");
+  if (a->periodic && a->ncells == 0) /* one cell unless --cells asks for a supercell */
+    a->cells[0] = a->cells[1] = a->cells[2] = 1;
+  if (a->reentrant) {
+    a->kind = RN_LATTICE_HONEYCOMB; /* planar; the cell is built by rn_pcell_reentrant */
+  } else if (rn_lattice_kind_from_name(a->kind_name, &a->kind) != 0)
     return rn_cli_usage_error("generate",
                               "unknown lattice '%s' (known: square, triangular, "
                               "honeycomb, kagome, cubic, bcc, octet)",
                               a->kind_name);
   if (!a->output) return rn_cli_usage_error("generate", "missing -o SCENE.json");
   int dim = rn_lattice_kind_dimension(a->kind);
+  if (a->nrepeat && a->nrepeat != dim)
+    return rn_cli_usage_error("generate",
+                              "--repeat: give one count per lattice vector (%d)", dim);
   if (a->ncells > dim)
     return rn_cli_usage_error("generate",
                               "--cells: the %s lattice is planar, give "
@@ -263,6 +343,8 @@ static int parse_generate_args(int argc, char **argv, gen_args *a) {
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
       a->quiet = 1;
+    else if (strcmp(s, "--periodic") == 0)
+      a->periodic = 1;
     else if (parse_value_option(argc, argv, &i, a, &rc)) {
       if (rc) return rc;
     } else if (s[0] == '-' && s[1] != '\0')
@@ -295,7 +377,9 @@ static void describe(const gen_args *a, char *buf, size_t n) {
                     a->a, a->sc.edges_per_rod, section, a->sc.E, a->sc.nu,
                     a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
   if (a->load && len > 0 && (size_t)len < n)
-    snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
+    len += snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
+  if (a->periodic && len > 0 && (size_t)len < n)
+    snprintf(buf + len, n - (size_t)len, " --periodic");
 }
 
 static void print_summary(const gen_args *a, const rn_lattice *lat) {
@@ -315,6 +399,45 @@ static void print_summary(const gen_args *a, const rn_lattice *lat) {
   printf("); wrote %s\n", a->output);
 }
 
+/* Square (2D) or round (3D) struts of thickness t from --slenderness or
+ * --relative-density (or the default slenderness 0.05). */
+static void pcell_section(gen_args *a, const rn_pcell *c) {
+  double L, V, t;
+  if (a->section) return;
+  rn_pcell_measures(c, &L, &V);
+  if (a->density > 0.0)
+    t = c->dim == 2 ? a->density * V / L
+                    : sqrt(4.0 * a->density * V / (3.14159265358979323846 * L));
+  else
+    t = (a->slenderness > 0.0 ? a->slenderness : 0.05) * L / c->nbars;
+  a->sc.shape = c->dim == 2 ? RN_LSEC_RECTANGLE : RN_LSEC_CIRCLE;
+  a->sc.section[0] = c->dim == 2 ? t : 0.5 * t;
+  a->sc.section[1] = t;
+}
+
+static int generate_periodic(gen_args *a, rn_context *ctx) {
+  rn_pcell c;
+  rn_status st = a->reentrant ? rn_pcell_reentrant(ctx, a->cells, a->a, &c)
+                              : rn_pcell_from_lattice(ctx, a->kind, a->cells, a->a, &c);
+  if (!st) {
+    if (a->perturb > 0.0) rn_pcell_perturb(&c, a->perturb, (unsigned long)a->seed);
+    pcell_section(a, &c);
+    st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc, a->nrepeat ? a->repeat : NULL);
+  }
+  if (st) {
+    fprintf(stderr, "rodnet generate: %s\n", rn_context_last_error(ctx));
+    rn_pcell_free(&c);
+    return st == RN_ERR_IO                            ? RN_EXIT_INPUT
+           : (st == RN_ERR_ARG || st == RN_ERR_RANGE) ? RN_EXIT_USAGE
+                                                      : RN_EXIT_INTERNAL;
+  }
+  if (!a->quiet)
+    printf("rodnet generate: periodic %s cell (%dD), %d rods, %d joints; wrote %s\n",
+           a->kind_name, c.dim, c.nbars, c.nnodes, a->output);
+  rn_pcell_free(&c);
+  return RN_EXIT_OK;
+}
+
 int rn_cli_generate(int argc, char **argv) {
   gen_args a;
   int rc = parse_generate_args(argc, argv, &a);
@@ -326,6 +449,11 @@ int rn_cli_generate(int argc, char **argv) {
   if (rn_context_create(&ctx) != RN_OK) {
     fprintf(stderr, "rodnet generate: out of memory\n");
     return RN_EXIT_INTERNAL;
+  }
+  if (a.periodic) {
+    rc = generate_periodic(&a, ctx);
+    rn_context_destroy(&ctx);
+    return rc;
   }
   rn_lattice *lat = NULL;
   rn_status st = rn_lattice_build(ctx, a.kind, a.cells, a.a, &lat);

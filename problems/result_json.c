@@ -83,6 +83,36 @@ static rn_status put_terms(json_out *o, rn_network *net) {
   return RN_OK;
 }
 
+/* "cell" of a periodic scene: area or volume, macroscopic strain and stress at the
+ * result (docs/homogenization.md). */
+static rn_status put_cell(json_out *o, rn_network *net) {
+  int dim = 0, ns = 0;
+  double measure = 0.0, eps[6], sig[6];
+  rn_network_cell_info(net, &dim, &ns, &measure, NULL);
+  if (dim == 0) return RN_OK;
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc((n ? n : 1) * sizeof *x);
+  if (!x) return RN_ERR_ALLOC;
+  rn_status st = rn_network_get_dofs(net, x);
+  if (!st) st = rn_network_cell_strain(net, x, eps);
+  if (!st) st = rn_network_cell_stress(net, x, sig);
+  free(x);
+  if (st) return st;
+  fprintf(o->f, "  \"cell\": {\"dimension\": %d, \"%s\": ", dim,
+          dim == 2 ? "area" : "volume");
+  put_num(o, measure);
+  for (int q = 0; q < 2; q++) {
+    fprintf(o->f, ", \"%s\": [", q ? "stress" : "strain");
+    for (int v = 0; v < ns; v++) {
+      if (v) fputs(", ", o->f);
+      put_num(o, q ? sig[v] : eps[v]);
+    }
+    fputc(']', o->f);
+  }
+  fputs("},\n", o->f);
+  return RN_OK;
+}
+
 /* "equilibrium": the residual on the physical scale that the gradient test used. */
 static void put_equilibrium(json_out *o) {
   const rn_result_info *in = o->info;
@@ -246,6 +276,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   o->f = f;
   put_summary(o, net);
   rn_status st = put_terms(o, net);
+  if (!st) st = put_cell(o, net);
   int nrods = rn_network_num_rods(net), maxnv = 2;
   for (int r = 0; r < nrods; r++)
     if (rn_network_rod_num_vertices(net, r) > maxnv)

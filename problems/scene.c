@@ -527,10 +527,10 @@ static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
   }
 }
 
-static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
+static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   static const char *const keys[] = {"description", "materials", "sections",    "graph",
                                      "rods",        "joints",    "constraints", "loads",
-                                     "solver",      NULL};
+                                     "solver",      "periodic",  NULL};
   static const char *const steps[] = {"materials", "sections",    "graph", "rods",
                                       "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
@@ -540,6 +540,11 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
+    size_t mark = rn_jwalk_key(w, "periodic");
+    st = rn_scene_read_periodic(p, rn_jm_get(root, "periodic"));
+    rn_jwalk_pop(w, mark);
+  }
   for (int i = 0; i < 8 && !st; i++) {
     const cJSON *v = rn_jm_get(root, steps[i]);
     if (!v) {
@@ -557,6 +562,16 @@ static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   st = rn_network_finalize(p->scene->net);
   return st ? rn_scene_finalize_error(p, st) : rn_scene_check_finite(p);
+}
+
+/* A scene, or the supercell its "periodic.repeat" asks for. */
+static rn_status read_scene(rn_scene_parser *p, const cJSON *root) {
+  cJSON *super = NULL;
+  rn_status st = rn_scene_expand_repeat(p, root, &super);
+  if (st || !super) return st ? st : read_scene_tree(p, root);
+  st = read_scene_tree(p, super);
+  cJSON_Delete(super);
+  return st;
 }
 
 /* The network's mode (part NULL: whole). */

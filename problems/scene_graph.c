@@ -149,7 +149,7 @@ static rn_status add_vertex_joints(rn_scene_parser *p, const char *file,
                rn_obj_graph_vertex_line(g, v), name);
       p->where = where;
       st = rn_scene_add_joint(p, name, spec->model, n, rods + start[v], ends + start[v],
-                              &joint);
+                              NULL, &joint);
       p->where = NULL;
     }
     if (!st) p->scene->joints[joint].obj_line = rn_obj_graph_vertex_line(g, v);

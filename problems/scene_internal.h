@@ -44,6 +44,8 @@ struct rn_scene {
   rn_scene_joint *joints;
   char *obj_path; /* the OBJ file of the "graph" (resolved), NULL if none */
   rn_name_index rod_names, joint_names; /* name -> index */
+  int periodic_dim;    /* 0, or the number of lattice vectors ("periodic") */
+  double lattice[9];   /* lattice vectors (rows) */
   unsigned solver_set; /* bits: which fields of solver_opt the scene sets */
   rn_solve_options solver_opt;
 };
@@ -108,7 +110,18 @@ rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
  * scene (copies name).  The ends must be free of other joints (checked by
  * the caller); library errors are reported at the walker's path. */
 rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, int n,
-                             const int *rods, const int *ends, int *joint);
+                             const int *rods, const int *ends, const int *images,
+                             int *joint);
+/* The top-level "periodic" object (scene_periodic.c); read before the rods. */
+rn_status rn_scene_read_periodic(rn_scene_parser *p, const cJSON *per);
+/* end["image"] (optional) into image[3] (zeros if absent); errors for a scene
+ * without a cell and for a wrong count.  The shift sum image_m a_m. */
+rn_status rn_scene_read_image(rn_scene_parser *p, const cJSON *end, int *image);
+void rn_scene_image_shift(const rn_scene *s, const int *image, double shift[3]);
+/* "periodic": {"repeat": [m, n(, k)]}: *out is a new tree of the supercell (rods
+ * and joints copied per cell, the copy of cell (0, 0) keeps the names, the others
+ * are "name@i,j"; images rewired; the vectors multiplied), NULL without repeat. */
+rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **out);
 /* v (at the walker's path) / obj[key] is a vertex (edge when edges != 0) index of rod,
  * negative counting from the end; the resolved index in *out. */
 rn_status rn_scene_index_value(rn_scene_parser *p, const cJSON *v, int rod, int edges,

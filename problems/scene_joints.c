@@ -82,7 +82,8 @@ static rn_status reserve_joints(rn_scene_parser *p, int extra) {
 }
 
 rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, int n,
-                             const int *rods, const int *ends, int *joint) {
+                             const int *rods, const int *ends, const int *images,
+                             int *joint) {
   rn_scene *s = p->scene;
   rn_status st = reserve_joints(p, 1);
   if (st) return st;
@@ -93,8 +94,8 @@ rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, in
   int idx = -1;
   if (!(J->name = dup_string(name)))
     st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
-  else if ((st = rn_network_add_joint(s->net, name, (rn_joint_model)model, n, rods, ends,
-                                      &idx)))
+  else if ((st = rn_network_add_joint_images(s->net, name, (rn_joint_model)model, n, rods,
+                                             ends, images, &idx)))
     st = rn_scene_lib_error(p, st);
   else if (idx != s->njoints)
     st = rn_jwalk_fail(&p->w, RN_ERR_INTERNAL, "joint index %d, expected %d", idx,
@@ -105,6 +106,11 @@ rn_status rn_scene_add_joint(rn_scene_parser *p, const char *name, int model, in
   }
   for (int k = 0; k < n; k++) s->rods[rods[k]].joint[ends[k]] = idx;
   memcpy(J->x0, s->rods[rods[0]].end_xyz[ends[0]], sizeof J->x0);
+  if (images) { /* the first end's vertex minus its lattice shift */
+    double sh[3];
+    rn_scene_image_shift(s, images, sh);
+    for (int c = 0; c < 3; c++) J->x0[c] -= sh[c];
+  }
   s->njoints++;
   *joint = idx;
   if (rn_name_index_put(&s->joint_names, J->name, idx))
@@ -129,12 +135,13 @@ static rn_status read_joint_name(rn_scene_parser *p, const cJSON *v, const char 
 /* End k of the list: {"rod": name, "end": "start" | "end"}, not joined
  * elsewhere and not listed twice (ends[0 .. k-1] of this joint). */
 static rn_status read_joint_end(rn_scene_parser *p, const cJSON *v, int k, int *rods,
-                                int *ends) {
-  static const char *const keys[] = {"rod", "end", NULL};
+                                int *ends, int *images) {
+  static const char *const keys[] = {"rod", "end", "image", NULL};
   const rn_scene *s = p->scene;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = rn_scene_rod_ref(p, v, &rods[k]);
   if (!st) st = rn_scene_end_ref(&p->w, v, &ends[k]);
+  if (!st) st = rn_scene_read_image(p, v, images + 3 * k);
   if (st) return st;
   const rn_scene_rod *r = &s->rods[rods[k]];
   int other = r->joint[ends[k]];
@@ -151,15 +158,17 @@ static rn_status read_joint_end(rn_scene_parser *p, const cJSON *v, int k, int *
 /* The end vertices must coincide to 1e-9 of the shortest terminal edge (the
  * library's tolerance, rodnet.h); the walker is at "ends". */
 static rn_status check_ends_meet(rn_scene_parser *p, int n, const int *rods,
-                                 const int *ends) {
+                                 const int *ends, const int *images) {
   const rn_scene *s = p->scene;
-  double lmin = INFINITY;
+  double lmin = INFINITY, x0[3], x[3], sh[3];
   for (int k = 0; k < n; k++)
     if (s->rods[rods[k]].end_len[ends[k]] < lmin)
       lmin = s->rods[rods[k]].end_len[ends[k]];
-  const double *x0 = s->rods[rods[0]].end_xyz[ends[0]];
+  rn_scene_image_shift(s, images, sh); /* ends at images: shifted back */
+  for (int c = 0; c < 3; c++) x0[c] = s->rods[rods[0]].end_xyz[ends[0]][c] - sh[c];
   for (int k = 1; k < n; k++) {
-    const double *x = s->rods[rods[k]].end_xyz[ends[k]];
+    rn_scene_image_shift(s, images + 3 * k, sh);
+    for (int c = 0; c < 3; c++) x[c] = s->rods[rods[k]].end_xyz[ends[k]][c] - sh[c];
     double d = sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) +
                     (x[2] - x0[2]) * (x[2] - x0[2]));
     if (d > 1e-9 * lmin) {
@@ -167,7 +176,8 @@ static rn_status check_ends_meet(rn_scene_parser *p, int n, const int *rods,
       rn_status st = rn_jwalk_error(
           &p->w,
           "the rod ends do not meet: the %s of rod \"%s\" at [%.17g, %.17g, %.17g] is "
-          "%.3g away from the %s of rod \"%s\" at [%.17g, %.17g, %.17g]",
+          "%.3g away from the %s of rod \"%s\" at [%.17g, %.17g, %.17g] (positions "
+          "shifted back by their \"image\" lattice shifts)",
           end_names[ends[k]], s->rods[rods[k]].name, x[0], x[1], x[2], d,
           end_names[ends[0]], s->rods[rods[0]].name, x0[0], x0[1], x0[2]);
       rn_jwalk_pop(&p->w, mark);
@@ -178,40 +188,44 @@ static rn_status check_ends_meet(rn_scene_parser *p, int n, const int *rods,
 }
 
 static rn_status read_joint_ends(rn_scene_parser *p, const cJSON *list, int **rods,
-                                 int **ends, int *n) {
+                                 int **ends, int **images, int *n) {
   rn_status st = rn_jv_array(&p->w, list, n);
   if (st) return st;
   if (*n == 0) return rn_jwalk_error(&p->w, "expected at least one rod end");
   *rods = malloc((size_t)*n * sizeof **rods);
   *ends = malloc((size_t)*n * sizeof **ends);
-  if (!*rods || !*ends) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  *images = malloc(3 * (size_t)*n * sizeof **images);
+  if (!*rods || !*ends || !*images)
+    return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   int k = 0;
   for (const cJSON *v = list->child; v && !st; v = v->next, k++) {
     size_t mark = rn_jwalk_index(&p->w, k);
-    st = read_joint_end(p, v, k, *rods, *ends);
+    st = read_joint_end(p, v, k, *rods, *ends, *images);
     rn_jwalk_pop(&p->w, mark);
   }
-  return st ? st : check_ends_meet(p, *n, *rods, *ends);
+  return st ? st : check_ends_meet(p, *n, *rods, *ends, *images);
 }
 
 static rn_status read_joint(rn_scene_parser *p, const cJSON *v, int json_index) {
   static const char *const keys[] = {"name", "model", "ends", NULL};
   const char *name = NULL;
   const cJSON *list = NULL;
-  int model = RN_JOINT_ELASTIC, n = 0, *rods = NULL, *ends = NULL, joint = -1;
+  int model = RN_JOINT_ELASTIC, n = 0, *rods = NULL, *ends = NULL, *images = NULL;
+  int joint = -1;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = read_joint_name(p, v, &name);
   if (!st) st = rn_scene_joint_model_ref(&p->w, v, "model", &model);
   if (!st) st = rn_jm_require(&p->w, v, "ends", &list);
   if (!st) {
     size_t mark = rn_jwalk_key(&p->w, "ends");
-    st = read_joint_ends(p, list, &rods, &ends, &n);
+    st = read_joint_ends(p, list, &rods, &ends, &images, &n);
     rn_jwalk_pop(&p->w, mark);
   }
-  if (!st) st = rn_scene_add_joint(p, name, model, n, rods, ends, &joint);
+  if (!st) st = rn_scene_add_joint(p, name, model, n, rods, ends, images, &joint);
   if (!st) p->scene->joints[joint].json_index = json_index;
   free(rods);
   free(ends);
+  free(images);
   return st;
 }
 

@@ -23,3 +23,6 @@ rn_add_test(api_reactions SOURCES unit/api_reactions.c LIBS rodnet m LABELS unit
 # on a rod and on networks with both joint models; its closed-form limit.
 rn_add_test(api_stretch_correction SOURCES unit/api_stretch_correction.c LIBS rodnet m
             LABELS unit)
+# Periodic cells: rod ends at periodic images, macroscopic strain DOFs (FD
+# h-sweeps over fluctuation and strain DOFs, images, uniform strain, errors).
+rn_add_test(api_periodic SOURCES unit/api_periodic.c LIBS rodnet m LABELS unit)

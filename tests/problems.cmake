@@ -171,6 +171,119 @@ rn_cli_test(problems_cli_generate_check 0 "38 rods, 114 vertices.*PASS"
 set_tests_properties(problems_cli_generate_check PROPERTIES
                      FIXTURES_REQUIRED problems_generate_hc33)
 
+# ---- periodic cells: rodnet generate --periodic, rodnet homogenize ----------------------
+set(RN_PERIODIC_COUNTS
+    "square:2:1" "triangular:3:1" "honeycomb:3:2" "kagome:6:3" "reentrant:3:2"
+    "cubic:3:1" "bcc:8:2" "octet:24:4")
+foreach(entry ${RN_PERIODIC_COUNTS})
+  string(REPLACE ":" ";" e "${entry}")
+  list(GET e 0 kind)
+  list(GET e 1 nrods)
+  list(GET e 2 njoints)
+  rn_cli_test(problems_cli_periodic_${kind} 0
+              "periodic ${kind} cell \\([23]D\\), ${nrods} rods, ${njoints} joints; wrote"
+              REMOVE ${gen}/periodic_${kind}.json FIXTURE_SETUP problems_periodic_${kind}
+              ARGS generate ${kind} --periodic --edges-per-rod 4 -o ${gen}/periodic_${kind}.json)
+  rn_cli_test(problems_cli_periodic_${kind}_check 0 "PASS"
+              ARGS check ${gen}/periodic_${kind}.json --random 1)
+  set_tests_properties(problems_cli_periodic_${kind}_check PROPERTIES
+                       FIXTURES_REQUIRED problems_periodic_${kind})
+endforeach()
+# supercells: --cells tiles the cell (a 3 x 2 honeycomb: 18 rods, 12 joints)
+rn_cli_test(problems_cli_periodic_supercell 0 "periodic honeycomb cell \\(2D\\), 18 rods, 12 joints"
+            ARGS generate honeycomb --periodic --cells 3,2 -o ${gen}/periodic_hc32.json)
+# a disordered supercell (random joint displacements) and a large 3D supercell
+rn_cli_test(problems_cli_periodic_perturb 0 "periodic honeycomb cell \\(2D\\), 27 rods, 18 joints"
+            REMOVE ${gen}/periodic_dis.json FIXTURE_SETUP problems_periodic_dis
+            ARGS generate honeycomb --periodic --cells 3,3 --perturb 0.1 --seed 5
+                 --edges-per-rod 3 -o ${gen}/periodic_dis.json)
+rn_cli_test(problems_cli_periodic_perturb_check 0 "PASS"
+            ARGS check ${gen}/periodic_dis.json --random 1)
+set_tests_properties(problems_cli_periodic_perturb_check PROPERTIES
+                     FIXTURES_REQUIRED problems_periodic_dis)
+rn_cli_test(problems_cli_periodic_octet_5 0 "periodic octet cell \\(3D\\), 3000 rods, 500 joints"
+            ARGS generate octet --periodic --cells 5 --edges-per-rod 2 -o ${gen}/periodic_oc5.json)
+rn_cli_test(problems_cli_periodic_reentrant_needs_periodic 2 "the reentrant lattice needs --periodic"
+            ARGS generate reentrant -o ${gen}/x.json)
+rn_cli_test(problems_cli_periodic_slenderness_needs_periodic 2
+            "--slenderness, --relative-density and --perturb need --periodic"
+            ARGS generate square --slenderness 0.1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_periodic_no_load 2 "--load does not apply to a periodic cell"
+            ARGS generate square --periodic --load stretch-x:0.1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_homogenize_help 0 "Usage: rodnet homogenize SCENE.json -o RESULT.json.*--plot PNG"
+            ARGS homogenize --help)
+rn_cli_test(problems_cli_homogenize_missing_output 2 "missing -o RESULT.json"
+            ARGS homogenize ${cant})
+if(RN_WITH_TRILINOS)
+  rn_cli_test(problems_cli_homogenize_not_periodic 3 "the scene is not periodic"
+              STDERR_LINES 1 ABSENT ${gen}/hom_x.json
+              ARGS homogenize ${cant} -o ${gen}/hom_x.json)
+  # End to end: the regular honeycomb at t/l = 0.05 against the frame closed forms.
+  rn_cli_test(problems_cli_homogenize_hc_generate 0 "wrote"
+              REMOVE ${gen}/hom_hc.json FIXTURE_SETUP problems_hom_hc
+              ARGS generate honeycomb --periodic --joint-model rigid --edges-per-rod 16
+                   --slenderness 0.05 -o ${gen}/hom_hc.json)
+  rn_cli_test(problems_cli_homogenize_hc 0 "2D cell, area 0.866025.*E1 = .*wrote"
+              REMOVE ${gen}/hom_hc_result.json FIXTURE_SETUP problems_hom_hc_result
+              ARGS homogenize ${gen}/hom_hc.json -o ${gen}/hom_hc_result.json
+                   --plot ${gen}/hom_hc.png)
+  set_tests_properties(problems_cli_homogenize_hc PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc)
+  add_test(NAME problems_cli_homogenize_hc_result
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_homogenize.py
+                   ${gen}/hom_hc_result.json 0.05 ${gen}/hom_hc.png)
+  set_tests_properties(problems_cli_homogenize_hc_result PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_hom_hc_result)
+  # rodnet solve of a stress-controlled cell: RESULT.json "cell"
+  rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
+              REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress
+              ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json
+                   -o ${gen}/hc_stress_result.json)
+  add_test(NAME problems_cli_periodic_solve_stress_cell
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_homogenize.py
+                   --cell ${gen}/hc_stress_result.json 1e-10)
+  set_tests_properties(problems_cli_periodic_solve_stress_cell PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_periodic_stress)
+  # docs/homog_sweep.py (the sweep figure of the docs): a smoke run of 3 points
+  add_test(NAME problems_homog_sweep
+           COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/docs/homog_sweep.py ${RN_CLI}
+                   ${gen}/sweep.csv ${gen}/sweep.png 3 4)
+  set_tests_properties(problems_homog_sweep PROPERTIES LABELS unit
+                       PASS_REGULAR_EXPRESSION "wrote .*sweep.csv and .*sweep.png \\(3 points\\)")
+  # A supercell gives the cell's tensor: a 3 x 2 honeycomb and a 2 x 2 x 1 octet
+  # against their single cells.
+  # "rep" runs use the scene key "periodic": {"repeat": [...]} (--repeat) instead.
+  foreach(sc "honeycomb:1:3,2" "octet:1:2,2,1" "kagome:rep:2,3" "bcc:rep:1,2,2")
+    string(REPLACE ":" ";" e "${sc}")
+    list(GET e 0 kind)
+    list(GET e 1 how)
+    list(GET e 2 cells)
+    foreach(c 1 ${cells})
+      string(REPLACE "," "x" tag "${c}")
+      set(tiling --cells ${c})
+      if(how STREQUAL "rep" AND NOT c STREQUAL "1")
+        set(tiling --repeat ${c})
+      endif()
+      rn_cli_test(problems_cli_homogenize_${kind}_${tag}_gen 0 "wrote"
+                  FIXTURE_SETUP problems_hom_${kind}_${tag}
+                  ARGS generate ${kind} --periodic ${tiling} --joint-model rigid
+                       --edges-per-rod 6 -o ${gen}/hom_${kind}_${tag}.json)
+      rn_cli_test(problems_cli_homogenize_${kind}_${tag} 0 "wrote"
+                  FIXTURE_SETUP problems_hom_${kind}_${tag}_res
+                  ARGS homogenize ${gen}/hom_${kind}_${tag}.json
+                       -o ${gen}/hom_${kind}_${tag}_result.json)
+      set_tests_properties(problems_cli_homogenize_${kind}_${tag} PROPERTIES
+                           FIXTURES_REQUIRED problems_hom_${kind}_${tag})
+    endforeach()
+    string(REPLACE "," "x" tag "${cells}")
+    add_test(NAME problems_cli_homogenize_${kind}_supercell
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_homogenize.py
+                     --same ${gen}/hom_${kind}_${tag}_result.json ${gen}/hom_${kind}_1_result.json)
+    set_tests_properties(problems_cli_homogenize_${kind}_supercell PROPERTIES LABELS unit
+                         FIXTURES_REQUIRED "problems_hom_${kind}_1_res;problems_hom_${kind}_${tag}_res")
+  endforeach()
+endif()
+
 if(RN_WITH_TRILINOS)
   # End to end: generate -> solve -> result JSON and .vtu read back by VTK.
   # rn_e2e_lattice(NAME RESULT_CHECKS GENERATE_ARGS...)

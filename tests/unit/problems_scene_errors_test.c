@@ -18,6 +18,15 @@
 #define ROD "{'name': 'beam', " ROD_BODY "}"
 #define SCENE(extra) "{" MS ", 'rods': [" ROD "]" extra "}"
 #define WITH_ROD(rod) "{" MS ", 'rods': [" rod "]}"
+/* a periodic cell: the rod's end at the image [1, 0] of its start */
+#define CELL(vectors, extra)                                           \
+  "{'periodic': {'vectors': " vectors extra "}, " MS ", 'rods': [" ROD \
+  "], 'joints': [{'name': 'j', 'ends': [{'rod': 'beam', 'end': "       \
+  "'start'}, {'rod': 'beam', 'end': 'end', 'image': [1, 0]}]}]}"
+#define SQUARE "[[1, 0, 0], [0, 1, 0]]"
+#define WITH_IMAGE(per, image)                                                         \
+  "{" per MS ", 'rods': [" ROD "], 'joints': [{'name': 'j', 'ends': [{'rod': 'beam', " \
+  "'end': 'start'}, {'rod': 'beam', 'end': 'end', 'image': " image "}]}]}"
 #define WITH_MAT(mat)                                                 \
   "{'materials': {'steel': " mat "}, 'sections': {'wire': {'shape': " \
   "'circle', 'radius': 0.01}}, 'rods': [" ROD "]}"
@@ -351,6 +360,45 @@ static const bad_case cases[] = {
      ": $.solver.gtol: ", "expected a number > 0"},
     {"unknown solver key", SCENE(", 'solver': {'tolerance': 1}"),
      ": $.solver.tolerance: ", "unknown key"},
+    /* periodic cells */
+    {"periodic not an object", SCENE(", 'periodic': 1"),
+     ": $.periodic: ", "expected an object"},
+    {"periodic without vectors", SCENE(", 'periodic': {}"),
+     ": $.periodic: ", "missing required key \"vectors\""},
+    {"unknown periodic key", CELL(SQUARE, ", 'repeet': [2, 2]"),
+     ": $.periodic.repeet: ", "unknown key"},
+    {"one lattice vector", CELL("[[1, 0, 0]]", ""), ": $.periodic.vectors: ",
+     "expected 2 lattice vectors (a 2D cell) or 3 (a 3D cell), got 1"},
+    {"four lattice vectors", CELL("[[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1]]", ""),
+     ": $.periodic.vectors: ", "got 4"},
+    {"short lattice vector", CELL("[[1, 0, 0], [0, 1]]", ""),
+     ": $.periodic.vectors[1]: ", "expected an array of 3 numbers"},
+    {"degenerate cell", CELL("[[1, 0, 0], [2, 0, 0]]", ""),
+     ": $.periodic.vectors: ", "degenerate"},
+    {"2D cell out of plane", CELL("[[1, 0, 0], [0, 1, 0.5]]", ""),
+     ": $.periodic.vectors: ", "must lie in the xy plane"},
+    {"strain count", CELL(SQUARE, ", 'strain': [0.01, null]"),
+     ": $.periodic.strain: ", "expected 3 strain components"},
+    {"strain not a number", CELL(SQUARE, ", 'strain': [0.01, 'a', null]"),
+     ": $.periodic.strain[1]: ", "expected a finite number"},
+    {"stress count", CELL(SQUARE, ", 'stress': [1, 2]"),
+     ": $.periodic.stress: ", "expected an array of 3 numbers"},
+    {"repeat count", CELL(SQUARE, ", 'repeat': [2]"),
+     ": $.periodic.repeat: ", "expected 2 repeat counts"},
+    {"repeat zero", CELL(SQUARE, ", 'repeat': [2, 0]"),
+     ": $.periodic.repeat[1]: ", "expected an integer"},
+    {"repeat too large", CELL(SQUARE, ", 'repeat': [1000, 1000]"),
+     ": $.periodic.repeat: ", "at most 100000"},
+    {"image without a cell", WITH_IMAGE("", "[1, 0]"),
+     ": $.joints[0].ends[1].image: ", "an image needs a periodic cell"},
+    {"image count", WITH_IMAGE("'periodic': {'vectors': " SQUARE "}, ", "[1, 0, 0]"),
+     ": $.joints[0].ends[1].image: ", "expected 2 lattice shifts"},
+    {"image not an integer",
+     WITH_IMAGE("'periodic': {'vectors': " SQUARE "}, ", "[0.5, 0]"),
+     ": $.joints[0].ends[1].image[0]: ", "integer"},
+    {"end not at its image",
+     WITH_IMAGE("'periodic': {'vectors': " SQUARE "}, ", "[0, 1]"),
+     ": $.joints[0].ends[1]: ", "do not meet"},
 };
 
 static char *unquote(const char *s) {

@@ -1,0 +1,309 @@
+/* cli_homogenize.c - `rodnet homogenize SCENE.json -o RESULT.json [--plot PNG]`:
+ * linear effective elasticity of a periodic cell (rn_homogenize;
+ * docs/homogenization.md). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "atomic_file.h"
+#include "cli.h"
+#include "rodnet_solve.h"
+#include "scene.h"
+
+#ifndef RN_PLOT_STIFFNESS_SCRIPT
+#define RN_PLOT_STIFFNESS_SCRIPT "plot_stiffness.py"
+#endif
+#ifndef RN_PYTHON3
+#define RN_PYTHON3 "python3"
+#endif
+
+static const char homogenize_help[] =
+    "Usage: rodnet homogenize SCENE.json -o RESULT.json [--plot PNG]\n"
+    "\n"
+    "Effective linear stiffness of a periodic cell (a scene with a top-level\n"
+    "\"periodic\" object, e.g. from 'rodnet generate KIND --periodic') at its rest\n"
+    "state: the Schur complement of the Hessian onto the macroscopic strain,\n"
+    "C (Voigt, engineering shear; 2D: 11, 22, 12, force per length; 3D: 11, 22,\n"
+    "33, 23, 13, 12, per unit volume), the engineering constants, the cell area or\n"
+    "volume and the relative density, written to RESULT.json (completely or not at\n"
+    "all).\n"
+    "\n"
+    "Options:\n"
+    "  -o, --output FILE   result JSON (required)\n"
+    "      --plot PNG      polar plot of the directional Young's modulus (in the\n"
+    "                      xy plane; 3D cells also xz), by python3 with matplotlib\n"
+    "  -q, --quiet         no summary on stdout\n"
+    "  -h, --help          show this help\n"
+    "\n"
+    "Exit status: 0 done, 2 usage error, 3 bad scene (not periodic, prescribed\n"
+    "strain) or unwritable output, 4 the cell is a mechanism or the plot failed.\n";
+
+typedef struct hom_args {
+  const char *scene, *output, *plot;
+  int quiet;
+} hom_args;
+
+static int parse_args(int argc, char **argv, hom_args *a) {
+  memset(a, 0, sizeof *a);
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i], *v = NULL;
+    int m;
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+      fputs(homogenize_help, stdout);
+      return -1;
+    }
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
+      a->quiet = 1;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--output", "-o", &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->output = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--plot", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->plot = v;
+      continue;
+    }
+    if (s[0] == '-' && s[1] != '\0')
+      return rn_cli_usage_error("homogenize", "unknown option '%s'", s);
+    if (a->scene)
+      return rn_cli_usage_error("homogenize", "more than one scene given ('%s' and '%s')",
+                                a->scene, s);
+    a->scene = s;
+  }
+  if (!a->scene) return rn_cli_usage_error("homogenize", "missing the scene file");
+  if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
+  return 0;
+}
+
+/* S = C^-1 (n x n, Gauss-Jordan with partial pivoting); 0 if singular. */
+static int invert(int n, const double *C, double *S) {
+  double M[6][12];
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < 2 * n; j++) M[i][j] = j < n ? C[i * n + j] : (j - n == i);
+  for (int c = 0; c < n; c++) {
+    int p = c;
+    for (int r = c + 1; r < n; r++)
+      if (fabs(M[r][c]) > fabs(M[p][c])) p = r;
+    if (!(fabs(M[p][c]) > 1e-14 * fabs(C[0]) + 1e-300)) return 0;
+    for (int j = 0; j < 2 * n; j++) {
+      double t = M[c][j];
+      M[c][j] = M[p][j];
+      M[p][j] = t;
+    }
+    for (int r = 0; r < n; r++) {
+      if (r == c) continue;
+      double f = M[r][c] / M[c][c];
+      for (int j = 0; j < 2 * n; j++) M[r][j] -= f * M[c][j];
+    }
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) S[i * n + j] = M[i][n + j] / M[i][i];
+  return 1;
+}
+
+typedef struct hom_out {
+  const hom_args *a;
+  const rn_homogenization *h;
+  const double *S;
+  double seconds;
+} hom_out;
+
+/* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
+ * uniaxial stress along (cos t, sin t) in the plane of axes i, j. */
+static double directional_E(const rn_homogenization *h, const double *S, double t,
+                            int plane_xz) {
+  double s[6] = {0}, c = cos(t), d = sin(t), q = 0.0;
+  int n = h->nstrain;
+  if (n == 3) {
+    s[0] = c * c, s[1] = d * d, s[2] = c * d;
+  } else if (!plane_xz) {
+    s[0] = c * c, s[1] = d * d, s[5] = c * d;
+  } else {
+    s[0] = c * c, s[2] = d * d, s[4] = c * d;
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) q += s[i] * S[i * n + j] * s[j];
+  return 1.0 / q;
+}
+
+static void put_constants(FILE *f, const rn_homogenization *h, const double *S) {
+  int n = h->nstrain;
+#define SIJ(i, j) S[(i)*n + (j)]
+  if (n == 3)
+    fprintf(f,
+            "  \"constants\": {\"E1\": %.17g, \"E2\": %.17g, \"nu12\": %.17g, \"nu21\": "
+            "%.17g, \"G12\": %.17g},\n",
+            1.0 / SIJ(0, 0), 1.0 / SIJ(1, 1), -SIJ(0, 1) / SIJ(0, 0),
+            -SIJ(0, 1) / SIJ(1, 1), 1.0 / SIJ(2, 2));
+  else
+    fprintf(
+        f,
+        "  \"constants\": {\"E1\": %.17g, \"E2\": %.17g, \"E3\": %.17g, \"nu12\": %.17g, "
+        "\"nu13\": %.17g, \"nu23\": %.17g, \"nu21\": %.17g, \"nu31\": %.17g, \"nu32\": "
+        "%.17g, \"G23\": %.17g, \"G13\": %.17g, \"G12\": %.17g},\n",
+        1.0 / SIJ(0, 0), 1.0 / SIJ(1, 1), 1.0 / SIJ(2, 2), -SIJ(0, 1) / SIJ(0, 0),
+        -SIJ(0, 2) / SIJ(0, 0), -SIJ(1, 2) / SIJ(1, 1), -SIJ(0, 1) / SIJ(1, 1),
+        -SIJ(0, 2) / SIJ(2, 2), -SIJ(1, 2) / SIJ(2, 2), 1.0 / SIJ(3, 3), 1.0 / SIJ(4, 4),
+        1.0 / SIJ(5, 5));
+#undef SIJ
+}
+
+static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
+  const hom_out *o = user;
+  const rn_homogenization *h = o->h;
+  int n = h->nstrain;
+  (void)ctx;
+  fputs("{\n  \"command\": \"homogenize\",\n  \"scene\": \"", f);
+  for (const char *p = o->a->scene; *p; p++) {
+    if (*p == '"' || *p == '\\') fputc('\\', f);
+    fputc(*p, f);
+  }
+  fprintf(f,
+          "\",\n  \"dimension\": %d,\n  \"%s\": %.17g,\n  \"relative_density\": %.17g,\n",
+          h->dim, h->dim == 2 ? "area" : "volume", h->measure, h->relative_density);
+  fprintf(f, "  \"voigt\": %s,\n",
+          n == 3 ? "[\"11\", \"22\", \"12\"]"
+                 : "[\"11\", \"22\", \"33\", \"23\", \"13\", \"12\"]");
+  fprintf(f, "  \"units\": \"%s\",\n",
+          n == 3 ? "force per length (2D stiffness per unit cell area)"
+                 : "force per area (per unit cell volume)");
+  fputs("  \"C\": [", f);
+  for (int i = 0; i < n; i++) {
+    fputs(i ? ",\n        [" : "[", f);
+    for (int j = 0; j < n; j++) fprintf(f, "%s%.17g", j ? ", " : "", h->C[i * n + j]);
+    fputc(']', f);
+  }
+  fputs("],\n", f);
+  put_constants(f, h, o->S);
+  for (int plane = 0; plane < (n == 3 ? 1 : 2); plane++) {
+    fprintf(f, "  \"directional_modulus_%s\": [", plane ? "xz" : "xy");
+    for (int k = 0; k <= 360; k += 2)
+      fprintf(f, "%s%.17g", k ? ", " : "",
+              directional_E(h, o->S, k * 3.14159265358979323846 / 180.0, plane));
+    fputs("],\n", f);
+  }
+  fprintf(f, "  \"directional_modulus_angles_deg\": [0, 360, 2],\n");
+  fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
+          o->seconds);
+  return RN_OK;
+}
+
+/* python3 SCRIPT RESULT.json PNG; 0 on success. */
+static int run_plot(const char *result, const char *png) {
+  const char *script = getenv("RODNET_PLOT_STIFFNESS");
+  const char *python = getenv("RODNET_PYTHON");
+  if (!script || !*script) script = RN_PLOT_STIFFNESS_SCRIPT;
+  if (!python || !*python) python = RN_PYTHON3;
+  fflush(stdout);
+  pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    execlp(python, python, script, result, png, (char *)NULL);
+    _exit(127);
+  }
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return -1;
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
+}
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int rn_cli_homogenize(int argc, char **argv) {
+  hom_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+  rn_context *ctx = NULL;
+  if (rn_context_create(&ctx) != RN_OK) {
+    fprintf(stderr, "rodnet homogenize: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  rn_scene *scene = NULL;
+  rn_homogenization h;
+  double S[36];
+  int dim = 0;
+  rn_status st = rn_file_probe_writable(ctx, a.output);
+  if (!st) st = rn_scene_load(ctx, a.scene, &scene);
+  if (st) {
+    fprintf(stderr, "%s\n", rn_context_last_error(ctx));
+    rc = rn_cli_load_exit_code(st);
+    goto done;
+  }
+  rn_network *net = rn_scene_network(scene);
+  rn_network_cell_info(net, &dim, NULL, NULL, NULL);
+  if (dim == 0) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the scene is not periodic (it has no top-level "
+            "\"periodic\" object with lattice vectors; see 'rodnet generate KIND "
+            "--periodic')\n",
+            a.scene);
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  double t0 = now();
+#ifdef RN_HAVE_SOLVER
+  st = rn_homogenize(net, &h);
+#else
+  st = rn_context_set_error(ctx, RN_ERR_STATE,
+                            "rodnet was built without the solver (RN_WITH_TRILINOS=OFF)");
+#endif
+  double seconds = now() - t0;
+  if (st) {
+    fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
+    rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+    goto done;
+  }
+  if (!invert(h.nstrain, h.C, S)) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "
+            "mechanism: some strain costs no energy)\n",
+            a.scene);
+    rc = RN_EXIT_INTERNAL;
+    goto done;
+  }
+  hom_out o = {&a, &h, S, seconds};
+  if ((st = rn_file_write_atomic(ctx, a.output, write_result, &o))) {
+    fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (!a.quiet) {
+    int n = h.nstrain;
+    printf("rodnet homogenize: %s: %dD cell, %s %.6g, relative density %.6g, %zu "
+           "fluctuation DOFs, %.3g s\n  C =",
+           a.scene, h.dim, h.dim == 2 ? "area" : "volume", h.measure, h.relative_density,
+           h.fluctuation_dofs, seconds);
+    for (int i = 0; i < n; i++) {
+      printf(i ? "\n      [" : " [");
+      for (int j = 0; j < n; j++) printf("%s%13.6e", j ? " " : "", h.C[i * n + j]);
+      printf("]");
+    }
+    printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
+           1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], a.output);
+  }
+  if (a.plot && run_plot(a.output, a.plot) != 0) {
+    fprintf(stderr,
+            "rodnet homogenize: the plot %s failed (%s %s with matplotlib; "
+            "RODNET_PYTHON and RODNET_PLOT_STIFFNESS override them); %s is written\n",
+            a.plot, getenv("RODNET_PYTHON") ? getenv("RODNET_PYTHON") : RN_PYTHON3,
+            getenv("RODNET_PLOT_STIFFNESS") ? getenv("RODNET_PLOT_STIFFNESS")
+                                            : RN_PLOT_STIFFNESS_SCRIPT,
+            a.output);
+    rc = RN_EXIT_INTERNAL;
+  }
+done:
+  rn_scene_destroy(&scene);
+  rn_context_destroy(&ctx);
+  return rc;
+}

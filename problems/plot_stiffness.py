@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""Polar plot of the directional Young's modulus from a `rodnet homogenize` RESULT.json.
+
+Usage: plot_stiffness.py RESULT.json OUT.png   (docs/homogenization.md)
+The PNG is written to a temporary file and renamed (completely or not at all)."""
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.stderr.write("usage: plot_stiffness.py RESULT.json OUT.png\n")
+        return 2
+    with open(sys.argv[1]) as f:
+        r = json.load(f)
+    lo, hi, step = r["directional_modulus_angles_deg"]
+    th = [math.radians(a) for a in range(lo, hi + 1, step)]
+    fig = plt.figure(figsize=(5, 5))
+    ax = fig.add_subplot(111, projection="polar")
+    planes = [("xy", "in the xy plane")]
+    if "directional_modulus_xz" in r:
+        planes.append(("xz", "in the xz plane"))
+    for key, label in planes:
+        ax.plot(th, r["directional_modulus_" + key], label="E(θ) " + label)
+    c = r["constants"]
+    ax.set_title("directional Young's modulus (%s)\nE1 = %.4g, E2 = %.4g, nu12 = %.4f, "
+                 "rel. density %.4g" % (r["units"].split(" (")[0], c["E1"], c["E2"],
+                                        c["nu12"], r["relative_density"]), fontsize=9)
+    ax.legend(loc="lower right", fontsize=8)
+    tmp = sys.argv[2] + ".tmp.png"
+    fig.savefig(tmp, dpi=120)
+    os.replace(tmp, sys.argv[2])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
