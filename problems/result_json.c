@@ -118,6 +118,7 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"factorization\": ", f);
     put_str(f, in->factorization);
   }
+  fprintf(f, ",\n  \"factorizations\": %ld", in->factorizations);
   if (in->preconditioner) {
     fputs(",\n  \"preconditioner\": ", f);
     put_str(f, in->preconditioner);

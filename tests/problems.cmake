@@ -113,6 +113,27 @@ rn_cli_test(problems_cli_no_command 2 "missing command" STDERR_LINES 2)
 rn_cli_test(problems_cli_unknown_command 2 "unknown command 'frobnicate'" ARGS frobnicate)
 rn_cli_test(problems_cli_unknown_option 2 "unknown option '--bogus'"
             ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --bogus)
+# Output paths: never the scene itself (by name, "./" spelling or a symbolic
+# link: the same inode), and --vtk only with the extension .vtu (rodnet writes
+# VTK XML); refused before anything is read or written.
+configure_file(${cant} ${RN_CLI_OUT}/self_scene.json COPYONLY)
+file(CREATE_LINK ${RN_CLI_OUT}/self_scene.json ${RN_CLI_OUT}/self_link.json SYMBOLIC)
+rn_cli_test(problems_cli_output_is_scene 2
+            "-o .*self_scene.json is the scene file itself: the result would overwrite its input"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/self_scene.json)
+rn_cli_test(problems_cli_output_is_scene_dot 2 "is the scene file itself"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/./self_scene.json)
+rn_cli_test(problems_cli_output_is_scene_link 2 "-o .*self_link.json is the scene file itself"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/self_link.json)
+rn_cli_test(problems_cli_vtk_is_scene 2 "--vtk .*self_scene.json is the scene file itself"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/x.json
+                 --vtk ${RN_CLI_OUT}/self_scene.json)
+rn_cli_test(problems_cli_vtk_same_as_output 2 "--vtk and -o name the same file"
+            ARGS solve ${cant} -o ${RN_CLI_OUT}/same.vtu --vtk ${RN_CLI_OUT}/./same.vtu)
+rn_cli_test(problems_cli_vtk_legacy_name 2
+            "--vtk .*out.vtk: rodnet writes VTK XML unstructured grids, name the file with the extension .vtu"
+            REMOVE ${RN_CLI_OUT}/out.vtk ABSENT ${RN_CLI_OUT}/out.vtk
+            ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --vtk ${RN_CLI_OUT}/out.vtk)
 rn_cli_test(problems_cli_missing_output 2 "missing -o RESULT.json" ARGS solve ${cant})
 rn_cli_test(problems_cli_missing_value 2 "option -o needs a value" ARGS solve ${cant} -o)
 rn_cli_test(problems_cli_bad_number 2 "--max-iter expects an integer >= 1, got 'abc'"
@@ -157,6 +178,19 @@ rn_cli_test(problems_cli_generate_bad_material 2 "--material expects E,NU with E
             ARGS generate cubic --material 1,0.6 -o ${gen}/x.json)
 rn_cli_test(problems_cli_generate_bad_load 2 "--load expects stretch-AXIS:STRAIN"
             ARGS generate cubic --load shear-x:0.1 -o ${gen}/x.json)
+# Strains of magnitude >= 1 (a mirror-inverted lattice) and a repeated --load
+# (only the last one was kept) are usage errors; no file is written.
+rn_cli_test(problems_cli_generate_huge_strain 2
+            "--load compress-x:2: the strain magnitude must be below 1, got 2"
+            REMOVE ${gen}/huge_strain.json ABSENT ${gen}/huge_strain.json
+            ARGS generate square --load compress-x:2 -o ${gen}/huge_strain.json)
+rn_cli_test(problems_cli_generate_unit_strain 2 "strain magnitude must be below 1, got -1"
+            ARGS generate cubic --load grip-y:-1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_two_loads 2
+            "--load given twice \\('stretch-x:0.01', then 'compress-y:0.02'\\)"
+            REMOVE ${gen}/two_loads.json ABSENT ${gen}/two_loads.json
+            ARGS generate square --load stretch-x:0.01 --load compress-y:0.02
+                 -o ${gen}/two_loads.json)
 rn_cli_test(problems_cli_generate_bad_model 2 "--joint-model expects elastic or rigid, got 'welded'"
             ARGS generate cubic --joint-model welded -o ${gen}/x.json)
 rn_cli_test(problems_cli_generate_missing_output 2 "missing -o SCENE.json" ARGS generate bcc)
@@ -260,10 +294,25 @@ if(RN_WITH_TRILINOS)
               ARGS solve ${cant} -o ${RN_CLI_OUT}/precond_factor.json --solver tr-krylov
                    --preconditioner factor --quiet)
   foreach(f banded sparse cholmod)
-    rn_cli_test(problems_cli_factorization_${f} 0 "status +converged.*${f} factorisation"
+    rn_cli_test(problems_cli_factorization_${f} 0
+                "status +converged.*${f} factorisation.*Hessian, [1-9][0-9]* factorisations"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/factorization_${f}.json
                      --factorization ${f} --quiet)
   endforeach()
+  # The British spelling of the option (the docs' prose) is accepted too; the
+  # result JSON counts the factorisations.
+  rn_cli_test(problems_cli_factorisation_spelling 0
+              "status +converged.*sparse factorisation"
+              REMOVE ${RN_CLI_OUT}/factorisation_spelling.json
+              FIXTURE_SETUP problems_factorisation_spelling
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/factorisation_spelling.json
+                   --factorisation=sparse --quiet)
+  add_test(NAME problems_cli_factorisation_count
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_result.py
+                   ${RN_CLI_OUT}/factorisation_spelling.json --status converged
+                   --factorization sparse --min-factorizations 1)
+  set_tests_properties(problems_cli_factorisation_count PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_factorisation_spelling)
   foreach(solver tr-minres rol-tr-tcg rol-ls-newton tr-krylov nox)
     rn_cli_test(problems_cli_solver_${solver} 0 "status +converged.*solver +${solver}"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/solver_${solver}.json --solver ${solver}
