@@ -576,7 +576,21 @@ typedef struct rn_check_report {
   double grad_order;   /* observed order of the FD error over the h-sweep */
   double hvp_order;
   int n_points; /* points tested */
+  /* worst over the cases of the error extrapolated to h -> 0 (Richardson's
+   * extrapolation of neighbouring steps removes the h^2 truncation term; the
+   * smallest over the pairs of the sweep): round-off for a correct derivative
+   * even where the error itself is large truncation, the derivative's error for
+   * a wrong one (c_api/check.c) */
+  double grad_extrapolated_err;
+  double hvp_extrapolated_err;
 } rn_check_report;
+
+/* The verdict on one finite-difference test of rn_check_report: 1 (pass) if
+ * the error rel_err or the error extrapolated to h -> 0 is at most tol, 0
+ * otherwise (also for NaN).  A correct derivative whose differences are still
+ * dominated by truncation over the sweep (order 2) passes; a wrong one does
+ * not, whatever its observed order. */
+int rn_check_fd_passes(double rel_err, double extrapolated_err, double tol);
 
 /* Check gradient and HVP against central differences at x (NULL = current
  * state) and at n_random random perturbations of it (seeded, relative size
@@ -585,6 +599,33 @@ typedef struct rn_check_report {
 rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
                                        int n_random, double perturb, uint64_t seed,
                                        rn_check_report *rep);
+
+/* A smooth objective of n variables given by callbacks (user first), for the
+ * derivative self-test of your own energies.  Callbacks return RN_OK, a
+ * positive status at a degenerate trial point (that step is skipped) or a
+ * negative one on error. */
+typedef struct rn_objective {
+  size_t n;
+  const double *scale; /* [n] typical size of each variable (steps and
+                          perturbations are relative to it); NULL: all 1 */
+  /* energy *E and gradient g[n] at x[n] */
+  rn_status (*gradient)(void *user, const double *x, double *E, double *g);
+  /* Hessian-vector product hv[n] = H(x) v */
+  rn_status (*hvp)(void *user, const double *x, const double *v, double *hv);
+  /* optional: the size of the energy's terms at x (sum of their absolute
+   * values), which sets the round-off level of the differences; NULL: |E| */
+  double (*energy_size)(void *user, const double *x);
+  void *user;
+} rn_objective;
+
+/* The gradient and HVP sweeps of rn_network_check_derivatives on obj at x
+ * (not NULL) and n_random perturbations of it (relative size perturb, seeded);
+ * fills rep (hess_sym_err and hess_hvp_err 0: no assembled Hessian).  RN_OK,
+ * RN_ERR_ARG, RN_ERR_NOT_FINITE (x), RN_ERR_ALLOC, a callback's negative
+ * status, or its positive status at x; the message in ctx. */
+rn_status rn_objective_check_derivatives(rn_context *ctx, const rn_objective *obj,
+                                         const double *x, int n_random, double perturb,
+                                         uint64_t seed, rn_check_report *rep);
 
 #ifdef __cplusplus
 }

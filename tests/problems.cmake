@@ -33,6 +33,11 @@ rn_add_test(problems_scene_errors SOURCES unit/problems_scene_errors_test.c
 file(GLOB RN_EXAMPLE_SCENES ${RN_SCENES}/*.json)
 rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_EXAMPLE_SCENES})
+# The derivative self-test's verdict: correct derivatives whose differences are
+# truncation-dominated at a rest state pass, deliberately wrong ones fail.
+rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
+            LIBS rodnet_problems m LABELS unit
+            ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
 rn_add_test(problems_num_format SOURCES unit/problems_num_format_test.c
             LIBS rodnet_problems m LABELS unit)
 rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
@@ -153,6 +158,13 @@ rn_cli_test(problems_cli_malformed_scene 3 "malformed.json:4:3: malformed JSON"
             STDERR_LINES 1 ARGS check ${RN_BAD}/malformed.json)
 rn_cli_test(problems_cli_missing_scene 3 "no_such_scene.json: cannot open"
             STDERR_LINES 1 ARGS check ${RN_CLI_OUT}/no_such_scene.json)
+# The shipped examples pass with default settings (their rest-state gradient
+# error is second-order truncation above 1e-5: it extrapolates to round-off).
+foreach(stem stepped_beam portal_frame)
+  rn_cli_test(problems_cli_check_${stem} 0
+              "gradient vs central differences.*ok \\(truncation\\).*PASS"
+              ARGS check ${RN_SCENES}/${stem}.json)
+endforeach()
 rn_cli_test(problems_cli_check_cantilever 0 "gradient vs central differences.*PASS"
             ARGS check ${cant} --random 2)
 # The finite-difference error can never be below 1e-14: the check must fail.
