@@ -567,6 +567,28 @@ int rn_network_num_supports(const rn_network *net);
 rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reaction *r,
                                int n);
 
+/* The resultant of the applied loads at the current state and load factor:
+ * force[3] (point forces, lumped line loads and gravity, joint forces) and
+ * moment[3] about the origin (their moments x x f at the current positions,
+ * plus the couples' vectors).  At equilibrium it balances the resultant of the
+ * reactions (rn_network_reactions): their sum is zero.  RN_ERR_ARG. */
+rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
+                                       double moment[3]);
+
+/* Internal force and moment per edge of rod (whole-network index of a whole
+ * network; a part's local index) at the current state: force[3 ne] and
+ * moment[3 ne], global frame, the force and the moment about the edge's
+ * midpoint that the part of the rod after the midpoint (towards its last
+ * vertex) exerts on the part before it; force . tangent > 0 in tension.  They
+ * are the stencil forces of the rod's own elastic energy at the vertices
+ * before the cut, summed and negated (and their moments, with the twisting
+ * moments dE/dtheta t/|t| of the edges before the cut and half of the cut
+ * edge's): exact statics of the cut part at equilibrium, so at the first free
+ * edge after a clamp they equal minus the clamp's reaction carried to that
+ * point.  RN_ERR_RANGE, RN_ERR_ARG, RN_DEGENERATE, RN_ERR_ALLOC. */
+rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
+                                         double *moment);
+
 /* ---- derivative self-test ------------------------------------------------ */
 typedef struct rn_check_report {
   double grad_rel_err; /* worst relative FD error of the gradient */

@@ -267,6 +267,41 @@ if(RN_WITH_TRILINOS)
   set_tests_properties(problems_example_portal_frame_vtu PROPERTIES LABELS unit
                        DEPENDS problems_example_portal_frame)
 
+  # Reactions (RESULT.json) and internal forces (.vtu): they balance the applied
+  # loads; a cantilever's root moment is P L (closed form) and its internal
+  # forces follow the statics of the cut part; a fixed-base portal frame's base
+  # moments and reactions match the slope-deflection closed form
+  # (tests/unit/check_reactions.py states it).
+  set(RN_REACTIONS ${CMAKE_CURRENT_SOURCE_DIR}/data/reactions)
+  foreach(stem cantilever_linear portal_frame_linear)
+    rn_cli_test(problems_reactions_${stem}_solve 0 "status +converged"
+                REMOVE ${RN_CLI_OUT}/reactions_${stem}.json
+                FIXTURE_SETUP problems_reactions_${stem}
+                ARGS solve ${RN_REACTIONS}/${stem}.json -o ${RN_CLI_OUT}/reactions_${stem}.json
+                     --vtk ${RN_CLI_OUT}/reactions_${stem}.vtu --quiet)
+  endforeach()
+  add_test(NAME problems_reactions_cantilever
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_reactions.py
+                   ${RN_CLI_OUT}/reactions_cantilever_linear.json
+                   --vtu ${RN_CLI_OUT}/reactions_cantilever_linear.vtu
+                   --cantilever 3.9e-5 0.995)
+  set_tests_properties(problems_reactions_cantilever PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_reactions_cantilever_linear
+                       PASS_REGULAR_EXPRESSION "check_reactions: ok")
+  add_test(NAME problems_reactions_portal_frame
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_reactions.py
+                   ${RN_CLI_OUT}/reactions_portal_frame_linear.json --portal 1 3 4 16 4e-3)
+  set_tests_properties(problems_reactions_portal_frame PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_reactions_portal_frame_linear
+                       PASS_REGULAR_EXPRESSION "check_reactions: ok")
+  # The shipped portal frame (1 kN, geometrically nonlinear): the balance only.
+  add_test(NAME problems_reactions_example_portal_frame
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_reactions.py
+                   ${RN_CLI_OUT}/example_portal_frame.json)
+  set_tests_properties(problems_reactions_example_portal_frame PROPERTIES LABELS unit
+                       DEPENDS problems_example_portal_frame
+                       PASS_REGULAR_EXPRESSION "check_reactions: ok")
+
   set(res ${RN_CLI_OUT}/cantilever_result.json)
   set(vtu ${RN_CLI_OUT}/cantilever.vtu)
   rn_cli_test(problems_cli_solve_cantilever 0
