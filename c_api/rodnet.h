@@ -589,6 +589,40 @@ rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
 rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
                                          double *moment);
 
+/* The rigid-body motions that no constraint blocks at the current state, and
+ * the applied loads on them (c_api/supports.c). */
+typedef struct rn_free_motions {
+  int num_translations; /* free translations: orthonormal directions */
+  double translation[3][3];
+  int num_rotations; /* free rotations: orthonormal axes (of a free
+                        rotation or screw motion) */
+  double rotation[3][3];
+  double center[3];      /* centroid of the vertices */
+  double force[3];       /* applied force resultant */
+  double moment[3];      /* applied moment resultant about center */
+  int unbalanced_force;  /* the force has a component along a free
+                            translation: no configuration balances it */
+  int unbalanced_moment; /* no net force, but the couple turns a free
+                            rotation (a dead couple stays unbalanced however
+                            the structure turns) */
+} rn_free_motions;
+
+/* Fills fm for a finalized (whole) network: a rigid motion is free if it
+ * changes no fixed DOF (clamps, pins, component pins, prescribed motions,
+ * fixed angles, clamped joints).  A net force with only a free rotation is
+ * not flagged: the structure can turn until the force passes through the
+ * axis (a pendulum).  RN_OK, RN_ERR_ARG, RN_ERR_STATE. */
+rn_status rn_network_free_motions(const rn_network *net, rn_free_motions *fm);
+
+/* RN_OK unless the loads are unbalanced on a free rigid motion
+ * (rn_free_motions.unbalanced_force or unbalanced_moment), then RN_ERR_BC with
+ * a message naming the free motions and the unbalanced resultant.  Call it
+ * before rn_solve: such a scene has no equilibrium and the solver would run to
+ * its iteration limit.  Free motions under balanced loads are accepted (the
+ * solvers' shifted factorisations and trust regions handle the singular
+ * Hessian: docs/solvers.md). */
+rn_status rn_network_check_supports(const rn_network *net);
+
 /* ---- derivative self-test ------------------------------------------------ */
 typedef struct rn_check_report {
   double grad_rel_err; /* worst relative FD error of the gradient */

@@ -613,6 +613,12 @@ static int solve_scene_serial(const solve_args *a) {
     fprintf(stderr, "rodnet solve: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
   }
+  /* a scene whose loads push a free rigid motion has no equilibrium: say so
+   * up front instead of running to max_iterations */
+  if (!rc && (st = rn_network_check_supports(rn_scene_network(scene)))) {
+    fprintf(stderr, "%s: %s\n", a->scene, rn_context_last_error(ctx));
+    rc = rn_cli_load_exit_code(st);
+  }
   if (!rc) {
     /* The solver's runtime (Kokkos, MPI) is needed only here. */
     st = rn_runtime_initialize(NULL, NULL);

@@ -302,6 +302,24 @@ if(RN_WITH_TRILINOS)
                        DEPENDS problems_example_portal_frame
                        PASS_REGULAR_EXPRESSION "check_reactions: ok")
 
+  # Free rigid-body motions (tests/data/supports): unbalanced loads on them are
+  # diagnosed before solving (exit 3, the free motions named); balanced loads
+  # and a net force with only a free rotation (a pendulum) solve.
+  set(RN_SUPPORTS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports)
+  rn_cli_test(problems_supports_free_rod 3
+              "free_rod_tip_force.json: .*rigid-body motions free \\(translation along each of x, y, z; rotation about each of x, y, z\\) and the applied loads are not balanced on them \\(net force \\(0, 0, -0.39\\)\\)"
+              STDERR_LINES 1 REMOVE ${RN_CLI_OUT}/free_rod.json ABSENT ${RN_CLI_OUT}/free_rod.json
+              ARGS solve ${RN_SUPPORTS}/free_rod_tip_force.json -o ${RN_CLI_OUT}/free_rod.json)
+  rn_cli_test(problems_supports_couple 3
+              "rigid-body motions free \\(rotation about each of x, y, z\\).*net couple, no net force: \\(0, 0.01, 0\\)"
+              STDERR_LINES 1
+              ARGS solve ${RN_SUPPORTS}/free_rod_couple.json -o ${RN_CLI_OUT}/free_couple.json)
+  foreach(stem free_rod_balanced pendulum)
+    rn_cli_test(problems_supports_${stem} 0 "status +converged"
+                ARGS solve ${RN_SUPPORTS}/${stem}.json -o ${RN_CLI_OUT}/supports_${stem}.json
+                     --quiet)
+  endforeach()
+
   set(res ${RN_CLI_OUT}/cantilever_result.json)
   set(vtu ${RN_CLI_OUT}/cantilever.vtu)
   rn_cli_test(problems_cli_solve_cantilever 0
