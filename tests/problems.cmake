@@ -38,6 +38,10 @@ rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
 rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
             LIBS rodnet_problems m LABELS unit
             ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
+# Free rigid-body motions and unbalanced loads on them (c_api/supports.c).
+rn_add_test(problems_supports SOURCES unit/problems_supports_test.c
+            LIBS rodnet_problems LABELS unit
+            ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports ${RN_SCENES})
 rn_add_test(problems_num_format SOURCES unit/problems_num_format_test.c
             LIBS rodnet_problems m LABELS unit)
 rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
