@@ -555,6 +555,14 @@ rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *
   return eval_all(net, &a);
 }
 
+rn_status rn_eval_rod_gradient_full(const rn_network *net, int ir, const double *x,
+                                    double *gfull, const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_GRAD, where, x);
+  a.gfull = gfull;
+  return rod_stencils_grad_each(net, ir, &a);
+}
+
 rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
                                      const char *where) {
   eval_args a;

@@ -360,6 +360,12 @@ rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
 rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *gfull,
                                 const char *where);
 
+/* gfull[nfull] += gradient of rod ir's own stretching, bending and twisting
+ * energy (no loads, no joints) at the reduced state x, on its full-layout slots
+ * (reactions.c: internal forces). */
+rn_status rn_eval_rod_gradient_full(const rn_network *net, int ir, const double *x,
+                                    double *gfull, const char *where);
+
 /* gabs[nred] = sum over the stencils (and loads) of |their gradient| at each reduced
  * DOF: the magnitude of the forces that balance there (reactions.c). */
 rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,

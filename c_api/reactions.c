@@ -288,3 +288,92 @@ rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reacti
   free(full);
   return st;
 }
+
+static void cross_add(const double a[3], const double b[3], double out[3]) {
+  out[0] += a[1] * b[2] - a[2] * b[1];
+  out[1] += a[2] * b[0] - a[0] * b[2];
+  out[2] += a[0] * b[1] - a[1] * b[0];
+}
+
+rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
+                                       double moment[3]) {
+  static const char *where = "rn_network_applied_resultant";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!force || !moment) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+  const double lam = net->lambda, *xf = net->xfull;
+  double F[3] = {0, 0, 0}, M[3] = {0, 0, 0};
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    for (int v = 0; v < r->nv; ++v) {
+      const double f[3] = {lam * r->fvert[3 * v], lam * r->fvert[3 * v + 1],
+                           lam * r->fvert[3 * v + 2]};
+      add_scaled(F, 1.0, f);
+      cross_add(&xf[rn_dof_vertex(r->off, v)], f, M);
+    }
+  }
+  for (int im = 0; im < net->nmom; ++im) add_scaled(M, lam, net->moments[im].M);
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    const double f[3] = {lam * J->force[0], lam * J->force[1], lam * J->force[2]};
+    add_scaled(F, 1.0, f);
+    cross_add(&xf[rn_dof_joint_position(J->off)], f, M);
+    add_scaled(M, lam, J->M);
+  }
+  memcpy(force, F, sizeof F);
+  memcpy(moment, M, sizeof M);
+  return RN_OK;
+}
+
+rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
+                                         double *moment) {
+  static const char *where = "rn_network_rod_internal_forces";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (rod < 0 || rod >= net->nrods)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d out of range (%d rods)", rod,
+                   net->nrods);
+  if (!force || !moment) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+  const rn_rod *r = &net->rods[rod];
+  double *x = malloc((net->nred + 1) * sizeof(double));
+  double *g = calloc(net->nfull + 1, sizeof(double));
+  if (!x || !g) {
+    free(x);
+    free(g);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  rn_network_get_dofs(net, x);
+  st = rn_eval_rod_gradient_full(net, rod, x, g, where);
+  free(x);
+  if (st) {
+    free(g);
+    return st;
+  }
+  /* F and the moment about the origin of the part before the cut, then moved
+   * to the edge midpoint: M_c = M_0 - c x F (moments of the left part's
+   * stencil forces, negated: what the right part exerts on it). */
+  double F[3] = {0, 0, 0}, M0[3] = {0, 0, 0}, T[3] = {0, 0, 0};
+  const double *xf = net->xfull;
+  for (int j = 0; j < r->ne; ++j) {
+    const double *gv = &g[rn_dof_vertex(r->off, j)];
+    const double *a = &xf[rn_dof_vertex(r->off, j)],
+                 *b = &xf[rn_dof_vertex(r->off, j + 1)];
+    double t[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, c[3], Mc[3];
+    const double l = norm3(t), gt = g[rn_dof_theta(r->off, j)] / (l > 0.0 ? l : 1.0);
+    add_scaled(F, -1.0, gv);
+    double ga[3] = {-gv[0], -gv[1], -gv[2]};
+    cross_add(a, ga, M0);
+    for (int k = 0; k < 3; ++k) c[k] = 0.5 * (a[k] + b[k]);
+    /* the twist moments of the edges before the cut; half of the cut edge's */
+    for (int k = 0; k < 3; ++k) Mc[k] = M0[k] - T[k] - 0.5 * gt * t[k];
+    double mF[3] = {-F[0], -F[1], -F[2]};
+    cross_add(c, mF, Mc);
+    add_scaled(T, gt, t);
+    memcpy(&force[3 * j], F, sizeof F);
+    memcpy(&moment[3 * j], Mc, sizeof Mc);
+  }
+  free(g);
+  return RN_OK;
+}

@@ -638,6 +638,62 @@ int rn_network_num_supports(const rn_network *net);
 rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reaction *r,
                                int n);
 
+/* The resultant of the applied loads at the current state and load factor:
+ * force[3] (point forces, lumped line loads and gravity, joint forces) and
+ * moment[3] about the origin (their moments x x f at the current positions,
+ * plus the couples' vectors).  At equilibrium it balances the resultant of the
+ * reactions (rn_network_reactions): their sum is zero.  RN_ERR_ARG. */
+rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
+                                       double moment[3]);
+
+/* Internal force and moment per edge of rod (whole-network index of a whole
+ * network; a part's local index) at the current state: force[3 ne] and
+ * moment[3 ne], global frame, the force and the moment about the edge's
+ * midpoint that the part of the rod after the midpoint (towards its last
+ * vertex) exerts on the part before it; force . tangent > 0 in tension.  They
+ * are the stencil forces of the rod's own elastic energy at the vertices
+ * before the cut, summed and negated (and their moments, with the twisting
+ * moments dE/dtheta t/|t| of the edges before the cut and half of the cut
+ * edge's): exact statics of the cut part at equilibrium, so at the first free
+ * edge after a clamp they equal minus the clamp's reaction carried to that
+ * point.  RN_ERR_RANGE, RN_ERR_ARG, RN_DEGENERATE, RN_ERR_ALLOC. */
+rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
+                                         double *moment);
+
+/* The rigid-body motions that no constraint blocks at the current state, and
+ * the applied loads on them (c_api/supports.c). */
+typedef struct rn_free_motions {
+  int num_translations; /* free translations: orthonormal directions */
+  double translation[3][3];
+  int num_rotations; /* free rotations: orthonormal axes (of a free
+                        rotation or screw motion) */
+  double rotation[3][3];
+  double center[3];      /* centroid of the vertices */
+  double force[3];       /* applied force resultant */
+  double moment[3];      /* applied moment resultant about center */
+  int unbalanced_force;  /* the force has a component along a free
+                            translation: no configuration balances it */
+  int unbalanced_moment; /* no net force, but the couple turns a free
+                            rotation (a dead couple stays unbalanced however
+                            the structure turns) */
+} rn_free_motions;
+
+/* Fills fm for a finalized (whole) network: a rigid motion is free if it
+ * changes no fixed DOF (clamps, pins, component pins, prescribed motions,
+ * fixed angles, clamped joints).  A net force with only a free rotation is
+ * not flagged: the structure can turn until the force passes through the
+ * axis (a pendulum).  RN_OK, RN_ERR_ARG, RN_ERR_STATE. */
+rn_status rn_network_free_motions(const rn_network *net, rn_free_motions *fm);
+
+/* RN_OK unless the loads are unbalanced on a free rigid motion
+ * (rn_free_motions.unbalanced_force or unbalanced_moment), then RN_ERR_BC with
+ * a message naming the free motions and the unbalanced resultant.  Call it
+ * before rn_solve: such a scene has no equilibrium and the solver would run to
+ * its iteration limit.  Free motions under balanced loads are accepted (the
+ * solvers' shifted factorisations and trust regions handle the singular
+ * Hessian: docs/solvers.md). */
+rn_status rn_network_check_supports(const rn_network *net);
+
 /* ---- derivative self-test ------------------------------------------------ */
 typedef struct rn_check_report {
   double grad_rel_err; /* worst relative FD error of the gradient */
@@ -647,7 +703,21 @@ typedef struct rn_check_report {
   double grad_order;   /* observed order of the FD error over the h-sweep */
   double hvp_order;
   int n_points; /* points tested */
+  /* worst over the cases of the error extrapolated to h -> 0 (Richardson's
+   * extrapolation of neighbouring steps removes the h^2 truncation term; the
+   * smallest over the pairs of the sweep): round-off for a correct derivative
+   * even where the error itself is large truncation, the derivative's error for
+   * a wrong one (c_api/check.c) */
+  double grad_extrapolated_err;
+  double hvp_extrapolated_err;
 } rn_check_report;
+
+/* The verdict on one finite-difference test of rn_check_report: 1 (pass) if
+ * the error rel_err or the error extrapolated to h -> 0 is at most tol, 0
+ * otherwise (also for NaN).  A correct derivative whose differences are still
+ * dominated by truncation over the sweep (order 2) passes; a wrong one does
+ * not, whatever its observed order. */
+int rn_check_fd_passes(double rel_err, double extrapolated_err, double tol);
 
 /* Check gradient and HVP against central differences at x (NULL = current
  * state) and at n_random random perturbations of it (seeded, relative size
@@ -656,6 +726,33 @@ typedef struct rn_check_report {
 rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
                                        int n_random, double perturb, uint64_t seed,
                                        rn_check_report *rep);
+
+/* A smooth objective of n variables given by callbacks (user first), for the
+ * derivative self-test of your own energies.  Callbacks return RN_OK, a
+ * positive status at a degenerate trial point (that step is skipped) or a
+ * negative one on error. */
+typedef struct rn_objective {
+  size_t n;
+  const double *scale; /* [n] typical size of each variable (steps and
+                          perturbations are relative to it); NULL: all 1 */
+  /* energy *E and gradient g[n] at x[n] */
+  rn_status (*gradient)(void *user, const double *x, double *E, double *g);
+  /* Hessian-vector product hv[n] = H(x) v */
+  rn_status (*hvp)(void *user, const double *x, const double *v, double *hv);
+  /* optional: the size of the energy's terms at x (sum of their absolute
+   * values), which sets the round-off level of the differences; NULL: |E| */
+  double (*energy_size)(void *user, const double *x);
+  void *user;
+} rn_objective;
+
+/* The gradient and HVP sweeps of rn_network_check_derivatives on obj at x
+ * (not NULL) and n_random perturbations of it (relative size perturb, seeded);
+ * fills rep (hess_sym_err and hess_hvp_err 0: no assembled Hessian).  RN_OK,
+ * RN_ERR_ARG, RN_ERR_NOT_FINITE (x), RN_ERR_ALLOC, a callback's negative
+ * status, or its positive status at x; the message in ctx. */
+rn_status rn_objective_check_derivatives(rn_context *ctx, const rn_objective *obj,
+                                         const double *x, int n_random, double perturb,
+                                         uint64_t seed, rn_check_report *rep);
 
 #ifdef __cplusplus
 }

@@ -41,12 +41,14 @@ static const char generate_help[] =
     "                             component pins remove the rigid motions (free\n"
     "                             lateral contraction)\n"
     "                           compress-x|y|z:STRAIN the same with -STRAIN\n"
+    "                           (|STRAIN| < 1 for stretch, compress and grip)\n"
     "                           grip-x|y|z:STRAIN     gripped faces: the same with\n"
     "                             the face joints pinned in x, y and z (no lateral\n"
     "                             motion at the faces; STRAIN < 0 compresses)\n"
     "                           pull-x|y|z:FORCE      total FORCE on the max face,\n"
     "                             -FORCE on the min face whose centre joint is\n"
     "                             clamped (free lateral contraction)\n"
+    "                           At most one --load.\n"
     "      --periodic           write a periodic cell instead of a finite block:\n"
     "                           the --cells cells on the torus of their lattice\n"
     "                           vectors, rod ends at periodic images (\"image\"),\n"
@@ -158,6 +160,12 @@ static int parse_material(gen_args *a, const char *v) {
 
 static int parse_load(gen_args *a, const char *v) {
   static const char *const kinds[] = {"stretch-", "compress-", "pull-", "grip-"};
+  /* One load per scene: a second --load used to replace the first silently. */
+  if (a->load)
+    return rn_cli_usage_error("generate",
+                              "--load given twice ('%s', then '%s'): a generated "
+                              "scene takes one load",
+                              a->load, v);
   static const rn_lattice_load_kind load[] = {RN_LLOAD_STRETCH, RN_LLOAD_STRETCH,
                                               RN_LLOAD_PULL, RN_LLOAD_GRIP};
   for (int k = 0; k < 4; k++) {
@@ -167,6 +175,14 @@ static int parse_load(gen_args *a, const char *v) {
     char *end = NULL;
     double x = (ax[0] >= 'x' && ax[0] <= 'z' && ax[1] == ':') ? strtod(ax + 2, &end) : 0;
     if (end && end != ax + 2 && *end == '\0' && isfinite(x) && x != 0) {
+      /* A strain of magnitude >= 1 moves the max face onto or past the min
+       * face (compression) or is far outside the rods' small-strain range
+       * (tension); compress-x:2 gave a mirror-inverted lattice. */
+      if (load[k] != RN_LLOAD_PULL && fabs(x) >= 1)
+        return rn_cli_usage_error("generate",
+                                  "--load %s: the strain magnitude must be below 1, "
+                                  "got %g",
+                                  v, x);
       a->sc.load = load[k];
       a->sc.load_axis = ax[0] - 'x';
       a->sc.load_value = k == 1 ? -x : x;

@@ -1,7 +1,11 @@
 /* cli_solve.c - `rodnet solve SCENE.json -o RESULT.json [options]`. */
+#define _XOPEN_SOURCE 700 /* realpath, stat */
+
+#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "atomic_file.h"
 #include "cli.h"
@@ -49,7 +53,8 @@ static const char solve_help[] =
     "                      scalable; docs/parallel.md), muelu (algebraic\n"
     "                      multigrid on the whole Hessian), ifpack2 (additive\n"
     "                      Schwarz, local LU); muelu, ifpack2 need MPI\n"
-    "      --factorization NAME  Cholesky factorisation of the shifted Hessian:\n"
+    "      --factorization NAME  Cholesky factorisation of the shifted Hessian\n"
+    "                      (also spelt --factorisation):\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
     "                      banded (LAPACK), sparse (rodnet's supernodal, METIS\n"
     "                      ordering), cholmod (SuiteSparse CHOLMOD, the library\n"
@@ -91,7 +96,9 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--solver", NULL, &v)) != 0)
     a->solver = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--factorization", NULL,
-                                    &v)) != 0)
+                                    &v)) != 0 ||
+           (m = rn_cli_option_value("solve", argc, argv, i, "--factorisation", NULL,
+                                    &v)) != 0) /* both spellings */
     a->factorization = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--preconditioner", NULL,
                                     &v)) != 0)
@@ -112,6 +119,78 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   }
   if (m < 0) *rc = RN_EXIT_USAGE;
   return m != 0;
+}
+
+/* "realpath(dirname(p))/basename(p)" for a path whose file need not exist;
+ * NULL if the directory cannot be resolved or out of memory.  Caller frees. */
+static char *canonical_path(const char *p) {
+  const char *slash = strrchr(p, '/');
+  size_t dlen = slash ? (size_t)(slash - p) : 0;
+  char *dir = malloc(dlen + 2), *real = NULL, *out = NULL;
+  if (!dir) return NULL;
+  if (slash && dlen == 0)
+    strcpy(dir, "/");
+  else if (slash) {
+    memcpy(dir, p, dlen);
+    dir[dlen] = '\0';
+  } else
+    strcpy(dir, ".");
+  real = realpath(dir, NULL);
+  const char *base = slash ? slash + 1 : p;
+  if (real && (out = malloc(strlen(real) + strlen(base) + 2)))
+    sprintf(out, "%s/%s", real, base);
+  free(real);
+  free(dir);
+  return out;
+}
+
+/* 1 if the paths a and b name the same file: the same inode when both exist
+ * (hard or symbolic links, "./x" and "x"), the same resolved path when
+ * neither exists yet. */
+static int same_file(const char *a, const char *b) {
+  if (strcmp(a, b) == 0) return 1;
+  struct stat sa, sb;
+  int ea = stat(a, &sa) == 0, eb = stat(b, &sb) == 0;
+  if (ea && eb) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  if (ea != eb) return 0;
+  char *ca = canonical_path(a), *cb = canonical_path(b);
+  int same = ca && cb && strcmp(ca, cb) == 0;
+  free(ca);
+  free(cb);
+  return same;
+}
+
+/* 1 if path ends in ".vtu" (any case). */
+static int has_vtu_extension(const char *path) {
+  size_t n = strlen(path);
+  if (n < 5 || path[n - 5] == '/') return 0;
+  const char *e = path + n - 4;
+  return e[0] == '.' && tolower((unsigned char)e[1]) == 'v' &&
+         tolower((unsigned char)e[2]) == 't' && tolower((unsigned char)e[3]) == 'u';
+}
+
+/* The output paths: never the scene itself, never each other, and the VTK
+ * file named for the format written (XML unstructured grid, .vtu). */
+static int check_output_paths(const solve_args *a) {
+  if (same_file(a->output, a->scene))
+    return rn_cli_usage_error("solve",
+                              "-o %s is the scene file itself: the result would "
+                              "overwrite its input; choose another name",
+                              a->output);
+  if (!a->vtk) return 0;
+  if (same_file(a->vtk, a->scene))
+    return rn_cli_usage_error("solve",
+                              "--vtk %s is the scene file itself: the result would "
+                              "overwrite its input; choose another name",
+                              a->vtk);
+  if (same_file(a->vtk, a->output))
+    return rn_cli_usage_error("solve", "--vtk and -o name the same file");
+  if (!has_vtu_extension(a->vtk))
+    return rn_cli_usage_error("solve",
+                              "--vtk %s: rodnet writes VTK XML unstructured grids, "
+                              "name the file with the extension .vtu",
+                              a->vtk);
+  return 0;
 }
 
 static int parse_solve_args(int argc, char **argv, solve_args *a) {
@@ -139,9 +218,7 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
   }
   if (!a->scene) return rn_cli_usage_error("solve", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("solve", "missing -o RESULT.json");
-  if (a->vtk && strcmp(a->vtk, a->output) == 0)
-    return rn_cli_usage_error("solve", "--vtk and -o name the same file");
-  return 0;
+  return check_output_paths(a);
 }
 
 #ifdef RN_HAVE_SOLVER
@@ -221,6 +298,7 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->hvp_evals = rep->hvp_evals;
   in->hessian_evals = rep->hessian_evals;
   in->krylov_iterations = rep->krylov_iterations;
+  in->factorizations = rep->factorizations;
   in->energy = rep->energy;
   in->gradient_norm = rep->gradient_norm;
   in->initial_gradient_norm = rep->initial_gradient_norm;
@@ -276,8 +354,10 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
          "predictor steps\n",
          in->iterations, in->krylov_iterations, in->load_steps,
          rn_network_load_factor(net), in->predictor_steps);
-  printf("  evaluations  %ld energy, %ld gradient, %ld HVP, %ld Hessian\n",
-         in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals);
+  printf("  evaluations  %ld energy, %ld gradient, %ld HVP, %ld Hessian, %ld "
+         "factorisations\n",
+         in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals,
+         in->factorizations);
   printf("  energy       %.17g\n", in->energy);
   printf("  |gradient|   %.3e (initial %.3e)\n", in->gradient_norm,
          in->initial_gradient_norm);
@@ -532,6 +612,12 @@ static int solve_scene_serial(const solve_args *a) {
               (a->vtk && (st = rn_file_probe_writable(ctx, a->vtk))))) {
     fprintf(stderr, "rodnet solve: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
+  }
+  /* a scene whose loads push a free rigid motion has no equilibrium: say so
+   * up front instead of running to max_iterations */
+  if (!rc && (st = rn_network_check_supports(rn_scene_network(scene)))) {
+    fprintf(stderr, "%s: %s\n", a->scene, rn_context_last_error(ctx));
+    rc = rn_cli_load_exit_code(st);
   }
   if (!rc) {
     /* The solver's runtime (Kokkos, MPI) is needed only here. */

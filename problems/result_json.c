@@ -148,6 +148,7 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"factorization\": ", f);
     put_str(f, in->factorization);
   }
+  fprintf(f, ",\n  \"factorizations\": %ld", in->factorizations);
   if (in->preconditioner) {
     fputs(",\n  \"preconditioner\": ", f);
     put_str(f, in->preconditioner);
@@ -266,8 +267,84 @@ static rn_status put_joints(json_out *o, rn_network *net) {
     st = put_joint(o, net, j);
     fputs(j + 1 < n ? ",\n" : "\n  ", o->f);
   }
-  fputs("]\n", o->f);
+  fputs("]", o->f);
   return st;
+}
+
+/* One support of "reactions": what it is, where, and its force and moment. */
+static void put_support(json_out *o, rn_network *net, const rn_reaction *r) {
+  static const char *const kinds[] = {"clamp", "vertex", "angle", "joint"};
+  FILE *f = o->f;
+  fprintf(f, "    {\"kind\": \"%s\", ", kinds[r->kind]);
+  if (r->kind == RN_SUPPORT_JOINT) {
+    fputs("\"joint\": ", f);
+    put_str(f, rn_network_joint_name(net, r->index));
+  } else {
+    fputs("\"rod\": ", f);
+    put_str(f, rn_network_rod_name(net, r->rod));
+    if (r->kind == RN_SUPPORT_CLAMP)
+      fprintf(f, ", \"end\": \"%s\"", r->index ? "end" : "start");
+    else
+      fprintf(f, ", \"%s\": %d", r->kind == RN_SUPPORT_VERTEX ? "vertex" : "edge",
+              r->index);
+  }
+  fputs(", \"components\": \"", f);
+  for (int k = 0; k < 3; k++)
+    if (r->fixed & (1 << k)) fputc("xyz"[k], f);
+  fprintf(f, "\", \"fixes_rotation\": %s,\n     \"point\": ",
+          r->fixed_rotation ? "true" : "false");
+  put_vec(o, r->point);
+  fputs(", \"force\": ", f);
+  put_vec(o, r->force);
+  fputs(", \"moment\": ", f);
+  put_vec(o, r->moment);
+  fputc('}', f);
+}
+
+static void put_force_moment(json_out *o, const char *key, const double F[3],
+                             const double M[3], int last) {
+  fprintf(o->f, "    \"%s\": {\"force\": ", key);
+  put_vec(o, F);
+  fputs(", \"moment\": ", o->f);
+  put_vec(o, M);
+  fputs(last ? "}\n" : "},\n", o->f);
+}
+
+/* "reactions": every support's reaction (rn_network_reactions) and the
+ * resultants of the reactions and of the applied loads, moments about the
+ * origin. */
+static rn_status put_reactions(json_out *o, rn_network *net) {
+  int ns = rn_network_num_supports(net);
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc((n ? n : 1) * sizeof *x);
+  rn_reaction *r = malloc((size_t)(ns > 0 ? ns : 1) * sizeof *r);
+  double F[3] = {0, 0, 0}, M[3] = {0, 0, 0}, AF[3], AM[3];
+  rn_status st = x && r ? rn_network_get_dofs(net, x) : RN_ERR_ALLOC;
+  if (!st) st = rn_network_reactions(net, x, r, ns);
+  if (!st) st = rn_network_applied_resultant(net, AF, AM);
+  free(x);
+  if (st) {
+    free(r);
+    return st;
+  }
+  fputs(",\n  \"reactions\": {\n    \"supports\": [", o->f);
+  for (int i = 0; i < ns; i++) {
+    fputs(i ? ",\n" : "\n", o->f);
+    put_support(o, net, &r[i]);
+    for (int k = 0; k < 3; k++) {
+      F[k] += r[i].force[k];
+      M[k] += r[i].moment[k];
+    }
+    M[0] += r[i].point[1] * r[i].force[2] - r[i].point[2] * r[i].force[1];
+    M[1] += r[i].point[2] * r[i].force[0] - r[i].point[0] * r[i].force[2];
+    M[2] += r[i].point[0] * r[i].force[1] - r[i].point[1] * r[i].force[0];
+  }
+  fputs("],\n", o->f);
+  put_force_moment(o, "resultant", F, M, 0);
+  put_force_moment(o, "applied", AF, AM, 1);
+  fputs("  }", o->f);
+  free(r);
+  return RN_OK;
 }
 
 static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
@@ -290,7 +367,8 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   }
   fputs("  ]", f);
   if (!st) st = put_joints(o, net);
-  fputs("}\n", f);
+  if (!st) st = put_reactions(o, net);
+  fputs("\n}\n", f);
   free(buf);
   if (st) {
     char msg[512];

@@ -30,6 +30,7 @@ typedef struct rn_result_info {
   const long *part_dofs, *part_stencils; /* [part_ranks] owned per rank */
   long edge_cut;                         /* rod pairs sharing a joint, separated */
   double imbalance;                      /* max owned DOFs / mean owned DOFs */
+  long factorizations; /* numeric Cholesky factorisations (rn_solve_report) */
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info

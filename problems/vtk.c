@@ -236,6 +236,17 @@ static rn_status fill_axial_force(vtk_out *o, int rod, double *val) {
   return rn_network_rod_edge_fields(o->net, rod, val, NULL);
 }
 
+/* rn_network_rod_internal_forces: the force and the moment (about the edge
+ * midpoint) that the rest of the rod after the edge's midpoint exerts on the
+ * part before it. */
+static rn_status fill_internal_force(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_internal_forces(o->net, rod, val, o->work[0]);
+}
+
+static rn_status fill_internal_moment(vtk_out *o, int rod, double *val) {
+  return rn_network_rod_internal_forces(o->net, rod, o->work[0], val);
+}
+
 static rn_status fill_rest_length(vtk_out *o, int rod, double *val) {
   return rn_network_rod_rest_lengths(o->net, rod, val);
 }
@@ -291,6 +302,8 @@ static const vtk_field fields[] = {
     {"d2", "Float64", 3, 1, fill_d2},
     {"twist", "Float64", 1, 1, fill_edge_twist},
     {"axial_force", "Float64", 1, 1, fill_axial_force},
+    {"internal_force", "Float64", 3, 1, fill_internal_force},
+    {"internal_moment", "Float64", 3, 1, fill_internal_moment},
     {"rest_length", "Float64", 1, 1, fill_rest_length},
     {"energy_density", "Float64", 1, 1, fill_energy_density},
     {"joint_rotation", "Float64", 9, 0, fill_no_rotation},

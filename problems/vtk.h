@@ -17,7 +17,12 @@
  *               stretch (strain l / l_rest - 1), d1 and d2 (material
  *               directors), twist (mean twist_rate of the edge's interior end
  *               vertices, 0 for a rod of one edge), axial_force (E A
- *               stretch), rest_length, energy_density (elastic energy per unit
+ *               stretch), internal_force and internal_moment (3 components:
+ *               the force and the moment about the edge midpoint that the
+ *               part of the rod after the midpoint exerts on the part
+ *               before it, rn_network_rod_internal_forces; tension:
+ *               internal_force . tangent > 0), rest_length, energy_density
+ *               (elastic energy per unit
  *               rest length: the edge's stretching energy / rest length plus,
  *               for each interior end vertex, half of that vertex's bending +
  *               twisting energy / Voronoi rest length; summed times

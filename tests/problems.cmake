@@ -33,6 +33,15 @@ rn_add_test(problems_scene_errors SOURCES unit/problems_scene_errors_test.c
 file(GLOB RN_EXAMPLE_SCENES ${RN_SCENES}/*.json)
 rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_EXAMPLE_SCENES})
+# The derivative self-test's verdict: correct derivatives whose differences are
+# truncation-dominated at a rest state pass, deliberately wrong ones fail.
+rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
+            LIBS rodnet_problems m LABELS unit
+            ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
+# Free rigid-body motions and unbalanced loads on them (c_api/supports.c).
+rn_add_test(problems_supports SOURCES unit/problems_supports_test.c
+            LIBS rodnet_problems LABELS unit
+            ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports ${RN_SCENES})
 rn_add_test(problems_num_format SOURCES unit/problems_num_format_test.c
             LIBS rodnet_problems m LABELS unit)
 rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
@@ -113,6 +122,27 @@ rn_cli_test(problems_cli_no_command 2 "missing command" STDERR_LINES 2)
 rn_cli_test(problems_cli_unknown_command 2 "unknown command 'frobnicate'" ARGS frobnicate)
 rn_cli_test(problems_cli_unknown_option 2 "unknown option '--bogus'"
             ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --bogus)
+# Output paths: never the scene itself (by name, "./" spelling or a symbolic
+# link: the same inode), and --vtk only with the extension .vtu (rodnet writes
+# VTK XML); refused before anything is read or written.
+configure_file(${cant} ${RN_CLI_OUT}/self_scene.json COPYONLY)
+file(CREATE_LINK ${RN_CLI_OUT}/self_scene.json ${RN_CLI_OUT}/self_link.json SYMBOLIC)
+rn_cli_test(problems_cli_output_is_scene 2
+            "-o .*self_scene.json is the scene file itself: the result would overwrite its input"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/self_scene.json)
+rn_cli_test(problems_cli_output_is_scene_dot 2 "is the scene file itself"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/./self_scene.json)
+rn_cli_test(problems_cli_output_is_scene_link 2 "-o .*self_link.json is the scene file itself"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/self_link.json)
+rn_cli_test(problems_cli_vtk_is_scene 2 "--vtk .*self_scene.json is the scene file itself"
+            ARGS solve ${RN_CLI_OUT}/self_scene.json -o ${RN_CLI_OUT}/x.json
+                 --vtk ${RN_CLI_OUT}/self_scene.json)
+rn_cli_test(problems_cli_vtk_same_as_output 2 "--vtk and -o name the same file"
+            ARGS solve ${cant} -o ${RN_CLI_OUT}/same.vtu --vtk ${RN_CLI_OUT}/./same.vtu)
+rn_cli_test(problems_cli_vtk_legacy_name 2
+            "--vtk .*out.vtk: rodnet writes VTK XML unstructured grids, name the file with the extension .vtu"
+            REMOVE ${RN_CLI_OUT}/out.vtk ABSENT ${RN_CLI_OUT}/out.vtk
+            ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --vtk ${RN_CLI_OUT}/out.vtk)
 rn_cli_test(problems_cli_missing_output 2 "missing -o RESULT.json" ARGS solve ${cant})
 rn_cli_test(problems_cli_missing_value 2 "option -o needs a value" ARGS solve ${cant} -o)
 rn_cli_test(problems_cli_bad_number 2 "--max-iter expects an integer >= 1, got 'abc'"
@@ -132,6 +162,13 @@ rn_cli_test(problems_cli_malformed_scene 3 "malformed.json:4:3: malformed JSON"
             STDERR_LINES 1 ARGS check ${RN_BAD}/malformed.json)
 rn_cli_test(problems_cli_missing_scene 3 "no_such_scene.json: cannot open"
             STDERR_LINES 1 ARGS check ${RN_CLI_OUT}/no_such_scene.json)
+# The shipped examples pass with default settings (their rest-state gradient
+# error is second-order truncation above 1e-5: it extrapolates to round-off).
+foreach(stem stepped_beam portal_frame)
+  rn_cli_test(problems_cli_check_${stem} 0
+              "gradient vs central differences.*ok \\(truncation\\).*PASS"
+              ARGS check ${RN_SCENES}/${stem}.json)
+endforeach()
 rn_cli_test(problems_cli_check_cantilever 0 "gradient vs central differences.*PASS"
             ARGS check ${cant} --random 2)
 # The finite-difference error can never be below 1e-14: the check must fail.
@@ -157,6 +194,19 @@ rn_cli_test(problems_cli_generate_bad_material 2 "--material expects E,NU with E
             ARGS generate cubic --material 1,0.6 -o ${gen}/x.json)
 rn_cli_test(problems_cli_generate_bad_load 2 "--load expects stretch-AXIS:STRAIN"
             ARGS generate cubic --load shear-x:0.1 -o ${gen}/x.json)
+# Strains of magnitude >= 1 (a mirror-inverted lattice) and a repeated --load
+# (only the last one was kept) are usage errors; no file is written.
+rn_cli_test(problems_cli_generate_huge_strain 2
+            "--load compress-x:2: the strain magnitude must be below 1, got 2"
+            REMOVE ${gen}/huge_strain.json ABSENT ${gen}/huge_strain.json
+            ARGS generate square --load compress-x:2 -o ${gen}/huge_strain.json)
+rn_cli_test(problems_cli_generate_unit_strain 2 "strain magnitude must be below 1, got -1"
+            ARGS generate cubic --load grip-y:-1 -o ${gen}/x.json)
+rn_cli_test(problems_cli_generate_two_loads 2
+            "--load given twice \\('stretch-x:0.01', then 'compress-y:0.02'\\)"
+            REMOVE ${gen}/two_loads.json ABSENT ${gen}/two_loads.json
+            ARGS generate square --load stretch-x:0.01 --load compress-y:0.02
+                 -o ${gen}/two_loads.json)
 rn_cli_test(problems_cli_generate_bad_model 2 "--joint-model expects elastic or rigid, got 'welded'"
             ARGS generate cubic --joint-model welded -o ${gen}/x.json)
 rn_cli_test(problems_cli_generate_missing_output 2 "missing -o SCENE.json" ARGS generate bcc)
@@ -334,6 +384,59 @@ if(RN_WITH_TRILINOS)
   set_tests_properties(problems_example_portal_frame_vtu PROPERTIES LABELS unit
                        DEPENDS problems_example_portal_frame)
 
+  # Reactions (RESULT.json) and internal forces (.vtu): they balance the applied
+  # loads; a cantilever's root moment is P L (closed form) and its internal
+  # forces follow the statics of the cut part; a fixed-base portal frame's base
+  # moments and reactions match the slope-deflection closed form
+  # (tests/unit/check_reactions.py states it).
+  set(RN_REACTIONS ${CMAKE_CURRENT_SOURCE_DIR}/data/reactions)
+  foreach(stem cantilever_linear portal_frame_linear)
+    rn_cli_test(problems_reactions_${stem}_solve 0 "status +converged"
+                REMOVE ${RN_CLI_OUT}/reactions_${stem}.json
+                FIXTURE_SETUP problems_reactions_${stem}
+                ARGS solve ${RN_REACTIONS}/${stem}.json -o ${RN_CLI_OUT}/reactions_${stem}.json
+                     --vtk ${RN_CLI_OUT}/reactions_${stem}.vtu --quiet)
+  endforeach()
+  add_test(NAME problems_reactions_cantilever
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_reactions.py
+                   ${RN_CLI_OUT}/reactions_cantilever_linear.json
+                   --vtu ${RN_CLI_OUT}/reactions_cantilever_linear.vtu
+                   --cantilever 3.9e-5 0.995)
+  set_tests_properties(problems_reactions_cantilever PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_reactions_cantilever_linear
+                       PASS_REGULAR_EXPRESSION "check_reactions: ok")
+  add_test(NAME problems_reactions_portal_frame
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_reactions.py
+                   ${RN_CLI_OUT}/reactions_portal_frame_linear.json --portal 1 3 4 16 4e-3)
+  set_tests_properties(problems_reactions_portal_frame PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_reactions_portal_frame_linear
+                       PASS_REGULAR_EXPRESSION "check_reactions: ok")
+  # The shipped portal frame (1 kN, geometrically nonlinear): the balance only.
+  add_test(NAME problems_reactions_example_portal_frame
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_reactions.py
+                   ${RN_CLI_OUT}/example_portal_frame.json)
+  set_tests_properties(problems_reactions_example_portal_frame PROPERTIES LABELS unit
+                       DEPENDS problems_example_portal_frame
+                       PASS_REGULAR_EXPRESSION "check_reactions: ok")
+
+  # Free rigid-body motions (tests/data/supports): unbalanced loads on them are
+  # diagnosed before solving (exit 3, the free motions named); balanced loads
+  # and a net force with only a free rotation (a pendulum) solve.
+  set(RN_SUPPORTS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports)
+  rn_cli_test(problems_supports_free_rod 3
+              "free_rod_tip_force.json: .*rigid-body motions free \\(translation along each of x, y, z; rotation about each of x, y, z\\) and the applied loads are not balanced on them \\(net force \\(0, 0, -0.39\\)\\)"
+              STDERR_LINES 1 REMOVE ${RN_CLI_OUT}/free_rod.json ABSENT ${RN_CLI_OUT}/free_rod.json
+              ARGS solve ${RN_SUPPORTS}/free_rod_tip_force.json -o ${RN_CLI_OUT}/free_rod.json)
+  rn_cli_test(problems_supports_couple 3
+              "rigid-body motions free \\(rotation about each of x, y, z\\).*net couple, no net force: \\(0, 0.01, 0\\)"
+              STDERR_LINES 1
+              ARGS solve ${RN_SUPPORTS}/free_rod_couple.json -o ${RN_CLI_OUT}/free_couple.json)
+  foreach(stem free_rod_balanced pendulum)
+    rn_cli_test(problems_supports_${stem} 0 "status +converged"
+                ARGS solve ${RN_SUPPORTS}/${stem}.json -o ${RN_CLI_OUT}/supports_${stem}.json
+                     --quiet)
+  endforeach()
+
   set(res ${RN_CLI_OUT}/cantilever_result.json)
   set(vtu ${RN_CLI_OUT}/cantilever.vtu)
   rn_cli_test(problems_cli_solve_cantilever 0
@@ -373,10 +476,25 @@ if(RN_WITH_TRILINOS)
               ARGS solve ${cant} -o ${RN_CLI_OUT}/precond_factor.json --solver tr-krylov
                    --preconditioner factor --quiet)
   foreach(f banded sparse cholmod)
-    rn_cli_test(problems_cli_factorization_${f} 0 "status +converged.*${f} factorisation"
+    rn_cli_test(problems_cli_factorization_${f} 0
+                "status +converged.*${f} factorisation.*Hessian, [1-9][0-9]* factorisations"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/factorization_${f}.json
                      --factorization ${f} --quiet)
   endforeach()
+  # The British spelling of the option (the docs' prose) is accepted too; the
+  # result JSON counts the factorisations.
+  rn_cli_test(problems_cli_factorisation_spelling 0
+              "status +converged.*sparse factorisation"
+              REMOVE ${RN_CLI_OUT}/factorisation_spelling.json
+              FIXTURE_SETUP problems_factorisation_spelling
+              ARGS solve ${cant} -o ${RN_CLI_OUT}/factorisation_spelling.json
+                   --factorisation=sparse --quiet)
+  add_test(NAME problems_cli_factorisation_count
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_result.py
+                   ${RN_CLI_OUT}/factorisation_spelling.json --status converged
+                   --factorization sparse --min-factorizations 1)
+  set_tests_properties(problems_cli_factorisation_count PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_factorisation_spelling)
   foreach(solver tr-minres rol-tr-tcg rol-ls-newton tr-krylov nox)
     rn_cli_test(problems_cli_solver_${solver} 0 "status +converged.*solver +${solver}"
                 ARGS solve ${cant} -o ${RN_CLI_OUT}/solver_${solver}.json --solver ${solver}

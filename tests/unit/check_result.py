@@ -20,13 +20,16 @@ axial stretch give about 1e-4 at 100 edges).
 
     [--joints N] [--joint-at-rod-ends]
     [--stretch-energy NBARS E RADIUS STRAIN LENGTH]
+    [--factorization NAME] [--min-factorizations N]
 
 --joints: the number of joints; --joint-at-rod-ends: every joint's position
 equals the end vertex of some rod exactly (rod ends alias the joint);
 --stretch-energy: uniform axial strain of NBARS straight round bars (a
 square lattice stretched along its bars): stretching energy
 NBARS * E * pi RADIUS^2 * STRAIN^2 * LENGTH / 2 to 1e-8, bending and
-twisting below 1e-12 of it."""
+twisting below 1e-12 of it.  Always: "factorizations" is an integer >= 0;
+--factorization and --min-factorizations: the factorisation named and at
+least N numeric factorisations."""
 import argparse
 import json
 import math
@@ -130,12 +133,14 @@ def main():
     ap.add_argument("--joints", type=int)
     ap.add_argument("--joint-at-rod-ends", action="store_true")
     ap.add_argument("--stretch-energy", type=float, nargs=5)
+    ap.add_argument("--factorization")
+    ap.add_argument("--min-factorizations", type=int)
     a = ap.parse_args()
     with open(a.result) as f:
         r = json.load(f)
     for key in ("status", "energy", "gradient_norm", "iterations", "time_s", "rods",
                 "solver", "stop_reason", "converged", "energy_terms", "load_factor",
-                "initial_gradient_norm", "evaluations", "num_dofs"):
+                "initial_gradient_norm", "evaluations", "num_dofs", "factorizations"):
         if key not in r:
             fail("missing field '%s'" % key)
     if not isinstance(r["status"], str) or not isinstance(r["iterations"], int):
@@ -144,6 +149,13 @@ def main():
         finite(r[key], key)
     if r["time_s"] < 0 or r["gradient_norm"] < 0 or r["iterations"] < 0:
         fail("negative time, gradient norm or iteration count")
+    nf = r["factorizations"]
+    if not isinstance(nf, int) or isinstance(nf, bool) or nf < 0:
+        fail("factorizations must be an integer >= 0, got %r" % (nf,))
+    if a.min_factorizations is not None and nf < a.min_factorizations:
+        fail("%d factorizations, expected at least %d" % (nf, a.min_factorizations))
+    if a.factorization and r.get("factorization") != a.factorization:
+        fail("factorization %r, expected %r" % (r.get("factorization"), a.factorization))
     if a.status and r["status"] != a.status:
         fail("status %r, expected %r" % (r["status"], a.status))
     if r["converged"] != (r["status"] == "converged"):

@@ -103,7 +103,8 @@ int main(int argc, char **argv) {
                          part_dofs,
                          part_stencils,
                          7,
-                         1.25};
+                         1.25,
+                         12};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -113,6 +114,7 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "status"), "max_iterations") == 0);
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
+    CHECK(num(root, "factorizations") == 12);
     CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
     CHECK(strcmp(str(root, "finds"), "local minimum") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
