@@ -51,6 +51,9 @@ public:
   virtual bool declined() const { return false; }
   // Floating-point operations of one factorisation (direct solver; 0 otherwise).
   virtual double flops() const { return 0.0; }
+  // Rows of the reduced (inter-rank separator) matrix of the direct solver (0 on one
+  // rank and for the other solvers).
+  virtual long long separator_rows() const { return 0; }
 };
 
 // Sparse Cholesky (rodnet's, METIS ordering) of the coarse matrix gathered to rank 0
@@ -105,6 +108,8 @@ public:
   std::string coarse_solver() const;
   // Factorisation flops of the direct coarse solve (also when it declined), else 0.
   double coarse_flops() const;
+  // Rows of the direct coarse solve's inter-rank separator (0 on one rank).
+  long long coarse_separator_rows() const;
   // The last setup was an exact block factorisation of H (no rod block nor the coarse
   // matrix shifted, the coarse solve direct): M = H, which proves H positive definite
   // (the inertia of H is that of the rod blocks plus that of the Schur complement).
