@@ -536,31 +536,37 @@ void SubstructuredCoarse::analyse(const TCrs &S) {
         ni + static_cast<size_t>(std::lower_bound(sep_.begin(), sep_.end(), g) -
                                  sep_.begin()));
   };
-  // CSR of the local matrix, both triangles: rows I from S, rows Γ_p transposed.
-  std::vector<std::vector<std::pair<int32_t, size_t>>> rows(n);
-  for (size_t a = 0; a < ni; ++a) {
-    const LO i = irows_[a];
-    for (size_t q = lcl.graph.row_map(i); q < lcl.graph.row_map(i + 1); ++q) {
-      const size_t c = static_cast<size_t>(lcl.graph.entries(q));
-      const int32_t j = cred[c] >= 0 ? sep_index(static_cast<GO>(cred[c])) : cidx[c];
-      rows[a].emplace_back(j, q);
-      if (cred[c] >= 0)
-        rows[static_cast<size_t>(j)].emplace_back(static_cast<int32_t>(a), q);
-    }
-  }
-  for (size_t k = ni; k < n; ++k) rows[k].emplace_back(static_cast<int32_t>(k), kNone);
+  // CSR of the local matrix, both triangles: rows I from S, rows Γ_p transposed
+  // (with their diagonal, zero).
   rowptr_.assign(n + 1, 0);
   col_.clear();
   src_.clear();
   diag_.clear();
-  for (size_t a = 0; a < n; ++a) {
-    std::sort(rows[a].begin(), rows[a].end());
-    for (const auto &e : rows[a]) {
-      if (a < ni && static_cast<size_t>(e.first) == a) diag_.push_back(col_.size());
+  std::vector<std::pair<int32_t, size_t>> row;
+  std::vector<std::array<size_t, 3>> tr; // (separator row, I column, S value index)
+  for (size_t a = 0; a < ni; ++a) {
+    const LO i = irows_[a];
+    row.clear();
+    for (size_t q = lcl.graph.row_map(i); q < lcl.graph.row_map(i + 1); ++q) {
+      const size_t c = static_cast<size_t>(lcl.graph.entries(q));
+      const int32_t j = cred[c] >= 0 ? sep_index(static_cast<GO>(cred[c])) : cidx[c];
+      row.emplace_back(j, q);
+      if (cred[c] >= 0) tr.push_back({static_cast<size_t>(j), a, q});
+    }
+    std::sort(row.begin(), row.end());
+    for (const auto &e : row) {
+      if (static_cast<size_t>(e.first) == a) diag_.push_back(col_.size());
       col_.push_back(e.first);
       src_.push_back(e.second);
     }
     rowptr_[a + 1] = static_cast<int64_t>(col_.size());
+  }
+  for (size_t k = ni; k < n; ++k) tr.push_back({k, k, kNone});
+  std::sort(tr.begin(), tr.end());
+  for (const auto &e : tr) {
+    col_.push_back(static_cast<int32_t>(e[1]));
+    src_.push_back(e[2]);
+    rowptr_[e[0] + 1] = static_cast<int64_t>(col_.size());
   }
   if (diag_.size() != ni)
     throw Error(RN_ERR_INTERNAL, "dd preconditioner: coarse matrix without its diagonal");
