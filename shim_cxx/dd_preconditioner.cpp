@@ -572,11 +572,18 @@ void SubstructuredCoarse::analyse(const TCrs &S) {
     throw Error(RN_ERR_INTERNAL, "dd preconditioner: coarse matrix without its diagonal");
   analysis_.reset();
   chol_.reset();
-  if (n > 0) {
-    analysis_ =
-        std::make_shared<SparseAnalysis>(n, rowptr_.data(), col_.data(), sep_.size());
-    chol_.reset(new SparseCholesky(analysis_));
+  bool failed = false;
+  try {
+    if (n > 0) {
+      analysis_ =
+          std::make_shared<SparseAnalysis>(n, rowptr_.data(), col_.data(), sep_.size());
+      chol_.reset(new SparseCholesky(analysis_));
+    }
+  } catch (const Error &) {
+    failed = true;
   }
+  throw_if_any(*comm, failed, RN_ERR_INTERNAL,
+               "dd preconditioner: the coarse matrix cannot be ordered (METIS)");
   x_.assign(n, 0.0);
   if (nred_ == 0) return;
   // The reduced matrix: Rov_ rows the owned Γ (gmap_ order), then the separator rows
