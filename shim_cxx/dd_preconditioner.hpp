@@ -11,10 +11,11 @@
 // the small dense block -H_Gr H_rr^-1 H_rG on the interface DOFs it touches,
 // computed with banded solves on the rod's rank.  The coarse (interface) matrix S
 // is assembled as a Tpetra::CrsMatrix (contributions exported to the owners of the
-// interface DOFs) and solved by a CoarseSolver: sparse Cholesky on one rank (the
-// matrix gathered to rank 0) when small, one algebraic-multigrid V-cycle (MueLu,
-// rigid-body modes as near-null space) when large.  apply(x) = forward elimination
-// of the rod interiors, coarse solve, back substitution.
+// interface DOFs) and solved by a CoarseSolver: sparse Cholesky when small
+// (substructured over the ranks: each rank's part condensed onto the inter-rank
+// separator, whose small matrix is factored on rank 0), one algebraic-multigrid
+// V-cycle (MueLu, rigid-body modes as near-null space) when large.  apply(x) = forward
+// elimination of the rod interiors, coarse solve, back substitution.
 //
 // M is symmetric positive definite in every case: an indefinite rod block is
 // replaced by H_rr + s_r D_r (D_r = |diag H_rr|, s_r the smallest of 1e-10, 1e-9,
@@ -51,12 +52,20 @@ public:
   virtual bool declined() const { return false; }
   // Floating-point operations of one factorisation (direct solver; 0 otherwise).
   virtual double flops() const { return 0.0; }
+  // Rows of the reduced (inter-rank separator) matrix of the direct solver (0 on one
+  // rank and for the other solvers).
+  virtual long long separator_rows() const { return 0; }
 };
 
-// Sparse Cholesky (rodnet's, METIS ordering) of the coarse matrix gathered to rank 0
-// (never a distributed direct solve: Amesos2 is wrong on several ranks, see
-// TRILINOS.md).  Indefinite S: S + t D_S with the smallest t in {1e-10, ..., 1e10}.
-// max_flops > 0: decline (declined()) when the factorisation would take more
+// Exact solve of the coarse matrix by rodnet's sparse Cholesky (METIS ordering),
+// substructured over the ranks: a coarse row is on the inter-rank separator if S
+// couples it to a higher rank's row; each rank factors its other rows (a partial
+// factorisation leaving their Schur complement on the separator rows they touch),
+// and the reduced separator matrix is gathered to rank 0 and factored there (never
+// a distributed direct solve: Amesos2 is wrong on several ranks, see TRILINOS.md).
+// One rank: the Cholesky of S.  Indefinite S: S + t D_S with the smallest t in
+// {1e-10, ..., 1e10} (the same t on any number of ranks).  max_flops > 0: decline
+// (declined()) when the factorisations (the ranks' and rank 0's) would take more
 // floating-point operations (symbolic analysis only, once per structure).
 std::unique_ptr<CoarseSolver> make_direct_coarse_solver(double max_flops = 0.0);
 // One MueLu V-cycle (smoothed aggregation, Chebyshev smoothing, rigid-body
@@ -105,6 +114,8 @@ public:
   std::string coarse_solver() const;
   // Factorisation flops of the direct coarse solve (also when it declined), else 0.
   double coarse_flops() const;
+  // Rows of the direct coarse solve's inter-rank separator (0 on one rank).
+  long long coarse_separator_rows() const;
   // The last setup was an exact block factorisation of H (no rod block nor the coarse
   // matrix shifted, the coarse solve direct): M = H, which proves H positive definite
   // (the inertia of H is that of the rod blocks plus that of the Schur complement).

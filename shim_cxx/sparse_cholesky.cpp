@@ -74,44 +74,56 @@ void SparseAnalysis::for_lower(int32_t j, F &&f) const {
   }
 }
 
-SparseAnalysis::SparseAnalysis(size_t n, const int64_t *rowptr, const int32_t *col)
-    : n_(n), rowptr_(rowptr), col_(col) {
+SparseAnalysis::SparseAnalysis(size_t n, const int64_t *rowptr, const int32_t *col,
+                               size_t nlast)
+    : n_(n), nlast_(nlast), rowptr_(rowptr), col_(col) {
   if (n > static_cast<size_t>(INT32_MAX) - 1) fail("too many rows");
+  if (nlast > n) fail("separator larger than the matrix");
   order();
   std::vector<int32_t> parent;
   elimination_tree(parent);
+  // The separator as if its block were dense (its Schur complement is): a chain.  The
+  // tree of the other columns does not depend on that block.
+  const size_t ni = n_ - nlast_;
+  for (size_t j = ni; j < n_; ++j)
+    parent[j] = j + 1 < n_ ? static_cast<int32_t>(j + 1) : -1;
   postorder(parent);
+  // Children come before a parent and in increasing order, so the chain stays last.
+  for (size_t j = ni; j < n_; ++j)
+    if (perm_[j] != static_cast<int32_t>(j)) fail("the separator moved in the postorder");
   std::vector<int64_t> cc;
   column_counts(parent, cc);
+  for (size_t j = ni; j < n_; ++j) cc[j] = static_cast<int64_t>(n_ - j);
   supernodes(parent, cc);
   row_structure(parent);
   storage_plan();
 }
 
-// METIS nested dissection of the graph of A (diagonal removed).
+// METIS nested dissection of the graph of A (diagonal removed) without the separator
+// (the last nlast_ rows), which follows in its order.  A graph with at least half of
+// all possible edges keeps its order (no ordering saves much fill there).
 void SparseAnalysis::order() {
   perm_.resize(n_);
   iperm_.resize(n_);
-  const int64_t nnz = rowptr_[n_];
-  if (nnz - static_cast<int64_t>(n_) > static_cast<int64_t>(INT32_MAX))
+  for (size_t i = 0; i < n_; ++i) perm_[i] = iperm_[i] = static_cast<int32_t>(i);
+  const size_t ni = n_ - nlast_;
+  const int64_t nnz = rowptr_[ni];
+  if (nnz - static_cast<int64_t>(ni) > static_cast<int64_t>(INT32_MAX))
     fail("too many entries for METIS's 32-bit indices");
-  if (n_ <= 2) { // nothing to order (and METIS needs a graph)
-    for (size_t i = 0; i < n_; ++i) perm_[i] = iperm_[i] = static_cast<int32_t>(i);
-    return;
-  }
-  std::vector<idx_t> xadj(n_ + 1), adj;
-  adj.reserve(static_cast<size_t>(nnz) - n_);
-  for (size_t i = 0; i < n_; ++i) {
+  if (ni <= 2) return; // nothing to order (and METIS needs a graph)
+  std::vector<idx_t> xadj(ni + 1), adj;
+  adj.reserve(static_cast<size_t>(nnz) - ni);
+  for (size_t i = 0; i < ni; ++i) {
     xadj[i] = static_cast<idx_t>(adj.size());
     for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-      if (static_cast<size_t>(col_[k]) != i) adj.push_back(col_[k]);
+      if (static_cast<size_t>(col_[k]) != i && static_cast<size_t>(col_[k]) < ni)
+        adj.push_back(col_[k]);
   }
-  xadj[n_] = static_cast<idx_t>(adj.size());
-  if (adj.empty()) { // diagonal matrix
-    for (size_t i = 0; i < n_; ++i) perm_[i] = iperm_[i] = static_cast<int32_t>(i);
-    return;
-  }
-  idx_t nv = static_cast<idx_t>(n_), options[METIS_NOPTIONS];
+  xadj[ni] = static_cast<idx_t>(adj.size());
+  const double dni = static_cast<double>(ni);
+  if (adj.empty() || static_cast<double>(adj.size()) >= 0.5 * dni * (dni - 1.0))
+    return; // diagonal or dense
+  idx_t nv = static_cast<idx_t>(ni), options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_SEED] = 7; // deterministic orderings
   options[METIS_OPTION_NUMBERING] = 0;
@@ -207,9 +219,11 @@ void SparseAnalysis::supernodes(const std::vector<int32_t> &parent,
   std::vector<int32_t> nchild(n_, 0), fstart;
   for (size_t j = 0; j < n_; ++j)
     if (parent[j] >= 0) nchild[static_cast<size_t>(parent[j])]++;
+  const size_t ni = n_ - nlast_; // the separator is one supernode, never merged
   for (size_t j = 0; j < n_; ++j) {
-    const bool joins = j > 0 && parent[j - 1] == static_cast<int32_t>(j) &&
-                       cc[j - 1] == cc[j] + 1 && nchild[j] == 1;
+    const bool joins =
+        j > ni || (j > 0 && j != ni && parent[j - 1] == static_cast<int32_t>(j) &&
+                   cc[j - 1] == cc[j] + 1 && nchild[j] == 1);
     if (!joins) fstart.push_back(static_cast<int32_t>(j));
   }
   fstart.push_back(static_cast<int32_t>(n_));
@@ -228,6 +242,7 @@ void SparseAnalysis::supernodes(const std::vector<int32_t> &parent,
   for (size_t s = nf - 1; s-- > 0;) {
     const size_t last = static_cast<size_t>(fstart[s + 1]) - 1;
     if (parent[last] != fstart[s + 1]) continue; // not the last child of s + 1
+    if (nlast_ > 0 && static_cast<size_t>(fstart[s + 1]) == ni) continue;
     const int64_t nc = ncols[s] + ncols[s + 1], nb = nbelow[s + 1],
                   nz = nnz[s] + nnz[s + 1];
     if (!relax_ok(nc, nb, nz)) continue;
@@ -306,7 +321,8 @@ void SparseAnalysis::storage_plan() {
     const size_t m = static_cast<size_t>(rows_ptr_[s + 1] - rows_ptr_[s]), mu = m - k;
     lx_ptr_[s + 1] = lx_ptr_[s] + m * k;
     const double kd = static_cast<double>(k), mud = static_cast<double>(mu);
-    flops_ += kd * kd * kd / 3.0 + mud * kd * kd + mud * mud * kd;
+    if (nlast_ == 0 || s + 1 < ns) // the separator's block is not factored
+      flops_ += kd * kd * kd / 3.0 + mud * kd * kd + mud * mud * kd;
     for (int32_t c = child_ptr_[s]; c < child_ptr_[s + 1]; ++c)
       top -= usize[static_cast<size_t>(child_[static_cast<size_t>(c)])];
     usize[s] = mu * mu;
@@ -399,6 +415,7 @@ bool SparseCholesky::factor(const double *vals, double shift, const double *m) {
     std::fill(W, W + mu * mu, 0.0);
     assemble(s, vals, shift, m, relpos, L);
     extend_add(s, relpos, L, W, top);
+    if (s >= factored_supernodes()) break; // the separator: its Schur complement
     const int ki = to_int(k), mi = to_int(mm), mui = to_int(mu);
     int info = 0;
     dpotrf_("L", &ki, L, &mi, &info, 1);
@@ -415,50 +432,70 @@ bool SparseCholesky::factor(const double *vals, double shift, const double *m) {
   return true;
 }
 
-namespace {
-
 // Supernode s of a factor in the solves: columns [c0, c0 + k), rows below them
 // rows[k .. mm), dense block L (leading dimension mm).
-struct SupernodeBlock {
+struct SparseCholesky::Block {
   size_t c0, k, mu;
   int ki, mi, mui;
   const int32_t *rows;
   const double *L;
 };
 
-} // namespace
+SparseCholesky::Block SparseCholesky::block(size_t s) const {
+  const SparseAnalysis &a = *a_;
+  Block b;
+  b.c0 = static_cast<size_t>(a.super_[s]);
+  b.k = static_cast<size_t>(a.super_[s + 1]) - b.c0;
+  const size_t mm = static_cast<size_t>(a.rows_ptr_[s + 1] - a.rows_ptr_[s]);
+  b.mu = mm - b.k;
+  b.ki = static_cast<int>(b.k);
+  b.mi = static_cast<int>(mm);
+  b.mui = static_cast<int>(b.mu);
+  b.rows = a.rows_.data() + a.rows_ptr_[s];
+  b.L = lx_.data() + a.lx_ptr_[s];
+  return b;
+}
 
-void SparseCholesky::solve(double *x) const {
+size_t SparseCholesky::factored_supernodes() const {
+  const size_t ns = a_->super_.size() - 1;
+  return a_->nlast_ > 0 ? ns - 1 : ns;
+}
+
+const double *SparseCholesky::schur() const {
+  if (!factored_ || a_->nlast_ == 0)
+    throw Error(RN_ERR_INTERNAL, "rn_solve: no Schur complement of a sparse factor");
+  return lx_.data() + a_->lx_ptr_[factored_supernodes()];
+}
+
+void SparseCholesky::forward(double *x) const {
   if (!factored_) throw Error(RN_ERR_INTERNAL, "rn_solve: sparse solve before factor");
   const SparseAnalysis &a = *a_;
-  const size_t n = a.n_, ns = a.super_.size() - 1;
-  auto block = [&](size_t s) {
-    SupernodeBlock b;
-    b.c0 = static_cast<size_t>(a.super_[s]);
-    b.k = static_cast<size_t>(a.super_[s + 1]) - b.c0;
-    const size_t mm = static_cast<size_t>(a.rows_ptr_[s + 1] - a.rows_ptr_[s]);
-    b.mu = mm - b.k;
-    b.ki = static_cast<int>(b.k);
-    b.mi = static_cast<int>(mm);
-    b.mui = static_cast<int>(b.mu);
-    b.rows = a.rows_.data() + a.rows_ptr_[s];
-    b.L = lx_.data() + a.lx_ptr_[s];
-    return b;
-  };
+  const size_t n = a.n_, ns = factored_supernodes();
   std::vector<double> y(n), t(a.max_front_);
   for (size_t i = 0; i < n; ++i) y[i] = x[a.perm_[i]];
   const int inc = 1;
-  const double one = 1.0, minus_one = -1.0, zero = 0.0;
+  const double one = 1.0, zero = 0.0;
   for (size_t s = 0; s < ns; ++s) { // L y = P b
-    const SupernodeBlock b = block(s);
+    const Block b = block(s);
     dtrsv_("L", "N", "N", &b.ki, b.L, &b.mi, y.data() + b.c0, &inc, 1, 1, 1);
     if (b.mu == 0) continue;
     dgemv_("N", &b.mui, &b.ki, &one, b.L + b.k, &b.mi, y.data() + b.c0, &inc, &zero,
            t.data(), &inc, 1);
     for (size_t i = 0; i < b.mu; ++i) y[static_cast<size_t>(b.rows[b.k + i])] -= t[i];
   }
+  for (size_t i = 0; i < n; ++i) x[a.perm_[i]] = y[i];
+}
+
+void SparseCholesky::backward(double *x) const {
+  if (!factored_) throw Error(RN_ERR_INTERNAL, "rn_solve: sparse solve before factor");
+  const SparseAnalysis &a = *a_;
+  const size_t n = a.n_, ns = factored_supernodes();
+  std::vector<double> y(n), t(a.max_front_);
+  for (size_t i = 0; i < n; ++i) y[i] = x[a.perm_[i]];
+  const int inc = 1;
+  const double one = 1.0, minus_one = -1.0;
   for (size_t s = ns; s-- > 0;) { // L' z = y
-    const SupernodeBlock b = block(s);
+    const Block b = block(s);
     if (b.mu > 0) {
       for (size_t i = 0; i < b.mu; ++i) t[i] = y[static_cast<size_t>(b.rows[b.k + i])];
       dgemv_("T", &b.mui, &b.ki, &minus_one, b.L + b.k, &b.mi, t.data(), &inc, &one,
@@ -467,6 +504,13 @@ void SparseCholesky::solve(double *x) const {
     dtrsv_("L", "T", "N", &b.ki, b.L, &b.mi, y.data() + b.c0, &inc, 1, 1, 1);
   }
   for (size_t i = 0; i < n; ++i) x[a.perm_[i]] = y[i];
+}
+
+void SparseCholesky::solve(double *x) const {
+  if (a_->nlast_ > 0)
+    throw Error(RN_ERR_INTERNAL, "rn_solve: full solve with a partial sparse factor");
+  forward(x);
+  backward(x);
 }
 
 } // namespace rodnet

@@ -5,7 +5,9 @@
 //    Hessian, M^-1 b equals the sparse Cholesky solution of H x = b to 1e-9
 //    relative (backward error of M^-1 b below 1e-12), no shift is applied and
 //    preconditioned MINRES converges in at most 2 iterations, on a honeycomb with
-//    rigid joints, one with elastic joints, a single rod and an octet block;
+//    rigid joints, one with elastic joints, a single rod and an octet block (on
+//    several ranks through the substructured coarse solve: an inter-rank separator
+//    that is not empty, and in the indefinite cases below the shifted coarse matrix);
 //  - M is SPD in every case: symmetry u'M^-1 v = v'M^-1 u to 1e-12 and positivity
 //    v'M^-1 v > 0 on random vectors, also for the indefinite H - D/2 (shifted rod
 //    blocks and coarse matrix; MINRES still converges) and with the AMG coarse
@@ -241,6 +243,14 @@ void check_exact(rn_network *net, const Teuchos::RCP<const Comm> &comm,
                 dd.rods_shifted(), dd.coarse_shift());
   CHECK(dd.rods_shifted() == 0);
   CHECK(dd.coarse_shift() == 0.0);
+  // On several ranks the direct coarse solve is substructured: an inter-rank separator
+  // (the path these checks cover there); none on one rank.
+  if (g_rank == 0)
+    std::printf("  coarse separator rows %lld\n", dd.coarse_separator_rows());
+  if (comm->getSize() > 1 && dd.coarse_rows() > 0)
+    CHECK(dd.coarse_separator_rows() > 0);
+  else
+    CHECK(dd.coarse_separator_rows() == 0);
   auto Minv = dd.inverse();
   for (int pass = 0; pass < 2; ++pass) {
     const double c = pass == 0 ? 0.0 : -1.0;
