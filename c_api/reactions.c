@@ -326,37 +326,18 @@ rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
   return RN_OK;
 }
 
-rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
-                                         double *moment) {
-  static const char *where = "rn_network_rod_internal_forces";
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_final(net, where))) return st;
-  if (rod < 0 || rod >= net->nrods)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d out of range (%d rods)", rod,
-                   net->nrods);
-  if (!force || !moment) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+/* Internal forces of rod `rod` from the reduced state x; g: full-layout scratch,
+ * zero on entry over the rod's DOFs and left zero there. */
+static rn_status rod_internal(const rn_network *net, int rod, const double *x, double *g,
+                              double *force, double *moment, const char *where) {
   const rn_rod *r = &net->rods[rod];
-  double *x = malloc((net->nred + 1) * sizeof(double));
-  double *g = calloc(net->nfull + 1, sizeof(double));
-  if (!x || !g) {
-    free(x);
-    free(g);
-    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  }
-  rn_network_get_dofs(net, x);
-  st = rn_eval_rod_gradient_full(net, rod, x, g, where);
-  free(x);
-  if (st) {
-    free(g);
-    return st;
-  }
+  rn_status st = rn_eval_rod_gradient_full(net, rod, x, g, where);
   /* F and the moment about the origin of the part before the cut, then moved
    * to the edge midpoint: M_c = M_0 - c x F (moments of the left part's
    * stencil forces, negated: what the right part exerts on it). */
   double F[3] = {0, 0, 0}, M0[3] = {0, 0, 0}, T[3] = {0, 0, 0};
   const double *xf = net->xfull;
-  for (int j = 0; j < r->ne; ++j) {
+  for (int j = 0; !st && j < r->ne; ++j) {
     const double *gv = &g[rn_dof_vertex(r->off, j)];
     const double *a = &xf[rn_dof_vertex(r->off, j)],
                  *b = &xf[rn_dof_vertex(r->off, j + 1)];
@@ -374,6 +355,60 @@ rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double 
     memcpy(&force[3 * j], F, sizeof F);
     memcpy(&moment[3 * j], Mc, sizeof Mc);
   }
-  free(g);
+  /* the rod's stencils wrote its vertices and angles only (and, in a periodic
+   * cell, strain entries, which are not read here) */
+  for (int v = 0; v < r->nv; ++v) memset(&g[rn_dof_vertex(r->off, v)], 0, 3 * sizeof *g);
+  for (int j = 0; j < r->ne; ++j) g[rn_dof_theta(r->off, j)] = 0.0;
+  return st;
+}
+
+/* x: the reduced state; g: a zeroed full-layout vector (both allocated here). */
+static rn_status internal_scratch(const rn_network *net, double **x, double **g,
+                                  const char *where) {
+  *x = malloc((net->nred + 1) * sizeof(double));
+  *g = calloc(net->nfull + 1, sizeof(double));
+  if (!*x || !*g) {
+    free(*x);
+    free(*g);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  rn_network_get_dofs(net, *x);
   return RN_OK;
+}
+
+rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
+                                         double *moment) {
+  static const char *where = "rn_network_rod_internal_forces";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (rod < 0 || rod >= net->nrods)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where, "rod %d out of range (%d rods)", rod,
+                   net->nrods);
+  if (!force || !moment) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+  double *x, *g;
+  if ((st = internal_scratch(net, &x, &g, where))) return st;
+  st = rod_internal(net, rod, x, g, force, moment, where);
+  free(x);
+  free(g);
+  return st;
+}
+
+rn_status rn_network_internal_forces(const rn_network *net, double *force,
+                                     double *moment) {
+  static const char *where = "rn_network_internal_forces";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!force || !moment) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+  double *x, *g;
+  if ((st = internal_scratch(net, &x, &g, where))) return st;
+  size_t e = 0;
+  for (int ir = 0; !st && ir < net->nrods; ++ir) {
+    st = rod_internal(net, ir, x, g, force + 3 * e, moment + 3 * e, where);
+    e += (size_t)net->rods[ir].ne;
+  }
+  free(x);
+  free(g);
+  return st;
 }

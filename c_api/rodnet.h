@@ -659,6 +659,12 @@ rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
  * point.  RN_ERR_RANGE, RN_ERR_ARG, RN_DEGENERATE, RN_ERR_ALLOC. */
 rn_status rn_network_rod_internal_forces(const rn_network *net, int rod, double *force,
                                          double *moment);
+/* The same for every rod at once: force and moment [3 * total edges], the rods'
+ * edges in rod order.  One evaluation of the network's state; the per-rod call
+ * costs a copy of the whole state each time, so loops over rods use this one.
+ * RN_ERR_ARG, RN_DEGENERATE, RN_ERR_ALLOC. */
+rn_status rn_network_internal_forces(const rn_network *net, double *force,
+                                     double *moment);
 
 /* The rigid-body motions that no constraint blocks at the current state, and
  * the applied loads on them (c_api/supports.c). */

@@ -30,6 +30,8 @@ typedef struct vtk_out {
                            energy, as rn_network_rod_vertex_fields returns them */
   double *kt;           /* blocks of 3 per rod: curvature (kappa1, kappa2), twist (tau) */
   double *fr;           /* per edge, in blocks of 6 (edge count) per rod: d1, then d2 */
+  double *fi, *mi;      /* per edge (3 each, edges in rod order): internal force and
+                           moment, rn_network_internal_forces */
   char *buf;            /* output not yet handed to f: len bytes of OUT_CAP */
   size_t len;
 } vtk_out;
@@ -51,7 +53,7 @@ static const double *rod_frames(const vtk_out *o, int rod) {
 }
 
 /* Fills the caches: one rn_network_rod_vertex_fields and one rn_network_rod_strains
- * call per rod. */
+ * call per rod, one rn_network_internal_forces call. */
 static rn_status cache_stencil_fields(vtk_out *o) {
   const int nrods = rn_network_num_rods(o->net);
   size_t total = 0;
@@ -65,8 +67,10 @@ static rn_status cache_stencil_fields(vtk_out *o) {
   o->vf = malloc((5 * total + 1) * sizeof *o->vf);
   o->kt = malloc((3 * total + 1) * sizeof *o->kt);
   o->fr = malloc((6 * (total + (size_t)nrods) + 1) * sizeof *o->fr);
-  if (!o->vf || !o->kt || !o->fr) return RN_ERR_ALLOC;
-  rn_status st = RN_OK;
+  o->fi = malloc((3 * (total + (size_t)nrods) + 1) * sizeof *o->fi);
+  o->mi = malloc((3 * (total + (size_t)nrods) + 1) * sizeof *o->mi);
+  if (!o->vf || !o->kt || !o->fr || !o->fi || !o->mi) return RN_ERR_ALLOC;
+  rn_status st = rn_network_internal_forces(o->net, o->fi, o->mi);
   for (int r = 0; r < nrods && !st; r++) {
     const size_t n = o->first[r + 1] - o->first[r];
     double *v = o->vf + 5 * o->first[r], *k = o->kt + 3 * o->first[r];
@@ -238,13 +242,19 @@ static rn_status fill_axial_force(vtk_out *o, int rod, double *val) {
 
 /* rn_network_rod_internal_forces: the force and the moment (about the edge
  * midpoint) that the rest of the rod after the edge's midpoint exerts on the
- * part before it. */
+ * part before it (cached for all rods). */
 static rn_status fill_internal_force(vtk_out *o, int rod, double *val) {
-  return rn_network_rod_internal_forces(o->net, rod, val, o->work[0]);
+  const size_t e = o->first[rod] + (size_t)rod,
+               ne = o->first[rod + 1] + 1 - o->first[rod];
+  memcpy(val, o->fi + 3 * e, 3 * ne * sizeof *val);
+  return RN_OK;
 }
 
 static rn_status fill_internal_moment(vtk_out *o, int rod, double *val) {
-  return rn_network_rod_internal_forces(o->net, rod, o->work[0], val);
+  const size_t e = o->first[rod] + (size_t)rod,
+               ne = o->first[rod + 1] + 1 - o->first[rod];
+  memcpy(val, o->mi + 3 * e, 3 * ne * sizeof *val);
+  return RN_OK;
 }
 
 static rn_status fill_rest_length(vtk_out *o, int rod, double *val) {
@@ -499,6 +509,8 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
   free(o->vf);
   free(o->kt);
   free(o->fr);
+  free(o->fi);
+  free(o->mi);
   if (st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", rn_context_last_error(ctx));
