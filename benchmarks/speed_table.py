@@ -2,10 +2,13 @@
 """speed_table.py - assemble issue 8's table from the CSVs of speed_table.sh.
 
     python3 benchmarks/speed_table.py --dir TMP --commit C --out speed_table.csv
+    python3 benchmarks/speed_table.py --plot speed_table.csv    # the PNG only
 
 Reads TMP/{kernels,cantilever,arch4,arch8,startup,io}.csv and TMP/hc20-*.json (RESULT.json
 of `rodnet solve`), writes one CSV row per measurement (the common benchmark
-columns plus unit and target) and prints the table as Markdown on stdout."""
+columns plus unit and target), prints the table as Markdown on stdout and draws
+speed_table.png beside the CSV: each row's median over its target (log scale; below
+1 is met)."""
 import argparse
 import csv
 import glob
@@ -21,12 +24,42 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+def plot(csv_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rs = [r for r in rows(csv_path) if r["target"].replace(".", "", 1).isdigit()]
+    labels = ["%s (%s)" % (r["what"], r["size"]) for r in rs]
+    ratio = [float(r["median"]) / float(r["target"]) for r in rs]
+    fig, ax = plt.subplots(figsize=(9, 0.35 * len(rs) + 1.2))
+    ax.barh(range(len(rs)), ratio, color=["tab:green" if q <= 1 else "tab:red"
+                                          for q in ratio])
+    ax.axvline(1.0, color="k", lw=1)
+    ax.set_xscale("log")
+    ax.set_yticks(range(len(rs)))
+    ax.set_yticklabels(labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("median / target (below 1: met)")
+    c = rs[0]["commit"] if rs else ""
+    ax.set_title("issue 8's table, one run (commit %s)" % c, fontsize=9)
+    fig.tight_layout()
+    png = os.path.splitext(csv_path)[0] + ".png"
+    fig.savefig(png + ".tmp.png", dpi=110)
+    os.replace(png + ".tmp.png", png)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--dir", required=True)
+    ap.add_argument("--dir")
     ap.add_argument("--commit", default="")
-    ap.add_argument("--out", required=True)
+    ap.add_argument("--out")
+    ap.add_argument("--plot", help="draw the PNG of an existing speed_table.csv")
     a = ap.parse_args()
+    if a.plot:
+        plot(a.plot)
+        return
+    if not a.dir or not a.out:
+        ap.error("--dir and --out are required (or --plot CSV)")
     out = []  # (label, case, size, repeats, median, min, unit, target, meta)
 
     def add(label, case, size, reps, med, mn, unit, target, meta):
@@ -87,6 +120,7 @@ def main():
                         r.get("flags", ""), 1, "speed_table", case, size, reps,
                         "%.6g" % med, "%.6g" % mn, unit, tgt, lab])
     os.replace(a.out + ".tmp", a.out)
+    plot(a.out)
     print("| measurement | size | median | min | target |")
     print("|---|---|---|---|---|")
     for lab, case, size, reps, med, mn, unit, tgt, r in out:
