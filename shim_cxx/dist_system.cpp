@@ -403,21 +403,6 @@ void DistSystem::build_blocks() const {
 
 namespace rodnet {
 
-namespace {
-
-double norm3(const double v[3]) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
-// A fixed pseudo-random sign per DOF (as equilibrium.cpp: by global id here).
-double sign_of(GO i) {
-  uint64_t h = (static_cast<uint64_t>(i) + 1) * 0x9E3779B97F4A7C15ull;
-  h ^= h >> 31;
-  return (h & 1) ? 1.0 : -1.0;
-}
-
-} // namespace
-
 // The largest support reaction force and moment: each part's partial reactions (its
 // owned stencils) of the supports it holds, gathered and summed by support.
 void DistSystem::reaction_scales(double *f0, double *m0) {
@@ -465,8 +450,8 @@ void DistSystem::reaction_scales(double *f0, double *m0) {
         f[k] += all[9 * order[j] + 3 + static_cast<size_t>(k)];
         m[k] += all[9 * order[j] + 6 + static_cast<size_t>(k)];
       }
-    *f0 = std::max(*f0, norm3(f));
-    *m0 = std::max(*m0, norm3(m));
+    *f0 = std::max(*f0, eq_norm3(f));
+    *m0 = std::max(*m0, eq_norm3(m));
     i = j;
   }
 }
@@ -533,7 +518,8 @@ EquilibriumView DistSystem::equilibrium(const TMV &x, const TMV &g) {
   {
     auto dd = delta.getDataNonConst(0);
     for (size_t i = 0; i < n_owned_; ++i)
-      dd[static_cast<LO>(i)] = sign_of(owned_->getGlobalElement(static_cast<LO>(i))) *
+      dd[static_cast<LO>(i)] = eq_sign_of(static_cast<uint64_t>(
+                                   owned_->getGlobalElement(static_cast<LO>(i)))) *
                                DBL_EPSILON * (kind_[i] == RN_DOF_POSITION ? xmax : 1.0);
   }
   TMV dov(overlap_, 1);

@@ -9,21 +9,6 @@
 
 namespace rodnet {
 
-namespace {
-
-double norm3(const double v[3]) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
-// A fixed pseudo-random sign per DOF (rounding errors are not correlated).
-double sign_of(size_t i) {
-  uint64_t h = (static_cast<uint64_t>(i) + 1) * 0x9E3779B97F4A7C15ull;
-  h ^= h >> 31;
-  return (h & 1) ? 1.0 : -1.0;
-}
-
-} // namespace
-
 Equilibrium::Equilibrium(Problem &p) : p_(p) {
   rn_network *net = p.network();
   const size_t n = p.size();
@@ -81,8 +66,8 @@ EquilibriumView Equilibrium::measure(const double *x, const double *g) {
                                         static_cast<int>(reactions_.size())),
                    "rn_network_reactions") == RN_OK) {
     for (const rn_reaction &r : reactions_) {
-      freac = std::max(freac, norm3(r.force));
-      mreac = std::max(mreac, norm3(r.moment));
+      freac = std::max(freac, eq_norm3(r.force));
+      mreac = std::max(mreac, eq_norm3(r.moment));
     }
   }
   // Forces and moments convert over the size L of the structure: a force F makes
@@ -93,7 +78,7 @@ EquilibriumView Equilibrium::measure(const double *x, const double *g) {
   // Round-off floor: the rounding error of the DOFs propagated by the Hessian, plus
   // the rounding error of the sum of the stencils' forces at each DOF.
   for (size_t i = 0; i < n; ++i)
-    delta_[i] = sign_of(i) * DBL_EPSILON * (kind_[i] == RN_DOF_POSITION ? xmax : 1.0);
+    delta_[i] = eq_sign_of(i) * DBL_EPSILON * (kind_[i] == RN_DOF_POSITION ? xmax : 1.0);
   if (n) {
     p_.hvp(x, delta_.data(), hdelta_.data());
     check_status(rn_network_gradient_magnitude(net, x, gabs_.data()),

@@ -24,11 +24,26 @@
 #ifndef RODNET_SHIM_EQUILIBRIUM_HPP
 #define RODNET_SHIM_EQUILIBRIUM_HPP
 
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "problem.hpp"
 
 namespace rodnet {
+
+// |v| of a 3-vector.
+inline double eq_norm3(const double v[3]) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+// A fixed pseudo-random sign per DOF, by its index (serial) or global id
+// (distributed): the probes' rounding errors are not correlated.
+inline double eq_sign_of(uint64_t i) {
+  uint64_t h = (i + 1) * 0x9E3779B97F4A7C15ull;
+  h ^= h >> 31;
+  return (h & 1) ? 1.0 : -1.0;
+}
 
 struct EquilibriumView {
   bool valid = false; // measured (false: the solver did not provide it)
