@@ -2,7 +2,8 @@
 # CMakeLists.txt after all targets exist).
 #
 # Installs: the shared library librodnet, the public headers rodnet.h and
-# rodnet_solve.h, the `rodnet` command, the example scenes (share/rodnet/scenes),
+# rodnet_solve.h, the scene library librodnet_scene and rodnet_scene.h (with the
+# solver), the `rodnet` command, the example scenes (share/rodnet/scenes),
 # a CMake package (find_package(rodnet) -> target rodnet::rodnet) and a pkg-config
 # file (rodnet.pc).  Trilinos, MPI, METIS and LAPACK are PRIVATE dependencies of the
 # shared library: a consumer needs none of them to compile or link against rodnet.
@@ -21,6 +22,14 @@ install(TARGETS rodnet EXPORT rodnetTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/c_api/rodnet.h ${PROJECT_SOURCE_DIR}/c_api/rodnet_solve.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The scene reader and result writers (rodnet_scene.h), with the solver only.
+if(TARGET rodnet_scene)
+  install(TARGETS rodnet_scene EXPORT rodnetTargets
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(FILES ${PROJECT_SOURCE_DIR}/problems/rodnet_scene.h
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 
 if(TARGET rodnet_cli)
   set_target_properties(rodnet_cli PROPERTIES INSTALL_RPATH "${RN_INSTALL_RPATH}")
@@ -56,3 +65,9 @@ endif()
 configure_file(${CMAKE_CURRENT_LIST_DIR}/rodnet.pc.in ${PROJECT_BINARY_DIR}/rodnet.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/rodnet.pc
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+if(TARGET rodnet_scene)
+  configure_file(${CMAKE_CURRENT_LIST_DIR}/rodnet-scene.pc.in
+                 ${PROJECT_BINARY_DIR}/rodnet-scene.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/rodnet-scene.pc
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endif()

@@ -275,42 +275,6 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   return 0;
 }
 
-static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
-                      rn_result_info *in) {
-  memset(in, 0, sizeof *in);
-  in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
-  in->solver = rn_solver_name(opt->solver);
-  in->factorization = rn_factorization_name(rep->factorization);
-  if (opt->solver == RN_SOLVER_TR_KRYLOV || opt->solver == RN_SOLVER_NOX)
-    in->preconditioner = rn_preconditioner_name(rep->preconditioner);
-  in->finds =
-      opt->solver == RN_SOLVER_NOX ? "stationary point"
-      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON)
-          ? "stationary point, energy decreasing"
-          : "local minimum";
-  in->stop = rn_solve_stop_name(rep->stop);
-  in->converged = rep->converged;
-  in->iterations = rep->iterations;
-  in->load_steps = rep->load_steps;
-  in->predictor_steps = rep->predictor_steps;
-  in->energy_evals = rep->energy_evals;
-  in->gradient_evals = rep->gradient_evals;
-  in->hvp_evals = rep->hvp_evals;
-  in->hessian_evals = rep->hessian_evals;
-  in->krylov_iterations = rep->krylov_iterations;
-  in->factorizations = rep->factorizations;
-  in->energy = rep->energy;
-  in->gradient_norm = rep->gradient_norm;
-  in->initial_gradient_norm = rep->initial_gradient_norm;
-  in->time_s = rep->time_s;
-  in->force_residual = rep->force_residual;
-  in->force_scale = rep->force_scale;
-  in->force_tolerance = rep->force_tolerance;
-  in->moment_residual = rep->moment_residual;
-  in->moment_scale = rep->moment_scale;
-  in->moment_tolerance = rep->moment_tolerance;
-}
-
 /* The partition block of one rank: everything owned by it. */
 typedef struct part_block {
   long dofs1, stencils1; /* one rank */
@@ -400,7 +364,7 @@ static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
   }
   rn_result_info in;
   part_block pb;
-  fill_info(&rep, &opt, &in);
+  rn_result_info_fill(&rep, &opt, &in);
   fill_serial_partition(rn_scene_network(scene), &pb, &in);
   if ((rc = write_outputs(ctx, a, scene, &in))) return rc;
   print_summary(a, scene, &in);
@@ -554,7 +518,7 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   rn_status st = rn_solve(rn_scene_network(d->part), &opt, &rep);
   if (agree(d, st, "rodnet solve: solver failed: ")) return RN_EXIT_INTERNAL;
   rn_result_info in;
-  fill_info(&rep, &opt, &in);
+  rn_result_info_fill(&rep, &opt, &in);
   if ((rc = gather_and_write(d, a, &in))) return rc;
   return rep.converged ? RN_EXIT_OK : RN_EXIT_NOT_CONVERGED;
 }

@@ -33,6 +33,11 @@ typedef struct rn_result_info {
   long factorizations; /* numeric Cholesky factorisations (rn_solve_report) */
 } rn_result_info;
 
+/* The summary fields of *in from the report and the options of an rn_solve call
+ * (everything but the partition block, part_ranks = 0); with the solver only. */
+void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt,
+                         rn_result_info *in);
+
 /* Write the result JSON for the scene's current state: the summary of info
  * (with "partition": {"ranks", "owned_dofs", "owned_stencils", "edge_cut",
  * "imbalance"} when info->part_ranks > 0),

@@ -28,6 +28,19 @@ add_test(NAME install_consumer
           ${PROJECT_SOURCE_DIR} ${CMAKE_C_COMPILER} ${RN_HAVE_CLI})
 set_tests_properties(install_consumer PROPERTIES LABELS "unit" TIMEOUT 300)
 
+# (b') the shared libraries export their C API only: librodnet rn_* names
+# (cmake/librodnet.map);
+# librodnet_scene exports exactly the functions of rodnet_scene.h.
+add_test(NAME exported_symbols
+  COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_exports.sh ${CMAKE_NM} $<TARGET_FILE:rodnet>)
+set_tests_properties(exported_symbols PROPERTIES LABELS "unit" TIMEOUT 60)
+if(TARGET rodnet_scene)
+  add_test(NAME exported_symbols_scene
+    COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_exports.sh ${CMAKE_NM}
+            $<TARGET_FILE:rodnet_scene> ${PROJECT_SOURCE_DIR}/problems/rodnet_scene.h)
+  set_tests_properties(exported_symbols_scene PROPERTIES LABELS "unit" TIMEOUT 60)
+endif()
+
 # (c) every C/C++ source follows .clang-format.
 find_program(RN_CLANG_FORMAT NAMES clang-format clang-format-14)
 if(RN_CLANG_FORMAT)

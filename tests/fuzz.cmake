@@ -52,7 +52,7 @@ set(RN_FUZZ_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=all
     -fno-omit-frame-pointer)
 rn_fuzz_target_sources(rodnet_kernels kernel_srcs)
 rn_fuzz_target_sources(rodnet_core core_srcs)
-rn_fuzz_target_sources(rodnet_problems problems_srcs)
+rn_fuzz_target_sources(rodnet_problems_obj problems_srcs)
 
 # The code under test, with coverage instrumentation for libFuzzer.
 add_library(rn_fuzz_lib STATIC ${kernel_srcs} ${core_srcs} ${problems_srcs})

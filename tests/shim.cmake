@@ -30,11 +30,11 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 # The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests
 # an internal class of the shim through the shared library).
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
-            LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
+            LIBS rodnet_internal ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
 # The rod-level domain-decomposition preconditioner (C++: internal classes of the shim
 # through the shared library), on one rank and under mpirun on two.
-rn_add_test(shim_dd SOURCES unit/shim_dd.cpp LIBS rodnet rodnet_problems rodnet_shim_deps
+rn_add_test(shim_dd SOURCES unit/shim_dd.cpp LIBS rodnet_problems_internal rodnet_shim_deps
             LABELS unit)
 target_include_directories(shim_dd PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
                                            ${PROJECT_SOURCE_DIR}/problems)
@@ -86,7 +86,7 @@ rn_add_test(shim_translation SOURCES unit/shim_translation.c LIBS rodnet m LABEL
 # SerialSystem (Tpetra CrsMatrix Hessian, blocks, snapshots) and the factor
 # preconditioner, through the shim's internal classes (C++, Trilinos headers).
 rn_add_test(shim_system SOURCES unit/shim_system.cpp unit/shim_system_nets.c
-            LIBS rodnet rodnet_shim_deps m LABELS unit)
+            LIBS rodnet_internal rodnet_shim_deps m LABELS unit)
 target_include_directories(shim_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
                                                ${PROJECT_SOURCE_DIR}/tests/unit)
 target_include_directories(shim_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
@@ -104,7 +104,7 @@ target_include_directories(mpi_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
                                               ${PROJECT_SOURCE_DIR}/c_api)
 target_include_directories(mpi_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
                                                      ${Trilinos_TPL_INCLUDE_DIRS})
-target_link_libraries(mpi_system PRIVATE rodnet rodnet_shim_deps)
+target_link_libraries(mpi_system PRIVATE rodnet_internal rodnet_shim_deps)
 target_compile_options(mpi_system PRIVATE -O2)
 if(MPIEXEC_EXECUTABLE)
   foreach(np 1 2 3)

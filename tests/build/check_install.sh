@@ -31,7 +31,7 @@ done
 ls "$prefix"/share/rodnet/scenes/*.json >/dev/null 2>&1 || fail "no scenes in share/rodnet/scenes"
 # The exported package must not drag Trilinos/MPI into consumers.
 if grep -Eiq 'trilinos|\bmpi|metis|lapack' "$libdir/cmake/rodnet/rodnetTargets.cmake" \
-     "$libdir/pkgconfig/rodnet.pc"; then
+     "$libdir"/pkgconfig/rodnet*.pc; then
   fail "the installed package names Trilinos/MPI/METIS/LAPACK (they must stay private)"
 fi
 if [ "$have_cli" = 1 ]; then
@@ -48,6 +48,14 @@ cmake -S "$src/tests/build/consumer" -B "$work/consumer-cmake" \
 cmake --build "$work/consumer-cmake" >"$work/build.log" 2>&1 ||
   { cat "$work/build.log" >&2; fail "build the consumer with find_package"; }
 "$work/consumer-cmake/consumer" || fail "run the find_package consumer"
+# The scene library: a shipped scene read, solved and written by an outside program.
+scene=$prefix/share/rodnet/scenes/cantilever.json
+if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
+  [ -f "$prefix/include/rodnet_scene.h" ] || fail "include/rodnet_scene.h not installed"
+  [ -x "$work/consumer-cmake/consumer_scene" ] || fail "consumer_scene not built by find_package"
+  "$work/consumer-cmake/consumer_scene" "$scene" "$work/out-cmake" ||
+    fail "run the find_package scene consumer"
+fi
 
 echo "check_install: consumer via pkg-config"
 export PKG_CONFIG_PATH=$libdir/pkgconfig
@@ -58,4 +66,13 @@ echo "check_install: pkg-config --cflags --libs rodnet = $flags"
   -o "$work/consumer-pc" $flags -lm -Wl,-rpath,"$libdir" ||
   fail "build the consumer with pkg-config"
 "$work/consumer-pc" || fail "run the pkg-config consumer"
+if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
+  flags=$(pkg-config --cflags --libs rodnet-scene) || fail "pkg-config rodnet-scene"
+  echo "check_install: pkg-config --cflags --libs rodnet-scene = $flags"
+  # shellcheck disable=SC2086
+  "$cc" -std=c11 -Wall -Wextra -Wpedantic -Werror "$src/tests/build/consumer/scene.c" \
+    -o "$work/consumer-scene-pc" $flags -Wl,-rpath,"$libdir" ||
+    fail "build the scene consumer with pkg-config"
+  "$work/consumer-scene-pc" "$scene" "$work/out-pc" || fail "run the pkg-config scene consumer"
+fi
 echo "check_install: ok"
