@@ -21,6 +21,7 @@ target_include_directories(fuzz_regressions PRIVATE ${RN_FUZZ_SRC})
 # corpus tests/data/obj/*.obj through the contract of fuzz/fuzz_obj.c; with
 # RN_FUZZ the libFuzzer target fuzz_obj and its ctest fuzz_obj_run (below).
 file(GLOB RN_FUZZ_OBJ_SEEDS ${CMAKE_CURRENT_SOURCE_DIR}/data/obj/*.obj
+     ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/obj/*
      ${PROJECT_SOURCE_DIR}/problems/scenes/*.obj)
 rn_add_test(fuzz_obj_replay SOURCES fuzz/fuzz_obj.c LIBS rodnet_problems LABELS unit
             ARGS ${RN_FUZZ_OBJ_SEEDS})
@@ -78,8 +79,12 @@ add_dependencies(fuzz_targets fuzz_scene fuzz_obj)
 
 set(RN_FUZZ_RUNS 20000 CACHE STRING "Executions of each fuzz target in its ctest")
 set(RN_FUZZ_MAX_TIME 150 CACHE STRING "Cap on the seconds of each fuzz ctest")
+# Seeds: the shipped scenes, the bad inputs, the regression inputs and the corpus
+# the long runs of scripts/fuzz.sh keep in tests/fuzz/corpus/ (docs/fuzzing.md).
+set(RN_FUZZ_CORPUS ${RN_FUZZ_SRC}/corpus)
 file(GLOB RN_FUZZ_SEEDS ${PROJECT_SOURCE_DIR}/problems/scenes/*.json
-     ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/*.json ${RN_FUZZ_REG}/*.json)
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/*.json ${RN_FUZZ_REG}/*.json
+     ${RN_FUZZ_CORPUS}/scene/*)
 string(REPLACE ";" "@@" seeds "${RN_FUZZ_SEEDS}")
 add_test(NAME fuzz_scene_run
          COMMAND ${CMAKE_COMMAND} -DFUZZER=$<TARGET_FILE:fuzz_scene>
@@ -88,6 +93,20 @@ add_test(NAME fuzz_scene_run
                  -DMAX_TIME=${RN_FUZZ_MAX_TIME} -P ${RN_FUZZ_SRC}/run_fuzz.cmake)
 math(EXPR rn_fuzz_timeout "${RN_FUZZ_MAX_TIME} + 120")
 set_tests_properties(fuzz_scene_run PROPERTIES LABELS fuzz TIMEOUT ${rn_fuzz_timeout})
+
+# Periodic cells: the scene target (its contract checks a cell's description,
+# strain, stress and relative density) on a corpus of periodic cells of every
+# kind `rodnet generate --periodic` writes.
+file(GLOB RN_FUZZ_PERIODIC_SEEDS ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/*.json
+     ${RN_FUZZ_CORPUS}/periodic/*)
+string(REPLACE ";" "@@" periodic_seeds "${RN_FUZZ_PERIODIC_SEEDS}")
+add_test(NAME fuzz_periodic_run
+         COMMAND ${CMAKE_COMMAND} -DFUZZER=$<TARGET_FILE:fuzz_scene>
+                 -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fuzz_periodic_work
+                 -DSEEDS=${periodic_seeds} -DDICT=${RN_FUZZ_SRC}/scene.dict
+                 -DRUNS=${RN_FUZZ_RUNS} -DMAX_TIME=${RN_FUZZ_MAX_TIME}
+                 -P ${RN_FUZZ_SRC}/run_fuzz.cmake)
+set_tests_properties(fuzz_periodic_run PROPERTIES LABELS fuzz TIMEOUT ${rn_fuzz_timeout})
 
 # The OBJ reader (fuzz/fuzz_obj.c) on the OBJ seed corpus.
 string(REPLACE ";" "@@" obj_seeds "${RN_FUZZ_OBJ_SEEDS}")

@@ -131,6 +131,41 @@ static void check_evaluations(checker *c, const double *x, size_t n, double *g,
   free(vals);
 }
 
+/* A periodic cell (docs/homogenization.md) at the state x[n]: its description
+ * is consistent (dimension 2 or 3, 3 or 6 strain components, a positive finite
+ * measure and finite vectors, strain DOF indices in range or -1), and the cell's
+ * strain, stress and relative density are finite or RN_DEGENERATE. */
+static void check_cell(checker *c, const double *x, size_t n) {
+  int dim = -1, ns = -1;
+  double measure = 0.0, vec[9], eps[6], sig[6], rho = 0.0;
+  int64_t idx[6];
+  if (rn_network_cell_info(c->net, &dim, &ns, &measure, vec) != RN_OK) {
+    violation(c, "rn_network_cell_info failed");
+    return;
+  }
+  if (dim == 0) return;
+  if (!((dim == 2 && ns == 3) || (dim == 3 && ns == 6))) {
+    violation(c, "a periodic cell of dimension %d with %d strain components", dim, ns);
+    return;
+  }
+  if (!(measure > 0.0) || !isfinite(measure))
+    violation(c, "a periodic cell of measure %g", measure);
+  check_values(c, "rn_network_cell_info (vectors)", RN_OK, vec, 9);
+  if (rn_network_cell_strain_dofs(c->net, idx) != RN_OK)
+    violation(c, "rn_network_cell_strain_dofs failed");
+  else
+    for (int v = 0; v < ns; ++v)
+      if (idx[v] < -1 || idx[v] >= (int64_t)n)
+        violation(c, "strain component %d has the DOF index %lld of %zu", v,
+                  (long long)idx[v], n);
+  check_values(c, "rn_network_cell_strain", rn_network_cell_strain(c->net, x, eps), eps,
+               (size_t)ns);
+  check_values(c, "rn_network_cell_stress", rn_network_cell_stress(c->net, x, sig), sig,
+               (size_t)ns);
+  check_values(c, "rn_network_cell_relative_density",
+               rn_network_cell_relative_density(c->net, &rho), &rho, 1);
+}
+
 static void check_network(checker *c) {
   size_t n = rn_network_num_dofs(c->net);
   int nrods = rn_network_num_rods(c->net), maxnv = 2;
@@ -145,6 +180,7 @@ static void check_network(checker *c) {
       violation(c, "rn_network_get_dofs failed");
     else if (check_values(c, "rn_network_get_dofs", RN_OK, x, n)) {
       check_evaluations(c, x, n, g, v);
+      check_cell(c, x, n);
       for (int r = 0; r < nrods; ++r) check_rod(c, r, buf);
       /* half the loads and prescribed motions */
       if (rn_network_set_load_factor(c->net, 0.5) != RN_OK)

@@ -10,7 +10,9 @@
  *    Hessian values, also at load factor 1/2) and every per-rod result
  *    (vertices, angles, frames, strains, rest lengths, stencil fields) either
  *    succeeds with finite values only or returns RN_DEGENERATE (> 0) with a
- *    message; never a negative status.
+ *    message; never a negative status; a periodic cell's description is
+ *    consistent and its strain, stress and relative density are finite or
+ *    RN_DEGENERATE.
  * Each broken rule is printed to stderr (with the input's label). */
 #ifndef RN_FUZZ_SCENE_CHECK_H
 #define RN_FUZZ_SCENE_CHECK_H
