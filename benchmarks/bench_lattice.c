@@ -225,7 +225,8 @@ static int bench_case(rn_context *ctx, const bench_opts *o, long cells, int mode
   /* Iteration counts are deterministic: those of the last repeat. */
   rn_bench_csv_begin(out, "lattice", case_name, (long)res.dofs, o->repeats, med, mn);
   fprintf(out,
-          ",%s,%ld,%s,%d,%s,%d,%d,%s,%s,%d,%ld,%.4f,%d,%ld,%d,%s,%.6e,%.10e,%s,%.1f\n",
+          ",%s,%ld,%s,%d,%s,%d,%d,%s,%s,%d,%ld,%.4f,%d,%ld,%d,%s,%.6e,%.10e,%s,%.1f,%.4e,"
+          "%.4e,%.4e\n",
           rn_lattice_kind_name(o->kind), cells, model_name(model), o->edges_per_rod,
           o->load_text, res.rods, res.joints, rn_solver_name(o->solver),
           rn_factorization_name(res.rep.factorization), res.rep.iterations,
@@ -233,7 +234,9 @@ static int bench_case(rn_context *ctx, const bench_opts *o, long cells, int mode
           res.log.steps ? (double)res.log.total / (double)res.log.steps : 0.0,
           res.log.max, res.rep.factorizations, res.rep.load_steps,
           rn_solve_stop_name(res.rep.stop), res.rep.gradient_norm, res.rep.energy,
-          rn_preconditioner_name(res.rep.preconditioner), peak_rss_mb());
+          rn_preconditioner_name(res.rep.preconditioner), peak_rss_mb(),
+          res.rep.hessian_seconds, res.rep.preconditioner_setup_seconds,
+          res.rep.preconditioner_apply_seconds);
   fflush(out);
   fprintf(stderr,
           "bench_lattice: %s %ld^%d cells %-7s %8zu DOFs  %9.3f s (min %.3f)  %d "
@@ -366,7 +369,8 @@ int main(int argc, char **argv) {
   rn_bench_csv_header(out, "lattice,cells,joint_model,edges_per_rod,load,rods,joints,"
                            "solver,factorization,newton_iterations,minres_iterations,"
                            "minres_per_newton,minres_max,factorizations,load_steps,"
-                           "stop,gradient_norm,energy,preconditioner,peak_rss_mb");
+                           "stop,gradient_norm,energy,preconditioner,peak_rss_mb,"
+                           "hessian_s,setup_s,apply_s");
   for (int k = 0; k < o.n_cells && !rc; ++k)
     for (int m = 0; m < o.n_models && !rc; ++m)
       rc = bench_case(ctx, &o, o.cells[k], o.models[m], path, out);

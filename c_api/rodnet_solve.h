@@ -172,6 +172,12 @@ typedef struct rn_solve_report {
   /* the preconditioner RN_SOLVER_TR_KRYLOV used (never AUTO once it ran);
    * RN_PRECOND_AUTO for the other kinds */
   rn_preconditioner preconditioner;
+  /* Where the time went (wall seconds, this process; under MPI rank 0's): Hessian
+   * assembly (every solver kind), and the setups and applications of the
+   * preconditioner of RN_SOLVER_TR_KRYLOV and RN_SOLVER_NOX, their load-step
+   * predictors included (0 for the other kinds, whose factorisations are not
+   * split out). */
+  double hessian_seconds, preconditioner_setup_seconds, preconditioner_apply_seconds;
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",

@@ -330,7 +330,10 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
          in->force_residual, in->force_scale, in->force_tolerance, in->moment_residual,
          in->moment_scale, in->moment_tolerance);
   print_partition(in);
-  printf("  time         %.3f s\n", in->time_s);
+  printf("  time         %.3f s (Hessian assembly %.3f s, preconditioner setup %.3f s, "
+         "apply %.3f s)\n",
+         in->time_s, in->hessian_s, in->preconditioner_setup_s,
+         in->preconditioner_apply_s);
   printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");
 }
 

@@ -165,6 +165,13 @@ static void put_summary(json_out *o, rn_network *net) {
           in->iterations, in->load_steps, in->predictor_steps);
   put_key_num(o, "load_factor", rn_network_load_factor(net));
   put_key_num(o, "time_s", in->time_s);
+  fputs("  \"timing\": {\"hessian_s\": ", f);
+  put_num(o, in->hessian_s);
+  fputs(", \"preconditioner_setup_s\": ", f);
+  put_num(o, in->preconditioner_setup_s);
+  fputs(", \"preconditioner_apply_s\": ", f);
+  put_num(o, in->preconditioner_apply_s);
+  fputs("},\n", f);
   fprintf(f,
           "  \"evaluations\": {\"energy\": %ld, \"gradient\": %ld, \"hvp\": %ld, "
           "\"hessian\": %ld, \"krylov_iterations\": %ld},\n",

@@ -31,6 +31,8 @@ typedef struct rn_result_info {
   long edge_cut;                         /* rod pairs sharing a joint, separated */
   double imbalance;                      /* max owned DOFs / mean owned DOFs */
   long factorizations; /* numeric Cholesky factorisations (rn_solve_report) */
+  /* the time split of rn_solve_report (seconds) */
+  double hessian_s, preconditioner_setup_s, preconditioner_apply_s;
 } rn_result_info;
 
 /* The summary fields of *in from the report and the options of an rn_solve call

@@ -35,6 +35,9 @@ void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt
   in->gradient_norm = rep->gradient_norm;
   in->initial_gradient_norm = rep->initial_gradient_norm;
   in->time_s = rep->time_s;
+  in->hessian_s = rep->hessian_seconds;
+  in->preconditioner_setup_s = rep->preconditioner_setup_seconds;
+  in->preconditioner_apply_s = rep->preconditioner_apply_seconds;
   in->force_residual = rep->force_residual;
   in->force_scale = rep->force_scale;
   in->force_tolerance = rep->force_tolerance;

@@ -63,6 +63,7 @@ bool predict_load_step(DistSystem &sys, const rn_solve_options &opt, double t_pr
     MinresSolver minres(map, opt.krylov_tol, opt.krylov_max_iterations);
     minres.solve(HessianOp(sys), InverseOp(*prec), r, s);
   }
+  sys.add_preconditioner_time(prec->stats().setup_seconds, prec->stats().apply_seconds);
   double E0 = 0.0, E1 = 0.0;
   xs.update(1.0, x, 1.0, s, 0.0);
   if (sys.energy(x, &E0) != RN_OK || sys.energy(xs, &E1) != RN_OK) return false;

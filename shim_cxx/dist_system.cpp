@@ -309,6 +309,12 @@ rn_status DistSystem::gradient(const TMV &x, double *E, TMV &g) {
 
 void DistSystem::assemble_hessian(const TMV &x) {
   ++counters.hessian;
+  const double t0 = steady_now();
+  struct Timer { // also when it throws
+    Counters &c;
+    double t0;
+    ~Timer() { c.hessian_seconds += seconds_since_steady(t0); }
+  } timer{counters, t0};
   import_state(x);
   rn_status st = RN_OK;
   try {

@@ -344,6 +344,13 @@ void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
 rn_preconditioner run_nox(System &sys, Monitor &mon, const rn_solve_options &opt) {
   rn_preconditioner used = RN_PRECOND_AUTO;
   const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
+  struct Account { // the preconditioner's time, also when the run throws
+    System &s;
+    const Preconditioner &p;
+    ~Account() {
+      s.add_preconditioner_time(p.stats().setup_seconds, p.stats().apply_seconds);
+    }
+  } account{sys, *prec};
   run_nox(sys, *prec, mon, opt);
   return used;
 }

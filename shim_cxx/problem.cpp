@@ -1,6 +1,8 @@
 // problem.cpp - evaluation wrapper of a finalized rn_network (see problem.hpp).
 #include "problem.hpp"
 
+#include <chrono>
+
 #include <algorithm>
 
 #include "cholmod_factor.hpp"
@@ -34,11 +36,21 @@ void Problem::hvp(const double *x, const double *v, double *Hv) {
     throw Error(RN_ERR_SOLVER, "rn_solve: Hessian-vector product at a degenerate state");
 }
 
+double steady_now() {
+  return std::chrono::duration<double>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double seconds_since_steady(double t0) { return steady_now() - t0; }
+
 void Problem::assemble_hessian(const double *x) {
   ++counters.hessian;
-  if (check_status(rn_network_hessian_values(net_, x, vals_.data()),
-                   "rn_network_hessian_values") != RN_OK)
-    throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
+  const double t0 = steady_now();
+  const rn_status st = check_status(rn_network_hessian_values(net_, x, vals_.data()),
+                                    "rn_network_hessian_values");
+  counters.hessian_seconds += seconds_since_steady(t0);
+  if (st != RN_OK) throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
 }
 
 void Problem::hessian_apply(const double *v, double *y, double shift, const double *m) {

@@ -23,7 +23,15 @@ class CholmodAnalysis;
 struct Counters {
   long energy = 0, gradient = 0, hvp = 0, hessian = 0, krylov = 0;
   long factorizations = 0; // numeric Cholesky factorisations (SpdFactor::factor)
+  // wall seconds in Hessian assembly, and in the setups and applications of the
+  // Newton-Krylov solvers' Preconditioner (tr-krylov, nox, their predictors)
+  double hessian_seconds = 0.0, setup_seconds = 0.0, apply_seconds = 0.0;
 };
+
+// Seconds since t0 on the steady clock.
+double seconds_since_steady(double t0);
+// The steady clock now, in seconds.
+double steady_now();
 
 class Problem {
 public:

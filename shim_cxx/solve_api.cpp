@@ -228,6 +228,9 @@ void fill_report(const Problem &p, const SolveTotals &tot, double g0, double sec
   rep->force_tolerance = tot.force_tol;
   rep->moment_tolerance = tot.moment_tol;
   rep->preconditioner = tot.preconditioner;
+  rep->hessian_seconds = c.hessian_seconds;
+  rep->preconditioner_setup_seconds = c.setup_seconds;
+  rep->preconditioner_apply_seconds = c.apply_seconds;
 }
 
 void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {

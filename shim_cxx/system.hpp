@@ -111,6 +111,14 @@ public:
 
   // Evaluation counts of this rank (energy, gradient, Hessian, HVP, Krylov).
   Counters counters;
+  // The counters rn_solve_report reads for this System: counters, or those of the
+  // Problem a SerialSystem wraps.
+  virtual Counters &report_counters() { return counters; }
+  // Adds a Preconditioner's setup and apply seconds to report_counters().
+  void add_preconditioner_time(double setup_seconds, double apply_seconds) {
+    report_counters().setup_seconds += setup_seconds;
+    report_counters().apply_seconds += apply_seconds;
+  }
 };
 
 } // namespace rodnet

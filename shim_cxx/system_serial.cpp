@@ -51,6 +51,8 @@ rn_status SerialSystem::gradient(const TMV &x, double *E, TMV &g) {
   return p_.gradient(host_data(x), E, host_data(g));
 }
 
+Counters &SerialSystem::report_counters() { return p_.counters; }
+
 void SerialSystem::assemble_hessian(const TMV &x) {
   p_.assemble_hessian(host_data(x));
   auto vals = H_->getLocalMatrixDevice().values; // Serial node: host memory

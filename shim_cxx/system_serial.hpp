@@ -21,6 +21,7 @@ public:
   SerialSystem &operator=(const SerialSystem &) = delete;
 
   Problem &problem() { return p_; }
+  Counters &report_counters() override;
 
   Teuchos::RCP<const TMap> map() const override { return map_; }
   void get_state(TMV &x) const override;

@@ -556,6 +556,13 @@ std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
 rn_preconditioner run_tr_krylov(System &sys, Monitor &mon, const rn_solve_options &opt) {
   rn_preconditioner used = RN_PRECOND_AUTO;
   const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
+  struct Account { // the preconditioner's time, also when the run throws
+    System &s;
+    const Preconditioner &p;
+    ~Account() {
+      s.add_preconditioner_time(p.stats().setup_seconds, p.stats().apply_seconds);
+    }
+  } account{sys, *prec};
   TrustRegionKrylov(sys, *prec, mon, opt).run();
   return used;
 }
@@ -582,6 +589,8 @@ bool predict_step_krylov(Problem &p, const rn_solve_options &opt, double t_prev,
         const MinresResult r = minres.solve(OperatorAdapter(*sys.hessian()),
                                             OperatorAdapter(*prec->inverse()), b, sv);
         q.counters.krylov += r.iterations;
+        sys.add_preconditioner_time(prec->stats().setup_seconds,
+                                    prec->stats().apply_seconds);
         std::copy(host_data(sv), host_data(sv) + s.size(), s.begin());
         return true;
       },

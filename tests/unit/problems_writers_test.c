@@ -104,7 +104,10 @@ int main(int argc, char **argv) {
                          part_stencils,
                          7,
                          1.25,
-                         12};
+                         12,
+                         0.5,
+                         0.25,
+                         0.125};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -115,6 +118,13 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
     CHECK(num(root, "factorizations") == 12);
+    {
+      const cJSON *tm = cJSON_GetObjectItemCaseSensitive(root, "timing");
+      CHECK(tm != NULL);
+      CHECK(num(tm, "hessian_s") == 0.5);
+      CHECK(num(tm, "preconditioner_setup_s") == 0.25);
+      CHECK(num(tm, "preconditioner_apply_s") == 0.125);
+    }
     CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
     CHECK(strcmp(str(root, "finds"), "local minimum") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
