@@ -89,18 +89,19 @@ typedef enum rn_factorization {
 } rn_factorization;
 
 /* Is a state a verified local minimum?  From the lowest eigenvalues of the
- * reduced Hessian H (fixed DOFs removed) at the state (rn_network_stability,
- * docs/solvers.md "Stability"). */
+ * reduced Hessian H (fixed DOFs removed) at the state, Jacobi-scaled: those of
+ * D^{-1/2} H D^{-1/2}, D = |diag H|, which are dimensionless and do not depend on
+ * the units or the size of the structure, and have the signs and zero modes of H
+ * (rn_network_stability, docs/solvers.md "Stability"). */
 typedef struct rn_stability {
   int checked;              /* 1 if computed; 0: skipped (rn_solve_options.stability
                                = 0) or not available (a part of a distributed
                                network: the check needs the whole Hessian) */
-  double lowest_eigenvalue; /* lowest eigenvalue of H outside the zero modes
-                               (units of H: mixed force/length and moment units);
-                               0 if there is none */
-  double scale;             /* ||H||_inf, the largest absolute row sum (an upper
-                               bound of every |eigenvalue|): judge the eigenvalues
-                               against it */
+  double lowest_eigenvalue; /* lowest eigenvalue of D^{-1/2} H D^{-1/2} outside the
+                               zero modes (0 if there is none) */
+  double scale;             /* ||D^{-1/2} H D^{-1/2}||_inf, the largest absolute row
+                               sum (an upper bound of every |eigenvalue|, >= 1): judge
+                               the eigenvalues against it */
   int verified_minimum;     /* 1: lowest_eigenvalue > 1e-12 scale, established by a
                                Cholesky factorisation (inertia) or by converged
                                Ritz pairs; in rn_solve_report also the solve
@@ -331,11 +332,13 @@ rn_status rn_dist_gather_state(const rn_network *part, rn_network *whole);
  * initialisation (no Tpetra). */
 rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
 
-/* Stability of the network's current state (see rn_stability): scale =
- * ||H||_inf; Cholesky of H - delta I (delta = 1e-12 scale) succeeds: every
- * eigenvalue exceeds delta, verified, the lowest estimated by shift-and-invert
- * Lanczos (an upper bound, 1e-6 relative); otherwise subspace iteration on a
- * block of 10 vectors with (H + s I)^{-1}, s the smallest shift that factors,
+/* Stability of the network's current state (see rn_stability), eigenvalues of
+ * the pencil (H, D), D = |diag H| floored at 1e-20 of its largest entry: scale =
+ * ||D^{-1/2} H D^{-1/2}||_inf; Cholesky of H - delta D (delta = 1e-12 scale)
+ * succeeds: every eigenvalue exceeds delta, verified, the lowest estimated by
+ * shift-and-invert Lanczos (an upper bound, 1e-6 relative); otherwise subspace
+ * iteration on a block of 10 vectors with (H + s D)^{-1} D, s the smallest shift
+ * that factors,
  * gives the zero modes and the lowest eigenvalue outside them.  The banded or
  * sparse factorisation as rn_solve's RN_FACTOR_AUTO chooses.  verified_minimum
  * here concerns the Hessian alone (not equilibrium).  A part of a distributed

@@ -26,16 +26,25 @@ constexpr int kMaxSweeps = 200;        // subspace iterations
 constexpr int kLanczosSteps = 20;      // certified case: Lanczos steps (memory 20 n)
 constexpr double kResidualRel = 1e-8;  // Ritz pair converged: ||H x - mu x|| below
 constexpr double kResidualAbs = 1e-13; // max(kResidualRel |mu|, kResidualAbs scale)
+constexpr double kMetricFloor = 1e-20; // D_i >= kMetricFloor max_j D_j
 
-// ||H||_inf of the assembled Hessian.
-double row_sum_norm(const Problem &p) {
+// ||D^{-1/2} H D^{-1/2}||_inf of the assembled Hessian.
+double row_sum_norm(const Problem &p, const std::vector<double> &d) {
   double s = 0.0;
   for (size_t i = 0; i < p.size(); ++i) {
     double r = 0.0;
     for (int64_t k = p.rowptr()[i]; k < p.rowptr()[i + 1]; ++k)
-      r += std::fabs(p.values()[k]);
+      r +=
+          std::fabs(p.values()[k]) / std::sqrt(d[i] * d[static_cast<size_t>(p.col()[k])]);
     s = std::max(s, r);
   }
+  return s;
+}
+
+// <a, b>_D
+double ddot(const std::vector<double> &d, const double *a, const double *b) {
+  double s = 0.0;
+  for (size_t i = 0; i < d.size(); ++i) s += d[i] * a[i] * b[i];
   return s;
 }
 
@@ -48,21 +57,23 @@ void fill_start(size_t n, uint64_t seed, double *x) {
   }
 }
 
-// Orthonormalise the k columns of X (n x k, column-major) by modified Gram-Schmidt,
-// twice; a column that loses its information (a multiple of the previous ones) is
-// replaced by a fresh start vector.
-void orthonormalize(size_t n, int k, std::vector<double> &X, uint64_t &seed) {
+// D-orthonormalise the k columns of X (n x k, column-major) by modified
+// Gram-Schmidt, twice; a column that loses its information (a multiple of the
+// previous ones) is replaced by a fresh start vector.
+void orthonormalize(const std::vector<double> &d, int k, std::vector<double> &X,
+                    uint64_t &seed) {
+  const size_t n = d.size();
   for (int j = 0; j < k; ++j) {
     double *xj = X.data() + static_cast<size_t>(j) * n;
     for (int attempt = 0; attempt < 3; ++attempt) {
-      const double before = norm2(n, xj);
+      const double before = std::sqrt(ddot(d, xj, xj));
       for (int pass = 0; pass < 2; ++pass)
         for (int i = 0; i < j; ++i) {
           const double *xi = X.data() + static_cast<size_t>(i) * n;
-          const double c = dot(n, xi, xj);
+          const double c = ddot(d, xi, xj);
           for (size_t r = 0; r < n; ++r) xj[r] -= c * xi[r];
         }
-      const double after = norm2(n, xj);
+      const double after = std::sqrt(ddot(d, xj, xj));
       if (after > 1e-10 * before && after > 0.0) {
         for (size_t r = 0; r < n; ++r) xj[r] /= after;
         break;
@@ -104,10 +115,12 @@ struct RitzPairs {
   bool converged = false;           // every pair the verdict needs has converged
 };
 
-// Subspace iteration with the factorisation f of H + s I (positive definite): the
-// lowest Ritz pairs of H.  Stops once the pairs up to the first one outside the zero
-// band [-delta, delta] have converged (only the first if it is below -delta).
-RitzPairs subspace_iteration(Problem &p, const SpdFactor &f, double delta, double scale) {
+// Subspace iteration with the factorisation f of H + s D (positive definite): the
+// lowest Ritz pairs of the pencil (H, D).  Stops once the pairs up to the first one
+// outside the zero band [-delta, delta] have converged (only the first if it is
+// below -delta).
+RitzPairs subspace_iteration(Problem &p, const SpdFactor &f, const std::vector<double> &d,
+                             double delta, double scale) {
   const size_t n = p.size();
   const int k = static_cast<int>(std::min<size_t>(n, kStabilityBlock));
   std::vector<double> X(n * static_cast<size_t>(k)), W(X.size()),
@@ -117,8 +130,12 @@ RitzPairs subspace_iteration(Problem &p, const SpdFactor &f, double delta, doubl
     fill_start(n, seed++, X.data() + static_cast<size_t>(j) * n);
   RitzPairs rp;
   for (int sweep = 0; sweep < kMaxSweeps && !rp.converged; ++sweep) {
-    for (int j = 0; j < k; ++j) f.solve(X.data() + static_cast<size_t>(j) * n);
-    orthonormalize(n, k, X, seed);
+    for (int j = 0; j < k; ++j) {
+      double *x = X.data() + static_cast<size_t>(j) * n;
+      for (size_t r = 0; r < n; ++r) x[r] *= d[r];
+      f.solve(x);
+    }
+    orthonormalize(d, k, X, seed);
     for (int j = 0; j < k; ++j)
       p.hessian_apply(X.data() + static_cast<size_t>(j) * n,
                       W.data() + static_cast<size_t>(j) * n);
@@ -137,10 +154,10 @@ RitzPairs subspace_iteration(Problem &p, const SpdFactor &f, double delta, doubl
     for (int j = 0; j < k; ++j) {
       const double *x = X.data() + static_cast<size_t>(j) * n,
                    *w = W.data() + static_cast<size_t>(j) * n;
-      double s = 0.0;
+      double s = 0.0; // ||H x - mu D x|| in the D^{-1} norm
       for (size_t r = 0; r < n; ++r) {
-        const double e = w[r] - rp.mu[static_cast<size_t>(j)] * x[r];
-        s += e * e;
+        const double e = w[r] - rp.mu[static_cast<size_t>(j)] * d[r] * x[r];
+        s += e * e / d[r];
       }
       rp.residual[static_cast<size_t>(j)] = std::sqrt(s);
     }
@@ -170,7 +187,8 @@ rn_stability hessian_stability(Problem &p, rn_factorization kind) {
   rn_stability st{};
   st.checked = 1;
   const size_t n = p.size();
-  st.scale = row_sum_norm(p);
+  const std::vector<double> d = hessian_metric(p, kMetricFloor);
+  st.scale = row_sum_norm(p, d);
   if (!std::isfinite(st.scale))
     throw Error(RN_ERR_NOT_FINITE, "stability: non-finite Hessian");
   if (n == 0) { // nothing free: trivially a minimum
@@ -179,26 +197,26 @@ rn_stability hessian_stability(Problem &p, rn_factorization kind) {
     st.zero_modes = static_cast<int>(std::min<size_t>(n, kStabilityBlock));
   } else {
     const double delta = kZeroModeTol * st.scale;
-    const std::vector<double> ident = diagonal_on_pattern(p, std::vector<double>(n, 1.0));
+    const std::vector<double> dvals = diagonal_on_pattern(p, d);
     auto f = make_spd_factor(p, kind);
-    if (f->factor(p, -delta, ident.data())) {
+    if (f->factor(p, -delta, dvals.data())) {
       // every eigenvalue above delta: the lowest by shift-and-invert Lanczos on
-      // (H - delta I)^{-1}, whose Ritz value bounds 1 / (lambda_min - delta) from below
+      // (H - delta D)^{-1} D, whose Ritz value bounds 1 / (lambda_min - delta) from
+      // below
       std::vector<double> v(n);
       fill_start(n, 7, v.data());
-      const LanczosResult lr =
-          lanczos_largest(*f, std::vector<double>(n, 1.0), kLanczosSteps, 1e-6, v);
+      const LanczosResult lr = lanczos_largest(*f, d, kLanczosSteps, 1e-6, v);
       st.lowest_eigenvalue = 1.0 / lr.theta + delta;
       st.verified_minimum = 1;
     } else {
-      // lambda_min <= delta: the smallest shift s with H + s I positive definite
+      // lambda_min <= delta: the smallest shift s with H + s D positive definite
       // (delta, or 10^k scale, k >= -10), for which f then holds the factorisation
-      if (!f->factor(p, delta, ident.data())) {
-        const std::vector<double> scaled =
-            diagonal_on_pattern(p, std::vector<double>(n, st.scale));
+      if (!f->factor(p, delta, dvals.data())) {
+        std::vector<double> scaled(dvals);
+        for (double &e : scaled) e *= st.scale;
         factor_shifted(*f, p, 0.0, scaled.data(), false);
       }
-      const RitzPairs rp = subspace_iteration(p, *f, delta, st.scale);
+      const RitzPairs rp = subspace_iteration(p, *f, d, delta, st.scale);
       size_t j = 0;
       while (j < rp.mu.size() && std::fabs(rp.mu[j]) <= delta) ++j;
       st.zero_modes = static_cast<int>(rp.mu[0] < -delta ? 0 : j);

@@ -1,22 +1,26 @@
 // stability.hpp - is the current state a local minimum?  The lowest eigenvalues of
-// the reduced Hessian (fixed DOFs removed) by Cholesky inertia and shift-and-invert
-// iterations on the solver's factorisation (banded or sparse); no Trilinos here.
+// the reduced Hessian H (fixed DOFs removed), Jacobi-scaled: the pencil (H, D), D =
+// |diag H| (floored at 1e-20 of its largest entry), i.e. the eigenvalues of
+// D^{-1/2} H D^{-1/2}.  The scaling makes them dimensionless and independent of the
+// units of the DOFs (positions and angles, a structure of size 1e-6 or 1e6, one
+// tiny edge among long ones); by Sylvester's law the signs and the zero modes are
+// those of H itself.  By Cholesky inertia and shift-and-invert iterations on the
+// solver's factorisation (banded or sparse); no Trilinos here.
 //
-// scale = ||H||_inf (the largest absolute row sum, an upper bound of |lambda| over
-// the spectrum); eigenvalues with |lambda| <= kZeroModeTol * scale are zero modes
-// (rigid-body motions of unsupported parts, mechanisms): at double precision the
-// assembled Hessian is exact only to about 1e-14 scale, so a mode that soft cannot
-// be told from a zero mode.  The method:
-//  1. Cholesky of H - delta I (delta = kZeroModeTol * scale) succeeds: every
-//     eigenvalue exceeds delta (Sylvester's inertia) - a verified minimum, no zero
-//     modes; the lowest eigenvalue is then estimated by shift-and-invert Lanczos
-//     with that factorisation (an upper bound within 1e-6 relative).
+// scale = ||D^{-1/2} H D^{-1/2}||_inf (an upper bound of every |lambda|, at least 1
+// when no diagonal entry is floored); eigenvalues with |lambda| <= kZeroModeTol *
+// scale are zero modes (rigid-body motions of unsupported parts, mechanisms).  The
+// method:
+//  1. Cholesky of H - delta D (delta = kZeroModeTol * scale) succeeds: every
+//     eigenvalue exceeds delta (inertia) - a verified minimum, no zero modes; the
+//     lowest eigenvalue is then estimated by shift-and-invert Lanczos with that
+//     factorisation (an upper bound within 1e-6 relative).
 //  2. Otherwise the smallest shift s in {delta, 1e-10 scale, 1e-9 scale, ...} with
-//     H + s I positive definite is found (inertia again: lambda_min > -s), and
-//     subspace iteration with (H + s I)^{-1} on a block of kStabilityBlock vectors
-//     (Rayleigh-Ritz with H each sweep) gives the lowest Ritz pairs: the zero modes
-//     (multiple eigenvalues are found with their multiplicity) and the lowest
-//     eigenvalue outside the zero band; a negative one means unstable.
+//     H + s D positive definite is found (lambda_min > -s), and subspace iteration
+//     with (H + s D)^{-1} D on a block of kStabilityBlock vectors (Rayleigh-Ritz with
+//     H each sweep) gives the lowest Ritz pairs: the zero modes (multiple eigenvalues
+//     are found with their multiplicity) and the lowest eigenvalue outside the zero
+//     band; a negative one means unstable.
 #ifndef RODNET_SHIM_STABILITY_HPP
 #define RODNET_SHIM_STABILITY_HPP
 

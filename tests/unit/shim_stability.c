@@ -1,8 +1,9 @@
 /* shim_stability.c - the stability report (rn_network_stability and
  * rn_solve_report.stability) against LAPACK dsyev on the dense reduced Hessian:
+ *  (eigenvalues of the Jacobi-scaled Hessian D^{-1/2} H D^{-1/2}, D = |diag H|)
  *  - a loaded cantilever (banded path), solved by every solver kind: checked,
  *    verified minimum, no zero modes, the lowest eigenvalue within 1e-6 relative
- *    of dsyev's, scale = ||H||_inf to 1e-12;
+ *    of dsyev's, scale = the scaled Hessian's infinity norm to 1e-12;
  *  - a free-floating unloaded quarter-circle rod: exactly 6 zero modes (3
  *    translations, 3 rotations; dsyev agrees on the count in the band
  *    1e-12 scale), verified, the lowest eigenvalue outside them = dsyev's 7th;
@@ -19,15 +20,22 @@
 #include "shim_networks.h"
 #include "shim_rods.h"
 
-/* Every eigenvalue (ascending, n of them, caller frees) and ||H||_inf of the
- * dense reduced Hessian at the network's state. */
+/* Every eigenvalue (ascending, n of them, caller frees) and the infinity norm of
+ * the Jacobi-scaled dense reduced Hessian D^{-1/2} H D^{-1/2} (D = |diag H|, floored
+ * at 1e-20 of its largest entry) at the network's state. */
 static double *dense_spectrum(const rn_network *net, double *norm_inf) {
   const size_t n = rn_network_num_dofs(net);
   double *x = calloc(n, sizeof(double)), *w = calloc(n, sizeof(double));
   int ni = (int)n, info = 0, lwork = 8 * (int)n;
   double *work = calloc((size_t)lwork, sizeof(double));
   CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
-  double *H = shim_dense_hessian(net, x);
+  double *H = shim_dense_hessian(net, x), dmax = 0.0;
+  double *d = calloc(n, sizeof(double));
+  for (size_t i = 0; i < n; ++i) dmax = fmax(dmax, fabs(H[i + n * i]));
+  for (size_t i = 0; i < n; ++i) d[i] = fmax(fabs(H[i + n * i]), 1e-20 * dmax);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < n; ++j) H[i + n * j] /= sqrt(d[i] * d[j]);
+  free(d);
   *norm_inf = 0.0;
   for (size_t i = 0; i < n; ++i) {
     double r = 0.0;
