@@ -58,3 +58,22 @@ foreach(solver rol-ls-newton nox tr-minres)
   set_tests_properties(stability_honeycomb_${solver}_check PROPERTIES LABELS unit
                        FIXTURES_REQUIRED stability_honeycomb_${solver})
 endforeach()
+
+# Under mpirun (2 ranks, tr-krylov) the CLI checks the stability on rank 0 from the
+# gathered state: the same verdict as one process.
+if(MPIEXEC_EXECUTABLE)
+  add_test(NAME stability_honeycomb_mpi
+           COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
+                   "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@2@@${CMAKE_BINARY_DIR}/rodnet@@solve@@${hard_dir}/hc4.json@@-o@@${hard_dir}/hc4_mpi.json@@-q"
+                   -DEXPECT_RC=0 "-DEXPECT_REGEX=stability +verified local minimum"
+                   -DREMOVE=${hard_dir}/hc4_mpi.json
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+  set_tests_properties(stability_honeycomb_mpi PROPERTIES LABELS mpi TIMEOUT 120
+    PROCESSORS 2 FIXTURES_REQUIRED stability_honeycomb FIXTURES_SETUP stability_honeycomb_mpi
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+  add_test(NAME stability_honeycomb_mpi_check
+    COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_stability.py
+            ${hard_dir}/hc4_mpi.json --verified true --zero-modes 0)
+  set_tests_properties(stability_honeycomb_mpi_check PROPERTIES LABELS mpi
+                       FIXTURES_REQUIRED stability_honeycomb_mpi)
+endif()
