@@ -38,6 +38,8 @@ void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt
   in->hessian_s = rep->hessian_seconds;
   in->preconditioner_setup_s = rep->preconditioner_setup_seconds;
   in->preconditioner_apply_s = rep->preconditioner_apply_seconds;
+  in->stability = rep->stability;
+  if (!opt->stability) in->stability_note = "skipped (--no-stability)";
   in->force_residual = rep->force_residual;
   in->force_scale = rep->force_scale;
   in->force_tolerance = rep->force_tolerance;

@@ -107,7 +107,9 @@ int main(int argc, char **argv) {
                          12,
                          0.5,
                          0.25,
-                         0.125};
+                         0.125,
+                         {1, -2.5e-3, 40.0, 0, 2, 3, 0.5},
+                         NULL};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -124,6 +126,17 @@ int main(int argc, char **argv) {
       CHECK(num(tm, "hessian_s") == 0.5);
       CHECK(num(tm, "preconditioner_setup_s") == 0.25);
       CHECK(num(tm, "preconditioner_apply_s") == 0.125);
+    }
+    const cJSON *stab = cJSON_GetObjectItemCaseSensitive(root, "stability");
+    CHECK(cJSON_IsObject(stab));
+    if (stab) {
+      CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(stab, "checked")));
+      CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(stab, "verified_minimum")));
+      CHECK(num(stab, "lowest_eigenvalue") == -2.5e-3);
+      CHECK(num(stab, "scale") == 40.0);
+      CHECK(num(stab, "zero_modes") == 2);
+      CHECK(num(stab, "factorizations") == 3);
+      CHECK(num(stab, "time_s") == 0.5);
     }
     CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
     CHECK(strcmp(str(root, "finds"), "local minimum") == 0);

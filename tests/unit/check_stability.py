@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""check_stability.py - the "stability" block of a rodnet RESULT.json.
+
+    check_stability.py RESULT.json [--verified true|false] [--zero-modes K]
+                       [--min-abs-z Z]
+
+Fails (exit 1) unless the block has every contract key (checked, lowest_eigenvalue,
+scale, verified_minimum, zero_modes) with finite numbers, the run converged when it
+claims a verified minimum, verified_minimum is the one asked for, zero_modes equals K,
+and (--min-abs-z) some rod vertex lies at |z| >= Z (a planar lattice buckled out of
+its plane)."""
+import argparse
+import json
+import math
+import sys
+
+
+def fail(msg):
+    print("check_stability: FAILED: " + msg)
+    sys.exit(1)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("result")
+    ap.add_argument("--verified", choices=("true", "false"))
+    ap.add_argument("--zero-modes", type=int)
+    ap.add_argument("--min-abs-z", type=float)
+    a = ap.parse_args()
+    with open(a.result) as f:
+        r = json.load(f)
+    st = r.get("stability")
+    if not isinstance(st, dict):
+        fail("no stability block")
+    for key in ("checked", "lowest_eigenvalue", "scale", "verified_minimum", "zero_modes"):
+        if key not in st:
+            fail("stability lacks %r: %r" % (key, st))
+    if st["checked"] is not True:
+        fail("stability not checked: %r" % st)
+    for key in ("lowest_eigenvalue", "scale"):
+        if not isinstance(st[key], (int, float)) or not math.isfinite(st[key]):
+            fail("stability.%s is not a finite number" % key)
+    if st["verified_minimum"] and not r["converged"]:
+        fail("a verified minimum of a run that did not converge")
+    if st["verified_minimum"] and not st["lowest_eigenvalue"] > 1e-12 * st["scale"]:
+        fail("verified, yet lowest eigenvalue %g <= 1e-12 scale" % st["lowest_eigenvalue"])
+    if a.verified and st["verified_minimum"] != (a.verified == "true"):
+        fail("verified_minimum %r, expected %s" % (st["verified_minimum"], a.verified))
+    if a.zero_modes is not None and st["zero_modes"] != a.zero_modes:
+        fail("zero_modes %d, expected %d" % (st["zero_modes"], a.zero_modes))
+    if a.min_abs_z is not None:
+        zmax = max(abs(v[2]) for rod in r["rods"] for v in rod["vertices"])
+        if not zmax >= a.min_abs_z:
+            fail("max |z| = %g < %g: not buckled out of plane" % (zmax, a.min_abs_z))
+        print("check_stability: max |z| = %g" % zmax)
+    print("check_stability: ok: %s %r" % (a.result, st))
+
+
+if __name__ == "__main__":
+    main()
