@@ -44,6 +44,8 @@ static const char solve_help[] =
     "                      nox: NOX Newton on grad E = 0 with MINRES and the\n"
     "                        same preconditioner: finds stationary points\n"
     "                        (minima, saddles or maxima alike), not a minimiser\n"
+    "                      rol-lbfgs: ROL limited-memory BFGS with a line\n"
+    "                        search (gradients only; slow on stiff rods)\n"
     "      --preconditioner NAME  preconditioner of tr-krylov and nox (it defines the\n"
     "                      trust-region norm): auto (default: dd), dd (rod-level\n"
     "                      domain decomposition), factor (Cholesky of the\n"
@@ -254,7 +256,7 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox)",
+                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox, rol-lbfgs)",
                               a->solver);
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
@@ -285,7 +287,8 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
     in->preconditioner = rn_preconditioner_name(rep->preconditioner);
   in->finds =
       opt->solver == RN_SOLVER_NOX ? "stationary point"
-      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON)
+      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON ||
+         opt->solver == RN_SOLVER_ROL_LBFGS)
           ? "stationary point, energy decreasing"
           : "local minimum";
   in->stop = rn_solve_stop_name(rep->stop);

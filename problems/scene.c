@@ -363,6 +363,7 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
                                            {"tr-krylov", RN_SOLVER_TR_KRYLOV},
                                            {"nox", RN_SOLVER_NOX},
+                                           {"rol-lbfgs", RN_SOLVER_ROL_LBFGS},
                                            {NULL, 0}};
 static const named_value preconditioner_names[] = {
     {"auto", RN_PRECOND_AUTO},       {"factor", RN_PRECOND_FACTOR},
