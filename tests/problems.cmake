@@ -465,6 +465,13 @@ if(RN_WITH_TRILINOS)
                    --load-steps 1 --quiet)
   rn_cli_test(problems_cli_unknown_solver 2 "unknown solver 'newton'"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --solver newton)
+  rn_cli_test(problems_cli_bench_bad_suite 2 "--suite expects smoke, quick or full"
+              ARGS bench --suite huge -o ${RN_CLI_OUT}/bench_x)
+  rn_cli_test(problems_cli_bench_unknown_solver 2 "unknown solver 'newton' in --solvers"
+              ARGS bench --solvers tr-minres,newton -o ${RN_CLI_OUT}/bench_x)
+  rn_cli_test(problems_cli_bench_unknown_problem 2 "has no problem 'nothing'"
+              ARGS bench --problems cantilever,nothing -o ${RN_CLI_OUT}/bench_x)
+  rn_cli_test(problems_cli_bench_missing_output 2 "missing -o DIR" ARGS bench)
   rn_cli_test(problems_cli_unknown_factorization 2 "unknown factorization 'lu'"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --factorization lu)
   rn_cli_test(problems_cli_unknown_preconditioner 2 "unknown preconditioner 'ilu'"
