@@ -541,6 +541,7 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  p->constraints = rn_jm_get(root, "constraints");
   if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
     size_t mark = rn_jwalk_key(w, "periodic");
     st = rn_scene_read_periodic(p, rn_jm_get(root, "periodic"));

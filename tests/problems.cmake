@@ -39,6 +39,9 @@ rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
             LIBS rodnet_problems m LABELS unit
             ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
 # Free rigid-body motions and unbalanced loads on them (c_api/supports.c).
+# The clamp convention of a scene: "at": "midpoint" | "vertex" (scene_rods.c).
+rn_add_test(problems_clamp_at SOURCES unit/problems_clamp_at_test.c
+            LIBS rodnet_problems LABELS unit)
 rn_add_test(problems_supports SOURCES unit/problems_supports_test.c
             LIBS rodnet_problems LABELS unit
             ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports ${RN_SCENES})
