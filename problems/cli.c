@@ -37,7 +37,8 @@ static const char main_help[] =
 static void print_version(void) {
   printf("rodnet %s\n", rn_version_string());
 #ifdef RN_HAVE_SOLVER
-  printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton; Trilinos)\n");
+  printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton, tr-krylov, nox, "
+         "rol-lbfgs; Trilinos)\n");
 #else
   printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' works\n");
 #endif
