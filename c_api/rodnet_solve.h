@@ -94,6 +94,31 @@ typedef enum rn_factorization {
   RN_FACTOR_CHOLMOD = 3
 } rn_factorization;
 
+/* Is a state a verified local minimum?  From the lowest eigenvalues of the
+ * reduced Hessian H (fixed DOFs removed) at the state (rn_network_stability,
+ * docs/solvers.md "Stability"). */
+typedef struct rn_stability {
+  int checked;              /* 1 if computed; 0: skipped (rn_solve_options.stability
+                               = 0) or not available (a part of a distributed
+                               network: the check needs the whole Hessian) */
+  double lowest_eigenvalue; /* lowest eigenvalue of H outside the zero modes
+                               (units of H: mixed force/length and moment units);
+                               0 if there is none */
+  double scale;             /* ||H||_inf, the largest absolute row sum (an upper
+                               bound of every |eigenvalue|): judge the eigenvalues
+                               against it */
+  int verified_minimum;     /* 1: lowest_eigenvalue > 1e-12 scale, established by a
+                               Cholesky factorisation (inertia) or by converged
+                               Ritz pairs; in rn_solve_report also the solve
+                               converged.  0: unstable (a negative eigenvalue),
+                               a mechanism, or not converged */
+  int zero_modes;           /* eigenvalues with |lambda| <= 1e-12 scale (rigid-body
+                               motions of unsupported parts, mechanisms), counted
+                               among the 10 lowest */
+  long factorizations;      /* Cholesky factorisations the check took */
+  double time_s;            /* its wall time */
+} rn_stability;
+
 /* Why a solve stopped. */
 typedef enum rn_solve_stop {
   RN_STOP_GRADIENT = 0, /* equilibrium: force and moment residuals within their
@@ -146,6 +171,10 @@ typedef struct rn_solve_options {
    * the energy at t.  0: off (the step starts at x). */
   int predictor;
   rn_preconditioner preconditioner; /* RN_SOLVER_TR_KRYLOV, RN_SOLVER_NOX; default AUTO */
+  /* 1 (default): after the solve, check the stability of the returned state
+   * (rn_solve_report.stability, rn_network_stability); 0: skip it (benchmarks;
+   * the check costs one to a few factorisations of the Hessian) */
+  int stability;
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -178,6 +207,9 @@ typedef struct rn_solve_report {
   /* the preconditioner RN_SOLVER_TR_KRYLOV used (never AUTO once it ran);
    * RN_PRECOND_AUTO for the other kinds */
   rn_preconditioner preconditioner;
+  /* of the returned state (every solver kind), unless rn_solve_options.stability
+   * is 0; not in time_s and factorizations (it has its own) */
+  rn_stability stability;
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
@@ -305,6 +337,18 @@ rn_status rn_dist_gather_state(const rn_network *part, rn_network *whole);
  * lowest eigenvalue is separated from the next one.  Needs no runtime
  * initialisation (no Tpetra). */
 rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
+
+/* Stability of the network's current state (see rn_stability): scale =
+ * ||H||_inf; Cholesky of H - delta I (delta = 1e-12 scale) succeeds: every
+ * eigenvalue exceeds delta, verified, the lowest estimated by shift-and-invert
+ * Lanczos (an upper bound, 1e-6 relative); otherwise subspace iteration on a
+ * block of 10 vectors with (H + s I)^{-1}, s the smallest shift that factors,
+ * gives the zero modes and the lowest eigenvalue outside them.  The banded or
+ * sparse factorisation as rn_solve's RN_FACTOR_AUTO chooses.  verified_minimum
+ * here concerns the Hessian alone (not equilibrium).  A part of a distributed
+ * network: out->checked = 0 (RN_OK).  Not collective; needs no runtime
+ * initialisation (no Tpetra).  out is filled only on RN_OK. */
+rn_status rn_network_stability(rn_network *net, rn_stability *out);
 
 /* Linear effective elasticity of a periodic cell (docs/homogenization.md). */
 typedef struct rn_homogenization {

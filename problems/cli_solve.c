@@ -71,6 +71,8 @@ static const char solve_help[] =
     "      --no-predictor  start each load step where the last one converged (default:\n"
     "                      from the linearised load-increment prediction, kept if\n"
     "                      it lowers the energy; docs/solvers.md)\n"
+    "      --no-stability  skip the stability check of the result (the lowest\n"
+    "                      Hessian eigenvalues; docs/solvers.md)\n"
     "  -q, --quiet         no progress lines\n"
     "  -h, --help          show this help\n"
     "\n"
@@ -83,6 +85,7 @@ static const char solve_help[] =
 typedef struct solve_args {
   const char *scene, *output, *vtk, *solver, *factorization, *preconditioner;
   int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol, no_predictor;
+  int no_stability;
   double gtol;
 } solve_args;
 
@@ -208,6 +211,8 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
       a->quiet = 1;
     else if (strcmp(s, "--no-predictor") == 0)
       a->no_predictor = 1;
+    else if (strcmp(s, "--no-stability") == 0)
+      a->no_stability = 1;
     else if (parse_value_option(argc, argv, &i, a, &rc)) {
       if (rc) return rc;
     } else if (s[0] == '-' && s[1] != '\0')
@@ -274,6 +279,7 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->has_gtol) opt->gtol_rel = a->gtol;
   if (a->has_load_steps) opt->load_steps = a->load_steps;
   if (a->no_predictor) opt->predictor = 0;
+  if (a->no_stability) opt->stability = 0;
   return 0;
 }
 
@@ -312,6 +318,8 @@ static void fill_info(const rn_solve_report *rep, const rn_solve_options *opt,
   in->moment_residual = rep->moment_residual;
   in->moment_scale = rep->moment_scale;
   in->moment_tolerance = rep->moment_tolerance;
+  in->stability = rep->stability;
+  if (!opt->stability) in->stability_note = "skipped (--no-stability)";
 }
 
 /* The partition block of one rank: everything owned by it. */
@@ -342,11 +350,32 @@ static void print_partition(const rn_result_info *in) {
   printf(", edge cut %ld, imbalance %.3f\n", in->edge_cut, in->imbalance);
 }
 
+static void print_stability(const rn_result_info *in) {
+  const rn_stability *st = &in->stability;
+  if (!st->checked) {
+    printf("  stability    not checked: %s\n",
+           in->stability_note ? in->stability_note : "not available");
+    return;
+  }
+  printf("  stability    %s: lowest Hessian eigenvalue %.6e (scale %.3e), %d zero "
+         "modes; %ld factorisations, %.3f s\n",
+         st->verified_minimum ? "verified local minimum"
+         : in->converged      ? "stationary, not a verified minimum"
+                              : "not a verified minimum (not converged)",
+         st->lowest_eigenvalue, st->scale, st->zero_modes, st->factorizations,
+         st->time_s);
+}
+
 static void print_summary(const solve_args *a, const rn_scene *scene,
                           const rn_result_info *in) {
   rn_network *net = rn_scene_network(scene);
   printf("rodnet solve: %s\n", a->scene);
-  printf("  status       %s (stopped by: %s)\n", in->status, in->stop);
+  /* a converged stationary point that is not a verified minimum says so */
+  printf("  status       %s%s (stopped by: %s)\n", in->status,
+         in->converged && in->stability.checked && !in->stability.verified_minimum
+             ? ": stationary, not a verified minimum"
+             : "",
+         in->stop);
   printf("  solver       %s (%s factorisation%s%s)\n", in->solver, in->factorization,
          in->preconditioner ? ", preconditioner " : "",
          in->preconditioner ? in->preconditioner : "");
@@ -368,6 +397,7 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
          "%.3e, tolerance %.3e)\n",
          in->force_residual, in->force_scale, in->force_tolerance, in->moment_residual,
          in->moment_scale, in->moment_tolerance);
+  print_stability(in);
   print_partition(in);
   printf("  time         %.3f s\n", in->time_s);
   printf("  wrote        %s%s%s\n", a->output, a->vtk ? ", " : "", a->vtk ? a->vtk : "");
@@ -521,6 +551,14 @@ static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in
   if (agree(d, st, "rodnet solve: cannot gather the result: ")) return RN_EXIT_INTERNAL;
   st = partition_info(d, in);
   if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INTERNAL;
+  /* the stability check needs the whole Hessian: on rank 0, on the gathered state
+   * (serial; the other ranks wait at the next agreement) */
+  if (d->rank == 0 && !in->stability_note) {
+    if (rn_network_stability(rn_scene_network(d->whole), &in->stability) == RN_OK)
+      in->stability.verified_minimum = in->stability.verified_minimum && in->converged;
+    else
+      in->stability_note = "failed on the gathered state";
+  }
   int rc = d->rank == 0 ? write_outputs(d->ctx, a, d->whole, in) : RN_EXIT_OK;
   if (agree(d, rc ? RN_ERR_IO : RN_OK, "")) return RN_EXIT_INTERNAL;
   if (d->rank == 0) print_summary(a, d->whole, in);

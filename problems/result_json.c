@@ -132,6 +132,28 @@ static void put_equilibrium(json_out *o) {
   fputs("},\n", o->f);
 }
 
+/* "stability": {...} of the returned state (rn_stability). */
+static void put_stability(json_out *o) {
+  const rn_stability *st = &o->info->stability;
+  if (!st->checked) {
+    fputs("  \"stability\": {\"checked\": false, \"verified_minimum\": false, "
+          "\"note\": ",
+          o->f);
+    put_str(o->f, o->info->stability_note ? o->info->stability_note : "not checked");
+    fputs("},\n", o->f);
+    return;
+  }
+  fputs("  \"stability\": {\"checked\": true, \"lowest_eigenvalue\": ", o->f);
+  put_num(o, st->lowest_eigenvalue);
+  fputs(", \"scale\": ", o->f);
+  put_num(o, st->scale);
+  fprintf(o->f, ", \"verified_minimum\": %s, \"zero_modes\": %d,\n",
+          st->verified_minimum ? "true" : "false", st->zero_modes);
+  fprintf(o->f, "    \"factorizations\": %ld, \"time_s\": ", st->factorizations);
+  put_num(o, st->time_s);
+  fputs("},\n", o->f);
+}
+
 static void put_summary(json_out *o, rn_network *net) {
   const rn_result_info *in = o->info;
   FILE *f = o->f;
@@ -173,6 +195,7 @@ static void put_summary(json_out *o, rn_network *net) {
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
   put_equilibrium(o);
+  put_stability(o);
   if (in->part_ranks > 0) {
     fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", in->part_ranks);
     for (int q = 0; q < in->part_ranks; q++)

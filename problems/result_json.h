@@ -3,6 +3,7 @@
 #define RN_RESULT_JSON_H
 
 #include "rodnet.h"
+#include "rodnet_solve.h"
 #include "scene.h"
 
 /* What the solve reports (filled by the caller from rn_solve_report). */
@@ -31,6 +32,10 @@ typedef struct rn_result_info {
   long edge_cut;                         /* rod pairs sharing a joint, separated */
   double imbalance;                      /* max owned DOFs / mean owned DOFs */
   long factorizations; /* numeric Cholesky factorisations (rn_solve_report) */
+  /* of the returned state (rn_solve_report.stability): the "stability" block;
+   * stability_note says why it is not checked (checked = 0) */
+  rn_stability stability;
+  const char *stability_note;
 } rn_result_info;
 
 /* Write the result JSON for the scene's current state: the summary of info
@@ -39,7 +44,10 @@ typedef struct rn_result_info {
  * energy by term and load factor (from the network), per rod its name,
  * vertices [[x, y, z], ...] and material angles theta, and per joint its
  * name, model, valence, position [x, y, z] and rotation (3 rows of the
- * rotation matrix, identity at rest).  Numbers are printed
+ * rotation matrix, identity at rest), and "stability": {"checked",
+ * "lowest_eigenvalue", "scale", "verified_minimum", "zero_modes",
+ * "factorizations", "time_s"} ({"checked": false, "verified_minimum": false,
+ * "note"} when not checked).  Numbers are printed
  * with %.17g; the file is written atomically (atomic_file.h).
  * RN_ERR_NOT_FINITE (and no file) if any value is NaN or infinite. */
 rn_status rn_result_write_json(rn_context *ctx, const char *path, const rn_scene *scene,

@@ -19,6 +19,7 @@
 #include "shim_error.hpp"
 #include "solvers.hpp"
 #include "spd_factor.hpp"
+#include "stability.hpp"
 
 namespace rodnet {
 namespace {
@@ -80,6 +81,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "unknown factorization";
   else if (o.predictor != 0 && o.predictor != 1)
     bad = "predictor must be 0 or 1";
+  else if (o.stability != 0 && o.stability != 1)
+    bad = "stability must be 0 or 1";
   else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
            enum_value(o.preconditioner) > RN_PRECOND_IFPACK2)
     bad = "unknown preconditioner";
@@ -283,9 +286,17 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   } else {
     automatic_stepping(p, opt, target, force_scale, start, tot);
   }
-  if (rep)
+  if (rep) {
     fill_report(p, tot, force_scale,
                 std::chrono::duration<double>(Clock::now() - start).count(), rep);
+    // the stability of the returned state needs the whole Hessian: not on a part
+    if (opt.stability && !dist) {
+      check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
+      p.assemble_hessian(x.data());
+      rep->stability = hessian_stability(p, tot.factorization);
+      rep->stability.verified_minimum = rep->stability.verified_minimum && rep->converged;
+    }
+  }
 }
 
 // Runs f; converts any exception to a status with the message in the context.
@@ -336,6 +347,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->factorization = RN_FACTOR_AUTO;
   opt->predictor = 1;
   opt->preconditioner = RN_PRECOND_AUTO;
+  opt->stability = 1;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -455,6 +467,24 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
     rep->converged = 0;
   }
   return s;
+}
+
+rn_status rn_network_stability(rn_network *net, rn_stability *out) {
+  if (!net) return RN_ERR_ARG;
+  if (!out)
+    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
+                                "rn_network_stability: out is NULL");
+  return guarded(net, "rn_network_stability", [&] {
+    if (rn_network_is_part(net)) {
+      *out = rn_stability{};
+      return;
+    }
+    rodnet::Problem p(net);
+    std::vector<double> x(p.size());
+    rodnet::check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
+    p.assemble_hessian(x.data());
+    *out = rodnet::hessian_stability(p, rodnet::choose_factor_kind(p, RN_FACTOR_AUTO));
+  });
 }
 
 rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min) {

@@ -17,6 +17,10 @@ if(MPIEXEC_EXECUTABLE)
   set_tests_properties(shim_lazy_runtime_mpirun PROPERTIES LABELS "unit;mpi" TIMEOUT 120
     PROCESSORS 1 ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
 endif()
+# The stability report (lowest eigenvalues, zero modes) against dense dsyev: every
+# solver kind, banded and sparse, a free rod (6 zero modes), a saddle left by NOX.
+rn_add_test(shim_stability SOURCES unit/shim_stability.c
+            LIBS rodnet ${LAPACK_LIBRARIES} m LABELS unit)
 # Networks with joints: the three solver kinds agree (rigid rotation reset on every
 # path), sparse vs banded factorisation, continuation with cut-backs.
 rn_add_test(shim_networks SOURCES unit/shim_networks.c

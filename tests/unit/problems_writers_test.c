@@ -104,7 +104,9 @@ int main(int argc, char **argv) {
                          part_stencils,
                          7,
                          1.25,
-                         12};
+                         12,
+                         {1, -2.5e-3, 40.0, 0, 2, 3, 0.5},
+                         NULL};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -115,6 +117,17 @@ int main(int argc, char **argv) {
     CHECK(strcmp(str(root, "solver"), "tr-minres") == 0);
     CHECK(strcmp(str(root, "factorization"), "sparse") == 0);
     CHECK(num(root, "factorizations") == 12);
+    const cJSON *stab = cJSON_GetObjectItemCaseSensitive(root, "stability");
+    CHECK(cJSON_IsObject(stab));
+    if (stab) {
+      CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(stab, "checked")));
+      CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(stab, "verified_minimum")));
+      CHECK(num(stab, "lowest_eigenvalue") == -2.5e-3);
+      CHECK(num(stab, "scale") == 40.0);
+      CHECK(num(stab, "zero_modes") == 2);
+      CHECK(num(stab, "factorizations") == 3);
+      CHECK(num(stab, "time_s") == 0.5);
+    }
     CHECK(strcmp(str(root, "preconditioner"), "factor") == 0);
     CHECK(strcmp(str(root, "finds"), "local minimum") == 0);
     CHECK(strcmp(str(root, "stop_reason"), "max_iterations") == 0);
