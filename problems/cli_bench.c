@@ -85,7 +85,8 @@ static const char bench_help[] =
     "      --solvers LIST  comma-separated solvers (default: all): tr-minres,\n"
     "                      tr-krylov-dd, tr-krylov-factor, rol-tr-tcg,\n"
     "                      rol-ls-newton, nox-dd, rol-lbfgs\n"
-    "      --problems LIST only these problems of the suite (comma-separated)\n"
+    "      --problems LIST only these problems of the manifest (comma-separated;\n"
+    "                      whatever suites they belong to)\n"
     "      --manifest FILE the suite's manifest (default: the source tree's\n"
     "                      benchmarks/suite/suite.json; RODNET_BENCH_SUITE)\n"
     "      --repeats N     solve each pair N times, report the median time\n"
@@ -104,18 +105,6 @@ typedef struct bench_args {
   const char *output, *suite, *solvers, *problems, *manifest;
   int repeats, quiet, no_plot, write_refs;
 } bench_args;
-
-/* 1 if name is an item of the comma-separated list. */
-static int in_list(const char *list, const char *name) {
-  size_t n = strlen(name);
-  for (const char *p = list; p && *p;) {
-    const char *c = strchr(p, ',');
-    size_t len = c ? (size_t)(c - p) : strlen(p);
-    if (len == n && strncmp(p, name, n) == 0) return 1;
-    p = c ? c + 1 : NULL;
-  }
-  return 0;
-}
 
 static int parse_bench_args(int argc, char **argv, bench_args *a) {
   memset(a, 0, sizeof *a);
@@ -180,6 +169,18 @@ static int parse_bench_args(int argc, char **argv, bench_args *a) {
 }
 
 #ifdef RN_HAVE_SOLVER
+
+/* 1 if name is an item of the comma-separated list. */
+static int in_list(const char *list, const char *name) {
+  size_t n = strlen(name);
+  for (const char *p = list; p && *p;) {
+    const char *c = strchr(p, ',');
+    size_t len = c ? (size_t)(c - p) : strlen(p);
+    if (len == n && strncmp(p, name, n) == 0) return 1;
+    p = c ? c + 1 : NULL;
+  }
+  return 0;
+}
 
 /* ---- the suite's manifest ---------------------------------------------------- */
 
@@ -318,15 +319,16 @@ static double *all_vertices(const rn_network *net, long *nv) {
   return x;
 }
 
-/* Whether the state is a verified local minimum: the lowest eigenvalue of the
- * reduced Hessian is positive.  1 verified, 0 not, -1 could not tell.  (The one
- * place to switch to rn_network_stability's verdict, which also weighs round-off
- * and zero modes, once it is in.) */
+/* Whether the state is a verified local minimum (rn_network_stability: the
+ * lowest eigenvalue of the reduced Hessian outside the zero modes above 1e-12
+ * ||H||_inf, no zero modes): 1 verified, 0 not, -1 could not tell; *lowest its
+ * lowest eigenvalue (NAN if not computed). */
 static int verified_minimum(rn_network *net, double *lowest) {
+  rn_stability sb;
   *lowest = NAN;
-  if (rn_network_num_dofs(net) == 0) return 1;
-  if (rn_hessian_min_eigenvalue(net, lowest) != RN_OK) return -1;
-  return *lowest > 0.0;
+  if (rn_network_stability(net, &sb) != RN_OK || !sb.checked) return -1;
+  *lowest = sb.lowest_eigenvalue;
+  return sb.verified_minimum != 0;
 }
 
 typedef struct bench_run {
@@ -442,6 +444,7 @@ static int run_one(const bench_args *a, const bench_problem *p, const bench_solv
       opt.preconditioner = s->precond;
       if (s->max_iterations > 0) opt.max_iterations = s->max_iterations;
       if (s->max_load_cuts >= 0) opt.max_load_cuts = s->max_load_cuts;
+      opt.stability = 0; /* checked below, outside the solve's time */
       long nv = 0;
       double *x0 = k == 0 ? all_vertices(net, &nv) : NULL;
       memset(&rep, 0, sizeof rep);

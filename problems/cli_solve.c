@@ -74,7 +74,9 @@ static const char solve_help[] =
     "      --no-stability  skip the stability check of the result (the lowest\n"
     "                      Hessian eigenvalues; docs/solvers.md)\n"
     "  -q, --quiet         no progress lines\n"
-    "  -h, --help          show this help\n"
+    "  -h, --help          show this help\n";
+/* (two strings: one would exceed the 4095 characters C99 guarantees) */
+static const char solve_help_tail[] =
     "\n"
     "Options given here override the scene's \"solver\" block.  Output files are\n"
     "written completely or not at all.\n"
@@ -205,6 +207,7 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
     int rc = 0;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       fputs(solve_help, stdout);
+      fputs(solve_help_tail, stdout);
       return -1;
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)

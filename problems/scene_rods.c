@@ -128,18 +128,19 @@ static rn_status read_line(rn_jwalk *w, const cJSON *v, double **xyz, int *nv,
                              "zero length");
   /* the parameter s of vertex i runs from s0 to 1 - s1 in equal steps, with
    * s0 = s1 = 0 for vertex ends and -h/2 for midpoint ends (h the step in s) */
-  double half0 = (midpoint >> RN_START) & 1 ? 0.5 : 0.0;
-  double half1 = (midpoint >> RN_END) & 1 ? 0.5 : 0.0;
-  const double steps = (double)(n - 1) - half0 - half1, h = 1.0 / steps;
+  const int mid0 = (midpoint >> RN_START) & 1, mid1 = (midpoint >> RN_END) & 1;
+  const double half0 = mid0 ? 0.5 : 0.0, half1 = mid1 ? 0.5 : 0.0;
+  const double steps = (double)(n - 1) - half0 - half1;
   if (!(steps > 0.0))
     return rn_jwalk_error(w, "a clamp \"at\": \"midpoint\" at both ends needs at "
                              "least 3 vertices");
+  const double h = 1.0 / steps;
   double *x = malloc(3 * (size_t)n * sizeof *x);
   if (!x) return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory for %d vertices", n);
   for (int i = 0; i < n; i++) {
-    double s = !midpoint              ? (double)i / (double)(n - 1)
-               : i == n - 1 && !half1 ? 1.0
-                                      : ((double)i - half0) * h;
+    double s = !midpoint             ? (double)i / (double)(n - 1)
+               : i == n - 1 && !mid1 ? 1.0
+                                     : ((double)i - half0) * h;
     for (int k = 0; k < 3; k++) x[3 * i + k] = (1 - s) * a[k] + s * b[k];
   }
   *xyz = x;
