@@ -39,7 +39,13 @@ typedef enum rn_solver_kind {
    * finds stationary points (minima, saddles or maxima alike; it neither
    * measures the energy nor follows negative curvature), an alternative for
    * comparisons, not a minimiser. */
-  RN_SOLVER_NOX = 4
+  RN_SOLVER_NOX = 4,
+  /* ROL limited-memory BFGS (10 pairs) with an Armijo backtracking line search:
+   * gradients only (no Hessian, no preconditioner, no Krylov solver, no load-step
+   * predictor); a first-order reference for the optimiser benchmark
+   * (docs/benchmarking.md): thousands of iterations on stiff rods, where it
+   * often stalls (step test) or hits max_iterations. */
+  RN_SOLVER_ROL_LBFGS = 5
 } rn_solver_kind;
 
 /* SPD preconditioner of the Newton systems of RN_SOLVER_TR_KRYLOV; it defines
@@ -215,7 +221,8 @@ typedef struct rn_solve_report {
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
  * "radius", "failed"); name of a solver kind ("tr-minres", "rol-tr-tcg",
- * "rol-ls-newton", "tr-krylov"); parse a solver name (RN_ERR_ARG if unknown). */
+ * "rol-ls-newton", "tr-krylov", "nox", "rol-lbfgs"); parse a solver name
+ * (RN_ERR_ARG if unknown). */
 const char *rn_solve_stop_name(rn_solve_stop s);
 const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);

@@ -21,6 +21,9 @@ static const char main_help[] =
     "                                    honeycomb, kagome, cubic, bcc, octet;\n"
     "                                    --periodic: a periodic cell)\n"
     "  homogenize SCENE.json -o RESULT.json  effective stiffness of a periodic cell\n"
+    "  bench [--suite quick|full] -o DIR  optimiser benchmark: every problem of the\n"
+    "                                    suite against every solver (runs.csv and\n"
+    "                                    performance profiles)\n"
     "\n"
     "Options:\n"
     "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
@@ -34,7 +37,8 @@ static const char main_help[] =
 static void print_version(void) {
   printf("rodnet %s\n", rn_version_string());
 #ifdef RN_HAVE_SOLVER
-  printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton; Trilinos)\n");
+  printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton, tr-krylov, nox, "
+         "rol-lbfgs; Trilinos)\n");
 #else
   printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' works\n");
 #endif
@@ -60,6 +64,7 @@ int rn_cli_main(int argc, char **argv) {
   if (strcmp(cmd, "check") == 0) return rn_cli_check(argc - 1, argv + 1);
   if (strcmp(cmd, "generate") == 0) return rn_cli_generate(argc - 1, argv + 1);
   if (strcmp(cmd, "homogenize") == 0) return rn_cli_homogenize(argc - 1, argv + 1);
+  if (strcmp(cmd, "bench") == 0) return rn_cli_bench(argc - 1, argv + 1);
   fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
   return RN_EXIT_USAGE;
 }

@@ -44,6 +44,8 @@ static const char solve_help[] =
     "                      nox: NOX Newton on grad E = 0 with MINRES and the\n"
     "                        same preconditioner: finds stationary points\n"
     "                        (minima, saddles or maxima alike), not a minimiser\n"
+    "                      rol-lbfgs: ROL limited-memory BFGS with a line\n"
+    "                        search (gradients only; slow on stiff rods)\n"
     "      --preconditioner NAME  preconditioner of tr-krylov and nox (it defines the\n"
     "                      trust-region norm): auto (default: dd), dd (rod-level\n"
     "                      domain decomposition), factor (Cholesky of the\n"
@@ -72,7 +74,9 @@ static const char solve_help[] =
     "      --no-stability  skip the stability check of the result (the lowest\n"
     "                      Hessian eigenvalues; docs/solvers.md)\n"
     "  -q, --quiet         no progress lines\n"
-    "  -h, --help          show this help\n"
+    "  -h, --help          show this help\n";
+/* (two strings: one would exceed the 4095 characters C99 guarantees) */
+static const char solve_help_tail[] =
     "\n"
     "Options given here override the scene's \"solver\" block.  Output files are\n"
     "written completely or not at all.\n"
@@ -203,6 +207,7 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
     int rc = 0;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       fputs(solve_help, stdout);
+      fputs(solve_help_tail, stdout);
       return -1;
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
@@ -259,7 +264,7 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox)",
+                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox, rol-lbfgs)",
                               a->solver);
   if (a->preconditioner &&
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)

@@ -363,6 +363,7 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
                                            {"tr-krylov", RN_SOLVER_TR_KRYLOV},
                                            {"nox", RN_SOLVER_NOX},
+                                           {"rol-lbfgs", RN_SOLVER_ROL_LBFGS},
                                            {NULL, 0}};
 static const named_value preconditioner_names[] = {
     {"auto", RN_PRECOND_AUTO},       {"factor", RN_PRECOND_FACTOR},
@@ -540,6 +541,7 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  p->constraints = rn_jm_get(root, "constraints");
   if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
     size_t mark = rn_jwalk_key(w, "periodic");
     st = rn_scene_read_periodic(p, rn_jm_get(root, "periodic"));

@@ -202,7 +202,7 @@ static rn_status read_joint_support(rn_scene_parser *p, const cJSON *v, int clam
 }
 
 static rn_status read_clamp(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"type", "rod", "end", NULL};
+  static const char *const keys[] = {"type", "rod", "end", "at", NULL};
   int rod = -1, end = 0, is_joint = 0;
   rn_status st = read_target(&p->w, v, &is_joint);
   if (st || is_joint) return st ? st : read_joint_support(p, v, 1);
@@ -210,6 +210,14 @@ static rn_status read_clamp(rn_scene_parser *p, const cJSON *v) {
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
   if (!st) st = rn_scene_end_ref(&p->w, v, &end);
   if (st) return st;
+  const char *at = NULL; /* the rod's layout used it (scene_rods.c) */
+  if ((st = rn_jm_string(&p->w, v, "at", 0, &at))) return st;
+  if (at && strcmp(at, "midpoint") && strcmp(at, "vertex")) {
+    size_t mark = rn_jwalk_key(&p->w, "at");
+    st = rn_jwalk_error(&p->w, "expected \"midpoint\" or \"vertex\", got \"%s\"", at);
+    rn_jwalk_pop(&p->w, mark);
+    return st;
+  }
   const rn_scene_rod *r = &p->scene->rods[rod];
   if (r->joint[end] >= 0)
     return at_joint_error(p, "end", r, end == RN_START ? 0 : r->nv - 1, r->joint[end],

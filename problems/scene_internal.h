@@ -61,6 +61,9 @@ typedef struct rn_scene_parser {
   const char **sec_names;
   rn_section *secs;
   const char *where; /* if set, library errors read "PATH: where: message" */
+  /* the scene's "constraints" (NULL if none): a rod given by "line" whose end
+   * has a clamp with "at": "midpoint" is laid out for it (scene_rods.c) */
+  const cJSON *constraints;
 } rn_scene_parser;
 
 /* Wrap the library's last error (status st) at the walker's path, prefixed

@@ -17,7 +17,8 @@ void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt
     in->preconditioner = rn_preconditioner_name(rep->preconditioner);
   in->finds =
       opt->solver == RN_SOLVER_NOX ? "stationary point"
-      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON)
+      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON ||
+         opt->solver == RN_SOLVER_ROL_LBFGS)
           ? "stationary point, energy decreasing"
           : "local minimum";
   in->stop = rn_solve_stop_name(rep->stop);

@@ -85,7 +85,29 @@ rn_status rn_scene_index_ref(rn_scene_parser *p, const cJSON *obj, const char *k
 
 /* ---- geometry ---------------------------------------------------------------- */
 
-static rn_status read_line(rn_jwalk *w, const cJSON *v, double **xyz, int *nv) {
+/* Which ends of the rod called name have a clamp with "at": "midpoint" in the
+ * scene's constraints (bit RN_START / RN_END set in the result).  Loose: the
+ * constraints are checked strictly when they are read (scene_bcs.c). */
+static int midpoint_clamps(const cJSON *constraints, const char *name) {
+  int ends = 0;
+  for (const cJSON *c = constraints ? constraints->child : NULL; c; c = c->next) {
+    const cJSON *type = rn_jm_get(c, "type"), *rod = rn_jm_get(c, "rod");
+    const cJSON *end = rn_jm_get(c, "end"), *at = rn_jm_get(c, "at");
+    if (!cJSON_IsString(type) || strcmp(type->valuestring, "clamp") ||
+        !cJSON_IsString(rod) || strcmp(rod->valuestring, name) || !cJSON_IsString(end) ||
+        !cJSON_IsString(at) || strcmp(at->valuestring, "midpoint"))
+      continue;
+    if (!strcmp(end->valuestring, "start")) ends |= 1 << RN_START;
+    if (!strcmp(end->valuestring, "end")) ends |= 1 << RN_END;
+  }
+  return ends;
+}
+
+/* A straight rod from a to b: n vertices equally spaced, the end vertex at a
+ * (b) or, if midpoint has bit RN_START (RN_END) set, the midpoint of the end
+ * edge at a (b): the rod then reaches half an edge beyond. */
+static rn_status read_line(rn_jwalk *w, const cJSON *v, double **xyz, int *nv,
+                           int midpoint) {
   static const char *const keys[] = {"from", "to", "vertices", NULL};
   double a[3], b[3];
   int n = 0;
@@ -104,10 +126,21 @@ static rn_status read_line(rn_jwalk *w, const cJSON *v, double **xyz, int *nv) {
   if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
     return rn_jwalk_error(w, "\"from\" and \"to\" coincide: the edges would have "
                              "zero length");
+  /* the parameter s of vertex i runs from s0 to 1 - s1 in equal steps, with
+   * s0 = s1 = 0 for vertex ends and -h/2 for midpoint ends (h the step in s) */
+  const int mid0 = (midpoint >> RN_START) & 1, mid1 = (midpoint >> RN_END) & 1;
+  const double half0 = mid0 ? 0.5 : 0.0, half1 = mid1 ? 0.5 : 0.0;
+  const double steps = (double)(n - 1) - half0 - half1;
+  if (!(steps > 0.0))
+    return rn_jwalk_error(w, "a clamp \"at\": \"midpoint\" at both ends needs at "
+                             "least 3 vertices");
+  const double h = 1.0 / steps;
   double *x = malloc(3 * (size_t)n * sizeof *x);
   if (!x) return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory for %d vertices", n);
   for (int i = 0; i < n; i++) {
-    double s = (double)i / (double)(n - 1);
+    double s = !midpoint             ? (double)i / (double)(n - 1)
+               : i == n - 1 && !mid1 ? 1.0
+                                     : ((double)i - half0) * h;
     for (int k = 0; k < 3; k++) x[3 * i + k] = (1 - s) * a[k] + s * b[k];
   }
   *xyz = x;
@@ -176,13 +209,19 @@ static rn_status check_polyline(rn_jwalk *w, const double *x, int nv, int explic
   return RN_OK;
 }
 
-static rn_status read_geometry(rn_jwalk *w, const cJSON *rod, double **xyz, int *nv) {
+static rn_status read_geometry(rn_jwalk *w, const cJSON *rod, int midpoint, double **xyz,
+                               int *nv) {
   const cJSON *line = rn_jm_get(rod, "line"), *verts = rn_jm_get(rod, "vertices");
   if ((line != NULL) == (verts != NULL))
     return rn_jwalk_error(w, "give exactly one of \"line\" ({from, to, vertices}) "
                              "and \"vertices\" ([[x, y, z], ...])");
+  if (verts && midpoint)
+    return rn_jwalk_error(w, "a clamp \"at\": \"midpoint\" lays out a rod given by "
+                             "\"line\"; for \"vertices\" place the clamped edge "
+                             "yourself and drop \"at\"");
   size_t mark = rn_jwalk_key(w, line ? "line" : "vertices");
-  rn_status st = line ? read_line(w, line, xyz, nv) : read_vertex_list(w, verts, xyz, nv);
+  rn_status st =
+      line ? read_line(w, line, xyz, nv, midpoint) : read_vertex_list(w, verts, xyz, nv);
   if (!st) {
     st = check_polyline(w, *xyz, *nv, verts != NULL);
     if (st) {
@@ -454,7 +493,7 @@ static rn_status read_rod(rn_scene_parser *p, const cJSON *v, int json_index) {
   if (!st) st = read_rod_name(p, v, &name);
   if (!st) st = rn_scene_material_ref(p, v, &m);
   if (!st) st = rn_scene_section_ref(p, v, &sec);
-  if (!st) st = read_geometry(&p->w, v, &xyz, &nv);
+  if (!st) st = read_geometry(&p->w, v, midpoint_clamps(p->constraints, name), &xyz, &nv);
   if (!st) st = read_d1(&p->w, v, xyz, d1, &has_d1);
   if (!st) st = rn_scene_add_rod(p, name, nv, xyz, has_d1 ? d1 : NULL, m, sec, &rod);
   free(xyz);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # bench.sh: build (scripts/setup.sh), run the benchmarks at full size and plot them.
-# Writes benchmarks/results/{kernels,joints,solve,lattice,startup,io}.{csv,png}.
+# Writes benchmarks/results/{kernels,joints,solve,lattice,startup,io}.{csv,png},
+# benchmarks/results/bench_suite/ (rodnet bench) and benchmarks/results/pareto/.
 #
 #   bash scripts/bench.sh            # full: kernels 1e2..1e5 vertices, solve 101/401/3201,
 #                                    # honeycombs 10x10 and 30x30, rigid and elastic joints
@@ -50,4 +51,11 @@ if [ -x ./build/benchmarks/bench_io ]; then
   ./build/benchmarks/bench_io --cells "$iocells" --solve "${sargs[@]}" --out "$out/io.csv"
   "$py" benchmarks/plot_startup_io.py "$out/io.csv" -o "$out/io.png"
 fi
+# The optimiser benchmark (docs/benchmarking.md): every problem of the suite against
+# every solver, performance and data profiles; quick suite with RN_BENCH_QUICK=1.
+./build/rodnet bench --suite "$([ "${RN_BENCH_QUICK:-0}" = 1 ] && echo quick || echo full)" \
+  --repeats "$([ "${RN_BENCH_QUICK:-0}" = 1 ] && echo 1 || echo 3)" -o "$out/bench_suite"
+# Speed against error (section 1 of docs/benchmarking.md): cantilever and end moment.
+"$py" benchmarks/pareto.py --rodnet build/rodnet -o "$out/pareto" \
+  $([ "${RN_BENCH_QUICK:-0}" = 1 ] && echo --quick)
 echo "bench.sh: results in $out/"

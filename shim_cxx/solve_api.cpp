@@ -52,7 +52,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const int kind = enum_value(o.solver);
   if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
       kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV &&
-      kind != RN_SOLVER_NOX)
+      kind != RN_SOLVER_NOX && kind != RN_SOLVER_ROL_LBFGS)
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -109,10 +109,12 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
                      double force_scale, Clock::time_point start, SolveTotals &tot) {
   // (with tr-krylov the predictor uses its preconditioner and MINRES, distributed on
   // a part; the other kinds factor the whole Hessian)
-  if (opt.predictor && (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
-                        : opt.solver == RN_SOLVER_TR_KRYLOV
-                            ? predict_step_krylov(p, opt, t_prev, t)
-                            : predict_load_step(p, tot.factorization, t_prev, t)))
+  // (rol-lbfgs uses gradients only: no predictor, which would factor the Hessian)
+  if (opt.predictor && opt.solver != RN_SOLVER_ROL_LBFGS &&
+      (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
+       : opt.solver == RN_SOLVER_TR_KRYLOV
+           ? predict_step_krylov(p, opt, t_prev, t)
+           : predict_load_step(p, tot.factorization, t_prev, t)))
     ++tot.predictor_steps;
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
@@ -125,6 +127,9 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
     break;
   case RN_SOLVER_ROL_LS_NEWTON:
     run_rol_ls_newton(p, mon, opt);
+    break;
+  case RN_SOLVER_ROL_LBFGS:
+    run_rol_lbfgs(p, mon, opt);
     break;
   case RN_SOLVER_TR_KRYLOV:
     tot.preconditioner =
@@ -378,14 +383,16 @@ const char *rn_solver_name(rn_solver_kind k) {
     return "tr-krylov";
   case RN_SOLVER_NOX:
     return "nox";
+  case RN_SOLVER_ROL_LBFGS:
+    return "rol-lbfgs";
   }
   return "unknown";
 }
 
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
-  const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES, RN_SOLVER_ROL_TR_TCG,
+  const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES,     RN_SOLVER_ROL_TR_TCG,
                                   RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV,
-                                  RN_SOLVER_NOX};
+                                  RN_SOLVER_NOX,           RN_SOLVER_ROL_LBFGS};
   return rodnet::value_of_name(name, kinds, rn_solver_name, k);
 }
 

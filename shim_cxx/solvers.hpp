@@ -22,6 +22,7 @@ class Preconditioner;
 void run_tr_minres(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_tr_tcg(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 void run_rol_ls_newton(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
+void run_rol_lbfgs(Problem &problem, Monitor &monitor, const rn_solve_options &opt);
 // The preconditioner opt.preconditioner names for sys (auto: dd, the rod-level domain
 // decomposition; factor on several ranks is RN_ERR_ARG); *used is the kind chosen
 // (tr_krylov.cpp).

@@ -39,6 +39,9 @@ rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
             LIBS rodnet_problems m LABELS unit
             ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
 # Free rigid-body motions and unbalanced loads on them (c_api/supports.c).
+# The clamp convention of a scene: "at": "midpoint" | "vertex" (scene_rods.c).
+rn_add_test(problems_clamp_at SOURCES unit/problems_clamp_at_test.c
+            LIBS rodnet_problems LABELS unit)
 rn_add_test(problems_supports SOURCES unit/problems_supports_test.c
             LIBS rodnet_problems LABELS unit
             ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports ${RN_SCENES})
@@ -465,6 +468,13 @@ if(RN_WITH_TRILINOS)
                    --load-steps 1 --quiet)
   rn_cli_test(problems_cli_unknown_solver 2 "unknown solver 'newton'"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --solver newton)
+  rn_cli_test(problems_cli_bench_bad_suite 2 "--suite expects smoke, quick or full"
+              ARGS bench --suite huge -o ${RN_CLI_OUT}/bench_x)
+  rn_cli_test(problems_cli_bench_unknown_solver 2 "unknown solver 'newton' in --solvers"
+              ARGS bench --solvers tr-minres,newton -o ${RN_CLI_OUT}/bench_x)
+  rn_cli_test(problems_cli_bench_unknown_problem 2 "has no problem 'nothing'"
+              ARGS bench --problems cantilever,nothing -o ${RN_CLI_OUT}/bench_x)
+  rn_cli_test(problems_cli_bench_missing_output 2 "missing -o DIR" ARGS bench)
   rn_cli_test(problems_cli_unknown_factorization 2 "unknown factorization 'lu'"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json --factorization lu)
   rn_cli_test(problems_cli_unknown_preconditioner 2 "unknown preconditioner 'ilu'"

@@ -5,6 +5,8 @@ if(NOT RN_WITH_TRILINOS)
 endif()
 rn_add_test(shim_solve SOURCES unit/shim_solve.c
             LIBS rodnet ${LAPACK_LIBRARIES} LABELS unit)
+# ROL L-BFGS (rol-lbfgs): gradients only, reaches tr-minres's solution.
+rn_add_test(shim_lbfgs SOURCES unit/shim_lbfgs.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_buckling SOURCES unit/shim_buckling.c LIBS rodnet LABELS unit)
 rn_add_test(shim_load_stepping SOURCES unit/shim_load_stepping.c LIBS rodnet LABELS unit)
 # No rn_runtime_initialize: the first solve initialises the runtime; also under mpirun.
