@@ -22,6 +22,15 @@
 #define RN_PYTHON3 "python3"
 #endif
 
+#ifndef RN_HAVE_SOLVER
+int rn_cli_path(int argc, char **argv) {
+  (void)argc;
+  (void)argv;
+  fprintf(stderr, "rodnet path: rodnet was built without the solver "
+                  "(RN_WITH_TRILINOS=OFF)\n");
+  return RN_EXIT_INTERNAL;
+}
+#else
 static const char path_help[] =
     "Usage: rodnet path SCENE.json -o PATH.csv [options]\n"
     "\n"
@@ -461,11 +470,6 @@ int rn_cli_path(int argc, char **argv) {
   path_args a;
   int rc = parse_args(argc, argv, &a);
   if (rc) return rc < 0 ? RN_EXIT_OK : rc;
-#ifndef RN_HAVE_SOLVER
-  fprintf(stderr, "rodnet path: rodnet was built without the solver "
-                  "(RN_WITH_TRILINOS=OFF)\n");
-  return RN_EXIT_INTERNAL;
-#else
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) {
     fprintf(stderr, "rodnet path: out of memory\n");
@@ -485,5 +489,5 @@ int rn_cli_path(int argc, char **argv) {
   rn_scene_destroy(&scene);
   rn_context_destroy(&ctx);
   return rc;
-#endif
 }
+#endif /* RN_HAVE_SOLVER */
