@@ -107,8 +107,8 @@ private:
   rn_status residual(std::vector<double> &x, double mu, std::vector<double> &r, double *E,
                      double *force);
   void linearise(const std::vector<double> &x, double mu);
-  void solve(std::vector<double> &v);
-  void tangent(Point &pt, const std::vector<double> &tx_prev, double tmu_prev);
+  bool solve(std::vector<double> &v);
+  bool tangent(Point &pt, const std::vector<double> &tx_prev, double tmu_prev);
   bool correct(Point &pt, const std::vector<double> &ax, double amu, double target);
   bool step_from(const Point &from, double ds, const std::vector<double> &tx, double tmu,
                  Point &to, bool check_turn = true);
@@ -211,29 +211,28 @@ void PathFollower::linearise(const std::vector<double> &x, double mu) {
   if (!exact_) factor_shifted(*factor_, p_, 0.0, metric_.data(), false);
 }
 
-// v <- A^{-1} v with the last linearisation.
-void PathFollower::solve(std::vector<double> &v) {
+// v <- A^{-1} v with the last linearisation; false if MINRES did not converge (A
+// numerically singular: the caller shortens the step).
+bool PathFollower::solve(std::vector<double> &v) {
   if (exact_) {
     factor_->solve(v.data());
-    return;
+    return true;
   }
   std::copy(v.begin(), v.end(), host_data(rhs_));
   HessianOp A(p_);
   InverseOp P(*factor_);
   const MinresResult res = minres_.solve(A, P, rhs_, sol_);
-  if (!res.converged && !(res.achieved_tol < 1e-8))
-    throw Error(RN_ERR_SOLVER, "rn_path_follow: MINRES did not converge on a bordered "
-                               "system (relative residual " +
-                                   std::to_string(res.achieved_tol) + ")");
+  if (!res.converged && !(res.achieved_tol < 1e-8)) return false;
   std::copy(host_data(sol_), host_data(sol_) + n_, v.begin());
+  return true;
 }
 
 // Tangent at pt (A, b linearised there): (-A^{-1} b, 1) normalised, along the
 // previous tangent (or dmu > 0 times o.direction without one).
-void PathFollower::tangent(Point &pt, const std::vector<double> &tx_prev,
+bool PathFollower::tangent(Point &pt, const std::vector<double> &tx_prev,
                            double tmu_prev) {
   std::vector<double> v = b_;
-  solve(v);
+  if (!solve(v)) return false;
   pt.tx.assign(n_, 0.0);
   for (size_t i = 0; i < n_; ++i) pt.tx[i] = -v[i];
   pt.tmu = 1.0;
@@ -246,6 +245,7 @@ void PathFollower::tangent(Point &pt, const std::vector<double> &tx_prev,
     for (double &e : pt.tx) e = -e;
     pt.tmu = -pt.tmu;
   }
+  return true;
 }
 
 // Force and moment scales of the convergence test at x (rn_network_gradient_magnitude,
@@ -305,9 +305,8 @@ bool PathFollower::correct(Point &pt, const std::vector<double> &ax, double amu,
     rprev = rmax;
     ++corrector_its_;
     for (size_t i = 0; i < n_; ++i) v1[i] = -r[i];
-    solve(v1);
     v2 = b_;
-    solve(v2);
+    if (!solve(v1) || !solve(v2)) return false;
     const double den = amu - dot(n_, ax.data(), v2.data());
     if (!(std::fabs(den) > 0.0)) return false;
     const double dmu = (-N - dot(n_, ax.data(), v1.data())) / den;
@@ -331,7 +330,7 @@ bool PathFollower::step_from(const Point &from, double ds, const std::vector<dou
   const double amu = w_mu_ * tmu;
   const double target = dot(n_, ax.data(), to.x.data()) + amu * to.mu;
   if (!correct(to, ax, amu, target)) return false;
-  tangent(to, tx, tmu);
+  if (!tangent(to, tx, tmu)) return false;
   // a step whose tangent turned by more than kMaxTurn jumped (or may jump) between
   // branches: shorter steps follow the path
   return !check_turn || weighted_dot(to.tx, to.tmu, tx, tmu) >= std::cos(kMaxTurn);
@@ -601,7 +600,9 @@ void PathFollower::run(rn_path_report &rep) {
   Snapshot snap;
   p_.accept(cur.x.data());
   start_monitor_ = cur.x[monitor_];
-  tangent(cur, {}, 0.0);
+  if (!tangent(cur, {}, 0.0))
+    throw Error(RN_ERR_SOLVER, "rn_path_follow: no tangent at the start (MINRES did "
+                               "not converge: a singular Hessian?)");
   eigen(cur, nullptr);
   snap.save(net_);
   double arclength = 0.0;
@@ -651,8 +652,8 @@ void PathFollower::run(rn_path_report &rep) {
             end.mu = mu_end;
             if (dof_ >= 0) end.x[static_cast<size_t>(dof_)] = mu_end;
             const std::vector<double> ax(n_, 0.0);
-            if (correct(end, ax, w_mu_, w_mu_ * mu_end)) {
-              tangent(end, next.tx, next.tmu);
+            if (correct(end, ax, w_mu_, w_mu_ * mu_end) &&
+                tangent(end, next.tx, next.tmu)) {
               taken = reach +
                       std::fabs(frac) *
                           std::sqrt(weighted_dot(next.tx, next.tmu, next.tx, next.tmu));

@@ -36,7 +36,8 @@
  *      image of the start (force 0 to 1e-6 of the largest force, energy equal
  *      to 1e-8), and the energy is continuous: sum over the steps of
  *      |dE - (F1 + F0)/2 du| (trapezoidal work of the conjugate force) is
- *      below 2 % of the energy's range. */
+ *      below 2 % of the energy's range.  Then back from the mirror image (the
+ *      end state asserted; its continuity measured only, see strip()). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -255,9 +256,8 @@ static void column_convergence(rn_context *ctx, const char *dir) {
 }
 
 /* ---- (4) strip pushed sideways (hard) ---------------------------------------- */
-static void strip(rn_context *ctx, const char *dir) {
-  rn_scene *s = load(ctx, dir, "strip_snap.json");
-  rn_network *net = rn_scene_network(s);
+/* Pushes the midpoint from the buckled state the network is in to its mirror. */
+static void strip_push(rn_network *net, const char *label, int continuity) {
   static points ps;
   rn_path_options o = start(net, -1.0, &ps);
   double x[3];
@@ -272,7 +272,9 @@ static void strip(rn_context *ctx, const char *dir) {
   o.ds_max = 0.005;
   o.branch_switch = 1;
   rn_path_report rep;
-  CHECK_STATUS(rn_path_follow(net, &o, &rep), RN_OK);
+  rn_status st = rn_path_follow(net, &o, &rep);
+  if (st != RN_OK) printf("%s\n", rn_context_last_error(rn_network_context(net)));
+  CHECK_STATUS(st, RN_OK);
   CHECK(rep.stop == RN_PATH_STOP_TARGET);
   CHECK(rep.bifurcations >= 1);
   double fbig = 0, emin = 1e300, emax = -1e300, work_err = 0;
@@ -292,19 +294,34 @@ static void strip(rn_context *ctx, const char *dir) {
     prev = p;
   }
   const rn_path_point *last = &ps.p[ps.n - 1];
-  printf("strip: %d steps, %d points, stop %s, %d bifurcation(s), first at %.6f with "
-         "force %.6f (largest |force| %.6f); end at %.6f: force %.3e, energy %.10f "
-         "(start %.10f); trapezoid work error %.3e of the energy range %.3e\n",
-         rep.steps, ps.n, rn_path_stop_name(rep.stop), rep.bifurcations,
-         rep.bifurcation_control, rep.bifurcation_force, fbig, last->control, last->force,
-         last->energy, ps.p[0].energy, work_err, emax - emin);
+  printf(
+      "strip (%s): %d steps, %d points, stop %s, %d bifurcation(s), first at %.6f with "
+      "force %.6f (largest |force| %.6f); end at %.6f: force %.3e, energy %.10f "
+      "(start %.10f); trapezoid work error %.3e of the energy range %.3e\n",
+      label, rep.steps, ps.n, rn_path_stop_name(rep.stop), rep.bifurcations,
+      rep.bifurcation_control, rep.bifurcation_force, fbig, last->control, last->force,
+      last->energy, ps.p[0].energy, work_err, emax - emin);
   CHECK(sw > 0);
-  /* the largest force is at a bifurcation (located to ~1e-5 of the force) */
-  CHECK_NEAR(fabs(rep.bifurcation_force), fbig, 1e-4 * fbig);
   CHECK(last->stability == 1);
   CHECK(fabs(last->force) < 1e-6 * fbig);
   CHECK_REL(last->energy, ps.p[0].energy, 1e-8);
-  CHECK(work_err < 2e-2 * (emax - emin));
+  if (continuity) {
+    /* the largest force is at a bifurcation (located to ~1e-5 of the force) */
+    CHECK_NEAR(fabs(rep.bifurcation_force), fbig, 1e-4 * fbig);
+    CHECK(work_err < 2e-2 * (emax - emin));
+  }
+}
+
+static void strip(rn_context *ctx, const char *dir) {
+  rn_scene *s = load(ctx, dir, "strip_snap.json");
+  rn_network *net = rn_scene_network(s);
+  strip_push(net, "there", 1);
+  /* and back from the mirrored twin (the other sign of every branch): it gets
+   * there, but goes round the asymmetric loop more often, and where a step crosses
+   * a junction of branches the force jumps (docs/path-following.md, Limits: 2.6 %
+   * trapezoid error, a point 3e-4 above the bifurcation force): measured, not
+   * asserted */
+  strip_push(net, "back", 0);
   rn_scene_destroy(&s);
 }
 
