@@ -358,6 +358,137 @@ rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
  * network: out->checked = 0 (RN_OK).  Not collective; needs no runtime
  * initialisation (no Tpetra).  out is filled only on RN_OK. */
 rn_status rn_network_stability(rn_network *net, rn_stability *out);
+/* ---- path following (docs/path-following.md) --------------------------------
+ * Pseudo-arclength continuation of the equilibria of a finalized whole network
+ * in one parameter mu, past limit points and snap-backs:
+ *  - RN_PATH_LOAD: mu is the load factor (loads and prescribed motions scale
+ *    with it, rn_network_set_load_factor; mu stays in [0, 1]);
+ *  - RN_PATH_DOF: mu is the value of one free reduced DOF (a coordinate of a
+ *    vertex or joint: displacement control), the load factor stays fixed, and
+ *    the conjugate force dE/dq of that DOF is what holds it there.
+ * The unknowns z = (x, mu) satisfy r(x, mu) = 0 (the gradient, without the
+ * controlled DOF's row under displacement control) and the arclength equation
+ * t' W (z - z_prev) = ds, W the metric of RMS changes: positions / L (L the
+ * size of the structure) and angles, each kind averaged over its DOFs, plus
+ * the load factor, or the controlled coordinate / L.  Each corrector iteration solves the
+ * bordered Newton system [A b; t_x' W  t_mu] by the bordering algorithm: two solves with
+ * A (the Hessian, constrained), by Cholesky when A is positive definite and otherwise by
+ * Belos MINRES preconditioned by the Cholesky factorisation of A + sigma D (banded or
+ * sparse, opt.factorization).  At every point the lowest eigenvalue of A
+ * (rn_hessian_min_eigenvalue's methods) gives the stability; a sign change between two
+ * points is a limit point if dmu/ds changed sign there and a bifurcation otherwise, and
+ * dmu/ds changing sign while the eigenvalue does not is a bifurcation met along the
+ * bifurcated branch; each is located by a secant search in the arclength and reported
+ * as an extra point.  With branch_switch set the path leaves each bifurcation onto the
+ * other branch through it: along the critical eigenvector when it came along the
+ * regular direction (the stable branch of a supercritical pitchfork), else along the
+ * regular direction.  Serial: one process, whole network; never prints. */
+typedef enum rn_path_control {
+  RN_PATH_LOAD = 0, /* continuation in the load factor */
+  RN_PATH_DOF = 1   /* displacement control of the reduced DOF opt.dof */
+} rn_path_control;
+
+typedef enum rn_path_event {
+  RN_PATH_POINT = 0,        /* a regular point of the path */
+  RN_PATH_LIMIT = 1,        /* a limit point (located): dmu/ds = 0, A singular */
+  RN_PATH_BIFURCATION = 2,  /* a bifurcation point (located): A singular with
+                               dmu/ds != 0 */
+  RN_PATH_BRANCH_SWITCH = 3 /* the first point on the bifurcated branch */
+} rn_path_event;
+
+/* One point of the path (passed to the callback). */
+typedef struct rn_path_point {
+  int step; /* 0 for the start, then 1, 2, ... (located events
+               carry the number of the step they were found in) */
+  rn_path_event event;
+  double load_factor;
+  double control;      /* value of the monitored DOF (under RN_PATH_DOF the
+                          controlled one): a coordinate or an angle */
+  double displacement; /* control minus its value at the start of the path */
+  double force;        /* conjugate force of the monitored DOF: dE/dq of the
+                          controlled DOF (RN_PATH_DOF); under RN_PATH_LOAD the
+                          applied generalised load there, -mu dr_q/dmu */
+  double energy;
+  double lowest_eigenvalue; /* of A (RN_PATH_DOF: the Hessian without the
+                               controlled DOF); NaN if not computed */
+  double eigenvalue_scale;  /* largest |diagonal| of A */
+  int stability;            /* +1 stable (lowest eigenvalue > 1e-12 scale),
+                               -1 unstable (< -1e-12 scale), 0 critical,
+                               -2 not computed */
+  double arclength;         /* accumulated, in the W norm */
+  int corrector_iterations;
+} rn_path_point;
+
+typedef struct rn_path_options {
+  rn_path_control control;
+  size_t dof;                   /* RN_PATH_DOF: reduced DOF index (rn_network_dof_info) */
+  long monitor;                 /* RN_PATH_LOAD: reduced DOF reported as control and
+                                   force; -1 (default): the position DOF with the largest
+                                   load derivative |dr/dmu| at the start */
+  int max_steps;                /* default 200 */
+  double ds;                    /* first arclength step (W norm), default 0.01 */
+  double ds_min;                /* default 1e-8: smaller steps stop the path */
+  double ds_max;                /* default 0.05; steps whose tangent turns by more
+                                   than 0.5 rad are halved */
+  double direction;             /* sign of dmu/ds at the start: +1 (default) or -1 */
+  double target;                /* stop when mu reaches it (the last step lands on it):
+                                   default NaN = none for RN_PATH_DOF, 1 for RN_PATH_LOAD */
+  int max_corrector_iterations; /* default 15 */
+  double tol;                   /* corrector: |r_i| <= tol * (the largest force or moment
+                                   magnitude balanced at a DOF of that kind,
+                                   rn_network_gradient_magnitude, or the load scale),
+                                   default 1e-9 */
+  int eigenvalues;              /* 1 (default): lowest eigenvalue at every point (needed
+                                   for events); 0: off */
+  int branch_switch;            /* 1: leave every bifurcation onto the other branch
+                                   through it (see above); default 0 */
+  double branch_sign;           /* +1 (default) or -1: which way along the eigenvector
+                                   (normalised with its largest component positive) */
+  rn_factorization factorization; /* default RN_FACTOR_AUTO */
+  /* called once per point (start, regular points, located events); a non-zero
+   * return stops the path (RN_PATH_STOP_CALLBACK).  May be NULL. */
+  int (*callback)(void *user, const rn_path_point *pt);
+  void *user;
+} rn_path_options;
+
+typedef enum rn_path_stop {
+  RN_PATH_STOP_TARGET = 0,    /* mu reached the target */
+  RN_PATH_STOP_MAX_STEPS = 1, /* max_steps taken */
+  RN_PATH_STOP_STEP_MIN = 2,  /* the corrector failed down to ds_min */
+  RN_PATH_STOP_RANGE = 3,     /* RN_PATH_LOAD: the load factor left [0, 1] */
+  RN_PATH_STOP_CALLBACK = 4   /* the callback asked to stop */
+} rn_path_stop;
+
+typedef struct rn_path_report {
+  rn_path_stop stop;
+  int steps;  /* accepted steps */
+  int points; /* points passed to the callback */
+  int limit_points, bifurcations;
+  double limit_load_factor; /* load factor at the first limit point (NaN if none) */
+  double limit_control, limit_force; /* control and force there */
+  double bifurcation_load_factor;    /* at the first bifurcation (NaN if none) */
+  double bifurcation_control, bifurcation_force;
+  long corrector_iterations, factorizations;
+  double time_s;
+} rn_path_report;
+
+void rn_path_options_default(rn_path_options *opt);
+/* "point", "limit", "bifurcation", "branch-switch"; "target", "max-steps",
+ * "step-min", "range", "callback". */
+const char *rn_path_event_name(rn_path_event e);
+const char *rn_path_stop_name(rn_path_stop s);
+
+/* Follow the equilibrium path from the network's current state, which must
+ * be an equilibrium at its load factor (rn_solve first; under RN_PATH_LOAD the
+ * path starts at the network's load factor).  The network is left at the last
+ * accepted point (state, reference frames, load factor).  Returns RN_OK when
+ * the path ran to a stop (rep->stop says which), RN_ERR_ARG for invalid options
+ * (a DOF out of range, a part of a distributed network), RN_ERR_GEOMETRY if the
+ * start is degenerate, RN_ERR_SOLVER if the start is not an equilibrium (the
+ * first corrector fails), another error code otherwise; the message in the
+ * network's context.  rep may be NULL. */
+rn_status rn_path_follow(rn_network *net, const rn_path_options *opt,
+                         rn_path_report *rep);
 
 /* Linear effective elasticity of a periodic cell (docs/homogenization.md). */
 typedef struct rn_homogenization {

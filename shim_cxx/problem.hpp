@@ -60,6 +60,9 @@ public:
   const int64_t *rowptr() const { return rowptr_; }
   const int32_t *col() const { return col_; }
   const double *values() const { return vals_.data(); }
+  // The assembled values, to be modified in place (e.g. a constrained Hessian for
+  // path following: path.cpp); hessian_apply and the factorisations use them.
+  double *mutable_values() { return vals_.data(); }
 
   // Symbolic analysis of the Hessian's pattern for the sparse Cholesky factorisation
   // (sparse_cholesky.hpp), computed on first use and shared by every factorisation.

@@ -12,11 +12,13 @@
 #include "dist_predictor.hpp"
 #include "dist_system.hpp"
 #include "monitor.hpp"
+#include "path.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
 #include "rodnet_solve.h"
 #include "runtime.hpp"
 #include "shim_error.hpp"
+#include "snapshot.hpp"
 #include "solvers.hpp"
 #include "spd_factor.hpp"
 #include "stability.hpp"
@@ -150,25 +152,6 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   tot.moment_tol = mon.moment_tolerance();
   return mon.converged();
 }
-
-// A snapshot of the network's whole mutable state (rn_network_state_save), owned.
-class Snapshot {
-public:
-  Snapshot() = default;
-  ~Snapshot() { rn_state_destroy(&s_); }
-  Snapshot(const Snapshot &) = delete;
-  Snapshot &operator=(const Snapshot &) = delete;
-  void save(const rn_network *net) {
-    rn_state_destroy(&s_);
-    check_status(rn_network_state_save(net, &s_), "rn_network_state_save");
-  }
-  void restore(rn_network *net) const {
-    check_status(rn_network_state_restore(net, s_), "rn_network_state_restore");
-  }
-
-private:
-  rn_state *s_ = nullptr;
-};
 
 // Fixed continuation: load_steps equal increments up to the target.
 void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
@@ -504,6 +487,73 @@ rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min) {
                       ? rodnet::banded_min_eigenvalue(p)
                       : rodnet::sparse_min_eigenvalue(p);
   });
+}
+
+void rn_path_options_default(rn_path_options *opt) {
+  if (!opt) return;
+  std::memset(opt, 0, sizeof *opt);
+  opt->control = RN_PATH_LOAD;
+  opt->dof = 0;
+  opt->monitor = -1;
+  opt->max_steps = 200;
+  opt->ds = 0.01;
+  opt->ds_min = 1e-8;
+  opt->ds_max = 0.05;
+  opt->direction = 1.0;
+  opt->target = std::nan("");
+  opt->max_corrector_iterations = 15;
+  opt->tol = 1e-9;
+  opt->eigenvalues = 1;
+  opt->branch_switch = 0;
+  opt->branch_sign = 1.0;
+  opt->factorization = RN_FACTOR_AUTO;
+  opt->callback = nullptr;
+  opt->user = nullptr;
+}
+
+const char *rn_path_event_name(rn_path_event e) {
+  switch (rodnet::enum_value(e)) {
+  case RN_PATH_POINT:
+    return "point";
+  case RN_PATH_LIMIT:
+    return "limit";
+  case RN_PATH_BIFURCATION:
+    return "bifurcation";
+  case RN_PATH_BRANCH_SWITCH:
+    return "branch-switch";
+  }
+  return "unknown";
+}
+
+const char *rn_path_stop_name(rn_path_stop s) {
+  switch (rodnet::enum_value(s)) {
+  case RN_PATH_STOP_TARGET:
+    return "target";
+  case RN_PATH_STOP_MAX_STEPS:
+    return "max-steps";
+  case RN_PATH_STOP_STEP_MIN:
+    return "step-min";
+  case RN_PATH_STOP_RANGE:
+    return "range";
+  case RN_PATH_STOP_CALLBACK:
+    return "callback";
+  }
+  return "unknown";
+}
+
+rn_status rn_path_follow(rn_network *net, const rn_path_options *opt,
+                         rn_path_report *rep) {
+  rn_path_report local;
+  rn_path_report &r = rep ? *rep : local;
+  std::memset(&r, 0, sizeof r);
+  const double nan = std::nan("");
+  r.limit_load_factor = r.limit_control = r.limit_force = nan;
+  r.bifurcation_load_factor = r.bifurcation_control = r.bifurcation_force = nan;
+  if (!net) return RN_ERR_ARG;
+  rn_path_options defaults;
+  rn_path_options_default(&defaults);
+  const rn_path_options &o = opt ? *opt : defaults;
+  return guarded(net, "rn_path_follow", [&] { rodnet::follow_path(net, o, r); });
 }
 
 } // extern "C"

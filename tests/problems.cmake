@@ -224,6 +224,33 @@ rn_cli_test(problems_cli_generate_check 0 "38 rods, 114 vertices.*PASS"
 set_tests_properties(problems_cli_generate_check PROPERTIES
                      FIXTURES_REQUIRED problems_generate_hc33)
 
+# ---- rodnet path (docs/path-following.md) -----------------------------------------------
+set(RN_PATH_SCENES ${CMAKE_CURRENT_SOURCE_DIR}/../problems/scenes/path)
+if(RN_WITH_TRILINOS)
+  rn_cli_test(problems_cli_path_help 0 "Usage: rodnet path SCENE.json -o PATH.csv.*--control"
+              ARGS path --help)
+  rn_cli_test(problems_cli_path_missing_output 2 "missing -o PATH.csv"
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json)
+  # a fixed coordinate cannot be controlled; the CSV is not written
+  rn_cli_test(problems_cli_path_fixed_control 3 "vertex:truss:0:x.*not a free DOF"
+              STDERR_LINES 1 ABSENT ${RN_CLI_OUT}/path_fixed.csv
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json -o ${RN_CLI_OUT}/path_fixed.csv
+                   --control vertex:truss:0:x)
+  rn_cli_test(problems_cli_path_bad_control 3 "expected load, vertex:ROD:I:C"
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json -o ${RN_CLI_OUT}/path_bad.csv
+                   --control vertex:truss:1:w)
+  # the truss through its limit point: summary, CSV and plot
+  rn_cli_test(problems_cli_path_truss 0
+              "stop range, 1 limit point.*first limit point: load factor 0.46635179"
+              REMOVE ${RN_CLI_OUT}/path_truss.csv
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json -o ${RN_CLI_OUT}/path_truss.csv
+                   --plot ${RN_CLI_OUT}/path_truss.png)
+  rn_cli_test(problems_cli_path_column 0
+              "1 bifurcation.*first bifurcation: load factor 0.4919016"
+              ARGS path ${RN_PATH_SCENES}/euler_column.json -o ${RN_CLI_OUT}/path_column.csv
+                   --branch-switch)
+endif()
+
 # ---- periodic cells: rodnet generate --periodic, rodnet homogenize ----------------------
 set(RN_PERIODIC_COUNTS
     "square:2:1" "triangular:3:1" "honeycomb:3:2" "kagome:6:3" "reentrant:3:2"

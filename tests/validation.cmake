@@ -6,6 +6,12 @@ if(RN_WITH_TRILINOS)
           val_homogenize)
     rn_add_test(${v} SOURCES validation/${v}.c LIBS rn_valutil rodnet m LABELS validation)
   endforeach()
+  # Path following (docs/path-following.md): closed forms, and the strip hard case.
+  set(RN_PATH_SCENES ${CMAKE_CURRENT_SOURCE_DIR}/../problems/scenes/path)
+  rn_add_test(val_path SOURCES validation/val_path.c LIBS rn_valutil rodnet_problems m
+              LABELS validation ARGS ${RN_PATH_SCENES} validation)
+  add_test(NAME val_path_strip COMMAND val_path ${RN_PATH_SCENES} hard)
+  set_tests_properties(val_path_strip PROPERTIES LABELS hard TIMEOUT 600)
   # Lattices of `rodnet generate` under stretch (frictionless grips) and grip.
   file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/val_lattice)
   rn_add_test(val_lattice_stretch SOURCES validation/val_lattice_stretch.c

