@@ -12,6 +12,7 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "homog_path.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 
@@ -24,6 +25,7 @@
 
 static const char homogenize_help[] =
     "Usage: rodnet homogenize SCENE.json -o RESULT.json [--plot PNG]\n"
+    "       rodnet homogenize SCENE.json --path E11,E22,E12 [--steps N] -o RESULT.json\n"
     "\n"
     "Effective linear stiffness of a periodic cell (a scene with a top-level\n"
     "\"periodic\" object, e.g. from 'rodnet generate KIND --periodic') at its rest\n"
@@ -37,6 +39,16 @@ static const char homogenize_help[] =
     "  -o, --output FILE   result JSON (required)\n"
     "      --plot PNG      polar plot of the directional Young's modulus (in the\n"
     "                      xy plane; 3D cells also xz), by python3 with matplotlib\n"
+    "      --path E,E,E    follow the proportional macroscopic strain path from the\n"
+    "                      rest state to this strain (2D: E11,E22,E12; 3D: E11,E22,\n"
+    "                      E33,E23,E13,E12; engineering shear) and locate its first\n"
+    "                      instability by Bloch-Floquet analysis (RESULT.json gains\n"
+    "                      \"path\" and \"instability\")\n"
+    "      --steps N       steps of the path (default 20)\n"
+    "      --modes M       Bloch modes examined: all (default), in-plane or\n"
+    "                      out-of-plane (2D cells at planar states)\n"
+    "      --bloch-grid G  wave vectors per reciprocal direction (default 16 in 2D,\n"
+    "                      6 in 3D), refined around the minimum\n"
     "  -q, --quiet         no summary on stdout\n"
     "  -h, --help          show this help\n"
     "\n"
@@ -44,12 +56,14 @@ static const char homogenize_help[] =
     "strain) or unwritable output, 4 the cell is a mechanism or the plot failed.\n";
 
 typedef struct hom_args {
-  const char *scene, *output, *plot;
-  int quiet;
+  const char *scene, *output, *plot, *path;
+  int quiet, steps, grid;
+  rn_bloch_modes modes;
 } hom_args;
 
 static int parse_args(int argc, char **argv, hom_args *a) {
   memset(a, 0, sizeof *a);
+  a->steps = 20;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = NULL;
     int m;
@@ -69,6 +83,35 @@ static int parse_args(int argc, char **argv, hom_args *a) {
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--plot", NULL, &v))) {
       if (m < 0) return RN_EXIT_USAGE;
       a->plot = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--steps", NULL, &v))) {
+      if (m < 0 || rn_cli_parse_int("homogenize", "--steps", v, 1, 100000, &a->steps))
+        return RN_EXIT_USAGE;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--bloch-grid", NULL,
+                                 &v))) {
+      if (m < 0 || rn_cli_parse_int("homogenize", "--bloch-grid", v, 1, 1000, &a->grid))
+        return RN_EXIT_USAGE;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--modes", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      if (strcmp(v, "all") == 0)
+        a->modes = RN_BLOCH_ALL;
+      else if (strcmp(v, "in-plane") == 0)
+        a->modes = RN_BLOCH_IN_PLANE;
+      else if (strcmp(v, "out-of-plane") == 0)
+        a->modes = RN_BLOCH_OUT_OF_PLANE;
+      else
+        return rn_cli_usage_error(
+            "homogenize", "--modes takes all, in-plane or out-of-plane, not '%s'", v);
       continue;
     }
     if (s[0] == '-' && s[1] != '\0')
@@ -114,6 +157,7 @@ typedef struct hom_out {
   const rn_homogenization *h;
   const double *S;
   double seconds;
+  const hp_path *path; /* NULL without --path */
 } hom_out;
 
 /* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
@@ -191,6 +235,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     fputs("],\n", f);
   }
   fprintf(f, "  \"directional_modulus_angles_deg\": [0, 360, 2],\n");
+  if (o->path) hp_write_json(f, o->path);
   fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
           o->seconds);
   return RN_OK;
@@ -251,6 +296,19 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INPUT;
     goto done;
   }
+  double target[6] = {0};
+  if (a.path) {
+    int count = 0, ns = 0;
+    rn_network_cell_info(net, NULL, &ns, NULL, NULL);
+    if (hp_parse_strain(a.path, target, &count) || count != ns) {
+      fprintf(stderr,
+              "rodnet homogenize: --path '%s': expected %d comma-separated numbers (%s) "
+              "for this %dD cell\n",
+              a.path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
+      rc = RN_EXIT_USAGE;
+      goto done;
+    }
+  }
   double t0 = now();
 #ifdef RN_HAVE_SOLVER
   st = rn_homogenize(net, &h);
@@ -272,8 +330,47 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INTERNAL;
     goto done;
   }
-  hom_out o = {&a, &h, S, seconds};
-  if ((st = rn_file_write_atomic(ctx, a.output, write_result, &o))) {
+  hp_path path;
+  memset(&path, 0, sizeof(path));
+  if (a.path) {
+    path.ns = h.nstrain;
+    path.dim = h.dim;
+    path.steps = a.steps;
+    path.modes = a.modes;
+    path.grid = a.grid;
+    path.quiet = a.quiet;
+    memcpy(path.target, target, sizeof(target));
+#ifdef RN_HAVE_SOLVER
+    st = hp_run(net, &path);
+#endif
+    if (st) {
+      fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
+      rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+      hp_free(&path);
+      goto done;
+    }
+  }
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL};
+  st = rn_file_write_atomic(ctx, a.output, write_result, &o);
+  if (!st && a.path && !a.quiet) {
+    if (path.inst.found)
+      printf(
+          "rodnet homogenize: first instability at load factor %.6g of the path: "
+          "strain [%.6g %.6g %.6g%s], %s, wave vector [%.4g %.4g%s], multiplicity %d\n",
+          path.inst.t, path.inst.strain[0], path.inst.strain[1],
+          path.inst.strain[path.ns - 1], path.ns == 6 ? " ..." : "",
+          path.inst.kind_macroscopic ? "macroscopic" : "local", path.inst.xi[0],
+          path.inst.xi[1], path.dim == 3 ? " ..." : "", path.inst.multiplicity);
+    else
+      printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
+  }
+  if (a.path && path.stopped) {
+    fprintf(stderr, "rodnet homogenize: %s: the path stopped at step %d: %s\n", a.scene,
+            path.done + 1, path.stopped);
+    if (!rc) rc = RN_EXIT_INTERNAL;
+  }
+  hp_free(&path);
+  if (st) {
     fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
     goto done;

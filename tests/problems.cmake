@@ -284,6 +284,27 @@ if(RN_WITH_TRILINOS)
                    ${gen}/hom_hc_result.json 0.05 ${gen}/hom_hc.png)
   set_tests_properties(problems_cli_homogenize_hc_result PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_hom_hc_result)
+  # Strain paths with the Bloch-Floquet first instability (docs/homogenization.md):
+  # the honeycomb under equibiaxial compression, in-plane modes: local at an M point;
+  # all modes (the sheet in 3D): macroscopic at once; a bad --path.
+  rn_cli_test(problems_cli_homogenize_path_local 0
+              "first instability at load factor .*local, wave vector \\[0(\\.5)? 0(\\.5)?\\], multiplicity 1"
+              REMOVE ${gen}/hom_path.json
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 4
+                   --modes in-plane --bloch-grid 4 -o ${gen}/hom_path.json)
+  rn_cli_test(problems_cli_homogenize_path_hc_generate 0 "wrote"
+              REMOVE ${gen}/hom_hc8.json FIXTURE_SETUP problems_hom_hc8
+              ARGS generate honeycomb --periodic --joint-model rigid --edges-per-rod 8
+                   --slenderness 0.05 -o ${gen}/hom_hc8.json)
+  rn_cli_test(problems_cli_homogenize_path_sheet 0 "first instability .*macroscopic"
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 2
+                   --bloch-grid 2 -o ${gen}/hom_path_sheet.json)
+  set_tests_properties(problems_cli_homogenize_path_local problems_cli_homogenize_path_sheet
+                       PROPERTIES FIXTURES_REQUIRED problems_hom_hc8)
+  rn_cli_test(problems_cli_homogenize_path_bad 2 "--path '1,2': expected 3 comma-separated"
+              ABSENT ${gen}/hom_path_bad.json
+              ARGS homogenize ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json
+                   --path 1,2 -o ${gen}/hom_path_bad.json)
   # rodnet solve of a stress-controlled cell: RESULT.json "cell"
   rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
               REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress
