@@ -23,7 +23,11 @@
  *      P l^2 / EI -> 3.653 (second order in 1/N, N = 16 within 1 % of the
  *      extrapolated limit), and a 2 x 2 supercell, whose
  *      xi = 0 contains the M points, becomes unstable at the same strain
- *      (0.1 %). */
+ *      (0.1 %);
+ *  (5) the effective stiffness (rn_homogenize) is invariant under lattice
+ *      symmetries of the cell (60-degree rotation and mirror of the honeycomb,
+ *      60 degrees of the kagome, 90 degrees of the square) and rotates as a
+ *      tensor with the cell (1e-9). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -49,6 +53,16 @@ static void must(rn_context *ctx, rn_status st, const char *what) {
   }
 }
 
+/* Linear map applied to the cells written by cell() (row-major 2 x 2 in the xy
+ * plane; the identity unless a test sets it). */
+static double xform[4] = {1.0, 0.0, 0.0, 1.0};
+
+static void apply_xform(double *p) {
+  double x = p[0], y = p[1];
+  p[0] = xform[0] * x + xform[1] * y;
+  p[1] = xform[2] * x + xform[3] * y;
+}
+
 /* The rep x rep supercell of a lattice, N edges per bar, as a loaded scene. */
 static rn_scene *cell(rn_context *ctx, rn_lattice_kind kind, int rep, int N, double *l) {
   rn_pcell prim, c;
@@ -60,6 +74,8 @@ static rn_scene *cell(rn_context *ctx, rn_lattice_kind kind, int rep, int N, dou
   rn_pcell_measures(&prim, &L, &V);
   *l = L / prim.nbars;
   must(ctx, rn_pcell_tile(ctx, &prim, r, &c), "tile");
+  for (int m = 0; m < c.dim; ++m) apply_xform(c.vec + 3 * m);
+  for (int j = 0; j < c.nnodes; ++j) apply_xform(c.xyz + 3 * j);
   rn_lattice_scene sc = {"val_bloch",       N,      RN_JOINT_RIGID, 1.0, 0.3,
                          RN_LSEC_RECTANGLE, {0, 0}, RN_LLOAD_NONE,  0,   0.0};
   sc.section[0] = sc.section[1] = 0.05 * *l;
@@ -374,6 +390,76 @@ static void check_honeycomb(rn_context *ctx) {
   rn_scene_destroy(&s2);
 }
 
+/* Voigt (11, 22, 12 engineering) stiffness C of a 2D cell rotated by R: the
+ * fourth-order tensor C'_ijkl = R_ia R_jb R_kc R_ld C_abcd. */
+static void rotate_voigt(const double *C, const double *R, double *out) {
+  static const int vi[2][2] = {{0, 2}, {2, 1}};
+  double T[2][2][2][2], Q[2][2][2][2] = {{{{0}}}};
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l) T[i][j][k][l] = C[vi[i][j] * 3 + vi[k][l]];
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l)
+          for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b)
+              for (int c = 0; c < 2; ++c)
+                for (int d = 0; d < 2; ++d)
+                  Q[i][j][k][l] += R[2 * i + a] * R[2 * j + b] * R[2 * k + c] *
+                                   R[2 * l + d] * T[a][b][c][d];
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) {
+      static const int ij[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+      out[3 * p + q] = Q[ij[p][0]][ij[p][1]][ij[q][0]][ij[q][1]];
+    }
+}
+
+/* (5) the effective tensor is invariant under a symmetry of the lattice (honeycomb
+ * and kagome: rotation by 60 degrees and a mirror; square: 90 degrees), and a
+ * generic rotation (20 degrees) of the cell rotates it as a tensor. */
+static void check_symmetry(rn_context *ctx) {
+  const double d60 = M_PI / 3, d20 = M_PI / 9;
+  struct {
+    rn_lattice_kind kind;
+    double map[4];
+    int symmetry;
+  } cases[] = {
+      {RN_LATTICE_HONEYCOMB, {cos(d60), -sin(d60), sin(d60), cos(d60)}, 1},
+      {RN_LATTICE_HONEYCOMB, {1.0, 0.0, 0.0, -1.0}, 1},
+      {RN_LATTICE_KAGOME, {cos(d60), -sin(d60), sin(d60), cos(d60)}, 1},
+      {RN_LATTICE_SQUARE, {0.0, -1.0, 1.0, 0.0}, 1},
+      {RN_LATTICE_SQUARE, {cos(d20), -sin(d20), sin(d20), cos(d20)}, 0},
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+    double l, ref[9], big = 0.0, diff = 0.0;
+    rn_homogenization h0, h1;
+    rn_scene *s0 = cell(ctx, cases[c].kind, 1, 6, &l);
+    must(ctx, rn_homogenize(rn_scene_network(s0), &h0), "homogenize");
+    memcpy(xform, cases[c].map, sizeof(xform));
+    rn_scene *s1 = cell(ctx, cases[c].kind, 1, 6, &l);
+    const double id[4] = {1.0, 0.0, 0.0, 1.0};
+    memcpy(xform, id, sizeof(xform));
+    must(ctx, rn_homogenize(rn_scene_network(s1), &h1), "homogenize");
+    if (cases[c].symmetry)
+      memcpy(ref, h0.C, sizeof(ref));
+    else
+      rotate_voigt(h0.C, cases[c].map, ref);
+    for (int i = 0; i < 9; ++i) {
+      big = fmax(big, fabs(ref[i]));
+      diff = fmax(diff, fabs(h1.C[i] - ref[i]));
+    }
+    printf("%s mapped by [%.3f %.3f; %.3f %.3f]: C %s to %.2e relative\n",
+           rn_lattice_kind_name(cases[c].kind), cases[c].map[0], cases[c].map[1],
+           cases[c].map[2], cases[c].map[3],
+           cases[c].symmetry ? "invariant" : "rotates as a tensor", diff / big);
+    CHECK(diff <= 1e-9 * big);
+    rn_scene_destroy(&s0);
+    rn_scene_destroy(&s1);
+  }
+}
+
 int main(int argc, char **argv) {
   rn_context *ctx = NULL;
   if (argc > 1) dir = argv[1];
@@ -382,6 +468,7 @@ int main(int argc, char **argv) {
   check_acoustic(ctx);
   check_square(ctx);
   check_honeycomb(ctx);
+  check_symmetry(ctx);
   rn_context_destroy(&ctx);
   return rn_test_finish("val_bloch");
 }
