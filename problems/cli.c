@@ -21,6 +21,7 @@ static const char main_help[] =
     "                                    honeycomb, kagome, cubic, bcc, octet;\n"
     "                                    --periodic: a periodic cell)\n"
     "  homogenize SCENE.json -o RESULT.json  effective stiffness of a periodic cell\n"
+    "  sweep SWEEP.json -o DIR               homogenisation over a grid of parameters\n"
     "\n"
     "Options:\n"
     "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
@@ -60,6 +61,7 @@ int rn_cli_main(int argc, char **argv) {
   if (strcmp(cmd, "check") == 0) return rn_cli_check(argc - 1, argv + 1);
   if (strcmp(cmd, "generate") == 0) return rn_cli_generate(argc - 1, argv + 1);
   if (strcmp(cmd, "homogenize") == 0) return rn_cli_homogenize(argc - 1, argv + 1);
+  if (strcmp(cmd, "sweep") == 0) return rn_cli_sweep(argc - 1, argv + 1);
   fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
   return RN_EXIT_USAGE;
 }

@@ -127,7 +127,7 @@ static int parse_args(int argc, char **argv, hom_args *a) {
 }
 
 /* S = C^-1 (n x n, Gauss-Jordan with partial pivoting); 0 if singular. */
-static int invert(int n, const double *C, double *S) {
+int rn_homog_invert(int n, const double *C, double *S) {
   double M[6][12];
   for (int i = 0; i < n; i++)
     for (int j = 0; j < 2 * n; j++) M[i][j] = j < n ? C[i * n + j] : (j - n == i);
@@ -178,7 +178,7 @@ static double directional_E(const rn_homogenization *h, const double *S, double 
   return 1.0 / q;
 }
 
-static void put_constants(FILE *f, const rn_homogenization *h, const double *S) {
+void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S) {
   int n = h->nstrain;
 #define SIJ(i, j) S[(i)*n + (j)]
   if (n == 3)
@@ -226,7 +226,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     fputc(']', f);
   }
   fputs("],\n", f);
-  put_constants(f, h, o->S);
+  rn_homog_put_constants(f, h, o->S);
   for (int plane = 0; plane < (n == 3 ? 1 : 2); plane++) {
     fprintf(f, "  \"directional_modulus_%s\": [", plane ? "xz" : "xy");
     for (int k = 0; k <= 360; k += 2)
@@ -322,7 +322,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
     goto done;
   }
-  if (!invert(h.nstrain, h.C, S)) {
+  if (!rn_homog_invert(h.nstrain, h.C, S)) {
     fprintf(stderr,
             "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "
             "mechanism: some strain costs no energy)\n",

@@ -52,4 +52,9 @@ rn_status hp_run(rn_network *net, hp_path *p);
 void hp_write_json(FILE *f, const hp_path *p);
 void hp_free(hp_path *p);
 
+/* Shared with `rodnet sweep` (cli_homogenize.c): S = C^-1 (n x n); 0 if
+ * singular.  The "constants" member of RESULT.json from C and S (ends ",\n"). */
+int rn_homog_invert(int n, const double *C, double *S);
+void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S);
+
 #endif

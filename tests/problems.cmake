@@ -305,6 +305,24 @@ if(RN_WITH_TRILINOS)
               ABSENT ${gen}/hom_path_bad.json
               ARGS homogenize ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json
                    --path 1,2 -o ${gen}/hom_path_bad.json)
+  # rodnet sweep: 20 relative densities of the honeycomb, CSV and PNG against the
+  # closed forms; a rerun skips every finished point; a bad sweep file.
+  rn_cli_test(problems_cli_sweep 0 "20 points \\(0 failed\\); wrote"
+              REMOVE ${gen}/sweep_hc/sweep.csv FIXTURE_SETUP problems_sweep
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
+                   -o ${gen}/sweep_hc --plot ${gen}/sweep_hc.png)
+  rn_cli_test(problems_cli_sweep_rerun 0 "20/20 .*\\(done before\\)"
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
+                   -o ${gen}/sweep_hc)
+  add_test(NAME problems_cli_sweep_csv
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_sweep.py
+                   ${gen}/sweep_hc/sweep.csv 20 ${gen}/sweep_hc.png)
+  set_tests_properties(problems_cli_sweep_csv PROPERTIES LABELS unit)
+  set_tests_properties(problems_cli_sweep_rerun problems_cli_sweep_csv PROPERTIES
+                       FIXTURES_REQUIRED problems_sweep)
+  rn_cli_test(problems_cli_sweep_bad 3 "sweep_bad.json: unknown key 'density'"
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_bad.json
+                   -o ${gen}/sweep_bad)
   # rodnet solve of a stress-controlled cell: RESULT.json "cell"
   rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
               REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress
