@@ -281,6 +281,16 @@ void hp_write_json(FILE *f, const hp_path *p) {
     put_vec(f, 3, in->amplitude);
   }
   fprintf(f, ", \"bisections\": %d},\n", in->bisections);
+  const hp_pattern *pt = &p->pattern;
+  if (!pt->written) return;
+  fputs("  \"pattern\": {\"supercell\": ", f);
+  double rep[3] = {pt->rep[0], pt->rep[1], pt->rep[2]};
+  put_vec(f, p->dim, rep);
+  fprintf(f,
+          ", \"what\": \"principal branch at the critical strain plus the critical "
+          "mode\", \"critical_mode_eigenvalue\": %.17g, \"amplitude\": %.17g, "
+          "\"converged\": %s},\n",
+          pt->eigenvalue, pt->amplitude, pt->converged ? "true" : "false");
 }
 
 void hp_free(hp_path *p) {

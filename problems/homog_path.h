@@ -29,6 +29,13 @@ typedef struct hp_instability {
   int bisections;
 } hp_instability;
 
+typedef struct hp_pattern {
+  int requested, written, png, converged;
+  int rep[3];
+  double eigenvalue; /* lowest Bloch eigenvalue (xi = 0) of the supercell there */
+  double amplitude;  /* largest displacement of the mode as drawn */
+} hp_pattern;
+
 typedef struct hp_path {
   int ns, dim, steps;
   double target[6];
@@ -39,6 +46,7 @@ typedef struct hp_path {
   int done;            /* steps computed (step[0 .. done]) */
   const char *stopped; /* NULL, or why the path stopped early */
   hp_instability inst;
+  hp_pattern pattern; /* --pattern (cli_homogenize.c) */
   double seconds;
 } hp_path;
 

@@ -292,6 +292,14 @@ if(RN_WITH_TRILINOS)
               REMOVE ${gen}/hom_path.json
               ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 4
                    --modes in-plane --bloch-grid 4 -o ${gen}/hom_path.json)
+  rn_cli_test(problems_cli_homogenize_path_pattern 0
+              "pattern: 2 x 2 supercell at the critical strain.*wrote .*hom_pattern.vtu"
+              REMOVE ${gen}/hom_pattern.vtu
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 4
+                   --modes in-plane --bloch-grid 4 --pattern ${gen}/hom_pattern
+                   -o ${gen}/hom_path_pattern.json)
+  set_tests_properties(problems_cli_homogenize_path_pattern PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc8)
   rn_cli_test(problems_cli_homogenize_path_hc_generate 0 "wrote"
               REMOVE ${gen}/hom_hc8.json FIXTURE_SETUP problems_hom_hc8
               ARGS generate honeycomb --periodic --joint-model rigid --edges-per-rod 8
