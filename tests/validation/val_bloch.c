@@ -460,6 +460,43 @@ static void check_symmetry(rn_context *ctx) {
   }
 }
 
+/* (6) errors: not periodic, bad arguments, too many wave vectors per direction. */
+static void check_errors(rn_context *ctx) {
+  rn_network *net = NULL;
+  rn_material mat;
+  rn_section sec;
+  const double xyz[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0}, xi[2] = {0.1, 0.2};
+  double e[3] = {0, 0, 0}, re[1], im[1];
+  size_t n = 0;
+  int rod;
+  rn_bloch_options o;
+  rn_bloch_result r;
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "r", 3, xyz, NULL, &rod), RN_OK);
+  CHECK_STATUS(rn_material_from_E_nu(1.0, 0.3, 0.0, &mat), RN_OK);
+  CHECK_STATUS(rn_section_circle(0.01, &sec), RN_OK);
+  CHECK_STATUS(rn_network_set_material(net, rod, -1, &mat), RN_OK);
+  CHECK_STATUS(rn_network_set_section(net, rod, -1, &sec), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  CHECK_STATUS(rn_network_bloch_dofs(net, &n, NULL, NULL), RN_ERR_STATE);
+  CHECK(strstr(rn_context_last_error(ctx), "not periodic") != NULL);
+  CHECK_STATUS(rn_cell_relax(net, e, NULL), RN_ERR_ARG);
+  CHECK_STATUS(rn_cell_bloch(net, NULL, &r), RN_ERR_ARG);
+  CHECK(strstr(rn_context_last_error(ctx), "not periodic") != NULL);
+  rn_network_destroy(&net);
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_SQUARE, 1, 2, &l);
+  net = rn_scene_network(s);
+  CHECK_STATUS(rn_network_bloch_hessian(net, NULL, xi, re, im), RN_ERR_ARG);
+  e[0] = NAN;
+  CHECK_STATUS(rn_cell_relax(net, e, NULL), RN_ERR_NOT_FINITE);
+  rn_bloch_options_default(&o);
+  o.grid = 1001;
+  CHECK_STATUS(rn_cell_bloch(net, &o, &r), RN_ERR_ARG);
+  CHECK_STATUS(rn_cell_bloch_eigen(net, xi, RN_BLOCH_ALL, 9, re, NULL), RN_ERR_ARG);
+  rn_scene_destroy(&s);
+}
+
 int main(int argc, char **argv) {
   rn_context *ctx = NULL;
   if (argc > 1) dir = argv[1];
@@ -469,6 +506,7 @@ int main(int argc, char **argv) {
   check_square(ctx);
   check_honeycomb(ctx);
   check_symmetry(ctx);
+  check_errors(ctx);
   rn_context_destroy(&ctx);
   return rn_test_finish("val_bloch");
 }
