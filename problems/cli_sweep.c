@@ -336,8 +336,8 @@ static int point_done(rn_context *ctx, const char *path, const point *p) {
   ok = cJSON_IsNumber(i) && i->valuedouble == p->index && cJSON_IsString(l) &&
        strcmp(l->valuestring, p->lattice) == 0 && cJSON_IsString(j) &&
        strcmp(j->valuestring, joint_name(p->joint_model)) == 0 && cJSON_IsNumber(r) &&
-       r->valuedouble == p->rho && cJSON_IsNumber(s) && s->valuedouble == p->seed &&
-       cJSON_IsObject(c);
+       r->valuedouble == p->rho && cJSON_IsNumber(s) &&
+       s->valuedouble == (double)p->seed && cJSON_IsObject(c);
   cJSON_Delete(root);
   free(text);
   return ok;
