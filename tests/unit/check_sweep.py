@@ -6,18 +6,11 @@ point's E1 within 1 % (16 DER edges per member: the discretisation error is abou
 
 Usage: check_sweep.py SWEEP.csv NPOINTS PNG"""
 import csv
-import math
 import os
 import sys
 
-
-def closed_form(rho):
-    l = 1.0 / math.sqrt(3.0)
-    t = math.sqrt(3.0) * rho * l / 2.0
-    EA, EI = t * t, t ** 4 / 12.0
-    s = EI / (EA * l * l)
-    return (16.0 * math.sqrt(3.0) * EI / l ** 3 / (1.0 + 36.0 * s),
-            (1.0 - 12.0 * s) / (1.0 + 36.0 * s))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems"))
+from plot_sweep import honeycomb_closed_form  # noqa: E402
 
 
 def main():
@@ -27,7 +20,7 @@ def main():
     print(f"{len(rows)} points (expected {npoints})")
     for r in rows:
         rho = float(r["relative_density"])
-        E, nu = closed_form(rho)
+        E, nu, _ = honeycomb_closed_form(rho)
         dE = float(r["E1"]) / E - 1.0
         dnu = float(r["nu12"]) - nu
         good = abs(dE) < 1e-2 and abs(dnu) < 2e-3 and abs(rho / float(r["relative_density_target"]) - 1) < 1e-12
