@@ -19,12 +19,13 @@ typedef struct eval_args {
   double lambda;  /* scale of the loads (normally the network's load factor) */
   int loads_only; /* 1: only the load terms (forces, couples) */
   double E[RN_TERM_COUNT];
-  double *g;         /* OP_GRAD output, accumulated */
-  double *Hv;        /* OP_HVP output, accumulated */
-  double *vals;      /* OP_HESS output, accumulated */
-  int unbounded;     /* OP_HESS: a contribution exceeded RN_HESS_BOUND or was not
-                        finite (then the sums may overflow) */
-  const char *where; /* public entry point, for messages */
+  double *g;           /* OP_GRAD output, accumulated */
+  double *Hv;          /* OP_HVP output, accumulated */
+  double *vals;        /* OP_HESS output, accumulated */
+  rn_bloch_acc *bloch; /* OP_HESS: into this Bloch matrix instead of vals */
+  int unbounded;       /* OP_HESS: a contribution exceeded RN_HESS_BOUND or was not
+                          finite (then the sums may overflow) */
+  const char *where;   /* public entry point, for messages */
 
   /* OP_GRAD variants (reactions.c): on the full layout instead of g
    * (rn_eval_gradient_full); |local gradient| into g (rn_eval_gradient_magnitude) */
@@ -83,6 +84,10 @@ static void accumulate(const rn_network *net, eval_args *a, size_t s, int n,
   if (a->op == OP_HVP) rn_scatter_add(net, loc, s, n, a->Hv);
   if (a->op == OP_HESS) {
     a->unbounded |= !rn_all_bounded((size_t)n * (size_t)n, loc);
+    if (a->bloch) {
+      rn_bloch_add_block(net, a->bloch, s, NULL, NULL, n, loc, NULL);
+      return;
+    }
     rn_csr_add_block(net, s, n, loc, a->vals);
     if (net->cell) rn_cell_hess_block(net, s, NULL, NULL, n, loc, a->vals);
   }
@@ -132,7 +137,10 @@ static rn_status rod_segment_eval(const rn_network *net, int ir, int j0, int ne,
     break;
   case OP_HESS:
     memset(band, 0, (size_t)n * RNK_BAND * sizeof(double));
-    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK) {
+    if ((rc = rnk_rod_hess(&seg, band, bad)) == RNK_OK && a->bloch) {
+      a->unbounded |= !rn_all_bounded((size_t)n * RNK_BAND, band);
+      rn_bloch_add_band(net, a->bloch, s, n, band);
+    } else if (rc == RNK_OK) {
       a->unbounded |= !rn_csr_add_band(net, s, n, band, a->vals);
       if (net->cell) rn_cell_hess_band(net, s, n, band, a->vals);
     }
@@ -327,6 +335,10 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
   case OP_HESS:
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
     a->unbounded |= !rn_all_bounded((size_t)s->n * (size_t)s->n, s->loc);
+    if (a->bloch) {
+      rn_bloch_add_block(net, a->bloch, 0, J->idx, J->img, s->n, s->loc, J);
+      break;
+    }
     rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
     rn_cell_hess_block(net, 0, J->idx, J->img, s->n, s->loc, a->vals);
     break;
@@ -569,4 +581,12 @@ rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, dou
   args_init(&a, net, OP_GRAD, where, x);
   a.magnitude = 1;
   return eval_into(net, &a, gabs);
+}
+
+rn_status rn_eval_bloch(const rn_network *net, const double *x, rn_bloch_acc *b,
+                        const char *where) {
+  eval_args a;
+  args_init(&a, net, OP_HESS, where, x);
+  a.bloch = b;
+  return eval_all(net, &a);
 }

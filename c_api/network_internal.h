@@ -371,6 +371,33 @@ rn_status rn_eval_rod_gradient_full(const rn_network *net, int ir, const double 
 rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
                                      const char *where);
 
+/* ---- Bloch-Floquet Hessians of periodic cells (bloch.c) ----------------------
+ * An accumulator of stencil Hessian blocks onto the dense n x n Bloch matrix
+ * (row-major): entry (k, l) of a stencil, at the Bloch DOFs bk, bl of its entries
+ * with image phases phi_k, phi_l (phi = k . s of the entry's lattice shift s),
+ * adds H_kl w(phi_l - phi_k): complex mode (im != NULL) w = exp(i d); real moment
+ * mode w = d1 (order 1) or d1 d2 (order 2), d1, d2 the differences under the two
+ * phase sets ph1, ph2. */
+typedef struct rn_bloch_acc {
+  size_t n;
+  const int64_t *bidx; /* [nfull] Bloch DOF of each full entry (aliases resolved), -1 */
+  const double *ph1;   /* [nimg] phase of each image record */
+  const double *ph2;   /* [nimg] second phase set (order 2), or NULL */
+  double k1[3], k2[3]; /* the Cartesian wave vectors of ph1, ph2 */
+  int order;           /* real mode: 0, 1 or 2 */
+  double *re, *im;     /* output; im NULL: real mode */
+} rn_bloch_acc;
+/* A block of n entries at full index s, or by index list idx (a joint stencil:
+ * J given, whose ends at images carry their rod's DOFs from another cell). */
+void rn_bloch_add_block(const rn_network *net, rn_bloch_acc *b, size_t s,
+                        const size_t *idx, const int32_t *img, int n, const double *H,
+                        const struct rn_joint *J);
+void rn_bloch_add_band(const rn_network *net, rn_bloch_acc *b, size_t s, int n,
+                       const double *band);
+/* Every stencil's Hessian block at x into b (assembly.c). */
+rn_status rn_eval_bloch(const rn_network *net, const double *x, rn_bloch_acc *b,
+                        const char *where);
+
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference
  * twists (prev 0) and rest quantities at the input shape (theta = 0). */

@@ -474,6 +474,33 @@ rn_status rn_network_cell_stress(const rn_network *net, const double *x, double 
  * exact for rectangles, sqrt(3) r for a circle of radius r). */
 rn_status rn_network_cell_relative_density(const rn_network *net, double *rho);
 
+/* Bloch-Floquet analysis (docs/homogenization.md, "Stability").  The Bloch DOFs
+ * of a periodic network are its free fluctuation DOFs (the reduced DOFs but the
+ * strain components, in the same order) followed, if finalize pinned an anchor,
+ * by the anchor's 3 position components.  *n receives their number; kind[n]
+ * (RN_DOF_*) and component[n] (as rn_dof_info) may be NULL.  RN_ERR_STATE if
+ * the network is not periodic or not finalized. */
+rn_status rn_network_bloch_dofs(const rn_network *net, size_t *n, int *kind,
+                                int *component);
+/* The Bloch-Floquet Hessian at the reduced state x for the wave vector
+ * k = sum_i xi_i b_i (xi[dim], reciprocal-lattice coordinates of the lattice
+ * vectors, b_i . a_j = 2 pi delta_ij): the second variation of the energy of the
+ * infinite lattice per cell for perturbations u(copy n) = u exp(2 pi i xi . n)
+ * at fixed macroscopic strain, a complex Hermitian n x n matrix H = re + i im
+ * (row-major, caller arrays of n * n).  H(0) restricted to the reduced
+ * fluctuation DOFs is the reduced Hessian's fluctuation block; H(-xi) =
+ * conj(H(xi)).  Dense: memory 16 n^2 bytes. */
+rn_status rn_network_bloch_hessian(const rn_network *net, const double *x,
+                                   const double *xi, double *re, double *im);
+/* Real moments of the phase expansion of the Bloch Hessian for Cartesian wave
+ * vectors: out[n * n] = sum over stencils s and entries k, l of
+ * H_s,kl d1 (k2 NULL) or H_s,kl d1 d2, d = q . (s_l - s_k) the phase difference
+ * of the entries' lattice shifts for q = k1 (d1) or k2 (d2); both NULL: the
+ * plain sum H(0).  So H(t k) = H0 + i t M1(k) - t^2/2 M2(k, k) + O(t^3); they
+ * give the acoustic tensor of the long-wavelength limit. */
+rn_status rn_network_bloch_moment(const rn_network *net, const double *x,
+                                  const double *k1, const double *k2, double *out);
+
 /* ---- parts of a network (distributed solves; docs/parallel.md) -----------
  * A distributed solve gives every rod to one part (rank) and builds on each
  * rank only what its part needs.  The scene is built twice through the same

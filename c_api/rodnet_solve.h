@@ -510,6 +510,90 @@ typedef struct rn_homogenization {
  * initialisation. */
 rn_status rn_homogenize(rn_network *net, rn_homogenization *h);
 
+/* ---- strain paths and stability of periodic cells (docs/homogenization.md) --- */
+typedef struct rn_cell_relax_report {
+  int converged;         /* 1 if the fluctuations are in equilibrium */
+  int iterations;        /* Newton iterations */
+  int predictor;         /* 1 if the tangent predictor step was accepted */
+  int indefinite;        /* 1 if the fluctuation block was not positive definite at
+                            the solution (an unstable cell-periodic state) */
+  double residual;       /* largest |dE/du| at the end */
+  double residual_scale; /* largest balancing force there (the test is relative) */
+} rn_cell_relax_report;
+/* Equilibrium of the fluctuations at the prescribed macroscopic strain
+ * strain[nstrain] (every strain component must be a DOF of net; it is held at
+ * that value): from the current state, the tangent predictor
+ * du = -K_uu^-1 (g_u + K_ue d eps) (accepted if it lowers the energy), then
+ * Newton with the sparse Cholesky factor of K_uu and a backtracking line search
+ * on the energy; where K_uu is not positive definite (past an instability on
+ * the cell-periodic branch) Newton steps on the gradient norm with a dense
+ * symmetric indefinite solve (cells up to 4000 fluctuation DOFs).  Reference
+ * frames are updated on every accepted step.  Converged when the largest
+ * fluctuation force is at most 1e-9 of the largest balancing force
+ * (rn_network_gradient_magnitude) or the Newton step stalls at round-off.
+ * Leaves the result as the current state; RN_OK when it ran (check
+ * rep->converged).  Serial; needs no runtime initialisation. */
+rn_status rn_cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep);
+
+/* Which Bloch modes rn_cell_bloch examines. */
+typedef enum rn_bloch_modes {
+  RN_BLOCH_ALL = 0,         /* every DOF */
+  RN_BLOCH_IN_PLANE = 1,    /* 2D cells at a planar state: x, y positions and the
+                               joint rotation about z (what a planar model sees) */
+  RN_BLOCH_OUT_OF_PLANE = 2 /* 2D cells at a planar state: z, material angles, joint
+                               rotations about x and y */
+} rn_bloch_modes;
+typedef struct rn_bloch_options {
+  int grid;   /* wave vectors per reciprocal direction of the Brillouin-zone
+                 grid (default 0: 16 in 2D, 6 in 3D) */
+  int refine; /* 1 (default): refine the grid minimum by a pattern search in
+                 xi down to 1e-4 */
+  rn_bloch_modes modes;
+  const double *xi_hint; /* optional: also start a refinement here (dim) */
+} rn_bloch_options;
+void rn_bloch_options_default(rn_bloch_options *opt);
+typedef struct rn_bloch_result {
+  /* local (finite-wavelength) stability: the lowest eigenvalue of the Bloch
+   * Hessian over the Brillouin zone (rn_network_bloch_hessian; at xi = 0 without
+   * the rigid translations, i.e. with the anchor pinned; wave vectors with
+   * 0 < |xi|_inf < 1/(4 grid) are left to the long-wavelength test) */
+  double local_min;
+  double xi[3];  /* where (reciprocal-lattice coordinates, |xi_i| <= 1/2) */
+  double eig[8]; /* the lowest neig eigenvalues there */
+  int neig;
+  double local_scale; /* eigenvalue scale for tolerances: the largest |eig| of
+                         the rest of the spectrum examined (>= 0) */
+  /* long-wavelength (macroscopic) stability: the lowest eigenvalue over unit
+   * directions n of the acoustic tensor A(n)_ab = L_aJbL n_J n_L of the
+   * homogenised tangent (with its stress terms), from the second-order
+   * expansion of the Bloch Hessian at k = 0 (force per length in 2D, stress
+   * in 3D) */
+  int acoustic_valid; /* 0 if K_uu is not positive definite (no tangent) */
+  double acoustic_min;
+  double acoustic_scale; /* the largest eigenvalue of A over the directions */
+  double direction[3];   /* n at the minimum (Cartesian, reference) */
+  double amplitude[3];   /* the eigenvector there */
+  size_t bloch_dofs;
+  int evaluations; /* Bloch eigenvalue problems solved */
+} rn_bloch_result;
+/* Bloch-Floquet stability of a periodic network at its current state (an
+ * equilibrium of the fluctuations, e.g. after rn_cell_relax): the lowest
+ * eigenvalue of the Bloch Hessian over a grid of the Brillouin zone (half of it:
+ * H(-xi) = conj H(xi)) refined around the minima, and the acoustic tensor over
+ * directions (720 in 2D, 2000 on the sphere in 3D, refined).  Dense LAPACK
+ * (zheevr): cells up to 4000 Bloch DOFs (RN_ERR_ARG beyond).  RN_ERR_ARG for
+ * in-plane or out-of-plane modes on a 3D cell or at a state where those modes do
+ * not decouple.  Serial; needs no runtime initialisation. */
+rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
+                        rn_bloch_result *res);
+/* The lowest neig (<= 8) Bloch eigenvalues at the current state at the wave
+ * vector xi (reciprocal coordinates; xi = 0 without the rigid translations),
+ * restricted to modes; eig[neig]; vec (may be NULL) receives the eigenvector of
+ * the lowest as 2 n doubles (real, imaginary parts per Bloch DOF; zero outside
+ * the modes examined). */
+rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes modes,
+                              int neig, double *eig, double *vec);
+
 #ifdef __cplusplus
 }
 #endif

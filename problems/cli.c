@@ -26,6 +26,7 @@ static const char main_help[] =
     "                                    performance profiles)\n"
     "  path SCENE.json -o PATH.csv       follow the equilibrium path past limit points\n"
     "                                    (load or displacement control; --plot PNG)\n"
+    "  sweep SWEEP.json -o DIR           homogenisation over a grid of parameters\n"
     "\n"
     "Options:\n"
     "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
@@ -68,6 +69,7 @@ int rn_cli_main(int argc, char **argv) {
   if (strcmp(cmd, "homogenize") == 0) return rn_cli_homogenize(argc - 1, argv + 1);
   if (strcmp(cmd, "bench") == 0) return rn_cli_bench(argc - 1, argv + 1);
   if (strcmp(cmd, "path") == 0) return rn_cli_path(argc - 1, argv + 1);
+  if (strcmp(cmd, "sweep") == 0) return rn_cli_sweep(argc - 1, argv + 1);
   fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
   return RN_EXIT_USAGE;
 }

@@ -24,6 +24,7 @@ int rn_cli_generate(int argc, char **argv);
 int rn_cli_homogenize(int argc, char **argv);
 int rn_cli_bench(int argc, char **argv);
 int rn_cli_path(int argc, char **argv);
+int rn_cli_sweep(int argc, char **argv);
 
 /* ---- helpers shared by the subcommands ---------------------------------- */
 /* Print "rodnet CMD: message" and a hint to stderr; returns RN_EXIT_USAGE. */

@@ -420,12 +420,12 @@ static void print_summary(const gen_args *a, const rn_lattice *lat) {
 static void pcell_section(gen_args *a, const rn_pcell *c) {
   double L, V, t;
   if (a->section) return;
+  if (a->density > 0.0) {
+    rn_pcell_section_for_density(c, a->density, &a->sc);
+    return;
+  }
   rn_pcell_measures(c, &L, &V);
-  if (a->density > 0.0)
-    t = c->dim == 2 ? a->density * V / L
-                    : sqrt(4.0 * a->density * V / (3.14159265358979323846 * L));
-  else
-    t = (a->slenderness > 0.0 ? a->slenderness : 0.05) * L / c->nbars;
+  t = (a->slenderness > 0.0 ? a->slenderness : 0.05) * L / c->nbars;
   a->sc.shape = c->dim == 2 ? RN_LSEC_RECTANGLE : RN_LSEC_CIRCLE;
   a->sc.section[0] = c->dim == 2 ? t : 0.5 * t;
   a->sc.section[1] = t;

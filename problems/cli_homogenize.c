@@ -10,13 +10,21 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <cjson/cJSON.h>
+
 #include "atomic_file.h"
 #include "cli.h"
+#include "homog_path.h"
 #include "rodnet_solve.h"
 #include "scene.h"
+#include "text_file.h"
+#include "vtk.h"
 
 #ifndef RN_PLOT_STIFFNESS_SCRIPT
 #define RN_PLOT_STIFFNESS_SCRIPT "plot_stiffness.py"
+#endif
+#ifndef RN_RENDER_VTU_SCRIPT
+#define RN_RENDER_VTU_SCRIPT "render_vtu.py"
 #endif
 #ifndef RN_PYTHON3
 #define RN_PYTHON3 "python3"
@@ -24,6 +32,7 @@
 
 static const char homogenize_help[] =
     "Usage: rodnet homogenize SCENE.json -o RESULT.json [--plot PNG]\n"
+    "       rodnet homogenize SCENE.json --path E11,E22,E12 [--steps N] -o RESULT.json\n"
     "\n"
     "Effective linear stiffness of a periodic cell (a scene with a top-level\n"
     "\"periodic\" object, e.g. from 'rodnet generate KIND --periodic') at its rest\n"
@@ -37,6 +46,20 @@ static const char homogenize_help[] =
     "  -o, --output FILE   result JSON (required)\n"
     "      --plot PNG      polar plot of the directional Young's modulus (in the\n"
     "                      xy plane; 3D cells also xz), by python3 with matplotlib\n"
+    "      --path E,E,E    follow the proportional macroscopic strain path from the\n"
+    "                      rest state to this strain (2D: E11,E22,E12; 3D: E11,E22,\n"
+    "                      E33,E23,E13,E12; engineering shear) and locate its first\n"
+    "                      instability by Bloch-Floquet analysis (RESULT.json gains\n"
+    "                      \"path\" and \"instability\")\n"
+    "      --steps N       steps of the path (default 20)\n"
+    "      --modes M       Bloch modes examined: all (default), in-plane or\n"
+    "                      out-of-plane (2D cells at planar states)\n"
+    "      --bloch-grid G  wave vectors per reciprocal direction (default 16 in 2D,\n"
+    "                      6 in 3D), refined around the minimum\n"
+    "      --pattern P     after a local instability: the supercell its wave vector\n"
+    "                      calls for at the critical strain plus the critical mode\n"
+    "                      (scaled for display), written to P.vtu and drawn to\n"
+    "                      P.png (docs/render_vtu.py)\n"
     "  -q, --quiet         no summary on stdout\n"
     "  -h, --help          show this help\n"
     "\n"
@@ -44,12 +67,14 @@ static const char homogenize_help[] =
     "strain) or unwritable output, 4 the cell is a mechanism or the plot failed.\n";
 
 typedef struct hom_args {
-  const char *scene, *output, *plot;
-  int quiet;
+  const char *scene, *output, *plot, *path, *pattern;
+  int quiet, steps, grid;
+  rn_bloch_modes modes;
 } hom_args;
 
 static int parse_args(int argc, char **argv, hom_args *a) {
   memset(a, 0, sizeof *a);
+  a->steps = 20;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = NULL;
     int m;
@@ -71,6 +96,40 @@ static int parse_args(int argc, char **argv, hom_args *a) {
       a->plot = v;
       continue;
     }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--pattern", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->pattern = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--steps", NULL, &v))) {
+      if (m < 0 || rn_cli_parse_int("homogenize", "--steps", v, 1, 100000, &a->steps))
+        return RN_EXIT_USAGE;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--bloch-grid", NULL,
+                                 &v))) {
+      if (m < 0 || rn_cli_parse_int("homogenize", "--bloch-grid", v, 1, 1000, &a->grid))
+        return RN_EXIT_USAGE;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--modes", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      if (strcmp(v, "all") == 0)
+        a->modes = RN_BLOCH_ALL;
+      else if (strcmp(v, "in-plane") == 0)
+        a->modes = RN_BLOCH_IN_PLANE;
+      else if (strcmp(v, "out-of-plane") == 0)
+        a->modes = RN_BLOCH_OUT_OF_PLANE;
+      else
+        return rn_cli_usage_error(
+            "homogenize", "--modes takes all, in-plane or out-of-plane, not '%s'", v);
+      continue;
+    }
     if (s[0] == '-' && s[1] != '\0')
       return rn_cli_usage_error("homogenize", "unknown option '%s'", s);
     if (a->scene)
@@ -80,11 +139,13 @@ static int parse_args(int argc, char **argv, hom_args *a) {
   }
   if (!a->scene) return rn_cli_usage_error("homogenize", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
+  if (a->pattern && !a->path)
+    return rn_cli_usage_error("homogenize", "--pattern needs --path");
   return 0;
 }
 
 /* S = C^-1 (n x n, Gauss-Jordan with partial pivoting); 0 if singular. */
-static int invert(int n, const double *C, double *S) {
+int rn_homog_invert(int n, const double *C, double *S) {
   double M[6][12];
   for (int i = 0; i < n; i++)
     for (int j = 0; j < 2 * n; j++) M[i][j] = j < n ? C[i * n + j] : (j - n == i);
@@ -114,6 +175,7 @@ typedef struct hom_out {
   const rn_homogenization *h;
   const double *S;
   double seconds;
+  const hp_path *path; /* NULL without --path */
 } hom_out;
 
 /* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
@@ -134,7 +196,7 @@ static double directional_E(const rn_homogenization *h, const double *S, double 
   return 1.0 / q;
 }
 
-static void put_constants(FILE *f, const rn_homogenization *h, const double *S) {
+void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S) {
   int n = h->nstrain;
 #define SIJ(i, j) S[(i)*n + (j)]
   if (n == 3)
@@ -182,7 +244,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     fputc(']', f);
   }
   fputs("],\n", f);
-  put_constants(f, h, o->S);
+  rn_homog_put_constants(f, h, o->S);
   for (int plane = 0; plane < (n == 3 ? 1 : 2); plane++) {
     fprintf(f, "  \"directional_modulus_%s\": [", plane ? "xz" : "xy");
     for (int k = 0; k <= 360; k += 2)
@@ -191,6 +253,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     fputs("],\n", f);
   }
   fprintf(f, "  \"directional_modulus_angles_deg\": [0, 360, 2],\n");
+  if (o->path) hp_write_json(f, o->path);
   fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
           o->seconds);
   return RN_OK;
@@ -218,6 +281,121 @@ static double now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The smallest m <= 12 with m xi an integer (to 1e-3); 0 if none. */
+static int period_of(double xi) {
+  for (int m = 1; m <= 12; ++m)
+    if (fabs(m * xi - round(m * xi)) < 1e-3) return m;
+  return 0;
+}
+
+/* --pattern: the supercell of the critical wave vector on the principal
+ * (cell-periodic) branch at the critical strain plus its critical mode (the
+ * lowest Bloch mode at xi = 0 of the supercell, in the modes examined), scaled
+ * to 5 % of the cell size for display; written as P.vtu and drawn to P.png.
+ * (The post-buckled branch is not computed: see docs.)  Fills pat. */
+static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path,
+                         hp_pattern *pat) {
+  char *text = NULL, *json = NULL, vtu[4096], png[4096];
+  size_t len = 0;
+  int rc = RN_EXIT_INTERNAL;
+  rn_scene *sc = NULL;
+  cJSON *root = NULL;
+  double *x = NULL, *vec = NULL;
+  if (!path->inst.found || path->inst.kind_macroscopic) {
+    fprintf(stderr, "rodnet homogenize: --pattern: %s\n",
+            path->inst.found ? "the instability is macroscopic (long wavelength): no "
+                               "finite supercell"
+                             : "the path stays stable: no pattern");
+    return RN_EXIT_OK;
+  }
+  for (int i = 0; i < path->dim; ++i)
+    if (!(pat->rep[i] = period_of(path->inst.xi[i]))) {
+      fprintf(stderr,
+              "rodnet homogenize: --pattern: the wave vector is not commensurate with a "
+              "supercell of at most 12 cells per direction\n");
+      return RN_EXIT_INTERNAL;
+    }
+  if (rn_text_file_read(ctx, a->scene, 1 << 28, &text, &len)) goto fail;
+  root = cJSON_Parse(text);
+  cJSON *per = cJSON_GetObjectItemCaseSensitive(root, "periodic");
+  if (!cJSON_IsObject(per) || cJSON_GetObjectItemCaseSensitive(per, "repeat")) {
+    fprintf(stderr, "rodnet homogenize: --pattern: needs a scene without \"repeat\"\n");
+    goto done;
+  }
+  cJSON_DeleteItemFromObjectCaseSensitive(per, "stress");
+  cJSON_DeleteItemFromObjectCaseSensitive(per, "strain");
+  cJSON_AddItemToObject(per, "repeat", cJSON_CreateIntArray(pat->rep, path->dim));
+  if (!(json = cJSON_PrintUnformatted(root))) goto fail_alloc;
+  if (rn_scene_parse(ctx, a->scene, json, strlen(json), &sc)) goto fail;
+  rn_network *net = rn_scene_network(sc);
+  rn_cell_relax_report rep;
+  double eps[6];
+  /* the principal (cell-periodic) branch at the critical strain, in load steps */
+  for (int k = 1; k <= 10; ++k) {
+    for (int v = 0; v < path->ns; ++v) eps[v] = 0.1 * k * path->inst.strain[v];
+    if (rn_cell_relax(net, eps, &rep)) goto fail;
+  }
+  pat->converged = rep.converged;
+  size_t nd = rn_network_num_dofs(net), nb = 0;
+  if (rn_network_bloch_dofs(net, &nb, NULL, NULL)) goto fail;
+  x = malloc(nd * sizeof(double));
+  vec = malloc(2 * nb * sizeof(double));
+  if (!x || !vec) goto fail_alloc;
+  const double zero[3] = {0.0, 0.0, 0.0};
+  double vmax = 0.0, measure = 0.0;
+  if (rn_cell_bloch_eigen(net, zero, path->modes, 1, &pat->eigenvalue, vec) ||
+      rn_network_get_dofs(net, x))
+    goto fail;
+  rn_network_cell_info(net, NULL, NULL, &measure, NULL);
+  /* display amplitude: 5 % of the cell size at the largest displacement */
+  pat->amplitude =
+      0.05 *
+      pow(measure / (pat->rep[0] * pat->rep[1] * (path->dim == 3 ? pat->rep[2] : 1)),
+          1.0 / path->dim);
+  size_t nfl = nd - (size_t)path->ns; /* the strain DOFs are the last */
+  for (size_t i = 0; i < nfl; ++i) vmax = fmax(vmax, fabs(vec[2 * i]));
+  if (!(vmax > 0.0)) {
+    rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
+    goto fail;
+  }
+  for (size_t i = 0; i < nfl; ++i) x[i] += pat->amplitude * vec[2 * i] / vmax;
+  if (rn_network_set_dofs(net, x)) goto fail;
+  snprintf(vtu, sizeof vtu, "%s.vtu", a->pattern);
+  snprintf(png, sizeof png, "%s.png", a->pattern);
+  if (rn_vtk_write(ctx, vtu, sc)) goto fail;
+  pat->written = 1;
+  {
+    const char *python = getenv("RODNET_PYTHON");
+    const char *script = getenv("RODNET_RENDER_VTU");
+    if (!python || !*python) python = RN_PYTHON3;
+    if (!script || !*script) script = RN_RENDER_VTU_SCRIPT;
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+      execlp(python, python, script, vtu, png, "--view", "xy", "--field",
+             "bending_moment", (char *)NULL);
+      _exit(127);
+    }
+    int status = 0;
+    pat->png = pid > 0 && waitpid(pid, &status, 0) > 0 && WIFEXITED(status) &&
+               WEXITSTATUS(status) == 0;
+  }
+  rc = RN_EXIT_OK;
+  goto done;
+fail_alloc:
+  rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+fail:
+  fprintf(stderr, "rodnet homogenize: --pattern: %s\n", rn_context_last_error(ctx));
+done:
+  free(x);
+  free(vec);
+  free(json);
+  free(text);
+  cJSON_Delete(root);
+  rn_scene_destroy(&sc);
+  return rc;
 }
 
 int rn_cli_homogenize(int argc, char **argv) {
@@ -251,6 +429,19 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INPUT;
     goto done;
   }
+  double target[6] = {0};
+  if (a.path) {
+    int count = 0, ns = 0;
+    rn_network_cell_info(net, NULL, &ns, NULL, NULL);
+    if (hp_parse_strain(a.path, target, &count) || count != ns) {
+      fprintf(stderr,
+              "rodnet homogenize: --path '%s': expected %d comma-separated numbers (%s) "
+              "for this %dD cell\n",
+              a.path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
+      rc = RN_EXIT_USAGE;
+      goto done;
+    }
+  }
   double t0 = now();
 #ifdef RN_HAVE_SOLVER
   st = rn_homogenize(net, &h);
@@ -264,7 +455,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
     goto done;
   }
-  if (!invert(h.nstrain, h.C, S)) {
+  if (!rn_homog_invert(h.nstrain, h.C, S)) {
     fprintf(stderr,
             "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "
             "mechanism: some strain costs no energy)\n",
@@ -272,8 +463,59 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INTERNAL;
     goto done;
   }
-  hom_out o = {&a, &h, S, seconds};
-  if ((st = rn_file_write_atomic(ctx, a.output, write_result, &o))) {
+  hp_path path;
+  memset(&path, 0, sizeof(path));
+  if (a.path) {
+    path.ns = h.nstrain;
+    path.dim = h.dim;
+    path.steps = a.steps;
+    path.modes = a.modes;
+    path.grid = a.grid;
+    path.quiet = a.quiet;
+    memcpy(path.target, target, sizeof(target));
+#ifdef RN_HAVE_SOLVER
+    st = hp_run(net, &path);
+#endif
+    if (st) {
+      fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
+      rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+      hp_free(&path);
+      goto done;
+    }
+  }
+  if (a.pattern) {
+    path.pattern.requested = 1;
+    int prc = write_pattern(ctx, &a, &path, &path.pattern);
+    if (prc) rc = prc;
+  }
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL};
+  st = rn_file_write_atomic(ctx, a.output, write_result, &o);
+  if (!st && a.path && !a.quiet) {
+    if (path.inst.found)
+      printf(
+          "rodnet homogenize: first instability at load factor %.6g of the path: "
+          "strain [%.6g %.6g %.6g%s], %s, wave vector [%.4g %.4g%s], multiplicity %d\n",
+          path.inst.t, path.inst.strain[0], path.inst.strain[1],
+          path.inst.strain[path.ns - 1], path.ns == 6 ? " ..." : "",
+          path.inst.kind_macroscopic ? "macroscopic" : "local", path.inst.xi[0],
+          path.inst.xi[1], path.dim == 3 ? " ..." : "", path.inst.multiplicity);
+    else
+      printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
+    if (path.pattern.written)
+      printf("rodnet homogenize: pattern: %d x %d supercell at the critical strain, "
+             "critical mode eigenvalue %.3e (scaled to %.3g)%s; wrote %s.vtu%s%s%s\n",
+             path.pattern.rep[0], path.pattern.rep[1], path.pattern.eigenvalue,
+             path.pattern.amplitude, path.pattern.converged ? "" : " (NOT converged)",
+             a.pattern, path.pattern.png ? " and " : "",
+             path.pattern.png ? a.pattern : "", path.pattern.png ? ".png" : "");
+  }
+  if (a.path && path.stopped) {
+    fprintf(stderr, "rodnet homogenize: %s: the path stopped at step %d: %s\n", a.scene,
+            path.done + 1, path.stopped);
+    if (!rc) rc = RN_EXIT_INTERNAL;
+  }
+  hp_free(&path);
+  if (st) {
     fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
     goto done;

@@ -370,3 +370,12 @@ rn_status rn_pcell_write_scene(rn_context *ctx, const char *path, const rn_pcell
   pcell_out o = {c, opt, repeat};
   return rn_file_write_atomic(ctx, path, write_pcell, &o);
 }
+
+void rn_pcell_section_for_density(const rn_pcell *c, double rho, rn_lattice_scene *opt) {
+  double L, V, t;
+  rn_pcell_measures(c, &L, &V);
+  t = c->dim == 2 ? rho * V / L : sqrt(4.0 * rho * V / (3.14159265358979323846 * L));
+  opt->shape = c->dim == 2 ? RN_LSEC_RECTANGLE : RN_LSEC_CIRCLE;
+  opt->section[0] = c->dim == 2 ? t : 0.5 * t;
+  opt->section[1] = t;
+}

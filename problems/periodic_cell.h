@@ -36,6 +36,10 @@ void rn_pcell_free(rn_pcell *c);
  * [-amp, amp] times the mean bar length (2D cells: in plane only), from a
  * deterministic generator seeded by seed. */
 void rn_pcell_perturb(rn_pcell *c, double amp, unsigned long seed);
+/* Sections of relative density rho (docs/homogenization.md): square t x t struts
+ * in 2D (t = rho V / L), circles of diameter t in 3D (t = sqrt(4 rho V / (pi L))),
+ * V the cell measure and L the total bar length; into opt->shape, section. */
+void rn_pcell_section_for_density(const rn_pcell *c, double rho, rn_lattice_scene *opt);
 /* Sum of the bar lengths and the cell area (2D) or volume (3D). */
 void rn_pcell_measures(const rn_pcell *c, double *length, double *measure);
 /* Write the cell as a JSON scene (top-level "periodic", rods "e<k>", joints

@@ -11,42 +11,42 @@
 #include <cmath>
 #include <memory>
 #include <new>
+#include <string>
 #include <vector>
 
+#include "homogenize.hpp"
 #include "problem.hpp"
 #include "rodnet_solve.h"
 #include "shim_error.hpp"
 #include "sparse_cholesky.hpp"
 
 namespace rodnet {
-namespace {
 
-void homogenize(rn_network *net, rn_homogenization *h) {
-  int dim = 0, ns = 0;
-  double measure = 0.0;
+CellBlocks::CellBlocks(Problem &p, const std::string &where) {
+  rn_network *net = p.network();
   check_status(rn_network_cell_info(net, &dim, &ns, &measure, nullptr),
                "rn_network_cell_info");
-  if (dim == 0) throw Error(RN_ERR_ARG, "rn_homogenize: the network is not periodic");
+  if (dim == 0) throw Error(RN_ERR_ARG, where + ": the network is not periodic");
   int64_t sidx[6];
   check_status(rn_network_cell_strain_dofs(net, sidx), "rn_network_cell_strain_dofs");
-  Problem p(net);
-  const size_t n = p.size(), nu = n - static_cast<size_t>(ns);
+  n = p.size();
+  nu = n - static_cast<size_t>(ns);
   for (int v = 0; v < ns; ++v)
     if (sidx[v] != static_cast<int64_t>(nu) + v)
       throw Error(RN_ERR_ARG,
-                  "rn_homogenize: every strain component must be a DOF (strain "
-                  "component " +
+                  where + ": every strain component must be a DOF (strain component " +
                       std::to_string(v) + " is prescribed)");
-  std::vector<double> x(n);
-  check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
-  p.assemble_hessian(x.data());
+}
+
+void CellBlocks::extract(const Problem &p) {
   const int64_t *rp = p.rowptr();
   const int32_t *col = p.col();
   const double *val = p.values();
-  // K_uu on its own pattern; K_ue as nstrain dense columns; K_ee.
-  std::vector<int64_t> urp(nu + 1, 0);
-  std::vector<int32_t> ucol;
-  std::vector<double> uval, kue(nu * static_cast<size_t>(ns), 0.0), kee(36, 0.0);
+  urp.assign(nu + 1, 0);
+  ucol.clear();
+  uval.clear();
+  kue.assign(nu * static_cast<size_t>(ns), 0.0);
+  kee.assign(36, 0.0);
   for (size_t i = 0; i < n; ++i) {
     for (int64_t q = rp[i]; q < rp[i + 1]; ++q) {
       const size_t j = static_cast<size_t>(col[q]);
@@ -61,11 +61,25 @@ void homogenize(rn_network *net, rn_homogenization *h) {
     if (i < nu) urp[i + 1] = static_cast<int64_t>(ucol.size());
   }
   for (double v : uval)
-    if (!std::isfinite(v))
-      throw Error(RN_ERR_NOT_FINITE, "rn_homogenize: non-finite Hessian");
-  auto analysis = std::make_shared<SparseAnalysis>(nu, urp.data(), ucol.data());
+    if (!std::isfinite(v)) throw Error(RN_ERR_NOT_FINITE, "non-finite Hessian");
+}
+
+namespace {
+
+void homogenize(rn_network *net, rn_homogenization *h) {
+  Problem p(net);
+  CellBlocks cb(p, "rn_homogenize");
+  const int dim = cb.dim, ns = cb.ns;
+  const double measure = cb.measure;
+  const size_t nu = cb.nu;
+  std::vector<double> x(cb.n);
+  check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
+  p.assemble_hessian(x.data());
+  cb.extract(p);
+  const std::vector<double> &kue = cb.kue, &kee = cb.kee;
+  auto analysis = std::make_shared<SparseAnalysis>(nu, cb.urp.data(), cb.ucol.data());
   SparseCholesky chol(analysis);
-  if (!chol.factor(uval.data(), 0.0, nullptr))
+  if (!chol.factor(cb.uval.data(), 0.0, nullptr))
     throw Error(RN_ERR_SOLVER,
                 "rn_homogenize: the fluctuation block of the Hessian is not positive "
                 "definite: the cell has a mechanism (a periodic fluctuation of zero "

@@ -314,6 +314,53 @@ if(RN_WITH_TRILINOS)
                    ${gen}/hom_hc_result.json 0.05 ${gen}/hom_hc.png)
   set_tests_properties(problems_cli_homogenize_hc_result PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_hom_hc_result)
+  # Strain paths with the Bloch-Floquet first instability (docs/homogenization.md):
+  # the honeycomb under equibiaxial compression, in-plane modes: local at an M point;
+  # all modes (the sheet in 3D): macroscopic at once; a bad --path.
+  rn_cli_test(problems_cli_homogenize_path_local 0
+              "first instability at load factor .*local, wave vector \\[0(\\.5)? 0(\\.5)?\\], multiplicity 1"
+              REMOVE ${gen}/hom_path.json
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 4
+                   --modes in-plane --bloch-grid 4 -o ${gen}/hom_path.json)
+  rn_cli_test(problems_cli_homogenize_path_pattern 0
+              "pattern: 2 x 2 supercell at the critical strain.*wrote .*hom_pattern.vtu"
+              REMOVE ${gen}/hom_pattern.vtu
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 4
+                   --modes in-plane --bloch-grid 4 --pattern ${gen}/hom_pattern
+                   -o ${gen}/hom_path_pattern.json)
+  set_tests_properties(problems_cli_homogenize_path_pattern PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc8)
+  rn_cli_test(problems_cli_homogenize_path_hc_generate 0 "wrote"
+              REMOVE ${gen}/hom_hc8.json FIXTURE_SETUP problems_hom_hc8
+              ARGS generate honeycomb --periodic --joint-model rigid --edges-per-rod 8
+                   --slenderness 0.05 -o ${gen}/hom_hc8.json)
+  rn_cli_test(problems_cli_homogenize_path_sheet 0 "first instability .*macroscopic"
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 2
+                   --bloch-grid 2 -o ${gen}/hom_path_sheet.json)
+  set_tests_properties(problems_cli_homogenize_path_local problems_cli_homogenize_path_sheet
+                       PROPERTIES FIXTURES_REQUIRED problems_hom_hc8)
+  rn_cli_test(problems_cli_homogenize_path_bad 2 "--path '1,2': expected 3 comma-separated"
+              ABSENT ${gen}/hom_path_bad.json
+              ARGS homogenize ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json
+                   --path 1,2 -o ${gen}/hom_path_bad.json)
+  # rodnet sweep: 20 relative densities of the honeycomb, CSV and PNG against the
+  # closed forms; a rerun skips every finished point; a bad sweep file.
+  rn_cli_test(problems_cli_sweep 0 "20 points \\(0 failed\\); wrote"
+              REMOVE ${gen}/sweep_hc/sweep.csv FIXTURE_SETUP problems_sweep
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
+                   -o ${gen}/sweep_hc --plot ${gen}/sweep_hc.png)
+  rn_cli_test(problems_cli_sweep_rerun 0 "20/20 .*\\(done before\\)"
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
+                   -o ${gen}/sweep_hc)
+  add_test(NAME problems_cli_sweep_csv
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_sweep.py
+                   ${gen}/sweep_hc/sweep.csv 20 ${gen}/sweep_hc.png)
+  set_tests_properties(problems_cli_sweep_csv PROPERTIES LABELS unit)
+  set_tests_properties(problems_cli_sweep_rerun problems_cli_sweep_csv PROPERTIES
+                       FIXTURES_REQUIRED problems_sweep)
+  rn_cli_test(problems_cli_sweep_bad 3 "sweep_bad.json: unknown key 'density'"
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_bad.json
+                   -o ${gen}/sweep_bad)
   # rodnet solve of a stress-controlled cell: RESULT.json "cell"
   rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
               REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress

@@ -17,4 +17,9 @@ if(RN_WITH_TRILINOS)
   rn_add_test(val_lattice_stretch SOURCES validation/val_lattice_stretch.c
               LIBS rn_valutil rodnet_problems m LABELS validation
               ARGS ${CMAKE_CURRENT_BINARY_DIR}/val_lattice)
+  # Bloch-Floquet stability of periodic cells (cells written as scenes).
+  file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/val_bloch_data)
+  rn_add_test(val_bloch SOURCES validation/val_bloch.c
+              LIBS rn_valutil rodnet_problems m LABELS validation
+              ARGS ${CMAKE_CURRENT_BINARY_DIR}/val_bloch_data)
 endif()

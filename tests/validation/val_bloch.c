@@ -1,0 +1,512 @@
+/* val_bloch.c - Bloch-Floquet stability of periodic rod lattices
+ * (rn_network_bloch_hessian, rn_cell_relax, rn_cell_bloch; docs/homogenization.md,
+ * "Strain paths and stability").  Cells from rn_pcell_from_lattice (the cells of
+ * `rodnet generate --periodic`): rigid joints, square t x t struts, t = 0.05 of
+ * the bar length l, E = 1, N DER edges per bar.
+ *  (1) the Bloch Hessian is Hermitian; at xi = 0 its reduced block is the
+ *      Hessian's fluctuation block; a 2 x 2 supercell's Bloch spectrum at xi_s is
+ *      the union of the cell's at (xi_s + (p, q)) / 2 (round-off);
+ *  (2) the long-wavelength acoustic tensor at rest is the one of the effective
+ *      stiffness C (isotropic honeycomb: eigenvalues C66 and C11 in every
+ *      direction, 1e-8); under equibiaxial prestress its out-of-plane entry is
+ *      the stress sigma n.n (a sheet in 3D is unstable out of plane under any
+ *      compression), 1e-6;
+ *  (3) square lattice under uniaxial compression along its bars: the sway mode
+ *      at xi = (1/2, 0) (bars as guided columns) becomes unstable at the Euler
+ *      load P (1 - P / EA) = pi^2 EI / l^2, second order in 1/N (1 % at N = 16);
+ *      before it the lattice loses rank-one convexity (long-wave shear,
+ *      macroscopic) where the acoustic tensor's shear entry G + sigma_11
+ *      vanishes: the first instability is macroscopic, n = x, amplitude y;
+ *  (4) regular honeycomb under equibiaxial compression (in-plane modes): the
+ *      first instability is local at an M point of the Brillouin zone (xi with
+ *      entries 0 and 1/2: the period-2 "flower" family), strut force
+ *      P l^2 / EI -> 3.653 (second order in 1/N, N = 16 within 1 % of the
+ *      extrapolated limit), and a 2 x 2 supercell, whose
+ *      xi = 0 contains the M points, becomes unstable at the same strain
+ *      (0.1 %);
+ *  (5) the effective stiffness (rn_homogenize) is invariant under lattice
+ *      symmetries of the cell (60-degree rotation and mirror of the honeycomb,
+ *      60 degrees of the kagome, 90 degrees of the square) and rotates as a
+ *      tensor with the cell (1e-9). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lattice.h"
+#include "lattice_scene.h"
+#include "periodic_cell.h"
+#include "rodnet_solve.h"
+#include "scene.h"
+#include "testutil.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static const char *dir = ".";
+
+static void must(rn_context *ctx, rn_status st, const char *what) {
+  if (st) {
+    fprintf(stderr, "%s: %s\n", what, rn_context_last_error(ctx));
+    exit(1);
+  }
+}
+
+/* Linear map applied to the cells written by cell() (row-major 2 x 2 in the xy
+ * plane; the identity unless a test sets it). */
+static double xform[4] = {1.0, 0.0, 0.0, 1.0};
+
+static void apply_xform(double *p) {
+  double x = p[0], y = p[1];
+  p[0] = xform[0] * x + xform[1] * y;
+  p[1] = xform[2] * x + xform[3] * y;
+}
+
+/* The rep x rep supercell of a lattice, N edges per bar, as a loaded scene. */
+static rn_scene *cell(rn_context *ctx, rn_lattice_kind kind, int rep, int N, double *l) {
+  rn_pcell prim, c;
+  const int one[3] = {1, 1, 1}, r[3] = {rep, rep, 1};
+  double L, V;
+  char path[1024];
+  rn_scene *s = NULL;
+  must(ctx, rn_pcell_from_lattice(ctx, kind, one, 1.0, &prim), "cell");
+  rn_pcell_measures(&prim, &L, &V);
+  *l = L / prim.nbars;
+  must(ctx, rn_pcell_tile(ctx, &prim, r, &c), "tile");
+  for (int m = 0; m < c.dim; ++m) apply_xform(c.vec + 3 * m);
+  for (int j = 0; j < c.nnodes; ++j) apply_xform(c.xyz + 3 * j);
+  rn_lattice_scene sc = {"val_bloch",       N,      RN_JOINT_RIGID, 1.0, 0.3,
+                         RN_LSEC_RECTANGLE, {0, 0}, RN_LLOAD_NONE,  0,   0.0};
+  sc.section[0] = sc.section[1] = 0.05 * *l;
+  snprintf(path, sizeof path, "%s/val_bloch_%s_%d_%d.json", dir,
+           rn_lattice_kind_name(kind), rep, N);
+  must(ctx, rn_pcell_write_scene(ctx, path, &c, &sc, NULL), "write");
+  must(ctx, rn_scene_load(ctx, path, &s), "load");
+  rn_pcell_free(&prim);
+  rn_pcell_free(&c);
+  return s;
+}
+
+/* Homogenised stress at the current state. */
+static void stress_now(rn_context *ctx, rn_network *net, double *sig) {
+  size_t nd = rn_network_num_dofs(net);
+  double *x = malloc(nd * sizeof(double));
+  must(ctx, rn_network_get_dofs(net, x), "dofs");
+  must(ctx, rn_network_cell_stress(net, x, sig), "stress");
+  free(x);
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static void check_hessian(rn_context *ctx) {
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 1, 4, &l);
+  rn_network *net = rn_scene_network(s);
+  size_t n = 0, nd = rn_network_num_dofs(net), nnz;
+  const int64_t *rp;
+  const int32_t *col;
+  must(ctx, rn_network_bloch_dofs(net, &n, NULL, NULL), "bloch dofs");
+  CHECK(n == nd - 3 + 3); /* 3 strain DOFs out, the anchor's 3 positions in */
+  double *x = malloc(nd * sizeof(double)), *re = malloc(n * n * sizeof(double)),
+         *im = malloc(n * n * sizeof(double));
+  must(ctx, rn_network_get_dofs(net, x), "dofs");
+  /* a generic strained state (not an equilibrium: the Hessian is what counts) */
+  for (size_t i = 0; i < nd; ++i) x[i] += 1e-3 * sin(1.7 * (double)i);
+  const double xi[2] = {0.21, -0.37}, zero[2] = {0.0, 0.0};
+  must(ctx, rn_network_bloch_hessian(net, x, xi, re, im), "bloch");
+  double big = 0.0, asym = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < n; ++j) {
+      big = fmax(big, fabs(re[i * n + j]));
+      asym = fmax(asym, fabs(re[i * n + j] - re[j * n + i]));
+      asym = fmax(asym, fabs(im[i * n + j] + im[j * n + i]));
+    }
+  printf("Bloch Hessian at xi = (0.21, -0.37): Hermitian to %.2e of %.2e\n", asym, big);
+  CHECK(asym <= 1e-13 * big);
+  /* xi = 0: the reduced Hessian's fluctuation block */
+  must(ctx, rn_network_bloch_hessian(net, x, zero, re, im), "bloch 0");
+  must(ctx, rn_network_hessian_pattern(net, &nnz, &rp, &col), "pattern");
+  double *vals = malloc(nnz * sizeof(double)), diff = 0.0, imax = 0.0;
+  must(ctx, rn_network_hessian_values(net, x, vals), "hessian");
+  for (size_t i = 0; i < nd - 3; ++i)
+    for (int64_t q = rp[i]; q < rp[i + 1]; ++q)
+      if ((size_t)col[q] < nd - 3)
+        diff = fmax(diff, fabs(vals[q] - re[i * n + (size_t)col[q]]));
+  for (size_t i = 0; i < n * n; ++i) imax = fmax(imax, fabs(im[i]));
+  printf("xi = 0 against the reduced Hessian: %.2e (imaginary part %.2e)\n", diff, imax);
+  CHECK(diff <= 1e-12 * big);
+  CHECK(imax == 0.0);
+  free(vals);
+  free(x);
+  free(re);
+  free(im);
+  rn_scene_destroy(&s);
+
+  /* 2 x 2 supercell at xi_s against the cell at (xi_s + (p, q)) / 2 */
+  rn_scene *c1 = cell(ctx, RN_LATTICE_HONEYCOMB, 1, 4, &l);
+  rn_scene *c2 = cell(ctx, RN_LATTICE_HONEYCOMB, 2, 4, &l);
+  const double xs[2] = {0.3, 0.2};
+  double all[32], sup[8], worst = 0.0;
+  for (int p = 0; p < 2; ++p)
+    for (int q = 0; q < 2; ++q) {
+      double xc[2] = {(xs[0] + p) / 2, (xs[1] + q) / 2};
+      must(ctx,
+           rn_cell_bloch_eigen(rn_scene_network(c1), xc, RN_BLOCH_ALL, 8,
+                               all + 8 * (2 * p + q), NULL),
+           "cell eigen");
+    }
+  qsort(all, 32, sizeof(double), cmp_double);
+  must(ctx, rn_cell_bloch_eigen(rn_scene_network(c2), xs, RN_BLOCH_ALL, 8, sup, NULL),
+       "supercell eigen");
+  for (int i = 0; i < 8; ++i) worst = fmax(worst, fabs(sup[i] - all[i]) / fabs(all[7]));
+  printf("2 x 2 supercell spectrum against the cell's: %.2e relative\n", worst);
+  CHECK(worst <= 1e-9);
+  rn_scene_destroy(&c1);
+  rn_scene_destroy(&c2);
+}
+
+static void check_acoustic(rn_context *ctx) {
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 1, 8, &l);
+  rn_network *net = rn_scene_network(s);
+  rn_homogenization h;
+  rn_bloch_options o;
+  rn_bloch_result r;
+  rn_bloch_options_default(&o);
+  o.grid = 4;
+  must(ctx, rn_homogenize(net, &h), "homogenize");
+  o.modes = RN_BLOCH_IN_PLANE;
+  must(ctx, rn_cell_bloch(net, &o, &r), "bloch rest");
+  printf("honeycomb at rest: acoustic eigenvalues %.10e %.10e, C66 %.10e C11 %.10e\n",
+         r.acoustic_min, r.acoustic_scale, h.C[8], h.C[0]);
+  CHECK_REL(r.acoustic_min, h.C[8], 1e-8);
+  CHECK_REL(r.acoustic_scale, h.C[0], 1e-8);
+  CHECK(r.local_min > 0.0);
+  /* equibiaxial compression, all modes: the out-of-plane entry is sigma */
+  const double eps[3] = {-2e-4, -2e-4, 0.0};
+  rn_cell_relax_report rep;
+  double sig[3];
+  must(ctx, rn_cell_relax(net, eps, &rep), "relax");
+  CHECK(rep.converged);
+  stress_now(ctx, net, sig);
+  o.modes = RN_BLOCH_ALL;
+  must(ctx, rn_cell_bloch(net, &o, &r), "bloch");
+  printf("honeycomb at eps = -2e-4 (equibiaxial): acoustic min %.10e, sigma %.10e, "
+         "amplitude (%.3g %.3g %.3g)\n",
+         r.acoustic_min, sig[0], r.amplitude[0], r.amplitude[1], r.amplitude[2]);
+  CHECK(sig[0] < 0.0);
+  /* the geometric term of the nominal tangent: sigma / (1 + e) (sigma the
+   * work conjugate of the symmetric stretch, F = (1 + e) I) */
+  CHECK_REL(r.acoustic_min, sig[0] / (1.0 + eps[0]), 1e-6);
+  CHECK_NEAR(fabs(r.amplitude[2]), 1.0, 1e-9);
+  rn_scene_destroy(&s);
+}
+
+/* Load factor t in [lo, hi] where f(t) changes sign (f(lo) > 0 > f(hi)), by
+ * bisection to rel; each evaluation relaxes the cell from the state at lo. */
+typedef double (*crit_fn)(rn_context *ctx, rn_network *net, const void *user);
+static double bisect(rn_context *ctx, rn_network *net, const double *dir3, double lo,
+                     double hi, crit_fn f, const void *user) {
+  rn_state *s0 = NULL;
+  rn_cell_relax_report rep;
+  double e[3];
+  for (int k = 0; k < 3; ++k) e[k] = lo * dir3[k];
+  must(ctx, rn_cell_relax(net, e, &rep), "relax lo");
+  must(ctx, rn_network_state_save(net, &s0), "save");
+  while (hi - lo > 1e-4 * hi) {
+    double mid = 0.5 * (lo + hi);
+    must(ctx, rn_network_state_restore(net, s0), "restore");
+    for (int k = 0; k < 3; ++k) e[k] = mid * dir3[k];
+    must(ctx, rn_cell_relax(net, e, &rep), "relax");
+    CHECK(rep.converged);
+    if (f(ctx, net, user) > 0.0) {
+      lo = mid;
+      rn_state_destroy(&s0);
+      must(ctx, rn_network_state_save(net, &s0), "save");
+    } else
+      hi = mid;
+  }
+  rn_state_destroy(&s0);
+  return 0.5 * (lo + hi);
+}
+
+/* rn_cell_bloch on the in-plane modes with a grid of G wave vectors. */
+static rn_bloch_result in_plane(rn_context *ctx, rn_network *net, int G, int refine) {
+  rn_bloch_options o;
+  rn_bloch_result r;
+  rn_bloch_options_default(&o);
+  o.modes = RN_BLOCH_IN_PLANE;
+  o.grid = G;
+  o.refine = refine;
+  must(ctx, rn_cell_bloch(net, &o, &r), "bloch");
+  return r;
+}
+
+static double acoustic(rn_context *ctx, rn_network *net, const void *user) {
+  (void)user;
+  return in_plane(ctx, net, 2, 0).acoustic_min;
+}
+
+static double sway(rn_context *ctx, rn_network *net, const void *user) {
+  double eig[1];
+  must(ctx,
+       rn_cell_bloch_eigen(net, (const double *)user, RN_BLOCH_IN_PLANE, 1, eig, NULL),
+       "eigen");
+  return eig[0];
+}
+
+static void check_square(rn_context *ctx) {
+  const int Ns[3] = {8, 16, 32};
+  const double xi[2] = {0.5, 0.0}, dir3[3] = {-1.0, 0.0, 0.0};
+  double err[3], h[3];
+  for (int k = 0; k < 3; ++k) {
+    double l;
+    rn_scene *s = cell(ctx, RN_LATTICE_SQUARE, 1, Ns[k], &l);
+    const double t = 0.05 * l, EA = t * t, EI = t * t * t * t / 12.0;
+    const double PE = M_PI * M_PI * EI / (l * l);
+    double e = bisect(ctx, rn_scene_network(s), dir3, 0.0, 2.0 * PE / EA, sway, xi);
+    double P = EA * e; /* bars along x: affine, axial force EA * strain */
+    err[k] = fabs(P * (1.0 - P / EA) / PE - 1.0);
+    h[k] = 1.0 / Ns[k];
+    printf("square N = %d: sway mode at xi = (1/2, 0) unstable at strain %.8e, "
+           "P (1 - P/EA) / P_E - 1 = %.3e\n",
+           Ns[k], e, err[k]);
+    rn_scene_destroy(&s);
+  }
+  double order = rn_test_loglog_slope(3, h, err);
+  printf("square sway (Euler) mode: order %.3f\n", order);
+  CHECK(fabs(err[1]) < 1e-2);
+  CHECK(fabs(order - 2.0) < 0.2);
+
+  /* the first instability along the path: macroscopic (long-wave shear), where
+   * the acoustic tensor's shear entry G + sigma_11 vanishes, before the sway */
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_SQUARE, 1, 8, &l);
+  rn_network *net = rn_scene_network(s);
+  rn_bloch_options o;
+  rn_bloch_result r;
+  rn_cell_relax_report rep;
+  rn_homogenization hm;
+  const double t = 0.05 * l, EA = t * t, EI = t * t * t * t / 12.0;
+  must(ctx, rn_homogenize(net, &hm), "homogenize");
+  double em =
+      bisect(ctx, net, dir3, 0.0, 2.0 * M_PI * M_PI * EI / (EA * l * l), acoustic, NULL);
+  const double e[3] = {-em, 0.0, 0.0};
+  double sig[3];
+  must(ctx, rn_cell_relax(net, e, &rep), "relax");
+  stress_now(ctx, net, sig);
+  rn_bloch_options_default(&o);
+  o.modes = RN_BLOCH_IN_PLANE;
+  o.grid = 8;
+  must(ctx, rn_cell_bloch(net, &o, &r), "bloch");
+  printf(
+      "square N = 8: rank-one convexity lost at strain %.8e (sigma_11 %.6e, G12 at rest "
+      "%.6e, Euler strain %.6e); Bloch min there %.3e at (%.3g, %.3g); acoustic "
+      "min along (%.3g, %.3g), amplitude (%.3g, %.3g)\n",
+      em, sig[0], hm.C[8], M_PI * M_PI * EI / (EA * l * l), r.local_min, r.xi[0], r.xi[1],
+      r.direction[0], r.direction[1], r.amplitude[0], r.amplitude[1]);
+  CHECK(em < M_PI * M_PI * EI / (EA * l * l)); /* before the Euler (sway) mode */
+  CHECK(-sig[0] < hm.C[8]); /* the shear stiffness softens under the load */
+  CHECK(-sig[0] > 0.9 * hm.C[8]);
+  CHECK(r.local_min > -1e-9 * r.local_scale); /* no local instability yet */
+  CHECK_NEAR(fabs(r.direction[0]), 1.0, 1e-6);
+  CHECK_NEAR(fabs(r.amplitude[1]), 1.0, 1e-6);
+  rn_scene_destroy(&s);
+}
+
+static double lowest_all(rn_context *ctx, rn_network *net, const void *user) {
+  (void)user;
+  return in_plane(ctx, net, 4, 1).local_min;
+}
+
+static double supercell_zero(rn_context *ctx, rn_network *net, const void *user) {
+  const double zero[2] = {0.0, 0.0};
+  double eig[1];
+  (void)user;
+  must(ctx, rn_cell_bloch_eigen(net, zero, RN_BLOCH_IN_PLANE, 1, eig, NULL), "eigen");
+  return eig[0];
+}
+
+static void check_honeycomb(rn_context *ctx) {
+  const int Ns[3] = {8, 16, 32};
+  const double dir3[3] = {-1.0, -1.0, 0.0};
+  double ratio[3], ecell = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    double l, sig[3];
+    rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 1, Ns[k], &l);
+    rn_network *net = rn_scene_network(s);
+    const double t = 0.05 * l, EI = t * t * t * t / 12.0;
+    double e = bisect(ctx, net, dir3, 0.0, 1.5e-3, lowest_all, NULL);
+    rn_bloch_options o;
+    rn_bloch_result r;
+    rn_cell_relax_report rep;
+    const double at[3] = {-e, -e, 0.0}, past[3] = {-e * 1.001, -e * 1.001, 0.0};
+    must(ctx, rn_cell_relax(net, at, &rep), "relax");
+    stress_now(ctx, net, sig);
+    must(ctx, rn_cell_relax(net, past, &rep), "relax");
+    rn_bloch_options_default(&o);
+    o.modes = RN_BLOCH_IN_PLANE;
+    o.grid = 8;
+    must(ctx, rn_cell_bloch(net, &o, &r), "bloch");
+    /* hydrostatic stress sigma: strut force P = -sqrt(3) sigma l */
+    ratio[k] = -sqrt(3.0) * sig[0] * l * l * l / EI;
+    printf("honeycomb N = %d: first instability at strain %.8e, xi = (%.4f, %.4f), "
+           "P l^2 / EI = %.6f\n",
+           Ns[k], e, r.xi[0], r.xi[1], ratio[k]);
+    CHECK(r.local_min < 0.0);
+    CHECK(r.acoustic_valid && r.acoustic_min > 0.0);
+    /* an M point: entries 0 or +-1/2, not both 0 */
+    int half = 0, zero = 0;
+    for (int i = 0; i < 2; ++i) {
+      half += fabs(fabs(r.xi[i]) - 0.5) < 1e-4;
+      zero += fabs(r.xi[i]) < 1e-4;
+    }
+    CHECK(half >= 1 && half + zero == 2);
+    if (k == 0) ecell = e;
+    rn_scene_destroy(&s);
+  }
+  /* second order in 1/N, from below (DER members are softer) */
+  double q = (ratio[1] - ratio[0]) / (ratio[2] - ratio[1]);
+  double limit = ratio[2] + (ratio[2] - ratio[1]) / (q - 1.0);
+  printf("honeycomb P l^2/EI: %.6f (N = 8), %.6f (N = 16), %.6f (N = 32); ratio of "
+         "differences %.3f (order %.3f), extrapolated %.6f\n",
+         ratio[0], ratio[1], ratio[2], q, log(q) / log(2.0), limit);
+  CHECK(ratio[0] < ratio[1] && ratio[1] < ratio[2]);
+  CHECK(fabs(log(q) / log(2.0) - 2.0) < 0.2);
+  CHECK(fabs(ratio[1] / limit - 1.0) < 1e-2);
+
+  /* the 2 x 2 supercell at xi = 0 becomes unstable at the cell's strain */
+  double l;
+  rn_scene *s2 = cell(ctx, RN_LATTICE_HONEYCOMB, 2, 8, &l);
+  double e2 = bisect(ctx, rn_scene_network(s2), dir3, 0.0, 1.5e-3, supercell_zero, NULL);
+  printf("honeycomb 2 x 2 supercell, N = 8: unstable at xi = 0 at strain %.8e (cell "
+         "%.8e)\n",
+         e2, ecell);
+  CHECK_REL(e2, ecell, 1e-3);
+  rn_scene_destroy(&s2);
+}
+
+/* Voigt (11, 22, 12 engineering) stiffness C of a 2D cell rotated by R: the
+ * fourth-order tensor C'_ijkl = R_ia R_jb R_kc R_ld C_abcd. */
+static void rotate_voigt(const double *C, const double *R, double *out) {
+  static const int vi[2][2] = {{0, 2}, {2, 1}};
+  double T[2][2][2][2], Q[2][2][2][2] = {{{{0}}}};
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l) T[i][j][k][l] = C[vi[i][j] * 3 + vi[k][l]];
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l)
+          for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b)
+              for (int c = 0; c < 2; ++c)
+                for (int d = 0; d < 2; ++d)
+                  Q[i][j][k][l] += R[2 * i + a] * R[2 * j + b] * R[2 * k + c] *
+                                   R[2 * l + d] * T[a][b][c][d];
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) {
+      static const int ij[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+      out[3 * p + q] = Q[ij[p][0]][ij[p][1]][ij[q][0]][ij[q][1]];
+    }
+}
+
+/* (5) the effective tensor is invariant under a symmetry of the lattice (honeycomb
+ * and kagome: rotation by 60 degrees and a mirror; square: 90 degrees), and a
+ * generic rotation (20 degrees) of the cell rotates it as a tensor. */
+static void check_symmetry(rn_context *ctx) {
+  const double d60 = M_PI / 3, d20 = M_PI / 9;
+  struct {
+    rn_lattice_kind kind;
+    double map[4];
+    int symmetry;
+  } cases[] = {
+      {RN_LATTICE_HONEYCOMB, {cos(d60), -sin(d60), sin(d60), cos(d60)}, 1},
+      {RN_LATTICE_HONEYCOMB, {1.0, 0.0, 0.0, -1.0}, 1},
+      {RN_LATTICE_KAGOME, {cos(d60), -sin(d60), sin(d60), cos(d60)}, 1},
+      {RN_LATTICE_SQUARE, {0.0, -1.0, 1.0, 0.0}, 1},
+      {RN_LATTICE_SQUARE, {cos(d20), -sin(d20), sin(d20), cos(d20)}, 0},
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+    double l, ref[9], big = 0.0, diff = 0.0;
+    rn_homogenization h0, h1;
+    rn_scene *s0 = cell(ctx, cases[c].kind, 1, 6, &l);
+    must(ctx, rn_homogenize(rn_scene_network(s0), &h0), "homogenize");
+    memcpy(xform, cases[c].map, sizeof(xform));
+    rn_scene *s1 = cell(ctx, cases[c].kind, 1, 6, &l);
+    const double id[4] = {1.0, 0.0, 0.0, 1.0};
+    memcpy(xform, id, sizeof(xform));
+    must(ctx, rn_homogenize(rn_scene_network(s1), &h1), "homogenize");
+    if (cases[c].symmetry)
+      memcpy(ref, h0.C, sizeof(ref));
+    else
+      rotate_voigt(h0.C, cases[c].map, ref);
+    for (int i = 0; i < 9; ++i) {
+      big = fmax(big, fabs(ref[i]));
+      diff = fmax(diff, fabs(h1.C[i] - ref[i]));
+    }
+    printf("%s mapped by [%.3f %.3f; %.3f %.3f]: C %s to %.2e relative\n",
+           rn_lattice_kind_name(cases[c].kind), cases[c].map[0], cases[c].map[1],
+           cases[c].map[2], cases[c].map[3],
+           cases[c].symmetry ? "invariant" : "rotates as a tensor", diff / big);
+    CHECK(diff <= 1e-9 * big);
+    rn_scene_destroy(&s0);
+    rn_scene_destroy(&s1);
+  }
+}
+
+/* (6) errors: not periodic, bad arguments, too many wave vectors per direction. */
+static void check_errors(rn_context *ctx) {
+  rn_network *net = NULL;
+  rn_material mat;
+  rn_section sec;
+  const double xyz[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0}, xi[2] = {0.1, 0.2};
+  double e[3] = {0, 0, 0}, re[1], im[1];
+  size_t n = 0;
+  int rod;
+  rn_bloch_options o;
+  rn_bloch_result r;
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "r", 3, xyz, NULL, &rod), RN_OK);
+  CHECK_STATUS(rn_material_from_E_nu(1.0, 0.3, 0.0, &mat), RN_OK);
+  CHECK_STATUS(rn_section_circle(0.01, &sec), RN_OK);
+  CHECK_STATUS(rn_network_set_material(net, rod, -1, &mat), RN_OK);
+  CHECK_STATUS(rn_network_set_section(net, rod, -1, &sec), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  CHECK_STATUS(rn_network_bloch_dofs(net, &n, NULL, NULL), RN_ERR_STATE);
+  CHECK(strstr(rn_context_last_error(ctx), "not periodic") != NULL);
+  CHECK_STATUS(rn_cell_relax(net, e, NULL), RN_ERR_ARG);
+  CHECK_STATUS(rn_cell_bloch(net, NULL, &r), RN_ERR_ARG);
+  CHECK(strstr(rn_context_last_error(ctx), "not periodic") != NULL);
+  rn_network_destroy(&net);
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_SQUARE, 1, 2, &l);
+  net = rn_scene_network(s);
+  CHECK_STATUS(rn_network_bloch_hessian(net, NULL, xi, re, im), RN_ERR_ARG);
+  e[0] = NAN;
+  CHECK_STATUS(rn_cell_relax(net, e, NULL), RN_ERR_NOT_FINITE);
+  rn_bloch_options_default(&o);
+  o.grid = 1001;
+  CHECK_STATUS(rn_cell_bloch(net, &o, &r), RN_ERR_ARG);
+  CHECK_STATUS(rn_cell_bloch_eigen(net, xi, RN_BLOCH_ALL, 9, re, NULL), RN_ERR_ARG);
+  rn_scene_destroy(&s);
+}
+
+int main(int argc, char **argv) {
+  rn_context *ctx = NULL;
+  if (argc > 1) dir = argv[1];
+  CHECK_STATUS(rn_context_create(&ctx), RN_OK);
+  check_hessian(ctx);
+  check_acoustic(ctx);
+  check_square(ctx);
+  check_honeycomb(ctx);
+  check_symmetry(ctx);
+  check_errors(ctx);
+  rn_context_destroy(&ctx);
+  return rn_test_finish("val_bloch");
+}
