@@ -1,4 +1,6 @@
-/* cli.c - `rodnet` dispatch, top-level help and version, option helpers. */
+/* cli.c - `rodnet` dispatch, top-level help and version, option helpers, the
+ * plotting scripts' runner. */
+#define _POSIX_C_SOURCE 200809L /* fork, waitpid */
 #include "cli.h"
 
 #include <errno.h>
@@ -6,7 +8,10 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 static const char main_help[] =
     "\n"
@@ -132,4 +137,33 @@ int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i, const ch
 
 int rn_cli_load_exit_code(rn_status st) {
   return (st == RN_ERR_ALLOC || st == RN_ERR_INTERNAL) ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
+}
+
+#ifndef RN_PYTHON3
+#define RN_PYTHON3 "python3"
+#endif
+
+int rn_cli_run_script(const char *script_env, const char *default_script,
+                      const char *const *args) {
+  const char *script = getenv(script_env), *python = getenv("RODNET_PYTHON");
+  const char *argv[11];
+  int n = 0;
+  if (!script || !*script) script = default_script;
+  if (!python || !*python) python = RN_PYTHON3;
+  argv[n++] = python;
+  argv[n++] = script;
+  for (int i = 0; args[i] && n < 10; i++) argv[n++] = args[i];
+  argv[n] = NULL;
+  fflush(stdout);
+  fflush(stderr);
+  pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    execvp(python, (char *const *)(uintptr_t)argv);
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
 }

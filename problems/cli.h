@@ -46,5 +46,12 @@ int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i, const ch
                         const char *short_name, const char **value);
 /* Exit status for a failed scene load. */
 int rn_cli_load_exit_code(rn_status st);
+/* Run a plotting script with Python and wait for it: the interpreter is
+ * $RODNET_PYTHON or the python3 found at configure time, the script
+ * $script_env or default_script, then args (NULL-terminated, at most 8).
+ * Flushes stdout and stderr first.  0 if the script exited with status 0,
+ * -1 otherwise (fork, exec or the script failed). */
+int rn_cli_run_script(const char *script_env, const char *default_script,
+                      const char *const *args);
 
 #endif

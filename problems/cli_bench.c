@@ -12,7 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -27,9 +26,6 @@
 #endif
 #ifndef RN_PLOT_BENCH_SCRIPT
 #define RN_PLOT_BENCH_SCRIPT "benchmarks/bench_profiles.py"
-#endif
-#ifndef RN_PYTHON3
-#define RN_PYTHON3 "python3"
 #endif
 #ifndef RN_BUILD_COMMIT
 #define RN_BUILD_COMMIT "unknown"
@@ -653,22 +649,8 @@ static int write_references(const bench_args *a, const bench_suite *s) {
 
 /* python3 SCRIPT DIR/runs.csv -o DIR; 0 on success. */
 static int run_plot(const char *csv, const char *dir) {
-  const char *script = getenv("RODNET_PLOT_BENCH");
-  const char *python = getenv("RODNET_PYTHON");
-  if (!script || !*script) script = RN_PLOT_BENCH_SCRIPT;
-  if (!python || !*python) python = RN_PYTHON3;
-  fflush(stdout);
-  fflush(stderr);
-  pid_t pid = fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    execlp(python, python, script, csv, "-o", dir, (char *)NULL);
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
+  const char *const args[] = {csv, "-o", dir, NULL};
+  return rn_cli_run_script("RODNET_PLOT_BENCH", RN_PLOT_BENCH_SCRIPT, args);
 }
 
 static int make_dir(const char *dir) {

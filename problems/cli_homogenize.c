@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -261,20 +260,8 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
 
 /* python3 SCRIPT RESULT.json PNG; 0 on success. */
 static int run_plot(const char *result, const char *png) {
-  const char *script = getenv("RODNET_PLOT_STIFFNESS");
-  const char *python = getenv("RODNET_PYTHON");
-  if (!script || !*script) script = RN_PLOT_STIFFNESS_SCRIPT;
-  if (!python || !*python) python = RN_PYTHON3;
-  fflush(stdout);
-  pid_t pid = fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    execlp(python, python, script, result, png, (char *)NULL);
-    _exit(127);
-  }
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
+  const char *const args[] = {result, png, NULL};
+  return rn_cli_run_script("RODNET_PLOT_STIFFNESS", RN_PLOT_STIFFNESS_SCRIPT, args);
 }
 
 static double now(void) {
@@ -367,20 +354,9 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
   if (rn_vtk_write(ctx, vtu, sc)) goto fail;
   pat->written = 1;
   {
-    const char *python = getenv("RODNET_PYTHON");
-    const char *script = getenv("RODNET_RENDER_VTU");
-    if (!python || !*python) python = RN_PYTHON3;
-    if (!script || !*script) script = RN_RENDER_VTU_SCRIPT;
-    fflush(stdout);
-    pid_t pid = fork();
-    if (pid == 0) {
-      execlp(python, python, script, vtu, png, "--view", "xy", "--field",
-             "bending_moment", (char *)NULL);
-      _exit(127);
-    }
-    int status = 0;
-    pat->png = pid > 0 && waitpid(pid, &status, 0) > 0 && WIFEXITED(status) &&
-               WEXITSTATUS(status) == 0;
+    const char *const args[] = {vtu, png, "--view", "xy", "--field", "bending_moment",
+                                NULL};
+    pat->png = rn_cli_run_script("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args) == 0;
   }
   rc = RN_EXIT_OK;
   goto done;

@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "atomic_file.h"
@@ -369,20 +368,8 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
 
 /* python3 SCRIPT PATH.csv PNG; 0 on success. */
 static int run_plot(const char *csv, const char *png) {
-  const char *script = getenv("RODNET_PLOT_PATH");
-  const char *python = getenv("RODNET_PYTHON");
-  if (!script || !*script) script = RN_PLOT_PATH_SCRIPT;
-  if (!python || !*python) python = RN_PYTHON3;
-  fflush(stdout);
-  pid_t pid = fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    execlp(python, python, script, csv, png, (char *)NULL);
-    _exit(127);
-  }
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
+  const char *const args[] = {csv, png, NULL};
+  return rn_cli_run_script("RODNET_PLOT_PATH", RN_PLOT_PATH_SCRIPT, args);
 }
 
 static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *rows) {

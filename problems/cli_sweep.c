@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -28,9 +27,6 @@
 
 #ifndef RN_PLOT_SWEEP_SCRIPT
 #define RN_PLOT_SWEEP_SCRIPT "plot_sweep.py"
-#endif
-#ifndef RN_PYTHON3
-#define RN_PYTHON3 "python3"
 #endif
 
 static const char sweep_help[] =
@@ -406,21 +402,8 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
 }
 
 static int run_plot(const char *csv, const char *png) {
-  const char *script = getenv("RODNET_PLOT_SWEEP");
-  const char *python = getenv("RODNET_PYTHON");
-  if (!script || !*script) script = RN_PLOT_SWEEP_SCRIPT;
-  if (!python || !*python) python = RN_PYTHON3;
-  fflush(stdout);
-  fflush(stderr);
-  pid_t pid = fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    execlp(python, python, script, csv, png, (char *)NULL);
-    _exit(127);
-  }
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
+  const char *const args[] = {csv, png, NULL};
+  return rn_cli_run_script("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, args);
 }
 
 static void progress(int done, int total, const point *p, int skipped) {
