@@ -148,6 +148,7 @@ static rn_status build_dof_map(rn_network *net) {
   }
   for (int ij = 0; ij < net->njoints; ++ij) mark_joint(net, &net->joints[ij]);
   rn_cell_mark(net);
+  rn_planar_mark(net);
   alias_joint_ends(net, 1);
   if (net->part) { /* a part: what it does not read is absent, owned DOFs first */
     if (rn_part_begin_numbering(net)) return RN_ERR_ALLOC;
@@ -229,6 +230,12 @@ rn_status rn_network_finalize(rn_network *net) {
   if ((st = rn_joints_validate(net, where))) return st;
   for (int ir = 0; ir < net->nrods; ++ir)
     if ((st = validate_rod(net, ir))) return st;
+  rn_planar_assess(net);
+  if (net->model == RN_MODEL_PLANAR && !net->planar_ok)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "the planar model needs a network in one plane z = const: %s",
+                   net->planar_why);
+  net->planar = net->model == RN_MODEL_PLANAR;
   for (int ir = 0; ir < net->nrods; ++ir) {
     if (build_params(&net->rods[ir])) {
       undo_finalize(net);

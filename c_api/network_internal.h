@@ -9,6 +9,7 @@
 #include "dof_layout.h"
 #include "rnk.h"
 #include "rodnet.h"
+#include "rodnet_model.h"
 
 /* One rod: input geometry, properties, BCs and its part of the reference
  * state.  ne = nv - 1 edges, nv - 2 interior vertices. */
@@ -143,6 +144,10 @@ struct rn_network {
   size_t bandwidth;
   struct rn_part_data *part; /* NULL: a whole network (part.c) */
   struct rn_cell *cell;      /* NULL: not periodic (periodic.c) */
+  int model;                 /* rn_model asked for (planar.c) */
+  int planar;                /* 1: the planar model is in use (set at finalize) */
+  int planar_ok;             /* 1: the network qualifies for it (set at finalize) */
+  char planar_why[240];      /* if not: what leaves the plane */
 };
 
 /* ---- parts of a network (part.c) ------------------------------------------
@@ -303,6 +308,15 @@ int rn_all_bounded(size_t n, const double *v);
 /* Resolves a possibly negative index (-1 = last) into [0, n); -1 if out of
  * range. */
 int rn_wrap_index(int i, int n);
+
+/* ---- the planar model (planar.c; docs/model.md) ----------------------------
+ * Finalize: whether the network qualifies (planar_ok, planar_why; before the
+ * DOF map, on the input data), and, with the planar model, marks the
+ * out-of-plane full DOFs fixed (z of every position, material angles, joint
+ * rotations about x and y; after the rods' and joints' own marks, before the
+ * joint ends alias their joints). */
+void rn_planar_assess(rn_network *net);
+void rn_planar_mark(rn_network *net);
 
 /* ---- fixed components (boundary.c) ------------------------------------------ */
 /* Fixed position components (RN_FIX_* bitmask) of rod vertex v: its pins and

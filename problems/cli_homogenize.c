@@ -14,6 +14,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "homog_path.h"
+#include "result_json.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 #include "text_file.h"
@@ -175,6 +176,7 @@ typedef struct hom_out {
   const double *S;
   double seconds;
   const hp_path *path; /* NULL without --path */
+  const rn_network *net;
 } hom_out;
 
 /* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
@@ -230,6 +232,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   fprintf(f,
           "\",\n  \"dimension\": %d,\n  \"%s\": %.17g,\n  \"relative_density\": %.17g,\n",
           h->dim, h->dim == 2 ? "area" : "volume", h->measure, h->relative_density);
+  rn_result_put_model(f, o->net);
   fprintf(f, "  \"voigt\": %s,\n",
           n == 3 ? "[\"11\", \"22\", \"12\"]"
                  : "[\"11\", \"22\", \"33\", \"23\", \"13\", \"12\"]");
@@ -464,7 +467,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     int prc = write_pattern(ctx, &a, &path, &path.pattern);
     if (prc) rc = prc;
   }
-  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL};
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net};
   st = rn_file_write_atomic(ctx, a.output, write_result, &o);
   if (!st && a.path && !a.quiet) {
     if (path.inst.found)
@@ -498,6 +501,7 @@ int rn_cli_homogenize(int argc, char **argv) {
   }
   if (!a.quiet) {
     int n = h.nstrain;
+    char line[320];
     printf("rodnet homogenize: %s: %dD cell, %s %.6g, relative density %.6g, %zu "
            "fluctuation DOFs, %.3g s\n  C =",
            a.scene, h.dim, h.dim == 2 ? "area" : "volume", h.measure, h.relative_density,
@@ -507,6 +511,7 @@ int rn_cli_homogenize(int argc, char **argv) {
       for (int j = 0; j < n; j++) printf("%s%13.6e", j ? " " : "", h.C[i * n + j]);
       printf("]");
     }
+    printf("\n  model %s", rn_result_model_line(net, line, sizeof line));
     printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
            1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], a.output);
   }

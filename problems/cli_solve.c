@@ -333,6 +333,7 @@ static void print_stability(const rn_result_info *in) {
 static void print_summary(const solve_args *a, const rn_scene *scene,
                           const rn_result_info *in) {
   rn_network *net = rn_scene_network(scene);
+  char line[320];
   printf("rodnet solve: %s\n", a->scene);
   /* a converged stationary point that is not a verified minimum says so */
   printf("  status       %s%s (stopped by: %s)\n", in->status,
@@ -346,6 +347,7 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
          rn_network_num_rods(net), rn_scene_num_vertices(scene),
          rn_network_num_dofs(net));
+  printf("  model        %s\n", rn_result_model_line(net, line, sizeof line));
   printf("  iterations   %d Newton, %ld Krylov, %d load steps (load factor %g), %d "
          "predictor steps\n",
          in->iterations, in->krylov_iterations, in->load_steps,

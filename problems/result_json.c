@@ -154,6 +154,30 @@ static void put_stability(json_out *o) {
   fputs("},\n", o->f);
 }
 
+void rn_result_put_model(FILE *f, const rn_network *net) {
+  const char *why = "";
+  int ok = rn_network_planar(net, &why) == 1;
+  fprintf(f, "  \"model\": {\"used\": \"%s\", \"planar\": %s",
+          rn_network_is_planar(net) == 1 ? "planar" : "3d", ok ? "true" : "false");
+  if (!ok) {
+    fputs(", \"not_planar\": ", f);
+    put_str(f, why);
+  }
+  fputs("},\n", f);
+}
+
+const char *rn_result_model_line(const rn_network *net, char *buf, size_t n) {
+  const char *why = "";
+  int ok = rn_network_planar(net, &why) == 1;
+  if (rn_network_is_planar(net) == 1)
+    snprintf(buf, n, "planar (2 DOFs per vertex, no out-of-plane modes)");
+  else if (ok)
+    snprintf(buf, n, "3d (the scene qualifies for \"model\": \"planar\")");
+  else
+    snprintf(buf, n, "3d (not planar: %s)", why);
+  return buf;
+}
+
 static void put_summary(json_out *o, rn_network *net) {
   const rn_result_info *in = o->info;
   FILE *f = o->f;
@@ -201,6 +225,7 @@ static void put_summary(json_out *o, rn_network *net) {
           in->krylov_iterations);
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
+  rn_result_put_model(f, net);
   put_equilibrium(o);
   put_stability(o);
   if (in->part_ranks > 0) {

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rodnet_model.h"
 #include "scene_internal.h"
 
 static char *dup_string(const char *s) {
@@ -528,10 +529,30 @@ static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
   }
 }
 
+/* The top-level "model" (optional): "planar" or "3d" (docs/model.md). */
+static rn_status read_model(rn_scene_parser *p, const cJSON *root) {
+  const char *name = NULL;
+  rn_model model = RN_MODEL_AUTO;
+  size_t mark;
+  rn_status st = rn_jm_string(&p->w, root, "model", 0, &name);
+  if (st || !name) return st;
+  mark = rn_jwalk_key(&p->w, "model");
+  if (!strcmp(name, "planar"))
+    model = RN_MODEL_PLANAR;
+  else if (!strcmp(name, "3d"))
+    model = RN_MODEL_3D;
+  else
+    st = rn_jwalk_error(&p->w, "unknown model \"%s\" (known: planar, 3d)", name);
+  if (!st && (st = rn_network_set_model(p->scene->net, model)))
+    st = rn_scene_lib_error(p, st);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
 static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   static const char *const keys[] = {"description", "materials", "sections",    "graph",
                                      "rods",        "joints",    "constraints", "loads",
-                                     "solver",      "periodic",  NULL};
+                                     "solver",      "periodic",  "model",       NULL};
   static const char *const steps[] = {"materials", "sections",    "graph", "rods",
                                       "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
@@ -541,6 +562,7 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  if ((st = read_model(p, root))) return st;
   p->constraints = rn_jm_get(root, "constraints");
   if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
     size_t mark = rn_jwalk_key(w, "periodic");

@@ -104,3 +104,12 @@ add_test(NAME mpi_solve_more_ranks
                  --same-iterations)
 set_tests_properties(mpi_solve_more_ranks PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                      ENVIRONMENT "${RN_MPI_ENV}")
+# The planar model against the 3D model (docs/model.md): positions, energies,
+# reactions, the homogenised C and a strain path to 1e-10 on lattices and single
+# rods, tr-minres, tr-krylov and tr-krylov on 2 ranks; the scene checks of
+# "model": "planar" and the detection report.
+add_test(NAME problems_cli_planar
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_planar.py
+                 ${CMAKE_BINARY_DIR}/rodnet ${RN_MPI_OUT}/planar ${MPIEXEC_EXECUTABLE})
+set_tests_properties(problems_cli_planar PROPERTIES LABELS "unit;mpi" TIMEOUT 600
+                     PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}")
