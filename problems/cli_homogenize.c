@@ -53,7 +53,8 @@ static const char homogenize_help[] =
     "                      \"path\" and \"instability\")\n"
     "      --steps N       steps of the path (default 20)\n"
     "      --modes M       Bloch modes examined: all (default), in-plane or\n"
-    "                      out-of-plane (2D cells at planar states)\n"
+    "                      out-of-plane (2D cells at planar states; the planar\n"
+    "                      model has the in-plane modes only)\n"
     "      --bloch-grid G  wave vectors per reciprocal direction (default 16 in 2D,\n"
     "                      6 in 3D), refined around the minimum\n"
     "      --pattern P     after a local instability: the supercell its wave vector\n"
@@ -404,6 +405,14 @@ int rn_cli_homogenize(int argc, char **argv) {
             "rodnet homogenize: %s: the scene is not periodic (it has no top-level "
             "\"periodic\" object with lattice vectors; see 'rodnet generate KIND "
             "--periodic')\n",
+            a.scene);
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (a.path && a.modes == RN_BLOCH_OUT_OF_PLANE && rn_network_is_planar(net) == 1) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes out-of-plane: the scene uses the planar "
+            "model, which has no out-of-plane modes (use \"model\": \"3d\")\n",
             a.scene);
     rc = RN_EXIT_INPUT;
     goto done;

@@ -307,7 +307,23 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
     if (c->dim == 3) fprintf(f, ", %d", o->repeat[2]);
     fputc(']', f);
   }
+  if (opt->load == RN_LLOAD_BIAXIAL || opt->load == RN_LLOAD_SHEAR) {
+    /* prescribed strain components (Voigt, engineering shear), the others free */
+    int n = c->dim == 2 ? 3 : 6;
+    fputs(", \"strain\": [", f);
+    for (int v = 0; v < n; v++) {
+      if (v) fputs(", ", f);
+      if (opt->load == RN_LLOAD_BIAXIAL && v < 2)
+        fprintf(f, "%.17g", v == 0 ? opt->load_value : opt->load_value2);
+      else if (opt->load == RN_LLOAD_SHEAR && v == n - 1)
+        fprintf(f, "%.17g", opt->load_value);
+      else
+        fputs("null", f);
+    }
+    fputc(']', f);
+  }
   fputs("},\n", f);
+  if (opt->model) fprintf(f, "  \"model\": \"%s\",\n", opt->model);
   fprintf(f, "  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n", opt->E,
           opt->nu);
   fputs("  \"sections\": {\"section\": ", f);

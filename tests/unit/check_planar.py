@@ -95,6 +95,19 @@ def compare_solves(rodnet, wd, scene, label, solver_args=(), launcher=()):
     return p, q
 
 
+def hom_g12(rodnet, wd):
+    """C33 (G12) of the same honeycomb cell without the prescribed strain."""
+    out = os.path.join(wd, "psh_free.json")
+    with open(os.path.join(wd, "psh.json")) as f:
+        s = json.load(f)
+    del s["periodic"]["strain"]
+    with open(out, "w") as f:
+        json.dump(s, f)
+    run([rodnet, "homogenize", out, "-o", out + ".result", "-q"])
+    with open(out + ".result") as f:
+        return json.load(f)["C"][2][2]
+
+
 def main():
     rodnet, wd = sys.argv[1], sys.argv[2]
     mpiexec = sys.argv[3] if len(sys.argv) > 3 else None
@@ -120,6 +133,39 @@ def main():
     run([rodnet, "generate", "square", "--cells", "3", "--edges-per-rod", "6",
          "--load", "stretch-y:0.02", "-o", j("sq.json")])
     compare_solves(rodnet, wd, j("sq.json"), "square")
+
+    # rodnet generate's biaxial and shear loads (docs/lattices.md), with --model.
+    run([rodnet, "generate", "honeycomb", "--cells", "3", "--joint-model", "rigid",
+         "--edges-per-rod", "6", "--load", "biaxial:0.01,-0.005", "--model", "planar",
+         "-o", j("bx.json")])
+    with open(j("bx.json")) as f:
+        bx = json.load(f)
+    check(bx.get("model") == "planar", "generate --model planar writes \"model\"")
+    p, _ = compare_solves(rodnet, wd, j("bx.json"), "honeycomb biaxial")
+    check(p["reactions"] is not None, "honeycomb biaxial: reactions written")
+    run([rodnet, "generate", "square", "--cells", "3", "--edges-per-rod", "6",
+         "--load", "shear:0.02", "-o", j("sh.json")])
+    p, _ = compare_solves(rodnet, wd, j("sh.json"), "square shear")
+    run([rodnet, "generate", "honeycomb", "--periodic", "--joint-model", "rigid",
+         "--edges-per-rod", "8", "--load", "shear:0.001", "-o", j("psh.json")])
+    with open(j("psh.json")) as f:
+        per = json.load(f)["periodic"]
+    check(per.get("strain") == [None, None, 0.001], "periodic shear: strain %s" %
+          per.get("strain"))
+    p, q = compare_solves(rodnet, wd, j("psh.json"), "periodic shear cell")
+    d = rel_diff(p["cell"], q["cell"])
+    check(d <= TOL, "periodic shear cell: strain and stress agree (%.2e)" % d)
+    g12 = p["cell"]["stress"][2] / 0.001
+    check(abs(g12 - hom_g12(rodnet, wd)) <= 1e-3 * g12,
+          "periodic shear cell: stress / gamma = %.6e = C33 of homogenize (small strain)"
+          % g12)
+    for bad_args, what in ((["octet", "--load", "shear:0.1"], "need a planar lattice"),
+                           (["square", "--load", "biaxial:0.1"], "biaxial:EX,EY"),
+                           (["octet", "--model", "planar"], "not planar"),
+                           (["square", "--model", "2d"], "planar or 3d")):
+        pr = run([rodnet, "generate"] + bad_args + ["-o", j("x.json")], expect=2)
+        check(what in pr.stderr, "generate %s: %s" % (" ".join(bad_args),
+                                                       pr.stderr.strip().splitlines()[0]))
 
     # Single rods: a cantilever under an in-plane tip force, the end moment that
     # closes a rod into a circle (bending about z: I22 with d1 = e_z).
