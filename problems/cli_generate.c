@@ -353,8 +353,8 @@ static int check_args(gen_args *a) {
   if (a->periodic && a->sc.load != RN_LLOAD_NONE && a->sc.load != RN_LLOAD_BIAXIAL &&
       a->sc.load != RN_LLOAD_SHEAR)
     return rn_cli_usage_error("generate",
-                              "--load: a periodic cell takes biaxial or shear (as "
-                              "prescribed strains), not '%s'",
+                              "--load does not apply to a periodic cell except biaxial "
+                              "and shear (prescribed strains), got '%s'",
                               a->load);
   if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
     return rn_cli_usage_error("generate", "give at most one of --section, --slenderness "
