@@ -323,22 +323,27 @@ rn_status rn_contact_candidates(const rn_network *net, const double *x, int ccd,
   return st;
 }
 
+/* The input geometry (the rods' vertices as added, before any prescribed
+ * motion) must not interpenetrate: the prescribed motions are applied by
+ * the solver's load steps from there. */
 rn_status rn_contact_check_initial(const rn_network *net, const char *where) {
-  rn_contact_list L;
-  rn_status st;
-  if (!net->contact || !net->contact->nedges) return RN_OK;
-  if ((st = rn_contact_candidates(net, NULL, 0, where, &L))) return st;
-  double *P = malloc(6 * (size_t)net->contact->nedges * sizeof(double));
-  if (!P) {
-    rn_contact_list_free(&L);
-    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  const rn_contact *c = net->contact;
+  rn_contact_list L = {NULL, 0, 0};
+  rn_status st = RN_OK;
+  if (!c || !c->nedges) return RN_OK;
+  double *P = malloc(6 * (size_t)c->nedges * sizeof(double));
+  if (!P) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  for (int k = 0; k < c->nedges; ++k) {
+    const rn_rod *r = &net->rods[c->e[k].rod];
+    memcpy(P + 6 * k, r->x0 + 3 * c->e[k].j, 6 * sizeof(double));
   }
-  edge_positions(net, NULL, P);
+  if ((st = broad_phase(net, P, NULL, 0.5 * (c->p.radius + c->p.dhat), &L)))
+    st = rn_fail(net->ctx, st, where, "out of memory");
   for (size_t i = 0; i < L.n && !st; ++i) {
     double x[12], gap = 0.0;
     int a = L.pair[2 * i], b = L.pair[2 * i + 1];
     pair_stencil(P, a, b, x);
-    if (rnk_contact_gap(x, net->contact->p.radius, &gap) != RNK_OK || !(gap > 0.0))
+    if (rnk_contact_gap(x, c->p.radius, &gap) != RNK_OK || !(gap > 0.0))
       st = rn_contact_pair_fail(net, RN_ERR_GEOMETRY, where, a, b,
                                 "the initial state interpenetrates (distance below "
                                 "twice the contact radius)");
