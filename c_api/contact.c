@@ -291,7 +291,7 @@ static rn_status ccd_check(const rn_network *net, const double *P0, const double
     if (rc != RNK_OK || hit)
       st = rn_contact_pair_fail(net, RN_DEGENERATE, where, a, b,
                                 "the motion from the accepted state brings two edges "
-                                "within 10% of their gap (or through each other)");
+                                "below 20% of their gap (or through each other)");
   }
   rn_contact_list_free(&L);
   return st;

@@ -14,8 +14,8 @@
  * rejects or shortens the step) when a pair interpenetrates, or when the
  * straight motion from the accepted state (the last
  * rn_network_update_reference or rn_network_set_dofs) would bring a pair
- * within 10% of its gap (a continuous collision check by conservative
- * advancement over the pairs of a broad phase), so no accepted state
+ * below 20% of its gap (or of distance) on the way (a continuous collision check by
+ * conservative advancement over the pairs of a broad phase), so no accepted state
  * interpenetrates and no step tunnels through.  Nothing here is collective:
  * contact is evaluated on whole networks only (serial solves). */
 #ifndef RODNET_CONTACT_H
