@@ -201,6 +201,7 @@ static void undo_finalize(rn_network *net) {
     r->tp = NULL;
   }
   rn_joints_unbuild(net);
+  rn_contact_unbuild(net);
   if (net->cell) {
     free(net->cell->slot);
     net->cell->slot = NULL;
@@ -248,6 +249,10 @@ rn_status rn_network_finalize(rn_network *net) {
     if (st) return st;
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
+  if ((st = rn_contact_build(net, where))) {
+    undo_finalize(net);
+    return st;
+  }
   if (net->nred > (size_t)INT32_MAX) { /* CSR columns are int32 */
     size_t nred = net->nred;
     undo_finalize(net);
@@ -259,7 +264,8 @@ rn_status rn_network_finalize(rn_network *net) {
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
   rn_apply_load_factor(net);
-  if ((st = init_moments(net)) || (st = rn_joints_check_initial(net, where))) {
+  if ((st = init_moments(net)) || (st = rn_joints_check_initial(net, where)) ||
+      (st = rn_contact_check_initial(net, where))) {
     undo_finalize(net);
     return st;
   }

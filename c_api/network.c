@@ -109,6 +109,7 @@ void rn_network_destroy(rn_network **net) {
   rn_hessian_pattern_free(n);
   rn_part_free(&n->part);
   rn_cell_free(&n->cell);
+  rn_contact_free(n);
   free(n);
   *net = NULL;
 }

@@ -10,6 +10,7 @@
 #include "rnk.h"
 #include "rodnet.h"
 #include "rodnet_model.h"
+#include "rodnet_contact.h"
 
 /* One rod: input geometry, properties, BCs and its part of the reference
  * state.  ne = nv - 1 edges, nv - 2 interior vertices. */
@@ -148,6 +149,7 @@ struct rn_network {
   int planar;                /* 1: the planar model is in use (set at finalize) */
   int planar_ok;             /* 1: the network qualifies for it (set at finalize) */
   char planar_why[240];      /* if not: what leaves the plane */
+  struct rn_contact *contact; /* NULL: no contact (contact.c) */
 };
 
 /* ---- parts of a network (part.c) ------------------------------------------
@@ -455,6 +457,35 @@ static inline int rn_joint_has_rotation(const rn_joint *J) {
   return J->model == RN_JOINT_RIGID || J->clamped;
 }
 void rn_joint_free(rn_joint *J);
+
+/* ---- contact (contact.c) ---------------------------------------------------- */
+typedef struct rn_contact rn_contact;
+/* Pairs of contact edges (indices into the contact edge list), a < b. */
+typedef struct rn_contact_list {
+  int *pair; /* [2 n] */
+  size_t n, cap;
+} rn_contact_list;
+/* At finalize after the DOF map: the contact edges (RN_OK without contact). */
+rn_status rn_contact_build(rn_network *net, const char *where);
+void rn_contact_unbuild(rn_network *net);
+void rn_contact_free(rn_network *net);
+/* Sets flag[r] for the reduced rows of contact vertex positions; returns how
+ * many rows it flagged. */
+size_t rn_contact_pattern_flags(const rn_network *net, unsigned char *flag);
+/* RN_ERR_GEOMETRY if the initial state interpenetrates. */
+rn_status rn_contact_check_initial(const rn_network *net, const char *where);
+/* The pairs within the barrier's reach at x (x NULL: the accepted state); with
+ * ccd, first the continuous check of the motion from the accepted state to x
+ * (RN_DEGENERATE naming the pair if it would cross).  L is freed on error. */
+rn_status rn_contact_candidates(const rn_network *net, const double *x, int ccd,
+                                const char *where, rn_contact_list *L);
+void rn_contact_list_free(rn_contact_list *L);
+/* The 12 full indices of pair (a, b): (p0, p1) of edge a, then of edge b. */
+void rn_contact_pair_idx(const rn_network *net, int a, int b, size_t idx[12]);
+const rnk_contact_param *rn_contact_param(const rn_network *net);
+/* rn_fail with a message naming the pair's rods and edges. */
+rn_status rn_contact_pair_fail(const rn_network *net, rn_status st, const char *where,
+                               int a, int b, const char *what);
 /* Number of full DOFs of all joints. */
 size_t rn_joints_full_count(const rn_network *net);
 /* Finalize steps: BC conflicts with rod vertices, coincident joints

@@ -363,6 +363,38 @@ void rnk_rotation_exp(const double w[3], double R[9]);
 double rnk_force_energy(const double x[3], const double f[3]);
 void rnk_force_grad(const double f[3], double g[3]);
 
+/* ---- contact between two segments (contact.c) ------------------------------
+ * Pair stencil x[12] = (p0, p1, q0, q1): the ends of two edges.  The gap is
+ * the distance between the segments minus radius (the sum of the two rods'
+ * radii); the energy is the barrier of incremental potential contact,
+ * b(y) = -kappa (y - dhat)^2 log(y / dhat) for 0 < y < dhat, 0 beyond.
+ * RNK_DEGENERATE for a zero-length edge or a gap <= 0 (interpenetration). */
+typedef struct rnk_contact_param {
+  double radius; /* sum of the two radii */
+  double dhat;   /* activation distance of the barrier (> 0) */
+  double kappa;  /* stiffness of the barrier (> 0) */
+} rnk_contact_param;
+
+/* Edge-edge regime only when sin^2 of the edges' angle exceeds this. */
+#define RNK_CONTACT_PARALLEL 1e-10
+
+/* Squared distance d2 between the segments (p0, p1) and (q0, q1), with its
+ * gradient g[12] and Hessian H[144] (either may be NULL). */
+int rnk_segment_distance2(const double x[12], double *d2, double *g, double *H);
+/* Gap: distance minus radius. */
+int rnk_contact_gap(const double x[12], double radius, double *gap);
+int rnk_contact_energy(const double x[12], const rnk_contact_param *p, double *E);
+int rnk_contact_grad(const double x[12], const rnk_contact_param *p, double *E,
+                     double g[12]);
+int rnk_contact_hess(const double x[12], const rnk_contact_param *p, double H[144]);
+/* Continuous collision check of the linear motion x0 -> x1 of a pair by
+ * conservative advancement: hit = 0 certifies that the gap stays above
+ * thr = 0.1 min(gap(x0), dhat) all along; hit = 1 if it falls below 2 thr at
+ * some point of the motion (or cannot be certified in 256 advancements, or
+ * the pair starts interpenetrating). */
+int rnk_contact_ccd(const double x0[12], const double x1[12], double radius, double dhat,
+                    int *hit);
+
 /* Dense helper: y = H v for an n x n row-major block. */
 void rnk_block_mv(int n, const double *H, const double *v, double *y);
 

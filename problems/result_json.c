@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "atomic_file.h"
+#include "rodnet_contact.h"
 #include "num_format.h"
 
 typedef struct json_out {
@@ -110,6 +111,31 @@ static rn_status put_cell(json_out *o, rn_network *net) {
     fputc(']', o->f);
   }
   fputs("},\n", o->f);
+  return RN_OK;
+}
+
+/* "contact" of a scene with contact (docs/contact.md): the settings and, at the
+ * result, the smallest gap, the active pairs, the barrier energy and force. */
+static rn_status put_contact(json_out *o, rn_network *net) {
+  double dhat = 0.0, kappa = 0.0, r = 0.0;
+  if (!rn_network_get_contact(net, &dhat, &kappa, &r)) return RN_OK;
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc((n ? n : 1) * sizeof *x);
+  rn_contact_stats cs;
+  if (!x) return RN_ERR_ALLOC;
+  rn_status st = rn_network_get_dofs(net, x);
+  if (!st) st = rn_network_contact_stats(net, x, &cs);
+  free(x);
+  if (st) return st;
+  const char *keys[6] = {"distance", "stiffness", "radius", "min_gap", "energy", "force"};
+  const double vals[6] = {dhat,       kappa,     r,
+                          cs.min_gap, cs.energy, cs.force}; /* min_gap: null if inf */
+  fputs("  \"contact\": {", o->f);
+  for (int k = 0; k < 6; k++) {
+    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
+    put_num(o, vals[k]);
+  }
+  fprintf(o->f, ", \"active_pairs\": %zu},\n", cs.active);
   return RN_OK;
 }
 
@@ -409,6 +435,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   put_summary(o, net);
   rn_status st = put_terms(o, net);
   if (!st) st = put_cell(o, net);
+  if (!st) st = put_contact(o, net);
   int nrods = rn_network_num_rods(net), maxnv = 2;
   for (int r = 0; r < nrods; r++)
     if (rn_network_rod_num_vertices(net, r) > maxnv)

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rodnet_contact.h"
 #include "rodnet_model.h"
 #include "scene_internal.h"
 
@@ -507,6 +508,21 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
 
 /* ---- top level ------------------------------------------------------------- */
 
+/* "contact": {"distance": dhat, "stiffness": kappa, "radius": r} (docs/contact.md). */
+static rn_status read_contact(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"distance", "stiffness", "radius", NULL};
+  double dhat = 0.0, kappa = 0.0, r = 0.0;
+  rn_jwalk *w = &p->w;
+  rn_status st = rn_jv_object(w, v);
+  if (!st) st = rn_json_check_keys(w, v, keys);
+  if (!st) st = rn_jm_number(w, v, "distance", 1, RN_J_POSITIVE, &dhat, NULL);
+  if (!st) st = rn_jm_number(w, v, "stiffness", 1, RN_J_POSITIVE, &kappa, NULL);
+  if (!st) st = rn_jm_number(w, v, "radius", 1, RN_J_NONNEG, &r, NULL);
+  if (st) return st;
+  st = rn_network_set_contact(p->scene->net, dhat, kappa, r);
+  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+}
+
 /* The value of top-level key steps[i] (read in this order). */
 static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
   switch (i) {
@@ -552,7 +568,8 @@ static rn_status read_model(rn_scene_parser *p, const cJSON *root) {
 static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   static const char *const keys[] = {"description", "materials", "sections",    "graph",
                                      "rods",        "joints",    "constraints", "loads",
-                                     "solver",      "periodic",  "model",       NULL};
+                                     "solver",      "periodic",  "model",       "contact",
+                                     NULL};
   static const char *const steps[] = {"materials", "sections",    "graph", "rods",
                                       "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
@@ -581,6 +598,11 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
     }
     size_t mark = rn_jwalk_key(w, steps[i]);
     st = read_step(p, i, v);
+    rn_jwalk_pop(w, mark);
+  }
+  if (!st && rn_jm_get(root, "contact")) {
+    size_t mark = rn_jwalk_key(w, "contact");
+    st = read_contact(p, rn_jm_get(root, "contact"));
     rn_jwalk_pop(w, mark);
   }
   if (st) return st;

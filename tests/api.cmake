@@ -28,3 +28,7 @@ rn_add_test(api_stretch_correction SOURCES unit/api_stretch_correction.c LIBS ro
 # Periodic cells: rod ends at periodic images, macroscopic strain DOFs (FD
 # h-sweeps over fluctuation and strain DOFs, images, uniform strain, errors).
 rn_add_test(api_periodic SOURCES unit/api_periodic.c LIBS rodnet m LABELS unit)
+# Contact (rodnet_contact.h): FD h-sweeps of the network with contact pairs
+# (crossing rods, a hairpin in self contact), CSR Hessian = HVP, the closed-form
+# gap, the continuous check against tunnelling, errors.
+rn_add_test(api_contact SOURCES unit/api_contact.c LIBS rodnet m LABELS unit)

@@ -77,3 +77,11 @@ if(MPIEXEC_EXECUTABLE)
   set_tests_properties(stability_honeycomb_mpi_check PROPERTIES LABELS mpi
                        FIXTURES_REQUIRED stability_honeycomb_mpi)
 endif()
+
+# Contact (docs/contact.md): hard_contact.c, one ctest per case.
+add_executable(hard_contact unit/hard_contact.c)
+target_link_libraries(hard_contact PRIVATE rn_testutil rodnet m)
+foreach(c crossed plectoneme)
+  add_test(NAME hard_contact_${c} COMMAND hard_contact ${c})
+  set_tests_properties(hard_contact_${c} PROPERTIES LABELS "hard" TIMEOUT 900)
+endforeach()

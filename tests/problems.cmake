@@ -663,3 +663,17 @@ else()
   rn_cli_test(problems_cli_solve_without_solver 4 "built without the solver"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json)
 endif()
+
+# Contact (docs/contact.md): the "contact" scene key; a rod pressed onto a crossing
+# rod solves to a verified minimum; bad settings and an interpenetrating input are
+# refused with the place named.
+set(RN_CONTACT ${CMAKE_CURRENT_SOURCE_DIR}/data/contact)
+rn_cli_test(problems_contact_crossed 0 "converged.*verified local minimum"
+            REMOVE ${RN_CLI_OUT}/contact_crossed.json
+            ARGS solve ${RN_CONTACT}/crossed.json -o ${RN_CLI_OUT}/contact_crossed.json -q)
+rn_cli_test(problems_contact_bad_distance 3
+            "contact_distance.json: .\\.contact\\.distance: expected a number > 0"
+            STDERR_LINES 1 ARGS check ${RN_BAD}/contact_distance.json)
+rn_cli_test(problems_contact_interpenetrating 3
+            "interpenetrating.json: .*contact: the initial state interpenetrates.*rod 0 \\('a'\\) edge 4 and rod 1 \\('b'\\) edge 3"
+            STDERR_LINES 1 ARGS check ${RN_CONTACT}/interpenetrating.json)
