@@ -453,6 +453,13 @@ rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
  * cell area / volume, scaled by the load factor): the energy gains
  * -lambda measure sigma . eps (mixed control: stress on the free components). */
 rn_status rn_network_set_cell_stress(rn_network *net, const double *stress);
+/* After finalize (or before): new values of the prescribed strain components
+ * (strain[nstrain]: the entries of components that are DOFs are ignored; NULL
+ * keeps them) and of the applied stress (stress[nstrain]; NULL keeps it), both
+ * scaled by the load factor; which components are prescribed does not change.
+ * Moves the prescribed strain DOFs accordingly (general strain / stress paths). */
+rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
+                                   const double *stress);
 /* Dimension (0 if not periodic), number of strain components, cell area (2D)
  * or volume (3D), lattice vectors vectors[9] (rows; unused rows 0).  Any
  * pointer may be NULL. */

@@ -521,8 +521,9 @@ typedef struct rn_cell_relax_report {
   double residual_scale; /* largest balancing force there (the test is relative) */
 } rn_cell_relax_report;
 /* Equilibrium of the fluctuations at the prescribed macroscopic strain
- * strain[nstrain] (every strain component must be a DOF of net; it is held at
- * that value): from the current state, the tangent predictor
+ * strain[nstrain] (the strain components that are DOFs of net are held at those
+ * values; components the network prescribes keep the network's values and their
+ * entries are ignored): from the current state, the tangent predictor
  * du = -K_uu^-1 (g_u + K_ue d eps) (accepted if it lowers the energy), then
  * Newton with the sparse Cholesky factor of K_uu and a backtracking line search
  * on the energy; where K_uu is not positive definite (past an instability on
@@ -534,6 +535,18 @@ typedef struct rn_cell_relax_report {
  * Leaves the result as the current state; RN_OK when it ran (check
  * rep->converged).  Serial; needs no runtime initialisation. */
 rn_status rn_cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep);
+/* As rn_cell_relax, but a minimisation of the energy over the fluctuations that
+ * may leave the cell-periodic (principal) branch, e.g. onto the bifurcated branch
+ * of a supercell after a perturbation along its critical mode: Newton with the
+ * sparse Cholesky factor of K_uu + mu D (D = |diag K_uu|; mu = 0 where K_uu is
+ * positive definite, else the smallest shift 1e-10 4^k that factors), an Armijo
+ * backtracking line search on the energy and, at a stationary point where K_uu is
+ * indefinite (a saddle), steps along the lowest mode of (K_uu, D) by inverse
+ * iteration.  rep->converged only at an equilibrium with K_uu positive definite
+ * (rep->indefinite 0): a local minimum of the fluctuations at that strain.  No
+ * tangent predictor.  Serial; needs no runtime initialisation. */
+rn_status rn_cell_minimize(rn_network *net, const double *strain,
+                           rn_cell_relax_report *rep);
 
 /* Which Bloch modes rn_cell_bloch examines. */
 typedef enum rn_bloch_modes {

@@ -73,7 +73,10 @@ static const char generate_help2[] =
     "      --perturb AMP        (--periodic) move every joint by a random vector\n"
     "                           with components in [-AMP, AMP] times the mean bar\n"
     "                           length (in plane for 2D cells): a disordered cell\n"
-    "      --seed N             seed of --perturb (default 1)\n"
+    "      --section-scatter S  (--periodic) scale every rod's section (radius, or\n"
+    "                           width and height) by 1 + S g, g a standard normal\n"
+    "                           deviate per rod (floored at 0.05): per-rod scatter\n"
+    "      --seed N             seed of --perturb and --section-scatter (default 1)\n"
     "      --repeat M,N[,K]     (--periodic) write \"repeat\": the scene reader tiles\n"
     "                           the cell M x N (x K) times\n"
     "  -q, --quiet              no summary\n"
@@ -86,7 +89,7 @@ typedef struct gen_args {
   const char *kind_name, *output, *section, *load;
   rn_lattice_kind kind;
   int cells[3], ncells, quiet, periodic, reentrant;
-  double a, slenderness, density, perturb;
+  double a, slenderness, density, perturb, scatter;
   int seed, repeat[3], nrepeat;
   rn_lattice_scene sc;
 } gen_args;
@@ -250,6 +253,16 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
                                       "--repeat",           "--model"};
   const char *v = NULL;
   int m = 0, which = -1;
+  if ((m = rn_cli_option_value("generate", argc, argv, i, "--section-scatter", NULL,
+                               &v))) {
+    *rc = m < 0
+              ? RN_EXIT_USAGE
+              : rn_cli_parse_double("generate", "--section-scatter", v, 0.0, &a->scatter);
+    if (!*rc && !(a->scatter < 1.0))
+      *rc = rn_cli_usage_error(
+          "generate", "--section-scatter expects a value in [0, 1), got '%s'", v);
+    return 1;
+  }
   for (int k = 0; k < 14 && m == 0; k++) {
     m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
                             &v);
@@ -348,6 +361,8 @@ static int check_args(gen_args *a) {
     return rn_cli_usage_error("generate",
                               "--slenderness, --relative-density and --perturb need "
                               "--periodic");
+  if (!a->periodic && a->scatter > 0.0)
+    return rn_cli_usage_error("generate", "--section-scatter needs --periodic");
   if (a->nrepeat && !a->periodic)
     return rn_cli_usage_error("generate", "--repeat needs --periodic");
   if (a->periodic && a->sc.load != RN_LLOAD_NONE && a->sc.load != RN_LLOAD_BIAXIAL &&
@@ -490,6 +505,11 @@ static int generate_periodic(gen_args *a, rn_context *ctx) {
   if (!st) {
     if (a->perturb > 0.0) rn_pcell_perturb(&c, a->perturb, (unsigned long)a->seed);
     pcell_section(a, &c);
+    if (a->scatter > 0.0 &&
+        rn_pcell_section_scatter(&c, a->scatter, (unsigned long)a->seed))
+      st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+  }
+  if (!st) {
     st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc, a->nrepeat ? a->repeat : NULL);
   }
   if (st) {
