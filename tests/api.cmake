@@ -26,3 +26,8 @@ rn_add_test(api_stretch_correction SOURCES unit/api_stretch_correction.c LIBS ro
 # Periodic cells: rod ends at periodic images, macroscopic strain DOFs (FD
 # h-sweeps over fluctuation and strain DOFs, images, uniform strain, errors).
 rn_add_test(api_periodic SOURCES unit/api_periodic.c LIBS rodnet m LABELS unit)
+# Closed rods and smooth joints (issue 10 section 4): derivatives (h-sweep), a
+# free ring at its rest polygon, two rods closed by smooth joints against the
+# closed rod, link conservation over large rotations, Michell's twisted ring.
+rn_add_test(api_rings SOURCES unit/api_rings.c LIBS rodnet ${LAPACK_LIBRARIES} m
+            LABELS unit validation)

@@ -663,3 +663,9 @@ else()
   rn_cli_test(problems_cli_solve_without_solver 4 "built without the solver"
               ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json)
 endif()
+# Closed rods and joint rest shapes (issue 10 section 4): the derivative check of a
+# twisted closed rod and of a loop through a smooth and a rigid "straight" joint.
+foreach(stem twisted_ring loop_joint)
+  rn_cli_test(problems_cli_check_${stem} 0 "gradient vs central differences.*PASS"
+              ARGS check ${RN_SCENES}/${stem}.json --random 2)
+endforeach()
