@@ -8,6 +8,8 @@
  *  - link conservation: a ring with link 2 keeps its total twist 4 pi over
  *    reference updates with large rigid rotations (2.5 rad per step), closed
  *    rod and loop through a smooth joint;
+ *  - the anisotropic ribbon ring of VALIDATION.md 7.4 (flat and conical rings:
+ *    psi*, energies, equilibrium), discrete-exact;
  *  - Michell's instability of a twisted ring: the lowest eigenvalue of the
  *    Hessian without its rigid modes crosses zero at C/B = sqrt(3)/n (link n),
  *    the critical C/B converging to it at order 2 in the number of edges (32,
@@ -374,6 +376,69 @@ static void test_michell(rn_context *ctx) {
   }
 }
 
+/* VALIDATION.md 7.4: an anisotropic ribbon (B11 = B22 / 100, soft d1) with rest
+ * curvature about its stiff axis closed into a planar ring tilted uniformly by
+ * psi (theta = psi on every edge):
+ * E(psi) = N / (2 vlen) [B11 k^2 sin^2 psi + B22 (k cos psi - kbar)^2] with the
+ * integrated k = 2 tan(pi / N), discrete-exact; flat (psi = 0) and conical
+ * (cos psi* = B22 kbar / ((B22 - B11) k)) rings are equilibria. */
+static void test_ribbon(rn_context *ctx) {
+  enum { N = 48 };
+  const double ratio[3] = {1.02, 1.5, 2.0}, psi_ref[3] = {7.9889, 47.6699, 59.6653};
+  const double e_ref[3] = {0.015149 / 0.020000, 0.61995 / 12.5, 1.49495 / 50.0};
+  for (int t = 0; t < 3; ++t) {
+    int joint = -1, rod = -1;
+    double *xyz = polygon(N, 1.0, 1.0, 0.0), kap[2 * N], x[4 * N], g[4 * N];
+    const double d1[3] = {0, 0, 1}, k = 2.0 * tan(PI / N), kbar = k / ratio[t];
+    const double vlen = 2.0 * sin(PI / N), B22 = 1.0, B11 = 0.01;
+    double psi = acos(B22 * kbar / ((B22 - B11) * k)), E0, Ep, gmax = 0.0, gs = 0.0;
+    rn_network *net = NULL;
+    rn_material m;
+    rn_section sec = {1e-2, B11, B22, 0.0, 1.0};
+    CHECK_STATUS(rn_material_from_E_nu(1.0, 0.3, 0.0, &m), RN_OK);
+    CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+    CHECK_STATUS(rn_network_add_closed_rod(net, "ribbon", N, xyz, d1, &rod, &joint),
+                 RN_OK);
+    CHECK_STATUS(rn_network_set_material(net, rod, -1, &m), RN_OK);
+    CHECK_STATUS(rn_network_set_section(net, rod, -1, &sec), RN_OK);
+    for (int i = 0; i < N; ++i) { /* kappa2 = -kb . d1: the ring's is -k */
+      kap[2 * i] = 0.0;
+      kap[2 * i + 1] = -kbar;
+    }
+    CHECK_STATUS(rn_network_set_rest_curvature(net, rod, kap + 2), RN_OK);
+    CHECK_STATUS(rn_network_set_joint_rest_strains(net, joint, kap, 0.0), RN_OK);
+    CHECK_STATUS(rn_network_finalize(net), RN_OK);
+    CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+    CHECK_STATUS(rn_network_energy(net, x, &E0), RN_OK);
+    for (int j = 0; j < N; ++j) x[tdof(j)] = psi;
+    CHECK_STATUS(rn_network_gradient(net, x, &Ep, g), RN_OK);
+    for (int q = 0; q < 4 * N; ++q) gmax = fmax(gmax, fabs(g[q]));
+    for (int j = 0; j < N; ++j) gs += g[tdof(j)];
+    printf("ribbon ring k/kbar %.2f: psi* %.4f deg (VALIDATION %.4f), E(0) %.10e (closed "
+           "form %.10e), E(psi*) %.10e (%.10e), |g| %.2e\n",
+           ratio[t], psi * 180.0 / PI, psi_ref[t], E0,
+           0.5 * N / vlen * B22 * (k - kbar) * (k - kbar), Ep,
+           0.5 * N / vlen *
+               (B11 * k * k * sin(psi) * sin(psi) +
+                B22 * (k * cos(psi) - kbar) * (k * cos(psi) - kbar)),
+           gmax);
+    CHECK_NEAR(psi * 180.0 / PI, psi_ref[t], 1e-4);
+    CHECK_REL(E0, 0.5 * N / vlen * B22 * (k - kbar) * (k - kbar), 1e-12);
+    CHECK_REL(Ep,
+              0.5 * N / vlen *
+                  (B11 * k * k * sin(psi) * sin(psi) +
+                   B22 * (k * cos(psi) - kbar) * (k * cos(psi) - kbar)),
+              1e-12);
+    CHECK(Ep < E0);
+    /* the conical ring is an equilibrium (forces of order B22 k / vlen = 1) */
+    CHECK(gmax <= 1e-11 * B22 * k / vlen);
+    CHECK_REL(Ep / E0, e_ref[t], 2e-4); /* VALIDATION.md's energies, 5 digits */
+    CHECK(fabs(gs) <= 1e-12 * E0);
+    rn_network_destroy(&net);
+    free(xyz);
+  }
+}
+
 int main(void) {
   rn_context *ctx = NULL;
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
@@ -382,6 +447,7 @@ int main(void) {
   test_two_rods(ctx);
   test_link(ctx);
   test_michell(ctx);
+  test_ribbon(ctx);
   rn_context_destroy(&ctx);
   return rn_test_finish("api_rings");
 }
