@@ -665,7 +665,9 @@ else()
 endif()
 # Closed rods and joint rest shapes (issue 10 section 4): the derivative check of a
 # twisted closed rod and of a loop through a smooth and a rigid "straight" joint.
-foreach(stem twisted_ring loop_joint)
-  rn_cli_test(problems_cli_check_${stem} 0 "gradient vs central differences.*PASS"
-              ARGS check ${RN_SCENES}/${stem}.json --random 2)
-endforeach()
+# (twisted_ring is not a shipped example: unloaded and self-stressed, its force
+# residual scale is round-off and solve stops at max_iterations; see the report.)
+rn_cli_test(problems_cli_check_twisted_ring 0 "gradient vs central differences.*PASS"
+            ARGS check ${CMAKE_CURRENT_SOURCE_DIR}/data/rings/twisted_ring.json --random 2)
+rn_cli_test(problems_cli_check_loop_joint 0 "gradient vs central differences.*PASS"
+            ARGS check ${RN_SCENES}/loop_joint.json --random 2)
