@@ -296,6 +296,13 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
 static int joint_energy_split(rn_joint_scratch *s, rnk_joint *kj, eval_args *a) {
   double M[3], Eb = 0.0, alpha = 0.0, m;
   int rc;
+  if (kj->smooth) { /* a DER vertex: bending and twisting as in rods, no couple */
+    double Et = 0.0;
+    if ((rc = rnk_smooth_joint_energy(s->q, kj, &Eb, &Et)) != RNK_OK) return rc;
+    a->E[RN_TERM_BEND] += Eb;
+    a->E[RN_TERM_TWIST] += Et;
+    return RNK_OK;
+  }
   memcpy(M, kj->M, sizeof(M));
   memset(kj->M, 0, sizeof(kj->M));
   if ((rc = rnk_joint_energy(s->q, kj, s->work, &Eb)) != RNK_OK) return rc;

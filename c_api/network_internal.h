@@ -51,7 +51,12 @@ typedef struct rn_rod {
   rnk_bend_param *bp;    /* [nv-2] */
   rnk_twist_param *tp;   /* [nv-2], ref_twist taken from ref_twist[] */
   int joint[2];          /* joint at RN_START / RN_END, -1: none */
+  int closed;            /* 1: a closed rod (rn_network_add_closed_rod): vertex
+                            nv - 1 is vertex 0, joint[] its smooth joint */
 } rn_rod;
+
+/* Rest shape of a joint (rn_network_set_joint_rest_*). */
+enum { RN_REST_INPUT = 0, RN_REST_STRAIGHT, RN_REST_FRAMES, RN_REST_STRAINS };
 
 /* A dead couple on the material frame of one edge. */
 typedef struct rn_moment {
@@ -86,14 +91,18 @@ typedef struct rn_joint {
   double disp[3], rot[3]; /* prescribed motion (unscaled) */
   double force[3], M[3];  /* loads (unscaled) */
   /* reference state */
-  double Qhat[9];     /* rigid: reference rotation; clamped: prescribed rotation */
-  double f0[9];       /* rotation at the last reference update (couple) */
-  double angle0;      /* couple angle accumulated up to that update */
-  double couple_p[3]; /* vector the couple turns (rnk_joint.couple_p) */
-  int *image;         /* periodic cells: lattice shift (3 ints) of each end's
-                         joint copy [3 valence]; NULL: no image ends */
-  int32_t *img;       /* built at finalize: image record of each kernel stencil
-                         entry (periodic.c), -1 none; NULL: no image ends */
+  double Qhat[9];      /* rigid: reference rotation; clamped: prescribed rotation */
+  double f0[9];        /* rotation at the last reference update (couple) */
+  double angle0;       /* couple angle accumulated up to that update */
+  double couple_p[3];  /* vector the couple turns (rnk_joint.couple_p) */
+  int rest;            /* RN_REST_*: where the rest shape comes from */
+  double *rest_frames; /* RN_REST_FRAMES: [9 valence] */
+  double rest_kbar[2], rest_taubar; /* RN_REST_STRAINS (smooth joints) */
+  int link;                         /* smooth joints: full turns of twist added */
+  int *image;   /* periodic cells: lattice shift (3 ints) of each end's
+                   joint copy [3 valence]; NULL: no image ends */
+  int32_t *img; /* built at finalize: image record of each kernel stencil
+                   entry (periodic.c), -1 none; NULL: no image ends */
   /* built at finalize */
   rnk_joint_end *ends; /* kernel parameters [valence]; twist.ref_twist is the
                           reference twist stored at the last update */

@@ -291,6 +291,7 @@ typedef struct rnk_joint_end {
 
 typedef struct rnk_joint {
   int rigid;                 /* 1: rigid (rotation DOFs), 0: elastic */
+  int smooth;                /* 1: a smooth joint (below; rigid = 0, valence 2) */
   int valence;               /* >= 1 */
   const rnk_joint_end *ends; /* [valence] */
   const rnk_frame *refs;     /* reference frames of the terminal edges [valence] */
@@ -321,6 +322,28 @@ int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const doubl
 int rnk_joint_rotation(const double *q, const rnk_joint *j, double R[9]);
 int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist);
 int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha);
+
+/* Smooth joint (j->smooth = 1, rigid = 0, valence 2): the joint vertex is an
+ * ordinary DER vertex between the two terminal edges, the closing vertex of a
+ * closed rod or a smooth valence-2 connection.  ends[0] has side 0 (its rod
+ * ends at the joint), ends[1] side 1 (its rod starts there); the energy is
+ * rnk_bendtwist_* on the vertex stencil (x_n of end 0, theta_0, x_J, theta_1,
+ * x_n of end 1) with frames (refs[0], refs[1]) and the vertex parameters
+ * ends[0].bend, ends[0].twist (stiffness, rest curvature and twist, Voronoi
+ * length, stored reference twist); ends[1]'s are unused.  rnk_joint_* above
+ * dispatch to these (the same values): the twists are the reference twist at
+ * the vertex continued from ends[0].twist.ref_twist (both entries), the
+ * rotation is F_1 Fbar_1^T (end 1's material frame against its rest frame),
+ * a couple is not modelled (alpha = 0).  Eb and Et split the energy. */
+int rnk_smooth_joint_energy(const double *q, const rnk_joint *j, double *Eb, double *Et);
+int rnk_smooth_joint_grad(const double *q, const rnk_joint *j, double *E, double *g);
+int rnk_smooth_joint_hess(const double *q, const rnk_joint *j, double *H);
+int rnk_smooth_joint_hvp(const double *q, const rnk_joint *j, const double *v,
+                         double *Hv);
+int rnk_smooth_joint_twists(const double *q, const rnk_joint *j, double *twist);
+int rnk_smooth_joint_rotation(const double *q, const rnk_joint *j, double R[9]);
+/* The vertex stencil q11 of a smooth joint's stencil q. */
+void rnk_smooth_joint_vertex(const double *q, double q11[11]);
 
 /* Test oracle: the same functions evaluated with second-order jets
  * (joint.c, joint_net.c; slow).  rnk_jet_joint_work_size doubles of work. */

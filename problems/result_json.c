@@ -327,9 +327,12 @@ static rn_status put_joint(json_out *o, rn_network *net, int j) {
   FILE *f = o->f;
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_joint_name(net, j));
-  fprintf(f, ", \"model\": \"%s\", \"valence\": %d,\n     \"position\": ",
-          rn_network_joint_model(net, j) == RN_JOINT_RIGID ? "rigid" : "elastic",
-          rn_network_joint_valence(net, j));
+  fprintf(
+      f, ", \"model\": \"%s\", \"valence\": %d,\n     \"position\": ",
+      rn_network_joint_model(net, j) == RN_JOINT_RIGID
+          ? "rigid"
+          : (rn_network_joint_model(net, j) == RN_JOINT_SMOOTH ? "smooth" : "elastic"),
+      rn_network_joint_valence(net, j));
   put_vec(o, x);
   fputs(",\n     \"rotation\": [", f);
   for (int r = 0; r < 3; r++) {

@@ -32,3 +32,8 @@ rn_add_test(api_periodic SOURCES unit/api_periodic.c LIBS rodnet m LABELS unit)
 # (crossing rods, a hairpin in self contact), CSR Hessian = HVP, the closed-form
 # gap, the continuous check against tunnelling, errors.
 rn_add_test(api_contact SOURCES unit/api_contact.c LIBS rodnet m LABELS unit)
+# Closed rods and smooth joints (issue 10 section 4): derivatives (h-sweep), a
+# free ring at its rest polygon, two rods closed by smooth joints against the
+# closed rod, link conservation over large rotations, Michell's twisted ring.
+rn_add_test(api_rings SOURCES unit/api_rings.c LIBS rodnet ${LAPACK_LIBRARIES} m
+            LABELS unit validation)
