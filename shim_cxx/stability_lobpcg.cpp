@@ -34,11 +34,12 @@ constexpr int kLobpcgMaxIterations = 1000;
 constexpr double kLobpcgResidual = 1e-10; // ||A y - mu y|| <= 1e-10 scale, ||y|| = 1
 constexpr double kMetricFloor = 1e-20;    // as stability.cpp
 
-// y = beta y + alpha W op(W x), W = diag(w): the operator op scaled on both sides.
+// y = beta y + alpha W op(W x), W = diag(w): the operator op scaled on both sides
+// (by_column: op applied to one column at a time).
 class ScaledOperator : public TOp {
 public:
-  ScaledOperator(Teuchos::RCP<const TOp> op, Teuchos::RCP<const TVec> w)
-      : op_(std::move(op)), w_(std::move(w)) {}
+  ScaledOperator(Teuchos::RCP<const TOp> op, Teuchos::RCP<const TVec> w, bool by_column)
+      : op_(std::move(op)), w_(std::move(w)), by_column_(by_column) {}
   Teuchos::RCP<const TMap> getDomainMap() const override { return w_->getMap(); }
   Teuchos::RCP<const TMap> getRangeMap() const override { return w_->getMap(); }
   void apply(const TMV &x, TMV &y, Teuchos::ETransp /*mode*/, double alpha,
@@ -49,13 +50,18 @@ public:
       b_ = Teuchos::rcp(new TMV(w_->getMap(), k));
     }
     a_->elementWiseMultiply(1.0, *w_, x, 0.0);
-    op_->apply(*a_, *b_);
+    if (by_column_) // (the gathered and local preconditioners take one vector)
+      for (size_t j = 0; j < k; ++j)
+        op_->apply(*a_->getVector(j), *b_->getVectorNonConst(j));
+    else
+      op_->apply(*a_, *b_);
     y.elementWiseMultiply(alpha, *w_, *b_, beta);
   }
 
 private:
   Teuchos::RCP<const TOp> op_;
   Teuchos::RCP<const TVec> w_;
+  bool by_column_;
   mutable Teuchos::RCP<TMV> a_, b_;
 };
 
@@ -144,8 +150,8 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt) {
     rn_preconditioner used = RN_PRECOND_AUTO;
     const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
     prec->setup(sys);
-    auto A = Teuchos::rcp(new ScaledOperator(H, w));
-    auto P = Teuchos::rcp(new ScaledOperator(prec->inverse(), winv));
+    auto A = Teuchos::rcp(new ScaledOperator(H, w, false));
+    auto P = Teuchos::rcp(new ScaledOperator(prec->inverse(), winv, true));
     const int block = static_cast<int>(std::min<GO>(n, kStabilityBlock));
     const int nev = std::max(1, std::min(block, kStabilityBlock - 2));
     auto X0 = Teuchos::rcp(new TMV(sys.map(), static_cast<size_t>(block)));
