@@ -99,10 +99,23 @@ typedef enum rn_factorization {
  * D^{-1/2} H D^{-1/2}, D = |diag H|, which are dimensionless and do not depend on
  * the units or the size of the structure, and have the signs and zero modes of H
  * (rn_network_stability, docs/solvers.md "Stability"). */
+/* rn_solve_options.stability_method, rn_stability.method. */
+typedef enum rn_stability_method {
+  RN_STABILITY_AUTO = 0,
+  RN_STABILITY_CHOLESKY = 1, /* factorisations of H - sigma D (inertia) */
+  RN_STABILITY_LOBPCG = 2    /* Anasazi LOBPCG preconditioned by the solver's
+                                preconditioner (no factorisation of the whole H) */
+} rn_stability_method;
+
+/* The automatic choice's budget: the Cholesky check is used when one numeric
+ * factorisation of the whole Hessian takes at most this many flops. */
+#define RN_STABILITY_MAX_FLOPS 5e10
+
 typedef struct rn_stability {
   int checked;              /* 1 if computed; 0: skipped (rn_solve_options.stability
-                               = 0) or not available (a part of a distributed
-                               network: the check needs the whole Hessian) */
+                               = 0) or not available (rn_network_stability on a
+                               part of a distributed network, or the Cholesky
+                               check forced on one: it needs the whole Hessian) */
   double lowest_eigenvalue; /* lowest eigenvalue of D^{-1/2} H D^{-1/2} outside the
                                zero modes (0 if there is none) */
   double scale;             /* ||D^{-1/2} H D^{-1/2}||_inf, the largest absolute row
@@ -118,6 +131,12 @@ typedef struct rn_stability {
                                among the 10 lowest */
   long factorizations;      /* Cholesky factorisations the check took */
   double time_s;            /* its wall time */
+  int method;               /* how (rn_stability_method): RN_STABILITY_CHOLESKY or
+                               RN_STABILITY_LOBPCG; 0 if not checked */
+  int iterations;           /* LOBPCG iterations (0 for the Cholesky check) */
+  double cholesky_flops;    /* the cost model: flops of one Cholesky factorisation
+                               of the whole Hessian (0 if not estimated: LOBPCG
+                               forced, or a distributed network) */
 } rn_stability;
 
 /* Why a solve stopped. */
@@ -176,6 +195,14 @@ typedef struct rn_solve_options {
    * (rn_solve_report.stability, rn_network_stability); 0: skip it (benchmarks;
    * the check costs one to a few factorisations of the Hessian) */
   int stability;
+  /* How the stability check computes the lowest eigenvalues (docs/solvers.md
+   * "Stability"): RN_STABILITY_AUTO (default) Cholesky inertia and subspace
+   * iteration on factorisations of the whole Hessian when one costs at most
+   * RN_STABILITY_MAX_FLOPS (and always for the solver kinds that factor it),
+   * LOBPCG otherwise and always on a distributed network; CHOLESKY or LOBPCG
+   * force one (CHOLESKY on a part of a distributed network: not checked,
+   * stability.checked = 0; rodnet solve then checks the gathered network). */
+  int stability_method;
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);

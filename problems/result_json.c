@@ -177,6 +177,9 @@ static void put_stability(json_out *o) {
           st->verified_minimum ? "true" : "false", st->zero_modes);
   fprintf(o->f, "    \"factorizations\": %ld, \"time_s\": ", st->factorizations);
   put_num(o, st->time_s);
+  fprintf(o->f, ", \"method\": \"%s\", \"iterations\": %d, \"cholesky_flops\": ",
+          st->method == RN_STABILITY_LOBPCG ? "lobpcg" : "cholesky", st->iterations);
+  put_num(o, st->cholesky_flops);
   fputs("},\n", o->f);
 }
 

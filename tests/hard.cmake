@@ -57,10 +57,24 @@ foreach(solver rol-ls-newton nox tr-minres)
             ${hard_dir}/hc4_${solver}.json --verified ${verified} --zero-modes 0)
   set_tests_properties(stability_honeycomb_${solver}_check PROPERTIES LABELS unit
                        FIXTURES_REQUIRED stability_honeycomb_${solver})
+  # the LOBPCG check forced: the same verdict, zero modes and lowest eigenvalue
+  rn_cli_test(stability_honeycomb_lobpcg_${solver} 0 "${expect}"
+    ARGS solve ${hard_dir}/hc4.json -o ${hard_dir}/hc4_lobpcg_${solver}.json -q
+         --solver ${solver} --stability-method lobpcg
+    REMOVE ${hard_dir}/hc4_lobpcg_${solver}.json
+    FIXTURE_SETUP stability_honeycomb_lobpcg_${solver})
+  set_tests_properties(stability_honeycomb_lobpcg_${solver} PROPERTIES
+                       FIXTURES_REQUIRED stability_honeycomb)
+  add_test(NAME stability_honeycomb_lobpcg_${solver}_check
+    COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_stability.py
+            ${hard_dir}/hc4_lobpcg_${solver}.json --verified ${verified} --zero-modes 0
+            --method lobpcg --same-as ${hard_dir}/hc4_${solver}.json)
+  set_tests_properties(stability_honeycomb_lobpcg_${solver}_check PROPERTIES LABELS unit
+    FIXTURES_REQUIRED "stability_honeycomb_${solver};stability_honeycomb_lobpcg_${solver}")
 endforeach()
 
-# Under mpirun (2 ranks, tr-krylov) the CLI checks the stability on rank 0 from the
-# gathered state: the same verdict as one process.
+# Under mpirun (2 ranks, tr-krylov) the solve checks the stability on the parts
+# (LOBPCG): the same verdict as one process.
 if(MPIEXEC_EXECUTABLE)
   add_test(NAME stability_honeycomb_mpi
            COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}

@@ -94,6 +94,20 @@ foreach(case "cantilever|${RN_SCENES}/cantilever.json|1.0"
                          ENVIRONMENT "${RN_MPI_ENV}" FIXTURES_REQUIRED rn_mpi_scenes)
   endforeach()
 endforeach()
+# The LOBPCG stability check forced on one rank too (stability_method): the same
+# lowest eigenvalue, zero modes and verdict on 1 and 2 ranks.
+foreach(name honeycomb octet)
+  add_test(NAME mpi_stability_lobpcg_${name}
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_mpi_solve.py
+                   --rodnet ${CMAKE_BINARY_DIR}/rodnet --mpiexec ${MPIEXEC_EXECUTABLE}
+                   --np 2 --scene ${RN_MPI_SCENES}/${name}.json --solver tr-krylov
+                   --out ${RN_MPI_OUT}/solve --label .lobpcg
+                   "--args=--preconditioner dd --gtol 1e-14 --stability-method lobpcg"
+                   --same-iterations)
+  set_tests_properties(mpi_stability_lobpcg_${name} PROPERTIES LABELS mpi TIMEOUT 600
+                       PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}"
+                       FIXTURES_REQUIRED rn_mpi_scenes)
+endforeach()
 # More ranks than rods: a single rod on 3 ranks (two ranks own nothing) gives the
 # one-rank result (default solver and preconditioner), no error and no hang.
 add_test(NAME mpi_solve_more_ranks
