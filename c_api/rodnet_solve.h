@@ -71,9 +71,14 @@ typedef enum rn_preconditioner {
                               iteration); any number of ranks */
   RN_PRECOND_MUELU = 5,    /* one MueLu smoothed-aggregation V-cycle on the whole
                               Hessian (rigid-body near-null space); MPI runtime */
-  RN_PRECOND_IFPACK2 = 6   /* Ifpack2 additive Schwarz, one subdomain per rank with
+  RN_PRECOND_IFPACK2 = 6,  /* Ifpack2 additive Schwarz, one subdomain per rank with
                               overlap 1, local sparse LU (exact on one rank); MPI
                               runtime */
+  RN_PRECOND_FROSCH = 7    /* FROSch two-level overlapping Schwarz: one subdomain per
+                              rank (overlap 1, local sparse LU) plus a coarse space of
+                              the rigid-body modes on the subdomain interfaces (one
+                              rank: the whole network; rigid-body modes of the whole
+                              network only); MPI runtime */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier

@@ -108,6 +108,24 @@ foreach(name honeycomb octet)
                        PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}"
                        FIXTURES_REQUIRED rn_mpi_scenes)
 endforeach()
+# FROSch (two-level Schwarz, an alternative preconditioner measured against dd) on
+# 2 ranks, two subdomains with their coarse space: the one-rank equilibrium (energy
+# and positions to 1e-10; an inexact preconditioner, so the iterations may differ).
+foreach(case "honeycomb|${RN_MPI_SCENES}/honeycomb.json" "octet|${RN_MPI_SCENES}/octet.json")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 scene)
+  add_test(NAME mpi_solve_frosch_${name}
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_mpi_solve.py
+                   --rodnet ${CMAKE_BINARY_DIR}/rodnet --mpiexec ${MPIEXEC_EXECUTABLE}
+                   --np 2 --scene ${scene} --solver ${RN_DIST_SOLVER}
+                   --out ${RN_MPI_OUT}/solve --max-share 0.55
+                   "--args=--preconditioner frosch --gtol 1e-14" --label .frosch)
+  # the one-rank run needs the MPI runtime too (FROSch, TRILINOS.md)
+  set_tests_properties(mpi_solve_frosch_${name} PROPERTIES LABELS mpi TIMEOUT 600
+                       PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV};RODNET_MPI=1"
+                       FIXTURES_REQUIRED rn_mpi_scenes)
+endforeach()
 # More ranks than rods: a single rod on 3 ranks (two ranks own nothing) gives the
 # one-rank result (default solver and preconditioner), no error and no hang.
 add_test(NAME mpi_solve_more_ranks
