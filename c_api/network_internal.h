@@ -152,12 +152,12 @@ struct rn_network {
   size_t nhzero;
   size_t nnz;
   size_t bandwidth;
-  struct rn_part_data *part; /* NULL: a whole network (part.c) */
-  struct rn_cell *cell;      /* NULL: not periodic (periodic.c) */
-  int model;                 /* rn_model asked for (planar.c) */
-  int planar;                /* 1: the planar model is in use (set at finalize) */
-  int planar_ok;             /* 1: the network qualifies for it (set at finalize) */
-  char planar_why[240];      /* if not: what leaves the plane */
+  struct rn_part_data *part;  /* NULL: a whole network (part.c) */
+  struct rn_cell *cell;       /* NULL: not periodic (periodic.c) */
+  int model;                  /* rn_model asked for (planar.c) */
+  int planar;                 /* 1: the planar model is in use (set at finalize) */
+  int planar_ok;              /* 1: the network qualifies for it (set at finalize) */
+  char planar_why[240];       /* if not: what leaves the plane */
   struct rn_contact *contact; /* NULL: no contact (contact.c) */
 };
 

@@ -570,10 +570,9 @@ static rn_status read_model(rn_scene_parser *p, const cJSON *root) {
 }
 
 static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
-  static const char *const keys[] = {"description", "materials", "sections",    "graph",
-                                     "rods",        "joints",    "constraints", "loads",
-                                     "solver",      "periodic",  "model",       "contact",
-                                     NULL};
+  static const char *const keys[] = {
+      "description", "materials", "sections", "graph", "rods",    "joints", "constraints",
+      "loads",       "solver",    "periodic", "model", "contact", NULL};
   static const char *const steps[] = {"materials", "sections",    "graph", "rods",
                                       "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
