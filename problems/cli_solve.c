@@ -71,15 +71,15 @@ static const char solve_help[] =
     "                      one step, split automatically when a full step fails)\n"
     "      --no-predictor  start each load step where the last one converged (default:\n"
     "                      from the linearised load-increment prediction, kept if\n"
-    "                      it lowers the energy; docs/solvers.md)\n"
+    "                      it lowers the energy; docs/solvers.md)\n";
+/* (two strings: one would exceed the 4095 characters C99 guarantees) */
+static const char solve_help_tail[] =
     "      --no-stability  skip the stability check of the result (the lowest\n"
     "                      Hessian eigenvalues; docs/solvers.md)\n"
     "      --stability-method M  how the check computes them: auto (default:\n"
     "                      Cholesky when affordable, else LOBPCG), cholesky, lobpcg\n"
     "  -q, --quiet         no progress lines\n"
-    "  -h, --help          show this help\n";
-/* (two strings: one would exceed the 4095 characters C99 guarantees) */
-static const char solve_help_tail[] =
+    "  -h, --help          show this help\n"
     "\n"
     "Options given here override the scene's \"solver\" block.  Output files are\n"
     "written completely or not at all.\n"
