@@ -166,13 +166,11 @@ static void harmonics(const rn_network *net, const hp_path *p, const double *d,
   for (int h = 0; h < po->nharm; ++h) {
     int hc[3] = {h % rep[0], (h / rep[0]) % rep[1], dim == 3 ? h / (rep[0] * rep[1]) : 0};
     double power = 0.0;
-    size_t at = 0;
     /* rods of copy (0,0) have names without '@'; their copies name@i,j */
     for (int r = 0; r < rn_network_num_rods(net); ++r) {
       const char *name = rn_network_rod_name(net, r);
       int nv = rn_network_rod_num_vertices(net, r);
       if (strchr(name, '@')) {
-        at += 3 * (size_t)nv;
         continue;
       }
       for (int k = 0; k < 3 * nv; ++k) {
@@ -196,7 +194,6 @@ static void harmonics(const rn_network *net, const hp_path *p, const double *d,
         }
         power += re * re + im * im;
       }
-      at += 3 * (size_t)nv;
     }
     for (int m = 0; m < 3; ++m) po->harm_xi[h][m] = m < dim ? (double)hc[m] / rep[m] : 0;
     for (int m = 0; m < dim; ++m)
