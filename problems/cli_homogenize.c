@@ -51,6 +51,16 @@ static const char homogenize_help[] =
     "                      E33,E23,E13,E12; engineering shear) and locate its first\n"
     "                      instability by Bloch-Floquet analysis (RESULT.json gains\n"
     "                      \"path\" and \"instability\")\n"
+    "      --path E,-,-    mixed control: '-' is a stress-controlled component at\n"
+    "                      zero stress, s:VALUE one at that stress, e:VALUE (or a\n"
+    "                      number) strain-controlled; e.g. uniaxial stress along x\n"
+    "      --path-stress S,S,S  proportional macroscopic stress path (every\n"
+    "                      component stress-controlled; 2D force per length)\n"
+    "      --path-file P.json  piecewise-linear path through waypoints\n"
+    "                      {\"waypoints\": [{\"strain\": [..|null], \"stress\": "
+    "[..|null],\n"
+    "                      \"steps\": n}, ...]} (docs/homogenization.md); under stress\n"
+    "                      control a limit point of the stress ends the path\n"
     "      --steps N       steps of the path (default 20)\n"
     "      --modes M       Bloch modes examined: all (default), in-plane or\n"
     "                      out-of-plane (2D cells at planar states; the planar\n"
@@ -72,12 +82,14 @@ static const char homogenize_help[] =
     "10)\n"
     "  -q, --quiet         no summary on stdout\n"
     "  -h, --help          show this help\n"
-    "\n"
+    "\n";
+static const char homogenize_help_tail[] =
     "Exit status: 0 done, 2 usage error, 3 bad scene (not periodic, prescribed\n"
     "strain) or unwritable output, 4 the cell is a mechanism or the plot failed.\n";
 
 typedef struct hom_args {
   const char *scene, *output, *plot, *path, *pattern, *post;
+  const char *path_stress, *path_file; /* --path-stress, --path-file */
   int quiet, steps, grid, post_steps;
   rn_bloch_modes modes;
 } hom_args;
@@ -91,6 +103,7 @@ static int parse_args(int argc, char **argv, hom_args *a) {
     int m;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       fputs(homogenize_help, stdout);
+      fputs(homogenize_help_tail, stdout);
       return -1;
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
@@ -105,6 +118,18 @@ static int parse_args(int argc, char **argv, hom_args *a) {
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--plot", NULL, &v))) {
       if (m < 0) return RN_EXIT_USAGE;
       a->plot = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path-stress", NULL,
+                                 &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path_stress = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path-file", NULL,
+                                 &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path_file = v;
       continue;
     }
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path", NULL, &v))) {
@@ -163,6 +188,11 @@ static int parse_args(int argc, char **argv, hom_args *a) {
   }
   if (!a->scene) return rn_cli_usage_error("homogenize", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
+  if ((a->path != NULL) + (a->path_stress != NULL) + (a->path_file != NULL) > 1)
+    return rn_cli_usage_error("homogenize",
+                              "give one of --path, --path-stress and --path-file");
+  if (a->path_stress) a->path = a->path_stress;
+  if (a->path_file) a->path = a->path_file;
   if (a->pattern && !a->path)
     return rn_cli_usage_error("homogenize", "--pattern needs --path");
   if (a->post && !a->path)
@@ -411,6 +441,10 @@ int rn_cli_homogenize(int argc, char **argv) {
   rn_homogenization h;
   double S[36];
   int dim = 0;
+  hp_path path;
+  hp_post post;
+  memset(&path, 0, sizeof(path));
+  memset(&post, 0, sizeof(post));
   rn_status st = rn_file_probe_writable(ctx, a.output);
   if (!st) st = rn_scene_load(ctx, a.scene, &scene);
   if (st) {
@@ -437,17 +471,38 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INPUT;
     goto done;
   }
-  double target[6] = {0};
   if (a.path) {
-    int count = 0, ns = 0;
+    int count = 0, ns = 0, stress[6] = {0};
+    double target[6] = {0};
     rn_network_cell_info(net, NULL, &ns, NULL, NULL);
-    if (hp_parse_strain(a.path, target, &count) || count != ns) {
-      fprintf(stderr,
-              "rodnet homogenize: --path '%s': expected %d comma-separated numbers (%s) "
-              "for this %dD cell\n",
-              a.path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
-      rc = RN_EXIT_USAGE;
-      goto done;
+    path.ns = ns;
+    if (a.path_file) {
+      if ((st = hp_read_path_file(ctx, a.path_file, a.steps, &path))) {
+        fprintf(stderr, "rodnet homogenize: --path-file: %s\n",
+                rn_context_last_error(ctx));
+        rc = st == RN_ERR_ALLOC ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
+        goto done;
+      }
+    } else {
+      if (hp_parse_targets(a.path, a.path_stress != NULL, target, stress, &count) ||
+          count != ns) {
+        if (a.path_stress)
+          fprintf(stderr,
+                  "rodnet homogenize: --path-stress '%s': expected %d comma-separated "
+                  "numbers (%s) for this %dD cell\n",
+                  a.path, ns, ns == 3 ? "S11,S22,S12" : "S11,S22,S33,S23,S13,S12", dim);
+        else
+          fprintf(stderr,
+                  "rodnet homogenize: --path '%s': expected %d comma-separated numbers "
+                  "(%s; '-', s:VALUE for stress control) for this %dD cell\n",
+                  a.path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
+        rc = RN_EXIT_USAGE;
+        goto done;
+      }
+      if ((st = hp_single_segment(ctx, &path, target, stress, a.steps))) {
+        rc = RN_EXIT_INTERNAL;
+        goto done;
+      }
     }
   }
   double t0 = now();
@@ -471,25 +526,17 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INTERNAL;
     goto done;
   }
-  hp_path path;
-  hp_post post;
-  memset(&path, 0, sizeof(path));
-  memset(&post, 0, sizeof(post));
   if (a.path) {
-    path.ns = h.nstrain;
     path.dim = h.dim;
-    path.steps = a.steps;
     path.modes = a.modes;
     path.grid = a.grid;
     path.quiet = a.quiet;
-    memcpy(path.target, target, sizeof(target));
 #ifdef RN_HAVE_SOLVER
     st = hp_run(net, &path);
 #endif
     if (st) {
       fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
       rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
-      hp_free(&path);
       goto done;
     }
   }
@@ -521,8 +568,11 @@ int rn_cli_homogenize(int argc, char **argv) {
           "strain [%.6g %.6g %.6g%s], %s, wave vector [%.4g %.4g%s], multiplicity %d\n",
           path.inst.t, path.inst.strain[0], path.inst.strain[1],
           path.inst.strain[path.ns - 1], path.ns == 6 ? " ..." : "",
-          path.inst.kind_macroscopic ? "macroscopic" : "local", path.inst.xi[0],
-          path.inst.xi[1], path.dim == 3 ? " ..." : "", path.inst.multiplicity);
+          path.inst.stress_limit       ? "macroscopic (limit point of the stress)"
+          : path.inst.kind_macroscopic ? "macroscopic"
+                                       : "local",
+          path.inst.xi[0], path.inst.xi[1], path.dim == 3 ? " ..." : "",
+          path.inst.multiplicity);
     else
       printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
     if (path.pattern.written)
@@ -538,7 +588,6 @@ int rn_cli_homogenize(int argc, char **argv) {
             path.done + 1, path.stopped);
     if (!rc) rc = RN_EXIT_INTERNAL;
   }
-  hp_free(&path);
   if (!st && post.done && !a.quiet) {
     const hp_post_step *ls = &post.step[post.done - 1];
     printf("rodnet homogenize: post-buckling: %d x %d supercell, %d steps past the "
@@ -583,6 +632,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INTERNAL;
   }
 done:
+  hp_free(&path);
   rn_scene_destroy(&scene);
   rn_context_destroy(&ctx);
   return rc;

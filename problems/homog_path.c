@@ -45,29 +45,202 @@ static int unstable(const rn_bloch_result *r, const scales *sc) {
   return local_unstable(r, sc) || macro_unstable(r, sc) || !r->acoustic_valid;
 }
 
-/* Relax the cell at load factor t (strain t * target) from the current state and
- * record step s (strain, stress, energy). */
-static rn_status relax_at(rn_network *net, const hp_path *p, double t, hp_step *s) {
-  rn_cell_relax_report rep;
-  double eps[6] = {0}, E[RN_TERM_COUNT];
-  rn_status st;
+/* Strain and stress of the current state. */
+static rn_status state_of(rn_network *net, double *strain, double *stress,
+                          double *energy) {
+  double E[RN_TERM_COUNT];
   size_t n = rn_network_num_dofs(net);
-  for (int v = 0; v < p->ns; ++v) eps[v] = t * p->target[v];
-  if ((st = rn_cell_relax(net, eps, &rep))) return st;
-  memset(s, 0, sizeof(*s));
-  s->t = t;
-  s->newton = rep.iterations;
-  s->converged = rep.converged;
   double *x = malloc((n ? n : 1) * sizeof(double));
   if (!x)
     return rn_context_set_error(rn_network_context(net), RN_ERR_ALLOC, "out of memory");
-  st = rn_network_get_dofs(net, x);
-  if (!st) st = rn_network_cell_strain(net, x, s->strain);
-  if (!st) st = rn_network_cell_stress(net, x, s->stress);
-  if (!st) st = rn_network_energy_terms(net, x, E);
+  rn_status st = rn_network_get_dofs(net, x);
+  if (!st) st = rn_network_cell_strain(net, x, strain);
+  if (!st) st = rn_network_cell_stress(net, x, stress);
+  if (!st && energy) st = rn_network_energy_terms(net, x, E);
   free(x);
-  if (!st) s->energy = E[RN_TERM_STRETCH] + E[RN_TERM_BEND] + E[RN_TERM_TWIST];
+  if (!st && energy) *energy = E[RN_TERM_STRETCH] + E[RN_TERM_BEND] + E[RN_TERM_TWIST];
   return st;
+}
+
+/* Symmetric eigenvalues (ascending) and eigenvectors (columns of V) of the
+ * n x n matrix a (n <= 6; destroyed) by cyclic Jacobi rotations. */
+static void sym_eigen(int n, double *a, double *ev, double *V) {
+  for (int i = 0; i < n * n; ++i) V[i] = (i / n == i % n) ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < 60; ++sweep) {
+    double off = 0.0, diag = 0.0;
+    for (int i = 0; i < n; ++i) {
+      diag += a[i * n + i] * a[i * n + i];
+      for (int j = i + 1; j < n; ++j) off += a[i * n + j] * a[i * n + j];
+    }
+    if (off <= 1e-32 * diag || off == 0.0) break;
+    for (int p = 0; p < n; ++p)
+      for (int q = p + 1; q < n; ++q) {
+        double apq = a[p * n + q];
+        if (apq == 0.0) continue;
+        double th = 0.5 * (a[q * n + q] - a[p * n + p]) / apq;
+        double t = (th >= 0 ? 1.0 : -1.0) / (fabs(th) + sqrt(th * th + 1.0));
+        double c = 1.0 / sqrt(t * t + 1.0), sn = t * c;
+        for (int k = 0; k < n; ++k) { /* columns p, q */
+          double akp = a[k * n + p], akq = a[k * n + q];
+          a[k * n + p] = c * akp - sn * akq;
+          a[k * n + q] = sn * akp + c * akq;
+        }
+        for (int k = 0; k < n; ++k) { /* rows p, q */
+          double apk = a[p * n + k], aqk = a[q * n + k];
+          a[p * n + k] = c * apk - sn * aqk;
+          a[q * n + k] = sn * apk + c * aqk;
+        }
+        for (int k = 0; k < n; ++k) {
+          double vkp = V[k * n + p], vkq = V[k * n + q];
+          V[k * n + p] = c * vkp - sn * vkq;
+          V[k * n + q] = sn * vkp + c * vkq;
+        }
+      }
+  }
+  for (int i = 0; i < n; ++i) ev[i] = a[i * n + i];
+  for (int i = 0; i < n; ++i) /* sort ascending, columns along */
+    for (int j = i + 1; j < n; ++j)
+      if (ev[j] < ev[i]) {
+        double t = ev[i];
+        ev[i] = ev[j], ev[j] = t;
+        for (int k = 0; k < n; ++k) {
+          t = V[k * n + i];
+          V[k * n + i] = V[k * n + j], V[k * n + j] = t;
+        }
+      }
+}
+
+/* The effective tangent C (rn_homogenize) at the current state restricted to
+ * the components f[nf]: Cff (nf x nf). */
+static rn_status tangent_ff(rn_network *net, int nf, const int *f, double *C,
+                            double *Cff) {
+  rn_homogenization h;
+  rn_status st = rn_homogenize(net, &h);
+  if (st) return st;
+  memcpy(C, h.C, sizeof(h.C));
+  for (int i = 0; i < nf; ++i)
+    for (int j = 0; j < nf; ++j) Cff[i * nf + j] = h.C[f[i] * h.nstrain + f[j]];
+  return RN_OK;
+}
+
+/* Lowest eigenvalue of Cff (nf x nf) and its eigenvector spread onto the
+ * strain components (mode[ns]). */
+static double lowest_mode(int ns, int nf, const int *f, const double *Cff, double *mode) {
+  double a[36], ev[6], V[36];
+  memcpy(a, Cff, (size_t)(nf * nf) * sizeof(double));
+  sym_eigen(nf, a, ev, V);
+  if (mode) {
+    memset(mode, 0, (size_t)ns * sizeof(double));
+    for (int i = 0; i < nf; ++i) mode[f[i]] = V[i * nf];
+  }
+  return ev[0];
+}
+
+/* Mixed control at the current segment: the strain-controlled components held
+ * at val, the stress-controlled ones (f[nf]) free with the homogenised stress
+ * val.  Newton on those strain components with the effective tangent C_ff
+ * (rn_homogenize at each iterate), the fluctuations relaxed by rn_cell_relax
+ * at each; the predictor from the tangent at the current (converged) state.
+ * s->converged 0 if it fails (no equilibrium nearby: past a limit point). */
+static rn_status mixed_relax(rn_network *net, const hp_path *p, const int *stress,
+                             const double *val, hp_step *s) {
+  int ns = p->ns, nf = 0, f[6];
+  double eps[6], sig[6], C[36], Cff[36], Sff[36], r[6];
+  rn_status st;
+  rn_cell_relax_report rep;
+  for (int v = 0; v < ns; ++v)
+    if (stress[v]) f[nf++] = v;
+  if ((st = state_of(net, eps, sig, NULL))) return st;
+  /* predictor: C_ff d e_f = (sigma_f* - sigma_f) - C_fp (e_p* - e_p) */
+  if (tangent_ff(net, nf, f, C, Cff) == RN_OK && rn_homog_invert(nf, Cff, Sff)) {
+    double rhs[6], de[6];
+    for (int i = 0; i < nf; ++i) {
+      rhs[i] = val[f[i]] - sig[f[i]];
+      for (int v = 0; v < ns; ++v)
+        if (!stress[v]) rhs[i] -= C[f[i] * ns + v] * (val[v] - eps[v]);
+    }
+    for (int i = 0; i < nf; ++i) {
+      de[i] = 0.0;
+      for (int j = 0; j < nf; ++j) de[i] += Sff[i * nf + j] * rhs[j];
+    }
+    for (int i = 0; i < nf; ++i) eps[f[i]] += de[i];
+  }
+  for (int v = 0; v < ns; ++v)
+    if (!stress[v]) eps[v] = val[v];
+  s->converged = 0;
+  s->newton = 0;
+  for (s->outer = 1; s->outer <= 30; ++s->outer) {
+    double rn = 0.0, scale = 0.0, step = 0.0, emax = 0.0;
+    if ((st = rn_cell_relax(net, eps, &rep))) return st;
+    s->newton += rep.iterations;
+    if (!rep.converged) return RN_OK;
+    if ((st = state_of(net, eps, sig, NULL))) return st;
+    for (int v = 0; v < ns; ++v) {
+      scale = fmax(scale, fabs(sig[v]));
+      emax = fmax(emax, fabs(eps[v]));
+    }
+    for (int i = 0; i < nf; ++i) {
+      r[i] = sig[f[i]] - val[f[i]];
+      rn = fmax(rn, fabs(r[i]));
+      scale = fmax(scale, fabs(val[f[i]]));
+    }
+    st = tangent_ff(net, nf, f, C, Cff);
+    if (st == RN_ERR_SOLVER) return RN_OK; /* K_uu indefinite: no tangent */
+    if (st) return st;
+    /* converged: the stress residual, or the Newton correction of the strain
+     * below what the relaxed fluctuations resolve */
+    double d[6];
+    int invertible = rn_homog_invert(nf, Cff, Sff);
+    for (int i = 0; i < nf && invertible; ++i) {
+      d[i] = 0.0;
+      for (int j = 0; j < nf; ++j) d[i] -= Sff[i * nf + j] * r[j];
+      step = fmax(step, fabs(d[i]));
+    }
+    if (rn <= 1e-10 * scale + (1e-12 * emax + 1e-20) * p->tangent_scale ||
+        (invertible && step <= 1e-8 * emax + 1e-12)) {
+      s->converged = 1;
+      s->tangent_min = lowest_mode(ns, nf, f, Cff, NULL) / p->tangent_scale;
+      return RN_OK;
+    }
+    if (!invertible) return RN_OK;
+    for (int i = 0; i < nf; ++i) eps[f[i]] += d[i];
+    if (step > 0.1) return RN_OK; /* a jump: no equilibrium nearby */
+  }
+  return RN_OK;
+}
+
+/* The controlled values of segment j at its local parameter u. */
+static void controls_at(const hp_path *p, int j, double u, double *val) {
+  const hp_segment *g = &p->seg[j];
+  for (int v = 0; v < p->ns; ++v) val[v] = g->start[v] + u * (g->target[v] - g->start[v]);
+}
+
+static int stress_controlled(const hp_segment *g, int ns) {
+  int n = 0;
+  for (int v = 0; v < ns; ++v) n += g->stress[v];
+  return n;
+}
+
+/* Relax the cell at parameter u of segment j from the current state and record
+ * step s (strain, stress, energy). */
+static rn_status relax_at(rn_network *net, const hp_path *p, int j, double u,
+                          hp_step *s) {
+  double val[6] = {0};
+  rn_status st;
+  memset(s, 0, sizeof(*s));
+  s->t = j + u;
+  s->seg = j;
+  s->tangent_min = NAN;
+  controls_at(p, j, u, val);
+  if (stress_controlled(&p->seg[j], p->ns)) {
+    if ((st = mixed_relax(net, p, p->seg[j].stress, val, s))) return st;
+  } else {
+    rn_cell_relax_report rep;
+    if ((st = rn_cell_relax(net, val, &rep))) return st;
+    s->newton = rep.iterations;
+    s->converged = rep.converged;
+  }
+  return state_of(net, s->strain, s->stress, &s->energy);
 }
 
 static rn_status bloch_at(rn_network *net, const hp_path *p, const double *hint,
@@ -88,54 +261,84 @@ static int multiplicity(const rn_bloch_result *r) {
   return m;
 }
 
-/* Locate the first instability between the converged state lo (load factor
- * t_lo, its Bloch result rlo) and t_hi (result rhi) by bisection to 0.1 % of
- * the load factor, then a secant estimate inside the last bracket. */
+/* A limit point of the stress: under stress control, no equilibrium (the mixed
+ * solve failed) or the tangent on the stress-controlled components is not
+ * positive definite. */
+static int limit_passed(const hp_step *s, int nstress) {
+  return nstress && (!s->converged || !(s->tangent_min > 1e-9));
+}
+
+/* Locate the first instability in segment j between the converged state lo
+ * (local parameter u_lo, its Bloch result rlo) and u_hi (result rhi; limit_hi:
+ * the state at u_hi is past a limit point of the stress) by bisection to
+ * 0.1 % of the parameter, then a secant estimate inside the last bracket. */
 static rn_status locate(rn_network *net, hp_path *p, const scales *sc, rn_state *lo,
-                        double t_lo, rn_bloch_result rlo, double t_hi,
-                        rn_bloch_result rhi) {
+                        int j, double u_lo, rn_bloch_result rlo, double u_hi,
+                        rn_bloch_result rhi, int limit_hi) {
   rn_status st = RN_OK;
   hp_step s;
   hp_instability *in = &p->inst;
-  int it = 0;
-  while (t_hi - t_lo > 1e-3 * t_hi && it < 60) {
-    double mid = 0.5 * (t_lo + t_hi);
+  int it = 0, nstress = stress_controlled(&p->seg[j], p->ns);
+  while (u_hi - u_lo > 1e-3 * u_hi && it < 60) {
+    double mid = 0.5 * (u_lo + u_hi);
     rn_bloch_result r;
     ++it;
-    if ((st = rn_network_state_restore(net, lo)) || (st = relax_at(net, p, mid, &s)))
+    if ((st = rn_network_state_restore(net, lo)) || (st = relax_at(net, p, j, mid, &s)))
       goto done;
+    if (limit_passed(&s, nstress)) {
+      u_hi = mid;
+      limit_hi = 1;
+      continue;
+    }
     if (!s.converged) break;
     if ((st = bloch_at(net, p, rhi.xi, &r))) goto done;
     if (unstable(&r, sc)) {
-      t_hi = mid;
+      u_hi = mid;
       rhi = r;
+      limit_hi = 0;
     } else {
       rn_state_destroy(&lo);
       if ((st = rn_network_state_save(net, &lo))) goto done;
-      t_lo = mid;
+      u_lo = mid;
       rlo = r;
     }
   }
   in->found = 1;
   in->bisections = it;
-  in->kind_macroscopic = macro_unstable(&rhi, sc) && rhi.acoustic_valid;
-  double flo = in->kind_macroscopic ? rlo.acoustic_min : rlo.local_min;
-  double fhi = in->kind_macroscopic ? rhi.acoustic_min : rhi.local_min;
-  double tc = t_hi;
-  if (flo > 0.0 && fhi < 0.0) tc = t_lo + (t_hi - t_lo) * flo / (flo - fhi);
-  in->t = tc;
-  if (in->kind_macroscopic) {
+  in->stress_limit = limit_hi;
+  double uc = u_hi;
+  if (limit_hi) {
+    /* the last equilibrium before the limit; its softest strain mode */
+    int f[6], nf = 0;
+    double C[36], Cff[36];
+    uc = u_lo;
+    in->kind_macroscopic = 1;
     memset(in->xi, 0, sizeof(in->xi));
     in->multiplicity = 1;
-    memcpy(in->direction, rhi.direction, sizeof(in->direction));
-    memcpy(in->amplitude, rhi.amplitude, sizeof(in->amplitude));
+    in->neig = 0;
+    for (int v = 0; v < p->ns; ++v)
+      if (p->seg[j].stress[v]) f[nf++] = v;
+    if ((st = rn_network_state_restore(net, lo))) goto done;
+    if (tangent_ff(net, nf, f, C, Cff) == RN_OK) lowest_mode(p->ns, nf, f, Cff, in->mode);
   } else {
-    memcpy(in->xi, rhi.xi, sizeof(in->xi));
-    in->multiplicity = multiplicity(&rhi);
+    in->kind_macroscopic = macro_unstable(&rhi, sc) && rhi.acoustic_valid;
+    double flo = in->kind_macroscopic ? rlo.acoustic_min : rlo.local_min;
+    double fhi = in->kind_macroscopic ? rhi.acoustic_min : rhi.local_min;
+    if (flo > 0.0 && fhi < 0.0) uc = u_lo + (u_hi - u_lo) * flo / (flo - fhi);
+    if (in->kind_macroscopic) {
+      memset(in->xi, 0, sizeof(in->xi));
+      in->multiplicity = 1;
+      memcpy(in->direction, rhi.direction, sizeof(in->direction));
+      memcpy(in->amplitude, rhi.amplitude, sizeof(in->amplitude));
+    } else {
+      memcpy(in->xi, rhi.xi, sizeof(in->xi));
+      in->multiplicity = multiplicity(&rhi);
+    }
+    in->neig = rhi.neig;
+    memcpy(in->eig, rhi.eig, sizeof(in->eig));
   }
-  in->neig = rhi.neig;
-  memcpy(in->eig, rhi.eig, sizeof(in->eig));
-  if ((st = rn_network_state_restore(net, lo)) || (st = relax_at(net, p, tc, &s)))
+  in->t = j + uc;
+  if ((st = rn_network_state_restore(net, lo)) || (st = relax_at(net, p, j, uc, &s)))
     goto done;
   memcpy(in->strain, s.strain, sizeof(in->strain));
   memcpy(in->stress, s.stress, sizeof(in->stress));
@@ -144,17 +347,49 @@ done:
   return st;
 }
 
+/* Start values of segment j from the state of step s. */
+static void begin_segment(hp_path *p, int j, const hp_step *s) {
+  hp_segment *g = &p->seg[j];
+  for (int v = 0; v < p->ns; ++v)
+    g->start[v] = g->stress[v] ? s->stress[v] : s->strain[v];
+}
+
 rn_status hp_run(rn_network *net, hp_path *p) {
   rn_status st;
   rn_bloch_result r, rprev;
   scales sc = {0.0, 0.0};
   rn_state *prev = NULL, *cur = NULL;
   double t0 = seconds_now();
+  rn_context *ctx = rn_network_context(net);
+  int all[6], k = 0;
+  double C[36], Cee[36];
+  if (p->nseg < 1)
+    return rn_context_set_error(ctx, RN_ERR_ARG, "hp_run: the path has no segment");
+  p->steps = 0;
+  for (int j = 0; j < p->nseg; ++j) p->steps += p->seg[j].steps;
   p->step = calloc((size_t)p->steps + 1, sizeof(hp_step));
-  if (!p->step)
-    return rn_context_set_error(rn_network_context(net), RN_ERR_ALLOC, "out of memory");
+  if (!p->step) return rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
   memset(&p->inst, 0, sizeof(p->inst));
-  if ((st = relax_at(net, p, 0.0, &p->step[0]))) goto done;
+  p->limit_end = 0;
+  /* the tangent's scale: the largest eigenvalue of C at rest */
+  for (int v = 0; v < p->ns; ++v) all[v] = v;
+  if ((st = tangent_ff(net, p->ns, all, C, Cee))) goto done;
+  {
+    double ev[6], V[36];
+    sym_eigen(p->ns, Cee, ev, V);
+    p->tangent_scale = fabs(ev[p->ns - 1]) > 0.0 ? fabs(ev[p->ns - 1]) : 1.0;
+  }
+  {
+    hp_step *s0 = &p->step[0];
+    rn_cell_relax_report rep;
+    double zero[6] = {0};
+    if ((st = rn_cell_relax(net, zero, &rep))) goto done;
+    memset(s0, 0, sizeof(*s0));
+    s0->newton = rep.iterations;
+    s0->converged = rep.converged;
+    s0->tangent_min = NAN;
+    if ((st = state_of(net, s0->strain, s0->stress, &s0->energy))) goto done;
+  }
   if ((st = bloch_at(net, p, NULL, &r))) goto done;
   sc.local = r.local_scale;
   sc.acoustic = r.acoustic_scale;
@@ -171,44 +406,57 @@ rn_status hp_run(rn_network *net, hp_path *p) {
   }
   rprev = r;
   if ((st = rn_network_state_save(net, &prev))) goto done;
-  for (int k = 1; k <= p->steps; ++k) {
-    hp_step *s = &p->step[k];
-    double t = (double)k / p->steps;
-    if ((st = relax_at(net, p, t, s))) goto done;
-    if (!s->converged) {
-      p->stopped = "the fluctuations did not converge";
-      break;
-    }
-    s->local_min = s->acoustic_min = NAN;
-    s->stable = -1; /* not examined (past the first instability) */
-    if (!p->inst.found) {
-      if ((st = bloch_at(net, p, rprev.xi, &r))) goto done;
-      s->local_min = r.local_min;
-      s->acoustic_min = r.acoustic_min;
-      s->stable = !unstable(&r, &sc);
-      if (!s->stable) {
-        if ((st = rn_network_state_save(net, &cur))) goto done;
-        st = locate(net, p, &sc, prev, p->step[k - 1].t, rprev, t, r);
-        prev = NULL; /* locate owns it */
-        if (st) goto done;
-        if ((st = rn_network_state_restore(net, cur))) goto done;
-        rn_state_destroy(&cur);
+  for (int j = 0; j < p->nseg && !p->stopped && !p->limit_end; ++j) {
+    int n = p->seg[j].steps, nstress = stress_controlled(&p->seg[j], p->ns);
+    begin_segment(p, j, &p->step[k]);
+    for (int i = 1; i <= n; ++i) {
+      hp_step *s = &p->step[k + 1];
+      double u = (double)i / n;
+      if ((st = relax_at(net, p, j, u, s))) goto done;
+      int limit = limit_passed(s, nstress);
+      if (!s->converged && !(limit && !p->inst.found)) {
+        p->stopped = nstress ? "no equilibrium under the stress control (past a limit "
+                               "point of the principal branch)"
+                             : "the fluctuations did not converge";
+        break;
       }
-      rprev = r;
+      s->local_min = s->acoustic_min = NAN;
+      s->stable = -1; /* not examined (past the first instability) */
+      if (!p->inst.found) {
+        if (!limit) {
+          if ((st = bloch_at(net, p, rprev.xi, &r))) goto done;
+          s->local_min = r.local_min;
+          s->acoustic_min = r.acoustic_min;
+          s->stable = !unstable(&r, &sc);
+        } else
+          s->stable = 0;
+        if (!s->stable) {
+          if (!limit && (st = rn_network_state_save(net, &cur))) goto done;
+          st = locate(net, p, &sc, prev, j, (double)(i - 1) / n, rprev, u, r, limit);
+          prev = NULL; /* locate owns it */
+          if (st) goto done;
+          if (limit) { /* no state past a limit point: the path ends there */
+            p->limit_end = 1;
+            break;
+          }
+          if ((st = rn_network_state_restore(net, cur))) goto done;
+          rn_state_destroy(&cur);
+        }
+        rprev = r;
+      }
+      rn_state_destroy(&prev);
+      if ((st = rn_network_state_save(net, &prev))) goto done;
+      p->done = ++k;
+      if (!p->quiet)
+        fprintf(stderr,
+                "rodnet homogenize: step %d/%d  t %.4f  stress [%.4e %.4e %.4e%s]  %d "
+                "Newton  %s\n",
+                k, p->steps, s->t, s->stress[0], s->stress[1], s->stress[p->ns - 1],
+                p->ns == 6 ? " ..." : "", s->newton,
+                s->stable == 1   ? "stable"
+                : s->stable == 0 ? "UNSTABLE"
+                                 : "-");
     }
-    rn_state_destroy(&prev);
-    if ((st = rn_network_state_save(net, &prev))) goto done;
-    p->done = k;
-    if (!p->quiet)
-      fprintf(
-          stderr,
-          "rodnet homogenize: step %d/%d  t %.4f  stress [%.4e %.4e %.4e%s]  %d Newton  "
-          "%s\n",
-          k, p->steps, t, s->stress[0], s->stress[1], s->stress[p->ns - 1],
-          p->ns == 6 ? " ..." : "", s->newton,
-          s->stable == 1   ? "stable"
-          : s->stable == 0 ? "UNSTABLE"
-                           : "-");
   }
 done:
   rn_state_destroy(&prev);
@@ -230,12 +478,30 @@ static void put_num(FILE *f, double v) {
     fputs("null", f);
 }
 
+static void put_control(FILE *f, int ns, const int *stress) {
+  fputc('[', f);
+  for (int v = 0; v < ns; ++v)
+    fprintf(f, "%s\"%s\"", v ? ", " : "", stress[v] ? "stress" : "strain");
+  fputc(']', f);
+}
+
 void hp_write_json(FILE *f, const hp_path *p) {
   static const char *const mode_names[] = {"all", "in-plane", "out-of-plane"};
   fputs("  \"path_target\": ", f);
   hp_put_vec(f, p->ns, p->target);
   fprintf(f, ",\n  \"path_steps\": %d,\n  \"bloch_modes\": \"%s\",\n", p->steps,
           mode_names[p->modes]);
+  fprintf(f, "  \"path_kind\": \"%s\",\n  \"path_segments\": [", p->kind);
+  for (int j = 0; j < p->nseg; ++j) {
+    fprintf(f, "%s\n    {\"control\": ", j ? "," : "");
+    put_control(f, p->ns, p->seg[j].stress);
+    fputs(", \"start\": ", f);
+    hp_put_vec(f, p->ns, p->seg[j].start);
+    fputs(", \"target\": ", f);
+    hp_put_vec(f, p->ns, p->seg[j].target);
+    fprintf(f, ", \"steps\": %d}", p->seg[j].steps);
+  }
+  fputs("],\n", f);
   fputs("  \"path\": [", f);
   for (int k = 0; k <= p->done; ++k) {
     const hp_step *s = &p->step[k];
@@ -250,7 +516,11 @@ void hp_write_json(FILE *f, const hp_path *p) {
             s->stable == 1   ? "true"
             : s->stable == 0 ? "false"
                              : "null");
-    fputs("\"bloch_min\": ", f);
+    fprintf(f, "\"segment\": %d, \"control\": ", s->seg);
+    put_control(f, p->ns, p->seg[s->seg].stress);
+    fprintf(f, ", \"mixed_iterations\": %d, \"tangent_min\": ", s->outer);
+    put_num(f, s->tangent_min);
+    fputs(", \"bloch_min\": ", f);
     put_num(f, s->local_min);
     fputs(", \"acoustic_min\": ", f);
     put_num(f, s->acoustic_min);
@@ -258,6 +528,8 @@ void hp_write_json(FILE *f, const hp_path *p) {
   }
   fputs("],\n", f);
   if (p->stopped) fprintf(f, "  \"path_stopped\": \"%s\",\n", p->stopped);
+  if (p->limit_end)
+    fputs("  \"path_end\": \"limit point of the stress (no equilibrium beyond)\",\n", f);
   fputs("  \"instability\": ", f);
   if (!p->inst.found) {
     fputs("null,\n", f);
@@ -270,11 +542,20 @@ void hp_write_json(FILE *f, const hp_path *p) {
   hp_put_vec(f, p->ns, in->stress);
   fputs(", \"wave_vector\": ", f);
   hp_put_vec(f, p->dim, in->xi);
-  fprintf(f, ", \"kind\": \"%s\", \"multiplicity\": %d, \"load_factor\": %.17g",
-          in->kind_macroscopic ? "macroscopic" : "local", in->multiplicity, in->t);
+  fprintf(f,
+          ", \"kind\": \"%s\", \"criterion\": \"%s\", \"multiplicity\": %d, "
+          "\"load_factor\": %.17g",
+          in->kind_macroscopic ? "macroscopic" : "local",
+          in->stress_limit       ? "stress_limit"
+          : in->kind_macroscopic ? "rank_one_convexity"
+                                 : "bloch",
+          in->multiplicity, in->t);
   fputs(", \"bloch_eigenvalues\": ", f);
   hp_put_vec(f, in->neig, in->eig);
-  if (in->kind_macroscopic) {
+  if (in->stress_limit) {
+    fputs(", \"strain_mode\": ", f);
+    hp_put_vec(f, p->ns, in->mode);
+  } else if (in->kind_macroscopic) {
     fputs(", \"direction\": ", f);
     hp_put_vec(f, 3, in->direction);
     fputs(", \"amplitude\": ", f);
@@ -296,4 +577,7 @@ void hp_write_json(FILE *f, const hp_path *p) {
 void hp_free(hp_path *p) {
   free(p->step);
   p->step = NULL;
+  free(p->seg);
+  p->seg = NULL;
+  p->nseg = 0;
 }

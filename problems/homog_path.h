@@ -1,7 +1,9 @@
-/* homog_path.h - `rodnet homogenize --path`: a proportional macroscopic strain
- * path from the rest state with the Bloch-Floquet first instability
- * (docs/homogenization.md, "Strain paths and stability").  The command prints;
- * this module records. */
+/* homog_path.h - `rodnet homogenize --path`: macroscopic strain, stress and
+ * mixed paths from the rest state (proportional, or piecewise linear through
+ * waypoints) with the Bloch-Floquet first instability and, under stress
+ * control, the limit point of the stress (docs/homogenization.md, "Strain
+ * paths and stability", "Stress and mixed paths").  The command prints; this
+ * module records. */
 #ifndef RN_HOMOG_PATH_H
 #define RN_HOMOG_PATH_H
 
@@ -10,11 +12,27 @@
 #include "rodnet_solve.h"
 #include "scene.h"
 
+/* One leg of a path: from the state reached at its start, every component v
+ * moves linearly in the path parameter from its start value to target[v], the
+ * strain (stress[v] == 0) or the homogenised stress (stress[v] == 1; the
+ * strain component is then a DOF, found by the mixed solve). */
+typedef struct hp_segment {
+  int steps;
+  int stress[6];    /* 1: component v is stress-controlled on this segment */
+  double target[6]; /* its strain or stress at the segment's end */
+  double start[6];  /* its strain or stress at the segment's start (hp_run) */
+} hp_segment;
+
 typedef struct hp_step {
-  double t;                       /* load factor along the path */
+  double t;                       /* path parameter: segment j spans [j, j + 1] */
+  int seg;                        /* the segment */
   double strain[6], stress[6];    /* Voigt, engineering shear */
   double energy;                  /* elastic energy of the cell */
-  int newton, converged;          /* rn_cell_relax */
+  int newton, converged;          /* rn_cell_relax (Newton summed over the mixed solve) */
+  int outer;                      /* mixed solve iterations (0: strain control) */
+  double tangent_min;             /* lowest eigenvalue of the effective tangent on the
+                                     stress-controlled components over its rest value
+                                     (NaN without stress control) */
   double local_min, acoustic_min; /* rn_cell_bloch at the step */
   int stable;
 } hp_step;
@@ -28,6 +46,9 @@ typedef struct hp_instability {
   int neig;
   double direction[3], amplitude[3];
   int bisections;
+  int stress_limit; /* 1: the effective tangent on the stress-controlled
+                       components lost positive definiteness (a limit point) */
+  double mode[6];   /* then: its null vector (strain components) */
 } hp_instability;
 
 typedef struct hp_pattern {
@@ -38,14 +59,19 @@ typedef struct hp_pattern {
 } hp_pattern;
 
 typedef struct hp_path {
-  int ns, dim, steps;
-  double target[6];
+  int ns, dim, steps; /* steps: over all segments */
+  double target[6];   /* the last segment's target */
+  int nseg;
+  hp_segment *seg;      /* [nseg], owned (hp_free) */
+  const char *kind;     /* "strain", "stress", "mixed" or "waypoints" */
+  double tangent_scale; /* largest eigenvalue of C at rest (hp_run) */
   rn_bloch_modes modes;
   int grid;
   int quiet;
   hp_step *step;       /* [steps + 1] */
   int done;            /* steps computed (step[0 .. done]) */
   const char *stopped; /* NULL, or why the path stopped early */
+  int limit_end;       /* 1: the path ended at a limit point of the stress */
   hp_instability inst;
   hp_pattern pattern; /* --pattern (cli_homogenize.c) */
   double seconds;
@@ -97,9 +123,27 @@ void hp_put_vec(FILE *f, int n, const double *v);
 
 /* Parse "E11,E22,E12" (ns numbers); 0 on success. */
 int hp_parse_strain(const char *s, double *out, int *count);
-/* Follow the path on net (the scene's network, at rest) and locate the first
- * instability; progress lines on stderr unless quiet.  Returns RN_OK when it ran
- * (the path may have stopped early: p->stopped), an error status otherwise. */
+/* Parse a path's targets: comma-separated entries, each a number (a strain, or
+ * a stress if stress_default), "-" (stress-controlled at zero stress),
+ * "s:VALUE" (stress-controlled) or "e:VALUE" (strain-controlled); at most 6.
+ * 0 on success. */
+int hp_parse_targets(const char *s, int stress_default, double *target, int *stress,
+                     int *count);
+/* Make p a one-segment path of steps steps to target (stress flags per
+ * component) and set p->kind; RN_ERR_ALLOC in ctx. */
+rn_status hp_single_segment(rn_context *ctx, hp_path *p, const double *target,
+                            const int *stress, int steps);
+/* Read the waypoints file (docs/homogenization.md, "Stress and mixed paths")
+ * into p->seg for a cell of p->ns strain components; default_steps for a
+ * waypoint without "steps".  Errors name the file, the JSON path and the
+ * reason (RN_ERR_IO / RN_ERR_PARSE in ctx). */
+rn_status hp_read_path_file(rn_context *ctx, const char *file, int default_steps,
+                            hp_path *p);
+/* Follow the path on net (the scene's network, at rest; every strain component
+ * a DOF) and locate the first instability; progress lines on stderr unless
+ * quiet.  Returns RN_OK when it ran (the path may have stopped early:
+ * p->stopped, or ended at a limit point of the stress: p->limit_end), an error
+ * status otherwise. */
 rn_status hp_run(rn_network *net, hp_path *p);
 /* Write the "path" and "instability" members (each line ends with ",\n"). */
 void hp_write_json(FILE *f, const hp_path *p);

@@ -88,8 +88,8 @@ static rn_status text_error(rn_context *ctx, const char *label, const char *text
 /* text[len] need not be NUL-terminated: nothing past text[len - 1] is read
  * (cJSON gets a NUL-terminated copy, so that running off the end of the text
  * is reported as such). */
-static rn_status parse_json(rn_context *ctx, const char *label, const char *text,
-                            size_t len, cJSON **root) {
+rn_status rn_json_parse_text(rn_context *ctx, const char *label, const char *text,
+                             size_t len, cJSON **root) {
   const char *nul = memchr(text, '\0', len);
   if (nul)
     return text_error(ctx, label, text, len, (size_t)(nul - text),
@@ -654,7 +654,7 @@ static rn_status scene_parse(rn_context *ctx, const char *label, const char *tex
   if (!ctx || !text) return RN_ERR_ARG;
   if (!label) label = "<scene>";
   cJSON *root = NULL;
-  rn_status st = parse_json(ctx, label, text, len, &root);
+  rn_status st = rn_json_parse_text(ctx, label, text, len, &root);
   if (st) return st;
   rn_scene *s = NULL;
   st = scene_new(ctx, label, part, &s);

@@ -25,6 +25,12 @@ typedef struct rn_jwalk {
 /* Value constraints for numbers. */
 typedef enum rn_jrange { RN_J_ANY = 0, RN_J_POSITIVE, RN_J_NONNEG } rn_jrange;
 
+/* Parse text[len] (need not be NUL-terminated) as one JSON value into *root
+ * (caller deletes); RN_ERR_PARSE "LABEL:LINE:COL: malformed JSON near '...'",
+ * an empty file or a NUL byte likewise (scene.c). */
+rn_status rn_json_parse_text(rn_context *ctx, const char *label, const char *text,
+                             size_t len, cJSON **root);
+
 void rn_jwalk_init(rn_jwalk *w, rn_context *ctx, const char *file);
 /* Append ".key" (or ["key"]) / "[i]" to the path; return a mark for pop. */
 size_t rn_jwalk_key(rn_jwalk *w, const char *key);

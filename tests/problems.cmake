@@ -380,6 +380,54 @@ if(RN_WITH_TRILINOS)
               ABSENT ${gen}/hom_path_bad.json
               ARGS homogenize ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json
                    --path 1,2 -o ${gen}/hom_path_bad.json)
+  # Stress-controlled, mixed and waypoint paths (docs/homogenization.md, "Stress and
+  # mixed paths"): check_stress_path.py runs rodnet and asserts against
+  # "constants", the strain path through the same states, the direct path.
+  foreach(case constants equivalent waypoints bcc3d instability)
+    add_test(NAME problems_cli_homogenize_stress_path_${case}
+             COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_stress_path.py
+                     ${RN_CLI} ${gen}/stress_path_${case} ${case})
+    set_tests_properties(problems_cli_homogenize_stress_path_${case} PROPERTIES
+                         LABELS unit TIMEOUT 120)
+  endforeach()
+  set(pd ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/paths)
+  set(hcs ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json)
+  rn_cli_test(problems_cli_homogenize_path_file 0
+              "first instability|the path stays stable \\(4 steps\\)"
+              ARGS homogenize ${hcs} --path-file ${pd}/hc_mixed.json --bloch-grid 2
+                   -o ${gen}/hom_path_file.json)
+  rn_cli_test(problems_cli_homogenize_path_mixed_bad 2
+              "--path '1,-,x': expected 3 comma-separated .*'-', s:VALUE"
+              ABSENT ${gen}/hom_path_bad.json
+              ARGS homogenize ${hcs} --path 1,-,x -o ${gen}/hom_path_bad.json)
+  rn_cli_test(problems_cli_homogenize_path_stress_bad 2
+              "--path-stress '1,2': expected 3 comma-separated numbers \\(S11,S22,S12\\)"
+              ABSENT ${gen}/hom_path_bad.json
+              ARGS homogenize ${hcs} --path-stress 1,2 -o ${gen}/hom_path_bad.json)
+  rn_cli_test(problems_cli_homogenize_path_two 2 "give one of --path, --path-stress and --path-file"
+              ARGS homogenize ${hcs} --path 0,0,0 --path-stress 1,0,0
+                   -o ${gen}/hom_path_bad.json)
+  set(RN_PATH_FILE_ERRORS
+      "missing:missing.json: cannot open"
+      "bad_json:bad_json.json:4:1: malformed JSON"
+      "both:both.json: \\$.waypoints\\[1\\]: component 2 \\(E22\\) has both a strain and a stress"
+      "neither:neither.json: \\$.waypoints\\[0\\]: component 2 \\(E22\\) has neither"
+      "count:count.json: \\$.waypoints\\[0\\].strain: expected 3 entries"
+      "unknown_key:unknown_key.json: \\$.waypoints\\[0\\].*step"
+      "steps:steps.json: \\$.waypoints\\[0\\].steps"
+      "empty:empty.json: \\$.waypoints: expected 1 to 1000 waypoints, got 0"
+      "string:string.json: \\$.waypoints\\[0\\].stress\\[1\\]"
+      "no_waypoints:no_waypoints.json: \\$.*path")
+  foreach(entry ${RN_PATH_FILE_ERRORS})
+    string(FIND "${entry}" ":" colon)
+    string(SUBSTRING "${entry}" 0 ${colon} name)
+    math(EXPR colon "${colon} + 1")
+    string(SUBSTRING "${entry}" ${colon} -1 regex)
+    rn_cli_test(problems_cli_homogenize_path_file_${name} 3 "--path-file: .*${regex}"
+                STDERR_LINES 1 ABSENT ${gen}/hom_path_file_bad.json
+                ARGS homogenize ${hcs} --path-file ${pd}/${name}.json
+                     -o ${gen}/hom_path_file_bad.json)
+  endforeach()
   # rodnet sweep: 20 relative densities of the honeycomb, CSV and PNG against the
   # closed forms; a rerun skips every finished point; a bad sweep file.
   rn_cli_test(problems_cli_sweep 0 "20 points \\(0 failed\\); wrote"
