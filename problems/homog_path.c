@@ -136,77 +136,121 @@ static double lowest_mode(int ns, int nf, const int *f, const double *Cff, doubl
   return ev[0];
 }
 
+/* The Newton (and predictor) correction of the stress-controlled strain
+ * components f[nf] at a state of strain eps and stress sig with the tangent C:
+ * C_ff d = (sigma_f* - sigma_f) - C_fp (e_p* - e_p).  0 if C_ff is singular. */
+static int mixed_step(int ns, int nf, const int *f, const int *stress, const double *val,
+                      const double *eps, const double *sig, const double *C, double *d) {
+  double Cff[36] = {0}, Sff[36], rhs[6];
+  for (int i = 0; i < nf; ++i) {
+    for (int j = 0; j < nf; ++j) Cff[i * nf + j] = C[f[i] * ns + f[j]];
+    rhs[i] = val[f[i]] - sig[f[i]];
+    for (int v = 0; v < ns; ++v)
+      if (!stress[v]) rhs[i] -= C[f[i] * ns + v] * (val[v] - eps[v]);
+  }
+  if (!rn_homog_invert(nf, Cff, Sff)) return 0;
+  for (int i = 0; i < nf; ++i) {
+    d[i] = 0.0;
+    for (int j = 0; j < nf; ++j) d[i] += Sff[i * nf + j] * rhs[j];
+  }
+  return 1;
+}
+
 /* Mixed control at the current segment: the strain-controlled components held
  * at val, the stress-controlled ones (f[nf]) free with the homogenised stress
  * val.  Newton on those strain components with the effective tangent C_ff
  * (rn_homogenize at each iterate), the fluctuations relaxed by rn_cell_relax
- * at each; the predictor from the tangent at the current (converged) state.
- * s->converged 0 if it fails (no equilibrium nearby: past a limit point). */
+ * at each; the first correction (the predictor) from the tangent at the current
+ * (converged) state.  Where a trial fails (the fluctuations do not converge or
+ * are unstable) the correction is halved from the last good state (up to 12
+ * times).  s->converged 0 if it fails (no equilibrium nearby: past a limit
+ * point, or unstable cell-periodic fluctuations: s->kuu_indefinite). */
 static rn_status mixed_relax(rn_network *net, const hp_path *p, const int *stress,
                              const double *val, hp_step *s) {
-  int ns = p->ns, nf = 0, f[6];
-  double eps[6], sig[6], C[36], Cff[36], Sff[36], r[6];
+  int ns = p->ns, nf = 0, f[6], halvings = 0, tangent_ok = 1, seen_indefinite = 0;
+  double eps[6], sig[6], C[36] = {0}, Cff[36] = {0}, d[6], eps_ok[6];
   rn_status st;
-  rn_cell_relax_report rep;
+  rn_cell_relax_report rep = {0};
+  rn_state *ok = NULL;
   for (int v = 0; v < ns; ++v)
     if (stress[v]) f[nf++] = v;
-  if ((st = state_of(net, eps, sig, NULL))) return st;
-  /* predictor: C_ff d e_f = (sigma_f* - sigma_f) - C_fp (e_p* - e_p) */
-  if (tangent_ff(net, nf, f, C, Cff) == RN_OK && rn_homog_invert(nf, Cff, Sff)) {
-    double rhs[6], de[6];
-    for (int i = 0; i < nf; ++i) {
-      rhs[i] = val[f[i]] - sig[f[i]];
-      for (int v = 0; v < ns; ++v)
-        if (!stress[v]) rhs[i] -= C[f[i] * ns + v] * (val[v] - eps[v]);
-    }
-    for (int i = 0; i < nf; ++i) {
-      de[i] = 0.0;
-      for (int j = 0; j < nf; ++j) de[i] += Sff[i * nf + j] * rhs[j];
-    }
-    for (int i = 0; i < nf; ++i) eps[f[i]] += de[i];
-  }
-  for (int v = 0; v < ns; ++v)
-    if (!stress[v]) eps[v] = val[v];
   s->converged = 0;
   s->newton = 0;
-  for (s->outer = 1; s->outer <= 30; ++s->outer) {
-    double rn = 0.0, scale = 0.0, step = 0.0, emax = 0.0;
-    if ((st = rn_cell_relax(net, eps, &rep))) return st;
+  if ((st = state_of(net, eps, sig, NULL))) return st;
+  if ((st = rn_network_state_save(net, &ok))) return st;
+  memcpy(eps_ok, eps, sizeof(eps));
+  /* the predictor from the tangent at the current state */
+  double pred = 0.0, e_pred[6];
+  if (tangent_ff(net, nf, f, C, Cff) == RN_OK &&
+      mixed_step(ns, nf, f, stress, val, eps, sig, C, d))
+    for (int i = 0; i < nf; ++i) {
+      eps[f[i]] += d[i];
+      pred = fmax(pred, fabs(d[i]));
+    }
+  for (int v = 0; v < ns; ++v) {
+    if (!stress[v]) {
+      pred = fmax(pred, fabs(val[v] - eps[v]));
+      eps[v] = val[v];
+    }
+  }
+  memcpy(e_pred, eps, sizeof(eps));
+  for (s->outer = 1; s->outer <= 40; ++s->outer) {
+    double rn = 0.0, scale = 0.0, step = 0.0, emax = 0.0, off = 0.0;
+    if ((st = rn_cell_relax(net, eps, &rep))) goto done;
     s->newton += rep.iterations;
-    if (!rep.converged) return RN_OK;
-    if ((st = state_of(net, eps, sig, NULL))) return st;
+    tangent_ok = rep.converged && !rep.indefinite;
+    seen_indefinite |= rep.converged && rep.indefinite;
+    if (tangent_ok) {
+      st = tangent_ff(net, nf, f, C, Cff);
+      if (st && st != RN_ERR_SOLVER) goto done;
+      tangent_ok = st == RN_OK;
+      st = RN_OK;
+    }
+    if (!tangent_ok) { /* a failed trial: halve it from the last good state */
+      if (++halvings > 12) goto done;
+      if ((st = rn_network_state_restore(net, ok))) goto done;
+      for (int v = 0; v < ns; ++v) eps[v] = eps_ok[v] + 0.5 * (eps[v] - eps_ok[v]);
+      continue;
+    }
+    halvings = 0;
+    rn_state_destroy(&ok);
+    if ((st = rn_network_state_save(net, &ok))) goto done;
+    if ((st = state_of(net, eps, sig, NULL))) goto done;
+    memcpy(eps_ok, eps, sizeof(eps));
     for (int v = 0; v < ns; ++v) {
       scale = fmax(scale, fabs(sig[v]));
       emax = fmax(emax, fabs(eps[v]));
+      if (!stress[v]) off = fmax(off, fabs(eps[v] - val[v]));
     }
     for (int i = 0; i < nf; ++i) {
-      r[i] = sig[f[i]] - val[f[i]];
-      rn = fmax(rn, fabs(r[i]));
+      rn = fmax(rn, fabs(sig[f[i]] - val[f[i]]));
       scale = fmax(scale, fabs(val[f[i]]));
     }
-    st = tangent_ff(net, nf, f, C, Cff);
-    if (st == RN_ERR_SOLVER) return RN_OK; /* K_uu indefinite: no tangent */
-    if (st) return st;
+    int invertible = mixed_step(ns, nf, f, stress, val, eps, sig, C, d);
+    for (int i = 0; i < nf && invertible; ++i) step = fmax(step, fabs(d[i]));
     /* converged: the stress residual, or the Newton correction of the strain
      * below what the relaxed fluctuations resolve */
-    double d[6];
-    int invertible = rn_homog_invert(nf, Cff, Sff);
-    for (int i = 0; i < nf && invertible; ++i) {
-      d[i] = 0.0;
-      for (int j = 0; j < nf; ++j) d[i] -= Sff[i * nf + j] * r[j];
-      step = fmax(step, fabs(d[i]));
-    }
-    if (rn <= 1e-10 * scale + (1e-12 * emax + 1e-20) * p->tangent_scale ||
-        (invertible && step <= 1e-8 * emax + 1e-12)) {
+    if (off == 0.0 && (rn <= 1e-10 * scale + (1e-12 * emax + 1e-20) * p->tangent_scale ||
+                       (invertible && step <= 1e-8 * emax + 1e-12))) {
       s->converged = 1;
       s->tangent_min = lowest_mode(ns, nf, f, Cff, NULL) / p->tangent_scale;
-      return RN_OK;
+      /* corrected by more than the predicted step: it jumped to another branch
+       * (snapped through a limit point between the steps) */
+      for (int i = 0; i < nf; ++i)
+        if (fabs(eps[f[i]] - e_pred[f[i]]) > fmax(2.0 * pred, 1e-12)) s->jumped = 1;
+      goto done;
     }
-    if (!invertible) return RN_OK;
+    if (!invertible || step > 0.1) goto done; /* no equilibrium nearby */
     for (int i = 0; i < nf; ++i) eps[f[i]] += d[i];
-    if (step > 0.1) return RN_OK; /* a jump: no equilibrium nearby */
+    for (int v = 0; v < ns; ++v)
+      if (!stress[v]) eps[v] = val[v];
   }
-  return RN_OK;
+done:
+  /* failed next to unstable cell-periodic fluctuations: their instability */
+  if (!s->converged)
+    s->kuu_indefinite = seen_indefinite || (rep.converged && !tangent_ok);
+  rn_state_destroy(&ok);
+  return st;
 }
 
 /* The controlled values of segment j at its local parameter u. */
@@ -265,12 +309,15 @@ static int multiplicity(const rn_bloch_result *r) {
  * solve failed) or the tangent on the stress-controlled components is not
  * positive definite. */
 static int limit_passed(const hp_step *s, int nstress) {
-  return nstress && (!s->converged || !(s->tangent_min > 1e-9));
+  return nstress && !s->kuu_indefinite &&
+         (!s->converged || s->jumped || !(s->tangent_min > 1e-9));
 }
 
 /* Locate the first instability in segment j between the converged state lo
  * (local parameter u_lo, its Bloch result rlo) and u_hi (result rhi; limit_hi:
- * the state at u_hi is past a limit point of the stress) by bisection to
+ * 1 the state at u_hi is past a limit point of the stress, 2 its cell-periodic
+ * fluctuations are unstable in modes the Bloch test does not examine, 0 the
+ * Bloch test failed there) by bisection to
  * 0.1 % of the parameter, then a secant estimate inside the last bracket. */
 static rn_status locate(rn_network *net, hp_path *p, const scales *sc, rn_state *lo,
                         int j, double u_lo, rn_bloch_result rlo, double u_hi,
@@ -290,9 +337,12 @@ static rn_status locate(rn_network *net, hp_path *p, const scales *sc, rn_state 
       limit_hi = 1;
       continue;
     }
-    if (!s.converged) break;
+    if (!s.converged && !s.kuu_indefinite) break;
     if ((st = bloch_at(net, p, rhi.xi, &r))) goto done;
-    if (unstable(&r, sc)) {
+    if (s.kuu_indefinite && !unstable(&r, sc)) { /* outside the modes examined */
+      u_hi = mid;
+      limit_hi = 2;
+    } else if (unstable(&r, sc)) {
       u_hi = mid;
       rhi = r;
       limit_hi = 0;
@@ -305,9 +355,16 @@ static rn_status locate(rn_network *net, hp_path *p, const scales *sc, rn_state 
   }
   in->found = 1;
   in->bisections = it;
-  in->stress_limit = limit_hi;
+  in->stress_limit = limit_hi == 1;
+  in->cell_periodic = limit_hi == 2;
   double uc = u_hi;
-  if (limit_hi) {
+  if (limit_hi == 2) { /* K_uu indefinite in modes the Bloch test does not examine */
+    uc = u_lo;
+    in->kind_macroscopic = 0;
+    memset(in->xi, 0, sizeof(in->xi));
+    in->multiplicity = 1;
+    in->neig = 0;
+  } else if (limit_hi) {
     /* the last equilibrium before the limit; its softest strain mode */
     int f[6], nf = 0;
     double C[36], Cff[36];
@@ -319,7 +376,22 @@ static rn_status locate(rn_network *net, hp_path *p, const scales *sc, rn_state 
     for (int v = 0; v < p->ns; ++v)
       if (p->seg[j].stress[v]) f[nf++] = v;
     if ((st = rn_network_state_restore(net, lo))) goto done;
-    if (tangent_ff(net, nf, f, C, Cff) == RN_OK) lowest_mode(p->ns, nf, f, Cff, in->mode);
+    double lo_min = NAN, rest_min = NAN;
+    if (tangent_ff(net, nf, f, C, Cff) == RN_OK)
+      lo_min = lowest_mode(p->ns, nf, f, Cff, in->mode);
+    for (int a = 0; a < nf; ++a)
+      for (int b = 0; b < nf; ++b) Cff[a * nf + b] = p->c_rest[f[a] * p->ns + f[b]];
+    rest_min = lowest_mode(p->ns, nf, f, Cff, NULL);
+    /* a limit point: C_ff nearly singular at the last equilibrium (at 0.1 % of
+     * the parameter from a fold its lowest eigenvalue is about 3 % of the rest
+     * value); else the mixed solve merely failed */
+    if (!(lo_min < 0.1 * rest_min)) {
+      in->found = 0;
+      p->stopped = "the mixed solve did not converge or jumped, though the tangent on "
+                   "the stress-controlled components stays positive definite (not a "
+                   "limit point; try more --steps)";
+      goto done;
+    }
   } else {
     in->kind_macroscopic = macro_unstable(&rhi, sc) && rhi.acoustic_valid;
     double flo = in->kind_macroscopic ? rlo.acoustic_min : rlo.local_min;
@@ -378,6 +450,7 @@ rn_status hp_run(rn_network *net, hp_path *p) {
     double ev[6], V[36];
     sym_eigen(p->ns, Cee, ev, V);
     p->tangent_scale = fabs(ev[p->ns - 1]) > 0.0 ? fabs(ev[p->ns - 1]) : 1.0;
+    memcpy(p->c_rest, C, sizeof(p->c_rest));
   }
   {
     hp_step *s0 = &p->step[0];
@@ -413,8 +486,19 @@ rn_status hp_run(rn_network *net, hp_path *p) {
       hp_step *s = &p->step[k + 1];
       double u = (double)i / n;
       if ((st = relax_at(net, p, j, u, s))) goto done;
+      if (nstress && (s->jumped || !s->converged)) {
+        /* the same step again in 8 substeps from the previous state: a strongly
+         * nonlinear step, or the first sign of a limit point */
+        double u0 = (double)(i - 1) / n;
+        if ((st = rn_network_state_restore(net, prev))) goto done;
+        for (int q = 1; q <= 8; ++q) {
+          if ((st = relax_at(net, p, j, q == 8 ? u : u0 + (u - u0) * q / 8, s)))
+            goto done;
+          if (!s->converged || s->jumped) break;
+        }
+      }
       int limit = limit_passed(s, nstress);
-      if (!s->converged && !(limit && !p->inst.found)) {
+      if (!s->converged && !((limit || s->kuu_indefinite) && !p->inst.found)) {
         p->stopped = nstress ? "no equilibrium under the stress control (past a limit "
                                "point of the principal branch)"
                              : "the fluctuations did not converge";
@@ -427,16 +511,21 @@ rn_status hp_run(rn_network *net, hp_path *p) {
           if ((st = bloch_at(net, p, rprev.xi, &r))) goto done;
           s->local_min = r.local_min;
           s->acoustic_min = r.acoustic_min;
-          s->stable = !unstable(&r, &sc);
+          s->stable = !s->kuu_indefinite && !unstable(&r, &sc);
         } else
           s->stable = 0;
         if (!s->stable) {
           if (!limit && (st = rn_network_state_save(net, &cur))) goto done;
-          st = locate(net, p, &sc, prev, j, (double)(i - 1) / n, rprev, u, r, limit);
+          int why = limit ? 1 : (s->kuu_indefinite && !unstable(&r, &sc)) ? 2 : 0;
+          st = locate(net, p, &sc, prev, j, (double)(i - 1) / n, rprev, u, r, why);
           prev = NULL; /* locate owns it */
           if (st) goto done;
           if (limit) { /* no state past a limit point: the path ends there */
-            p->limit_end = 1;
+            p->limit_end = p->inst.found;
+            break;
+          }
+          if (s->kuu_indefinite) { /* no tangent for the stress control beyond */
+            p->limit_end = 2;
             break;
           }
           if ((st = rn_network_state_restore(net, cur))) goto done;
@@ -528,8 +617,12 @@ void hp_write_json(FILE *f, const hp_path *p) {
   }
   fputs("],\n", f);
   if (p->stopped) fprintf(f, "  \"path_stopped\": \"%s\",\n", p->stopped);
-  if (p->limit_end)
+  if (p->limit_end == 1)
     fputs("  \"path_end\": \"limit point of the stress (no equilibrium beyond)\",\n", f);
+  else if (p->limit_end == 2)
+    fputs("  \"path_end\": \"past the instability the cell-periodic fluctuations are "
+          "unstable: no tangent for the stress control\",\n",
+          f);
   fputs("  \"instability\": ", f);
   if (!p->inst.found) {
     fputs("null,\n", f);
@@ -547,6 +640,7 @@ void hp_write_json(FILE *f, const hp_path *p) {
           "\"load_factor\": %.17g",
           in->kind_macroscopic ? "macroscopic" : "local",
           in->stress_limit       ? "stress_limit"
+          : in->cell_periodic    ? "cell_periodic_fluctuations"
           : in->kind_macroscopic ? "rank_one_convexity"
                                  : "bloch",
           in->multiplicity, in->t);

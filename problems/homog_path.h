@@ -30,6 +30,10 @@ typedef struct hp_step {
   double energy;                  /* elastic energy of the cell */
   int newton, converged;          /* rn_cell_relax (Newton summed over the mixed solve) */
   int outer;                      /* mixed solve iterations (0: strain control) */
+  int jumped;                     /* the mixed solve's correction exceeded the
+                                     predicted step (another branch) */
+  int kuu_indefinite;             /* the mixed solve met an indefinite K_uu (an
+                                     unstable cell-periodic fluctuation) */
   double tangent_min;             /* lowest eigenvalue of the effective tangent on the
                                      stress-controlled components over its rest value
                                      (NaN without stress control) */
@@ -46,9 +50,12 @@ typedef struct hp_instability {
   int neig;
   double direction[3], amplitude[3];
   int bisections;
-  int stress_limit; /* 1: the effective tangent on the stress-controlled
-                       components lost positive definiteness (a limit point) */
-  double mode[6];   /* then: its null vector (strain components) */
+  int stress_limit;  /* 1: the effective tangent on the stress-controlled
+                        components lost positive definiteness (a limit point) */
+  double mode[6];    /* then: its null vector (strain components) */
+  int cell_periodic; /* 1: under stress control, the cell-periodic fluctuations
+                        (K_uu) lost positive definiteness in modes the Bloch
+                        test does not examine (--modes) */
 } hp_instability;
 
 typedef struct hp_pattern {
@@ -65,13 +72,16 @@ typedef struct hp_path {
   hp_segment *seg;      /* [nseg], owned (hp_free) */
   const char *kind;     /* "strain", "stress", "mixed" or "waypoints" */
   double tangent_scale; /* largest eigenvalue of C at rest (hp_run) */
+  double c_rest[36];    /* C at rest (hp_run) */
   rn_bloch_modes modes;
   int grid;
   int quiet;
   hp_step *step;       /* [steps + 1] */
   int done;            /* steps computed (step[0 .. done]) */
   const char *stopped; /* NULL, or why the path stopped early */
-  int limit_end;       /* 1: the path ended at a limit point of the stress */
+  int limit_end;       /* the path ended under stress control at its first
+                          instability: 1 a limit point of the stress, 2 unstable
+                          cell-periodic fluctuations (K_uu indefinite) */
   hp_instability inst;
   hp_pattern pattern; /* --pattern (cli_homogenize.c) */
   double seconds;
