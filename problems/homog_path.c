@@ -7,23 +7,6 @@
 #include <string.h>
 #include <time.h>
 
-int hp_parse_strain(const char *s, double *out, int *count) {
-  int n = 0;
-  const char *p = s;
-  for (;;) {
-    char *end = NULL;
-    if (n == 6) return -1;
-    double v = strtod(p, &end);
-    if (end == p || !isfinite(v)) return -1;
-    out[n++] = v;
-    if (*end == '\0') break;
-    if (*end != ',') return -1;
-    p = end + 1;
-  }
-  *count = n;
-  return 0;
-}
-
 static double seconds_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

@@ -131,8 +131,6 @@ void hp_post_write_json(FILE *f, const hp_path *p, const hp_post *po);
 void hp_post_free(hp_post *po);
 void hp_put_vec(FILE *f, int n, const double *v);
 
-/* Parse "E11,E22,E12" (ns numbers); 0 on success. */
-int hp_parse_strain(const char *s, double *out, int *count);
 /* Parse a path's targets: comma-separated entries, each a number (a strain, or
  * a stress if stress_default), "-" (stress-controlled at zero stress),
  * "s:VALUE" (stress-controlled) or "e:VALUE" (strain-controlled); at most 6.
