@@ -410,13 +410,19 @@ static int refuse_fixed_couples(const solve_args *a, const rn_network *net,
   int rod = -1, vertex = -1;
   if (opt->solver == RN_SOLVER_NOX || rn_network_fixed_couples(net, &rod, &vertex) == 0)
     return 0;
+  const char *name = rn_network_rod_name(net, rod);
+  char which[64];
+  if (name && name[0])
+    snprintf(which, sizeof which, "'%.50s'", name);
+  else /* the graph pass of a distributed solve has no names */
+    snprintf(which, sizeof which, "%d", rod);
   if (loud)
     fprintf(stderr,
-            "rodnet solve: %s: the moment on rod '%s' vertex %d is a couple fixed in "
+            "rodnet solve: %s: the moment on rod %s vertex %d is a couple fixed in "
             "space (\"model\": \"fixed\"), a nonconservative load with no energy: the "
             "energy minimiser '%s' cannot solve it; use --solver nox (Newton on the "
             "residual)\n",
-            a->scene, rn_network_rod_name(net, rod), vertex, rn_solver_name(opt->solver));
+            a->scene, which, vertex, rn_solver_name(opt->solver));
   return RN_EXIT_USAGE;
 }
 
@@ -608,6 +614,8 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   if (agree(d, st, "rodnet solve: solver failed: ")) return RN_EXIT_INTERNAL;
   rn_result_info in;
   rn_result_info_fill(&rep, &opt, &in);
+  if (rn_network_fixed_couples(rn_scene_network(d->part), NULL, NULL) > 0)
+    in.stability_note = RN_NOTE_NONCONSERVATIVE;
   if ((rc = gather_and_write(d, a, &in))) return rc;
   return rep.converged ? RN_EXIT_OK : RN_EXIT_NOT_CONVERGED;
 }
