@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rnk_couple.h"
+#include "rodnet_couple.h"
 
 typedef enum { OP_ENERGY, OP_GRAD, OP_HVP, OP_HESS } eval_op;
 
@@ -238,6 +240,35 @@ static rn_status rod_stencils_eval(const rn_network *net, int ir, eval_args *a) 
   }
 }
 
+/* A couple fixed in space (rodnet_couple.h): no energy; the gradient gets
+ * -Q (the residual) and the Hessian -J (the residual's Jacobian,
+ * nonsymmetric). */
+static int fixed_couple_eval(const rn_network *net, const rn_moment *mo,
+                             const double M[3], eval_args *a) {
+  enum { N = RN_EDGE_STENCIL };
+  const rn_rod *r = &net->rods[mo->rod];
+  size_t s = rn_dof_edge_stencil(r->off, mo->edge);
+  double q[N], Q[N], J[N * N], vl[N], loc[N * N];
+  int rc;
+  if (a->op == OP_ENERGY) return RNK_OK;
+  rn_gather(net, a->x, s, N, q);
+  rc = rnk_couple_fixed_force(q, &r->ref[mo->edge], M, Q, a->op == OP_GRAD ? NULL : J);
+  if (rc != RNK_OK) return rc;
+  if (a->op == OP_GRAD) {
+    for (int i = 0; i < N; ++i) loc[i] = -Q[i];
+  } else if (a->op == OP_HVP) {
+    gather_dir(net, a, s, N, vl);
+    for (int i = 0; i < N; ++i) {
+      loc[i] = 0.0;
+      for (int j = 0; j < N; ++j) loc[i] -= J[N * i + j] * vl[j];
+    }
+  } else {
+    for (int i = 0; i < N * N; ++i) loc[i] = -J[i];
+  }
+  accumulate(net, a, s, N, loc);
+  return RNK_OK;
+}
+
 static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a) {
   enum { N = RN_EDGE_STENCIL };
   const rn_rod *r = &net->rods[mo->rod];
@@ -248,6 +279,7 @@ static int moment_eval(const rn_network *net, const rn_moment *mo, eval_args *a)
   int rc = RNK_OK;
   for (int k = 0; k < 3; ++k) p.M[k] = a->lambda * mo->M[k];
   if (p.M[0] == 0.0 && p.M[1] == 0.0 && p.M[2] == 0.0) return RNK_OK;
+  if (mo->model == RN_COUPLE_FIXED) return fixed_couple_eval(net, mo, p.M, a);
   memcpy(p.f0, mo->f0, sizeof(p.f0));
   p.angle0 = mo->angle0;
   memcpy(p.b, mo->b, sizeof(p.b));

@@ -348,6 +348,12 @@ rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
                    "need n_random >= 0 and finite perturb >= 0");
   if (x && !rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  if (net->nfixed_couples > 0) /* no energy: its gradient is not a derivative */
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "the moment on rod %d vertex %d is a couple fixed in space (no "
+                   "energy): the gradient and Hessian checks against the energy do not "
+                   "apply (its force and Jacobian are checked in the unit tests)",
+                   net->fixed_rod, net->fixed_vertex);
   memset(rep, 0, sizeof(*rep));
   rep->grad_order = rep->hvp_order = NAN;
   if (net->nred == 0) return RN_OK;

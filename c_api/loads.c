@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "network_internal.h"
+#include "rodnet_couple.h"
 
 void rn_couple_vector(const double f[9], const double m[3], double b[3]) {
   int best = 0;
@@ -61,14 +62,26 @@ rn_status rn_network_add_force(rn_network *net, int rod, int vertex, const doubl
 }
 
 rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const double m[3]) {
+  return rn_network_add_moment_model(net, rod, vertex, m, RN_COUPLE_CONSERVATIVE);
+}
+
+rn_status rn_network_add_moment_model(rn_network *net, int rod, int vertex,
+                                      const double m[3], rn_couple_model model) {
   static const char *where = "rn_network_add_moment";
   rn_status st;
   rn_moment *mo;
   int v, lr, gid;
   if (!net) return RN_ERR_ARG;
+  if (model != RN_COUPLE_CONSERVATIVE && model != RN_COUPLE_FIXED)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "rod %d vertex %d: unknown couple model %d", rod, vertex, (int)model);
   st = check_load(net, where, rod, vertex, m, &v, &lr);
   if (st && st != RN_NOT_HERE) return st;
   gid = rn_part_next_moment(net);
+  if (model == RN_COUPLE_FIXED && net->nfixed_couples++ == 0) {
+    net->fixed_rod = rod;
+    net->fixed_vertex = v;
+  }
   if (st == RN_NOT_HERE) return RN_OK;
   if (net->nmom == net->cap_mom) {
     int cap = net->cap_mom ? 2 * net->cap_mom : 8;
@@ -83,8 +96,18 @@ rn_status rn_network_add_moment(rn_network *net, int rod, int vertex, const doub
   mo->rod = lr;
   mo->vertex = v;
   mo->edge = rn_moment_edge(net->rods[lr].nv, v);
+  mo->model = (int)model;
   memcpy(mo->M, m, sizeof(mo->M));
   return RN_OK;
+}
+
+int rn_network_fixed_couples(const rn_network *net, int *rod, int *vertex) {
+  if (!net) return 0;
+  if (net->nfixed_couples > 0) {
+    if (rod) *rod = net->fixed_rod;
+    if (vertex) *vertex = net->fixed_vertex;
+  }
+  return net->nfixed_couples;
 }
 
 rn_status rn_network_add_line_load(rn_network *net, int rod, const double w[3]) {

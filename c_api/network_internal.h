@@ -66,6 +66,7 @@ typedef struct rn_moment {
   double f0[9];  /* (t, d1, d2) at the last reference update */
   double angle0; /* accumulated angle up to that update */
   double b[3];   /* body vector the couple turns (rnk_moment_param.b) */
+  int model;     /* rn_couple_model (rodnet_couple.h): conservative or fixed */
 } rn_moment;
 
 /* A joint: the end vertices of its rods become one vertex whose position is
@@ -133,6 +134,9 @@ struct rn_network {
   int nrods, cap_rods;
   rn_moment *moments;
   int nmom, cap_mom;
+  /* couples fixed in space added to the whole network (also those another
+   * part holds), and the rod and vertex of the first (rodnet_couple.h) */
+  int nfixed_couples, fixed_rod, fixed_vertex;
   rn_joint *joints;
   int njoints, cap_joints;
   double gravity[3];

@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rnk_couple.h"
+#include "rodnet_couple.h"
 
 rn_status rn_network_dof_kinds(const rn_network *net, int *kind) {
   static const char *where = "rn_network_dof_kinds";
@@ -295,6 +297,23 @@ static void cross_add(const double a[3], const double b[3], double out[3]) {
   out[2] += a[0] * b[1] - a[1] * b[0];
 }
 
+/* The spatial moment couple mo applies at the current state, per unit load
+ * factor: M for a couple fixed in space; f x (M x f) / |n x f|^2 for the
+ * conservative one (rnk_moment_spatial, docs/model.md "Loads"), M where that
+ * is degenerate (f along M: the state is degenerate for the couple too). */
+static void applied_couple(const rn_network *net, const rn_moment *mo, double m[3]) {
+  const rn_rod *r = &net->rods[mo->rod];
+  const double *x = net->xfull + rn_dof_edge_stencil(r->off, mo->edge);
+  double e[3], F[9];
+  memcpy(m, mo->M, 3 * sizeof(double));
+  if (mo->model != RN_COUPLE_CONSERVATIVE) return;
+  for (int k = 0; k < 3; ++k) e[k] = x[RN_EDGE_LOCAL_X1 + k] - x[RN_EDGE_LOCAL_X0 + k];
+  if (rnk_material_frame(e, &r->ref[mo->edge], x[RN_EDGE_LOCAL_THETA], F, F + 3, F + 6) !=
+          RNK_OK ||
+      rnk_moment_spatial(F, mo->b, mo->M, m) != RNK_OK)
+    memcpy(m, mo->M, 3 * sizeof(double));
+}
+
 rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
                                        double moment[3]) {
   static const char *where = "rn_network_applied_resultant";
@@ -313,7 +332,11 @@ rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
       cross_add(&xf[rn_dof_vertex(r->off, v)], f, M);
     }
   }
-  for (int im = 0; im < net->nmom; ++im) add_scaled(M, lam, net->moments[im].M);
+  for (int im = 0; im < net->nmom; ++im) {
+    double m[3];
+    applied_couple(net, &net->moments[im], m);
+    add_scaled(M, lam, m);
+  }
   for (int ij = 0; ij < net->njoints; ++ij) {
     const rn_joint *J = &net->joints[ij];
     const double f[3] = {lam * J->force[0], lam * J->force[1], lam * J->force[2]};

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rodnet_couple.h"
 
 static const char *where = "rn_network_update_reference";
 
@@ -123,6 +124,7 @@ static rn_status update_moments(const rn_network *net, const double *full,
     p.angle0 = mo->angle0;
     for (int k = 0; k < 3; ++k) e[k] = q[RN_EDGE_LOCAL_X1 + k] - q[RN_EDGE_LOCAL_X0 + k];
     if ((mo->M[0] != 0.0 || mo->M[1] != 0.0 || mo->M[2] != 0.0) &&
+        mo->model == RN_COUPLE_CONSERVATIVE &&
         rnk_moment_angle(q, ref, &p, &alpha) != RNK_OK)
       return rn_fail(net->ctx, RN_DEGENERATE, where,
                      "rod %d vertex %d: degenerate moment angle", r->gid, mo->vertex);

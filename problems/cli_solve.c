@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "result_json.h"
+#include "rodnet_couple.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 #include "vtk.h"
@@ -402,10 +403,34 @@ static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *s
   return RN_EXIT_OK;
 }
 
+/* A couple fixed in space (rodnet_couple.h) has no energy: only NOX solves it.
+ * RN_EXIT_USAGE with a message naming the load (printed if loud), else 0. */
+static int refuse_fixed_couples(const solve_args *a, const rn_network *net,
+                                const rn_solve_options *opt, int loud) {
+  int rod = -1, vertex = -1;
+  if (opt->solver == RN_SOLVER_NOX || rn_network_fixed_couples(net, &rod, &vertex) == 0)
+    return 0;
+  const char *name = rn_network_rod_name(net, rod);
+  char which[64];
+  if (name && name[0])
+    snprintf(which, sizeof which, "'%.50s'", name);
+  else /* the graph pass of a distributed solve has no names */
+    snprintf(which, sizeof which, "%d", rod);
+  if (loud)
+    fprintf(stderr,
+            "rodnet solve: %s: the moment on rod %s vertex %d is a couple fixed in "
+            "space (\"model\": \"fixed\"), a nonconservative load with no energy: the "
+            "energy minimiser '%s' cannot solve it; use --solver nox (Newton on the "
+            "residual)\n",
+            a->scene, which, vertex, rn_solver_name(opt->solver));
+  return RN_EXIT_USAGE;
+}
+
 static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
   rn_solve_options opt;
   int rc = make_options(a, scene, &opt, 1);
   if (rc) return rc;
+  if ((rc = refuse_fixed_couples(a, rn_scene_network(scene), &opt, 1))) return rc;
   progress_state ps = {0};
   if (!a->quiet) {
     opt.progress = progress;
@@ -422,6 +447,8 @@ static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
   rn_result_info in;
   part_block pb;
   rn_result_info_fill(&rep, &opt, &in);
+  if (rn_network_fixed_couples(rn_scene_network(scene), NULL, NULL) > 0)
+    in.stability_note = RN_NOTE_NONCONSERVATIVE;
   fill_serial_partition(rn_scene_network(scene), &pb, &in);
   if ((rc = write_outputs(ctx, a, scene, &in))) return rc;
   print_summary(a, scene, &in);
@@ -573,6 +600,8 @@ static int run_distributed(dist_run *d, const solve_args *a) {
               rn_solver_name(opt.solver), d->size);
     return RN_EXIT_USAGE;
   }
+  if ((rc = refuse_fixed_couples(a, rn_scene_network(d->graph), &opt, d->rank == 0)))
+    return rc;
   if ((rc = load_part(d, a))) return rc;
   progress_state ps = {0};
   if (!a->quiet && d->rank == 0) {
@@ -585,6 +614,8 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   if (agree(d, st, "rodnet solve: solver failed: ")) return RN_EXIT_INTERNAL;
   rn_result_info in;
   rn_result_info_fill(&rep, &opt, &in);
+  if (rn_network_fixed_couples(rn_scene_network(d->part), NULL, NULL) > 0)
+    in.stability_note = RN_NOTE_NONCONSERVATIVE;
   if ((rc = gather_and_write(d, a, &in))) return rc;
   return rep.converged ? RN_EXIT_OK : RN_EXIT_NOT_CONVERGED;
 }

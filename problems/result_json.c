@@ -9,6 +9,7 @@
 
 #include "atomic_file.h"
 #include "rodnet_contact.h"
+#include "rodnet_couple.h"
 #include "num_format.h"
 
 typedef struct json_out {
@@ -161,11 +162,14 @@ static void put_equilibrium(json_out *o) {
 /* "stability": {...} of the returned state (rn_stability). */
 static void put_stability(json_out *o) {
   const rn_stability *st = &o->info->stability;
+  const char *note = o->info->stability_note ? o->info->stability_note : "not checked";
+  if (rn_network_fixed_couples(rn_scene_network(o->scene), NULL, NULL) > 0)
+    note = RN_NOTE_NONCONSERVATIVE;
   if (!st->checked) {
     fputs("  \"stability\": {\"checked\": false, \"verified_minimum\": false, "
           "\"note\": ",
           o->f);
-    put_str(o->f, o->info->stability_note ? o->info->stability_note : "not checked");
+    put_str(o->f, note);
     fputs("},\n", o->f);
     return;
   }
@@ -228,10 +232,13 @@ static void put_summary(json_out *o, rn_network *net) {
     fputs(",\n  \"preconditioner\": ", f);
     put_str(f, in->preconditioner);
   }
+  int nfixed = rn_network_fixed_couples(net, NULL, NULL);
   if (in->finds) {
     fputs(",\n  \"finds\": ", f);
-    put_str(f, in->finds);
+    put_str(f, nfixed > 0 ? "stationary point" : in->finds);
   }
+  if (nfixed > 0) /* rodnet_couple.h: the energy leaves out their work */
+    fprintf(f, ",\n  \"nonconservative_loads\": %d", nfixed);
   fputs(",\n", f);
   put_key_num(o, "energy", in->energy);
   put_key_num(o, "gradient_norm", in->gradient_norm);

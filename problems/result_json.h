@@ -10,6 +10,11 @@
 #include "scene.h"
 
 /* What the solve reports (filled by the caller from rn_solve_report). */
+/* The stability note of a solve with a couple fixed in space (rodnet_couple.h). */
+#define RN_NOTE_NONCONSERVATIVE                                                      \
+  "not applicable: a couple fixed in space is a nonconservative load (no energy to " \
+  "minimise; the state is a stationary point of the residual)"
+
 typedef struct rn_result_info {
   const char *status;        /* "converged" or the reason it stopped */
   const char *solver;        /* solver name ("tr-minres", ...) */

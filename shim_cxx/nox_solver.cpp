@@ -7,6 +7,10 @@
 // steps and a Stratimikos Belos MINRES linear solver, left-preconditioned by the same
 // SPD Preconditioner as the Newton-Krylov trust region.
 //
+// With a couple fixed in space (rodnet_couple.h) the residual is the gradient of
+// the conservative terms minus the couple's generalised force, W its (nonsymmetric)
+// Jacobian, and the linear solver restarted GMRES.
+//
 // NOX solves grad E = 0, so it converges to stationary points: minima, saddles or
 // maxima alike (it neither measures the energy nor follows negative curvature).
 // RESULT.json says so ("finds": "stationary point").
@@ -35,8 +39,10 @@
 #include <Thyra_StateFuncModelEvaluatorBase.hpp>
 #include <Thyra_TpetraThyraWrappers.hpp>
 
+#include "dist_system.hpp"
 #include "monitor.hpp"
 #include "preconditioner.hpp"
+#include "rodnet_couple.h"
 #include "shim_error.hpp"
 #include "solvers.hpp"
 #include "system.hpp"
@@ -281,20 +287,36 @@ private:
   NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unevaluated;
 };
 
+// The network a System evaluates (nullptr if it is neither kind).
+const rn_network *network_of(System &sys) {
+  if (auto *serial = dynamic_cast<SerialSystem *>(&sys))
+    return serial->problem().network();
+  if (auto *dist = dynamic_cast<DistSystem *>(&sys)) return dist->network();
+  return nullptr;
+}
+
 } // namespace
 
 void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
              const rn_solve_options &opt) {
   auto model = Teuchos::rcp(new GradientModel(sys, prec));
+  // A couple fixed in space (rodnet_couple.h) makes the residual's Jacobian
+  // nonsymmetric: restarted GMRES instead of MINRES, the same preconditioner (built
+  // from the assembled Jacobian; it stays a preconditioner, GMRES does not need it
+  // symmetric).
+  const bool nonsymmetric =
+      rn_network_fixed_couples(network_of(sys), nullptr, nullptr) > 0;
 
   Stratimikos::DefaultLinearSolverBuilder builder;
   auto lsp = Teuchos::rcp(new Teuchos::ParameterList);
   lsp->set("Linear Solver Type", "Belos");
   auto &belos = lsp->sublist("Linear Solver Types").sublist("Belos");
-  belos.set("Solver Type", "MINRES");
-  auto &minres = belos.sublist("Solver Types").sublist("MINRES");
+  const char *krylov = nonsymmetric ? "Pseudo Block GMRES" : "MINRES";
+  belos.set("Solver Type", krylov);
+  auto &minres = belos.sublist("Solver Types").sublist(krylov);
   minres.set("Convergence Tolerance", opt.krylov_tol);
   minres.set("Maximum Iterations", opt.krylov_max_iterations);
+  if (nonsymmetric) minres.set("Num Blocks", std::min(opt.krylov_max_iterations, 200));
   lsp->set("Preconditioner Type", "None"); // the model's W_prec
   builder.setParameterList(lsp);
   auto lows = builder.createLinearSolveStrategy("");

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <string>
 #include <vector>
 
 #include "banded.hpp"
@@ -21,6 +22,7 @@
 #include "snapshot.hpp"
 #include "solvers.hpp"
 #include "spd_factor.hpp"
+#include "rodnet_couple.h"
 #include "stability.hpp"
 
 namespace rodnet {
@@ -47,6 +49,20 @@ rn_status value_of_name(const char *name, const Enum (&kinds)[N],
       return RN_OK;
     }
   return RN_ERR_ARG;
+}
+
+// RN_ERR_ARG naming the first couple fixed in space (rodnet_couple.h) if the network
+// has one: `what` (an energy minimiser, path following, a stability check) needs a
+// conservative problem.  RN_OK otherwise.
+rn_status refuse_nonconservative(rn_network *net, const char *where, const char *what) {
+  int rod = -1, vertex = -1;
+  if (rn_network_fixed_couples(net, &rod, &vertex) == 0) return RN_OK;
+  return rn_context_set_error(
+      rn_network_context(net), RN_ERR_ARG,
+      "%s: the moment on rod %d vertex %d is a couple fixed in space (\"model\": "
+      "\"fixed\"), a nonconservative load with no energy: %s does not apply; solve it "
+      "with the nox solver (--solver nox), Newton on the residual",
+      where, rod, vertex, what);
 }
 
 rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
@@ -454,7 +470,20 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
         "a part of a distributed network needs a distributed solver "
         "(docs/parallel.md)",
         rn_solver_name(o.solver));
-  if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, o, rep); });
+  // A couple fixed in space: NOX on the residual only; no predictor (it solves with
+  // the factored Hessian as a symmetric matrix) and no stability check (no energy).
+  rn_solve_options onc = o;
+  const bool nonconservative = rn_network_fixed_couples(net, nullptr, nullptr) > 0;
+  if (s == RN_OK && nonconservative && o.solver != RN_SOLVER_NOX) {
+    const std::string what =
+        std::string("the energy minimiser '") + rn_solver_name(o.solver) + "'";
+    s = rodnet::refuse_nonconservative(net, "rn_solve", what.c_str());
+  }
+  if (nonconservative) {
+    onc.predictor = onc.stability = 0;
+    onc.energy_tol = 0.0; // the energy does not hold the couple's work
+  }
+  if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, onc, rep); });
   if (rep && s != RN_OK) {
     rep->status = s;
     rep->stop = RN_STOP_FAILED;
@@ -468,6 +497,9 @@ rn_status rn_network_stability(rn_network *net, rn_stability *out) {
   if (!out)
     return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
                                 "rn_network_stability: out is NULL");
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_network_stability",
+                                                    "the stability check"))
+    return st;
   return guarded(net, "rn_network_stability", [&] {
     if (rn_network_is_part(net)) {
       *out = rn_stability{};
@@ -558,6 +590,9 @@ rn_status rn_path_follow(rn_network *net, const rn_path_options *opt,
   r.limit_load_factor = r.limit_control = r.limit_force = nan;
   r.bifurcation_load_factor = r.bifurcation_control = r.bifurcation_force = nan;
   if (!net) return RN_ERR_ARG;
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_path_follow",
+                                                    "path following (on the energy)"))
+    return st;
   rn_path_options defaults;
   rn_path_options_default(&defaults);
   const rn_path_options &o = opt ? *opt : defaults;

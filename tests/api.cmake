@@ -37,3 +37,4 @@ rn_add_test(api_contact SOURCES unit/api_contact.c LIBS rodnet m LABELS unit)
 # closed rod, link conservation over large rotations, Michell's twisted ring.
 rn_add_test(api_rings SOURCES unit/api_rings.c LIBS rodnet ${LAPACK_LIBRARIES} m
             LABELS unit validation)
+rn_add_test(api_couple_fixed SOURCES unit/api_couple_fixed.c LIBS rodnet LABELS unit)

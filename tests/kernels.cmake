@@ -10,3 +10,5 @@ rn_add_test(kernels_joint_closed SOURCES unit/kernels_joint_closed.c
             LIBS rodnet_kernels_static LABELS unit)
 rn_add_test(kernels_contact SOURCES unit/kernels_contact.c
             LIBS rodnet_kernels_static LABELS unit)
+rn_add_test(kernels_couple_fixed SOURCES unit/kernels_couple_fixed.c
+            LIBS rodnet_kernels_static LABELS unit)

@@ -716,6 +716,26 @@ if(RN_WITH_TRILINOS)
     set_tests_properties(problems_example_${stem}_nox_vs_exact PROPERTIES LABELS unit
       FIXTURES_REQUIRED "problems_example_${stem}_exact;problems_example_${stem}_nox")
   endforeach()
+  # A couple fixed in space (docs/model.md, "Loads"): NOX solves it on the residual
+  # (GMRES) and RESULT.json claims no minimum; the energy minimisers refuse it.
+  set(RN_COUPLE_SCENE ${CMAKE_CURRENT_SOURCE_DIR}/data/couple/helix_fixed.json)
+  rn_cli_test(problems_couple_fixed_nox 0 "status +converged.*solver +nox"
+              ARGS solve ${RN_COUPLE_SCENE} -o ${RN_CLI_OUT}/couple_fixed_nox.json
+                   --solver nox --quiet)
+  set_tests_properties(problems_couple_fixed_nox PROPERTIES
+                       FIXTURES_SETUP problems_couple_fixed_nox)
+  add_test(NAME problems_couple_fixed_result
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_couple_result.py
+                   ${RN_CLI_OUT}/couple_fixed_nox.json)
+  set_tests_properties(problems_couple_fixed_result PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_couple_fixed_nox)
+  foreach(solver tr-minres tr-krylov)
+    rn_cli_test(problems_couple_fixed_refused_${solver} 2
+                "rod 'beam' vertex 40 is a couple fixed in space.*'${solver}'.*--solver nox"
+                ARGS solve ${RN_COUPLE_SCENE} -o ${RN_CLI_OUT}/couple_fixed_refused.json
+                     --solver ${solver} --quiet
+                ABSENT ${RN_CLI_OUT}/couple_fixed_refused.json)
+  endforeach()
   # The pinned column: NOX finds the straight saddle, tr-minres the buckled minimum.
   rn_cli_test(problems_example_pinned_column_nox 0 "status +converged.*solver +nox"
               ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/../problems/scenes/pinned_column.json

@@ -334,6 +334,25 @@ static const bad_case cases[] = {
      SCENE(", 'loads': [{'type': 'moment', 'rod': 'beam', 'vertex': 20, 'value': [0, 0, "
            "1]}]"),
      ": $.loads[0].vertex: ", "vertex index 20 is out of range"},
+    {"unknown moment model",
+     SCENE(", 'loads': [{'type': 'moment', 'rod': 'beam', 'vertex': -1, 'value': [0, 0, "
+           "1], 'model': 'follower'}]"),
+     ": $.loads[0].model: ",
+     "unknown moment model \"follower\" (known: conservative, fixed)"},
+    {"moment model not a string",
+     SCENE(", 'loads': [{'type': 'moment', 'rod': 'beam', 'vertex': -1, 'value': [0, 0, "
+           "1], 'model': 1}]"),
+     ": $.loads[0].model: ", "expected a string"},
+    {"model on a force",
+     SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1, 'value': [0, 0, "
+           "1], 'model': 'fixed'}]"),
+     ": $.loads[0].model: ", "unknown key \"model\""},
+    {"fixed couple on a joint",
+     "{" MS ", 'rods': [" ROD ", {'name': 'b2', 'material': 'steel', 'section': 'wire', "
+     "'line': {'from': [1, 0, 0], 'to': [1, 1, 0], 'vertices': 5}}], 'joints': [{'name': "
+     "'j', 'ends': [{'rod': 'beam', 'end': 'end'}, {'rod': 'b2', 'end': 'start'}]}], "
+     "'loads': [{'type': 'moment', 'joint': 'j', 'value': [0, 0, 1], 'model': 'fixed'}]}",
+     ": $.loads[0].model: ", "a couple fixed in space on a joint is not supported yet"},
     {"line load with vertex",
      SCENE(", 'loads': [{'type': 'line_load', 'rod': 'beam', 'vertex': 1, 'value': "
            "[0,0,1]}]"),

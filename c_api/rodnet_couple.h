@@ -1,0 +1,53 @@
+/* rodnet_couple.h - the models of a couple (a `moment` load) on a rod vertex
+ * (docs/model.md, "Loads").
+ *
+ * RN_COUPLE_CONSERVATIVE (rn_network_add_moment): the potential
+ * -|M| phi, phi the rotation about the fixed axis n = M/|M| of a vector f
+ * fixed in the edge's material frame and perpendicular to n at the start.
+ * It applies the spatial moment m = f x (M x f) / |n x f|^2: m = M while f
+ * stays in the plane normal to M (in particular in planar problems), and m
+ * departs from M, keeping m . n = |M|, once the edge turns f out of that plane.
+ *
+ * RN_COUPLE_FIXED: a couple fixed in space, the virtual work M . omega with
+ * omega the angular velocity of the edge's material frame.  It has no
+ * potential in 3D: it enters the network's gradient (the residual; the
+ * energy gets no term) and Hessian (its Jacobian, nonsymmetric), so a
+ * network with one is solved only by RN_SOLVER_NOX (Newton on the residual
+ * with GMRES); the energy minimisers, path following and stability checks
+ * refuse it.
+ *
+ * rn_network_applied_resultant counts each couple as the spatial moment it
+ * applies at the current state: m for the conservative couple, M for the
+ * fixed one (so the reactions balance it in 3D too). */
+#ifndef RODNET_COUPLE_H
+#define RODNET_COUPLE_H
+
+#include "rodnet.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rn_couple_model {
+  RN_COUPLE_CONSERVATIVE = 0, /* the potential above (rn_network_add_moment) */
+  RN_COUPLE_FIXED = 1         /* a couple fixed in space (nonconservative) */
+} rn_couple_model;
+
+/* As rn_network_add_moment (a couple m on the edge at vertex `vertex` of rod
+ * `rod`, the last edge for the last vertex), with the model named.  Building
+ * phase only.  RN_ERR_ARG for an unknown model.  In a part of a distributed
+ * network every part must make the same calls (whole-network indices). */
+rn_status rn_network_add_moment_model(rn_network *net, int rod, int vertex,
+                                      const double m[3], rn_couple_model model);
+
+/* Number of RN_COUPLE_FIXED couples added to the whole network (0: the
+ * problem is conservative), and the rod and vertex of the first of them into
+ * *rod and *vertex (either may be NULL; untouched when there is none).  Not
+ * collective (every part makes the same building calls). */
+int rn_network_fixed_couples(const rn_network *net, int *rod, int *vertex);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
