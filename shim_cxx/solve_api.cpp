@@ -8,6 +8,8 @@
 #include <exception>
 #include <vector>
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include "banded.hpp"
 #include "dist_predictor.hpp"
 #include "dist_system.hpp"
@@ -153,6 +155,49 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   return mon.converged();
 }
 
+// Sub-steps of a load step from t_prev to t so that no rod edge near a prescribed
+// motion changes by more than kRampStretch of its length and no prescribed rotation
+// turns by more than kRampAngle within one (the largest count over the parts).
+constexpr double kRampStretch = 0.25;
+constexpr double kRampAngle = 0.7853981633974483; // pi/4
+constexpr int kRampMaxSubsteps = 1 << 16;
+
+int ramp_substeps(Problem &p, const SolveTotals &tot, double t_prev, double t) {
+  double stretch = 0.0, angle = 0.0;
+  rn_status st = rn_network_load_step_size(p.network(), t_prev, t, &stretch, &angle);
+  const double need = std::max(stretch / kRampStretch, angle / kRampAngle);
+  int n = st != RN_OK                   ? -1
+          : !(need <= kRampMaxSubsteps) ? kRampMaxSubsteps
+                                        : std::max(1, static_cast<int>(std::ceil(need)));
+  if (tot.dist) {
+    int all = n;
+    Teuchos::reduceAll(*tot.dist->comm(), Teuchos::REDUCE_MIN, n, Teuchos::outArg(all));
+    if (all < 0) {
+      if (st != RN_OK) check_status(st, "rn_network_load_step_size");
+      throw Error(RN_ERR_SOLVER, "rn_solve: rn_network_load_step_size failed on a part");
+    }
+    Teuchos::reduceAll(*tot.dist->comm(), Teuchos::REDUCE_MAX, n, Teuchos::outArg(all));
+    n = all;
+  } else {
+    check_status(st, "rn_network_load_step_size");
+  }
+  return n;
+}
+
+// One load step from t_prev to t in ramp_substeps equal sub-steps (the first trial
+// state is never one where the prescribed motion jumped past the edges next to it).
+bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
+                      double force_scale, Clock::time_point start, SolveTotals &tot) {
+  const int n = ramp_substeps(p, tot, t_prev, t);
+  for (int k = 1; k <= n; ++k) {
+    const double a =
+        k == 1 ? t_prev : t_prev + (t - t_prev) * static_cast<double>(k - 1) / n;
+    const double b = k == n ? t : t_prev + (t - t_prev) * static_cast<double>(k) / n;
+    if (!solve_load_step(p, opt, a, b, force_scale, start, tot)) return false;
+  }
+  return true;
+}
+
 // Fixed continuation: load_steps equal increments up to the target.
 void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
                     double force_scale, Clock::time_point start, SolveTotals &tot) {
@@ -161,7 +206,7 @@ void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
         target * static_cast<double>(k) / static_cast<double>(opt.load_steps);
     const double t_prev =
         target * static_cast<double>(k - 1) / static_cast<double>(opt.load_steps);
-    if (!solve_load_step(p, opt, t_prev, t, force_scale, start, tot)) return;
+    if (!ramped_load_step(p, opt, t_prev, t, force_scale, start, tot)) return;
   }
 }
 
@@ -177,7 +222,7 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
   int cuts = 0;
   for (;;) {
     const double t = (target - t_done <= inc) ? target : t_done + inc;
-    if (solve_load_step(p, opt, t_done, t, force_scale, start, tot)) {
+    if (ramped_load_step(p, opt, t_done, t, force_scale, start, tot)) {
       if (t >= target) return;
       t_done = t;
       done.save(p.network());
@@ -235,19 +280,33 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   // its graph is built once for the solve), the gradient norm over all ranks.
   std::unique_ptr<DistSystem> dist;
   if (rn_network_is_part(net)) dist = std::make_unique<DistSystem>(net, world_comm());
+  // The gradient norm at the start (the fallback scale of the stopping test).  A
+  // prescribed motion that jumps past the edges next to it makes the state at the
+  // target degenerate: then the scale is taken at load factor 0 (the solve ramps
+  // the motion in sub-steps, ramped_load_step); degenerate there too is bad input.
   double force_scale = 0.0;
-  if (dist) {
-    TMV xd(dist->map(), 1), gd(dist->map(), 1);
-    dist->get_state(xd);
-    if (dist->gradient(xd, nullptr, gd) != RN_OK)
-      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-    Teuchos::Array<double> nrm(1);
-    gd.norm2(nrm());
-    force_scale = nrm[0];
-  } else {
-    if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
-      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-    force_scale = norm2(p.size(), g.data());
+  auto start_gradient = [&](double *scale) {
+    if (dist) {
+      TMV xd(dist->map(), 1), gd(dist->map(), 1);
+      dist->get_state(xd);
+      if (dist->gradient(xd, nullptr, gd) != RN_OK) return false;
+      Teuchos::Array<double> nrm(1);
+      gd.norm2(nrm());
+      *scale = nrm[0];
+      return true;
+    }
+    if (p.gradient(x.data(), nullptr, g.data()) != RN_OK) return false;
+    *scale = norm2(p.size(), g.data());
+    return true;
+  };
+  if (!start_gradient(&force_scale)) {
+    bool ok = target > 0.0;
+    if (ok) {
+      check_status(rn_network_set_load_factor(net, 0.0), "rn_network_set_load_factor");
+      ok = start_gradient(&force_scale);
+      check_status(rn_network_set_load_factor(net, target), "rn_network_set_load_factor");
+    }
+    if (!ok) throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
   }
   SolveTotals tot;
   tot.dist = dist.get();

@@ -3,7 +3,7 @@ if(RN_WITH_TRILINOS)
   add_library(rn_valutil STATIC validation/valutil.c)
   target_link_libraries(rn_valutil PUBLIC rodnet rn_testutil m)
   foreach(v val_cantilever val_end_moment val_buckling val_rest_curvature val_ribbon val_networks
-          val_homogenize)
+          val_homogenize val_prescribed_rotation)
     rn_add_test(${v} SOURCES validation/${v}.c LIBS rn_valutil rodnet m LABELS validation)
   endforeach()
   # Path following (docs/path-following.md): closed forms, and the strip hard case.
@@ -17,6 +17,16 @@ if(RN_WITH_TRILINOS)
   rn_add_test(val_lattice_stretch SOURCES validation/val_lattice_stretch.c
               LIBS rn_valutil rodnet_problems m LABELS validation
               ARGS ${CMAKE_CURRENT_BINARY_DIR}/val_lattice)
+  # Prescribed displacements larger than the edges next to them (issue 10 section 2):
+  # the compressed square lattice of `rodnet generate` ramped in sub-steps, solved past
+  # bar buckling to a verified minimum (8 and 4 edges per rod; tr-minres, nox).
+  if(RN_VTK_PYTHON)
+    add_test(NAME val_ramp_square_compress
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_ramp.py
+                     ${CMAKE_BINARY_DIR}/rodnet ${CMAKE_CURRENT_BINARY_DIR}/val_ramp
+                     --solvers tr-minres,nox --edges 8,4)
+    set_tests_properties(val_ramp_square_compress PROPERTIES LABELS validation TIMEOUT 600)
+  endif()
   # Bloch-Floquet stability of periodic cells (cells written as scenes).
   file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/val_bloch_data)
   rn_add_test(val_bloch SOURCES validation/val_bloch.c
