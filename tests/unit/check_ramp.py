@@ -2,10 +2,12 @@
 """Prescribed displacements larger than the edges next to them (issue 10 section 2).
 
     check_ramp.py RODNET OUTDIR [--mpiexec CMD] [--solvers A,B,...] [--edges N,...]
+                  [--cells NX,NY] [--strain S]
 
 `rodnet generate square --cells 10,10 --joint-model rigid --load compress-x:0.015`
 moves the face joints by 0.15 while the edges next to them are 1/N long (N = 8: 0.125;
-refused before as "degenerate at the initial state").  For each edges-per-rod N and
+refused before as "degenerate at the initial state"); --cells and --strain change the
+lattice and the compression (e.g. 4,4 and 0.05: the face moves by 0.2).  For each edges-per-rod N and
 solver the scene is solved (with --mpiexec: on 2 ranks) and the result must be
 converged and a verified local minimum, past bar buckling: the bending energy at
 least 100 times the stretching energy (a lattice compressed by 1.5 % without
@@ -34,13 +36,15 @@ def main():
     ap.add_argument("--mpiexec", default="")
     ap.add_argument("--solvers", default="tr-minres")
     ap.add_argument("--edges", default="8")
+    ap.add_argument("--cells", default="10,10")
+    ap.add_argument("--strain", default="0.015")
     a = ap.parse_args()
     os.makedirs(a.outdir, exist_ok=True)
     bad = 0
     for n in a.edges.split(","):
         scene = os.path.join(a.outdir, "square_compress_%s.json" % n)
-        run([a.rodnet, "generate", "square", "--cells", "10,10", "--joint-model", "rigid",
-             "--edges-per-rod", n, "--load", "compress-x:0.015", "-o", scene])
+        run([a.rodnet, "generate", "square", "--cells", a.cells, "--joint-model", "rigid",
+             "--edges-per-rod", n, "--load", "compress-x:" + a.strain, "-o", scene])
         for solver in a.solvers.split(","):
             out = os.path.join(a.outdir, "square_compress_%s_%s%s.json" %
                                (n, solver, "_mpi" if a.mpiexec else ""))
