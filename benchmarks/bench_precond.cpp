@@ -5,7 +5,8 @@
 //
 //   bench_precond [--kind honeycomb] [--cells 10,30] [--models rigid,elastic]
 //                 [--edges-per-rod 8] [--load stretch-x:1e-3]
-//                 [--precond dd,dd-direct,dd-amg,muelu,ifpack2,factor] [--tol 1e-8]
+//                 [--precond dd,dd-direct,dd-amg,muelu,ifpack2,frosch,factor] [--tol
+//                 1e-8]
 //                 [--max-its 3000] [--repeats 1] [--amg-xml FILE] [--out FILE.csv]
 //
 // For each lattice (`rodnet generate` scene, period 1, E = 1, nu = 0.3, circle r =
@@ -115,7 +116,7 @@ int usage(const char *msg) {
       stderr,
       "bench_precond: %s\nusage: bench_precond [--kind honeycomb] [--cells 10,30] "
       "[--models rigid,elastic]\n  [--edges-per-rod 8] [--load stretch-x:1e-3] "
-      "[--precond dd,dd-direct,dd-amg,muelu,ifpack2,factor]\n  [--tol 1e-8] "
+      "[--precond dd,dd-direct,dd-amg,muelu,ifpack2,frosch,factor]\n  [--tol 1e-8] "
       "[--max-its 3000] [--repeats 1] [--amg-xml FILE] [--newton] [--out FILE.csv]\n",
       msg);
   return 2;
@@ -271,7 +272,7 @@ std::unique_ptr<Preconditioner> make_prec(ReplicatedSystem &sys, const std::stri
   std::unique_ptr<Preconditioner> P;
   if (name == "factor") {
     P.reset(new FactorPrec(sys));
-  } else if (name == "muelu") {
+  } else if (name == "muelu" || name == "frosch") {
     P = make_preconditioner(name, sys.rigid_body_modes());
   } else if (name.compare(0, 2, "dd") == 0) {
     DdOptions d;

@@ -296,6 +296,13 @@ static void forces_eval(const rn_network *net, const rn_rod *r, eval_args *a) {
 static int joint_energy_split(rn_joint_scratch *s, rnk_joint *kj, eval_args *a) {
   double M[3], Eb = 0.0, alpha = 0.0, m;
   int rc;
+  if (kj->smooth) { /* a DER vertex: bending and twisting as in rods, no couple */
+    double Et = 0.0;
+    if ((rc = rnk_smooth_joint_energy(s->q, kj, &Eb, &Et)) != RNK_OK) return rc;
+    a->E[RN_TERM_BEND] += Eb;
+    a->E[RN_TERM_TWIST] += Et;
+    return RNK_OK;
+  }
   memcpy(M, kj->M, sizeof(M));
   memset(kj->M, 0, sizeof(kj->M));
   if ((rc = rnk_joint_energy(s->q, kj, s->work, &Eb)) != RNK_OK) return rc;
@@ -398,6 +405,59 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   return RN_OK;
 }
 
+/* Contact (contact.c): the pairs within the barrier's reach at x, each a
+ * 12-DOF stencil of the ends of two edges gathered and scattered by index.
+ * The energy and gradient first check the motion from the accepted state
+ * (continuous collision check): a step that would cross is a degenerate
+ * trial point. */
+static rn_status contact_eval(const rn_network *net, eval_args *a) {
+  const rnk_contact_param *p = rn_contact_param(net);
+  rn_contact_list L;
+  rn_status st = rn_contact_candidates(net, a->x, a->op == OP_ENERGY || a->op == OP_GRAD,
+                                       a->where, &L);
+  if (st) return st;
+  for (size_t i = 0; i < L.n && !st; ++i) {
+    size_t idx[12];
+    double q[12], vl[12], loc[144], E = 0.0;
+    int rc = RNK_OK;
+    rn_contact_pair_idx(net, L.pair[2 * i], L.pair[2 * i + 1], idx);
+    rn_gather_idx(net, a->x, idx, 12, q);
+    switch (a->op) {
+    case OP_ENERGY:
+      rc = rnk_contact_energy(q, p, &E);
+      break;
+    case OP_GRAD:
+      if ((rc = rnk_contact_grad(q, p, &E, loc)) == RNK_OK)
+        scatter_grad(net, a, loc, 0, idx, NULL, 12);
+      break;
+    case OP_HVP:
+      if (a->vfull)
+        rn_gather_fixed_dir_idx(net, a->vfull, idx, 12, vl);
+      else
+        rn_gather_dir_idx(net, a->v, idx, 12, vl);
+      if ((rc = rnk_contact_hess(q, p, loc)) == RNK_OK) {
+        double hv[12];
+        rnk_block_mv(12, loc, vl, hv);
+        rn_scatter_add_idx(net, hv, idx, 12, a->Hv);
+      }
+      break;
+    case OP_HESS:
+      if ((rc = rnk_contact_hess(q, p, loc)) == RNK_OK) {
+        a->unbounded |= !rn_all_bounded(144, loc);
+        rn_csr_add_block_idx(net, idx, 12, loc, a->vals);
+      }
+      break;
+    }
+    if (rc != RNK_OK)
+      st = rn_contact_pair_fail(net, RN_DEGENERATE, a->where, L.pair[2 * i],
+                                L.pair[2 * i + 1],
+                                "interpenetrating edges (or a zero-length edge)");
+    a->E[RN_TERM_LOAD] += E; /* (rodnet_contact.h) */
+  }
+  rn_contact_list_free(&L);
+  return st;
+}
+
 static rn_status eval_rod(const rn_network *net, int ir, eval_args *a) {
   const rn_rod *r = &net->rods[ir];
   if (a->loads_only) {
@@ -423,6 +483,7 @@ static rn_status eval_all(const rn_network *net, eval_args *a) {
                         net->moments[im].vertex);
   for (int ij = 0; ij < net->njoints; ++ij)
     if (rn_joint_evaluated(&net->joints[ij]) && (st = joint_eval(net, ij, a))) return st;
+  if (net->contact && !a->loads_only && (st = contact_eval(net, a))) return st;
   if (net->cell && a->op != OP_HVP && a->op != OP_HESS && !a->magnitude)
     a->E[RN_TERM_LOAD] +=
         rn_cell_load(net, a->x, a->lambda, a->op == OP_GRAD && !a->gfull ? a->g : NULL,

@@ -148,6 +148,7 @@ static rn_status build_dof_map(rn_network *net) {
   }
   for (int ij = 0; ij < net->njoints; ++ij) mark_joint(net, &net->joints[ij]);
   rn_cell_mark(net);
+  rn_planar_mark(net);
   alias_joint_ends(net, 1);
   if (net->part) { /* a part: what it does not read is absent, owned DOFs first */
     if (rn_part_begin_numbering(net)) return RN_ERR_ALLOC;
@@ -200,6 +201,7 @@ static void undo_finalize(rn_network *net) {
     r->tp = NULL;
   }
   rn_joints_unbuild(net);
+  rn_contact_unbuild(net);
   if (net->cell) {
     free(net->cell->slot);
     net->cell->slot = NULL;
@@ -229,6 +231,12 @@ rn_status rn_network_finalize(rn_network *net) {
   if ((st = rn_joints_validate(net, where))) return st;
   for (int ir = 0; ir < net->nrods; ++ir)
     if ((st = validate_rod(net, ir))) return st;
+  rn_planar_assess(net);
+  if (net->model == RN_MODEL_PLANAR && !net->planar_ok)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "the planar model needs a network in one plane z = const: %s",
+                   net->planar_why);
+  net->planar = net->model == RN_MODEL_PLANAR;
   for (int ir = 0; ir < net->nrods; ++ir) {
     if (build_params(&net->rods[ir])) {
       undo_finalize(net);
@@ -240,6 +248,10 @@ rn_status rn_network_finalize(rn_network *net) {
     undo_finalize(net);
     if (st) return st;
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  if ((st = rn_contact_build(net, where))) {
+    undo_finalize(net);
+    return st;
   }
   if (net->nred > (size_t)INT32_MAX) { /* CSR columns are int32 */
     size_t nred = net->nred;
@@ -257,7 +269,8 @@ rn_status rn_network_finalize(rn_network *net) {
     const double target = net->lambda;
     net->lambda = 0.0;
     rn_apply_load_factor(net);
-    if (!(st = rn_joints_check_initial(net, where))) {
+    if (!(st = rn_joints_check_initial(net, where)) &&
+        !(st = rn_contact_check_initial(net, where))) {
       rn_ramp_load_factor(net, target);
       st = init_moments(net);
     }

@@ -144,8 +144,8 @@ static int push(col_buf *b, int64_t c) {
 
 /* Candidate columns of row r appended to b (unsorted, with duplicates). */
 static int row_candidates(const rn_network *net, const row_lists *L, const size_t *lo,
-                          const size_t *hi, const unsigned char *touch, size_t r,
-                          col_buf *b) {
+                          const size_t *hi, const unsigned char *touch,
+                          const unsigned char *cflag, size_t r, col_buf *b) {
   for (size_t p = L->fptr[r]; p < L->fptr[r + 1]; ++p) {
     size_t a = L->full[p];
     for (size_t c = lo[a]; c <= hi[a]; ++c)
@@ -162,17 +162,21 @@ static int row_candidates(const rn_network *net, const row_lists *L, const size_
         if (push(b, (int64_t)q)) return -1;
       }
   }
+  if (cflag && cflag[r]) /* contact: every contact vertex with every other */
+    for (size_t q = 0; q < net->nred; ++q)
+      if (cflag[q] && push(b, (int64_t)q)) return -1;
   return 0;
 }
 
 /* Rows in order: candidates sorted and made unique in place at the end of
  * the column buffer (for plain rods they are already sorted and unique). */
 static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo,
-                           const size_t *hi, const unsigned char *touch, col_buf *b) {
+                           const size_t *hi, const unsigned char *touch,
+                           const unsigned char *cflag, col_buf *b) {
   for (size_t row = 0; row < net->nred; ++row) {
     size_t start = b->n, u = start;
     net->rowptr[row] = (int64_t)start;
-    if (row_candidates(net, L, lo, hi, touch, row, b)) return RN_ERR_ALLOC;
+    if (row_candidates(net, L, lo, hi, touch, cflag, row, b)) return RN_ERR_ALLOC;
     if (!increasing(b->c + start, b->n - start)) /* rows away from joints are */
       sort_columns(b->c + start, b->n - start);
     for (size_t p = start; p < b->n; ++p) {
@@ -353,7 +357,7 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   size_t *hi = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   row_lists L = {NULL, NULL, NULL, NULL};
   col_buf b = {NULL, 0, 0};
-  unsigned char *touch = NULL;
+  unsigned char *touch = NULL, *cflag = NULL;
   rn_status st = RN_ERR_ALLOC;
   net->rowptr = malloc((net->nred + 1) * sizeof(int64_t));
   if (!lo || !hi || !net->rowptr || row_lists_build(net, &L)) goto done;
@@ -364,7 +368,12 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
     if (!touch) goto done;
     rn_cell_pattern_flags(net, lo, hi, touch);
   }
-  if (fill_rows(net, &L, lo, hi, touch, &b)) goto done;
+  if (net->contact) { /* rows of contact vertex positions */
+    cflag = calloc(net->nred ? net->nred : 1, 1);
+    if (!cflag) goto done;
+    rn_contact_pattern_flags(net, cflag);
+  }
+  if (fill_rows(net, &L, lo, hi, touch, cflag, &b)) goto done;
   net->nnz = b.n;
   { /* shrink to fit (also allocates when there are no entries) */
     int32_t *p = realloc(b.c, (b.n ? b.n : 1) * sizeof(int32_t));
@@ -377,6 +386,7 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   if (st == RN_OK) st = build_assign(net);
 done:
   free(touch);
+  free(cflag);
   free(b.c);
   free(lo);
   free(hi);

@@ -52,3 +52,31 @@ rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9
                    J->gid, J->name ? J->name : "");
   return RN_OK;
 }
+
+rn_status rn_network_joint_twist(const rn_network *net, int joint, double *twist) {
+  static const char *where = "rn_network_joint_twist";
+  const rn_joint *J;
+  rn_joint_scratch s;
+  rnk_joint kj;
+  rn_status st;
+  double q11[11], kappa[2];
+  int rc;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_joint_result(net, where, &joint, twist, 1))) return st;
+  J = &net->joints[joint];
+  if (J->model != RN_JOINT_SMOOTH)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "joint %d ('%s') is not a smooth joint",
+                   J->gid, J->name ? J->name : "");
+  if (rn_joint_scratch_init(J, &s))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  rn_joint_kernel(net, joint, net->lambda, s.refs, &kj);
+  rn_joint_gather_full(net, J, net->xfull, s.q);
+  rnk_smooth_joint_vertex(s.q, q11);
+  rc = rnk_strains(q11, s.refs, J->ends[0].twist.ref_twist, kappa, twist);
+  rn_joint_scratch_free(&s);
+  if (rc != RNK_OK)
+    return rn_fail(net->ctx, RN_DEGENERATE, where,
+                   "joint %d ('%s'): degenerate vertex at the current state", J->gid,
+                   J->name ? J->name : "");
+  return RN_OK;
+}

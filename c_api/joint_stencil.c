@@ -9,6 +9,8 @@
 
 #include "network_internal.h"
 
+#define RN_PI 3.14159265358979323846
+
 /* ---- validation ----------------------------------------------------------- */
 /* A rod vertex that belongs to a joint cannot carry a BC of its own. */
 static rn_status check_end_bcs(const rn_network *net, const char *where, int ij, int k) {
@@ -117,9 +119,23 @@ static rn_status check_coincident(const rn_network *net, const char *where) {
   return st;
 }
 
+/* A smooth joint has no rotation: it cannot be clamped or carry a couple. */
+static rn_status check_smooth(const rn_network *net, const char *where, int ij) {
+  const rn_joint *J = &net->joints[ij];
+  if (J->model != RN_JOINT_SMOOTH) return RN_OK;
+  if (J->clamped || J->M[0] != 0.0 || J->M[1] != 0.0 || J->M[2] != 0.0)
+    return rn_fail(net->ctx, RN_ERR_BC, where,
+                   "joint %d ('%s') is smooth (no rotation): it cannot be %s; pin it, or "
+                   "clamp or load an edge of its rods",
+                   J->gid, J->name ? J->name : "",
+                   J->clamped ? "clamped" : "loaded by a couple");
+  return RN_OK;
+}
+
 rn_status rn_joints_validate(const rn_network *net, const char *where) {
   rn_status st;
   for (int ij = 0; ij < net->njoints; ++ij) {
+    if ((st = check_smooth(net, where, ij))) return st;
     for (int k = 0; k < net->joints[ij].valence; ++k)
       if ((st = check_end_bcs(net, where, ij, k))) return st;
     if ((st = check_joint_motion(net, where, ij))) return st;
@@ -146,6 +162,53 @@ static rn_status build_end(const rn_rod *r, int end, rnk_joint_end *e) {
   e->bend.vlen = 0.5 * r->lbar[j];
   e->twist.beta = m->G * s->J;
   e->twist.vlen = e->bend.vlen;
+  return RN_OK;
+}
+
+/* Rest frames of the ends of a rigid or elastic joint other than the input
+ * ones: straight (valence 2: end 1's is end 0's, turned by pi about d1 when
+ * both ends have the same side) or given. */
+static void rest_frames(rn_joint *J) {
+  if (J->rest == RN_REST_FRAMES)
+    for (int k = 0; k < J->valence; ++k)
+      memcpy(J->ends[k].cbar, J->rest_frames + 9 * k, 9 * sizeof(double));
+  if (J->rest != RN_REST_STRAIGHT || J->valence != 2) return;
+  memcpy(J->ends[1].cbar, J->ends[0].cbar, 9 * sizeof(double));
+  if (J->ends[0].side == J->ends[1].side)
+    for (int c = 0; c < 3; ++c) { /* (t, d1, d2) -> (-t, d1, -d2) */
+      J->ends[1].cbar[c] = -J->ends[1].cbar[c];
+      J->ends[1].cbar[6 + c] = -J->ends[1].cbar[6 + c];
+    }
+}
+
+/* A smooth joint's vertex parameters in ends[0]: stiffness averaged over the
+ * two terminal edges, Voronoi length half their rest lengths, rest curvature
+ * and twist (input shape, straight or given), reference twist h + 2 pi link
+ * with h the input twist between the terminal edges' frames. */
+static rn_status build_smooth(const rn_network *net, rn_joint *J) {
+  const rn_rod *r0 = &net->rods[J->rod[0]], *r1 = &net->rods[J->rod[1]];
+  int j0 = rn_end_edge(r0->nv, RN_END), j1 = rn_end_edge(r1->nv, RN_START);
+  rnk_joint_end *e0 = &J->ends[0], *e1 = &J->ends[1];
+  rnk_frame refs[2] = {r0->ref_base[j0], r1->ref_base[j1]};
+  double q[RN_VERTEX_STENCIL] = {0}, h, kappa[2], tau;
+  for (int c = 0; c < 3; ++c) { /* input vertex stencil, theta = 0 */
+    q[rn_stencil_x(0) + c] = r0->x0[3 * j0 + c];
+    q[rn_stencil_x(1) + c] = r0->x0[3 * (j0 + 1) + c];
+    q[rn_stencil_x(2) + c] = r0->x0[3 * (j0 + 1) + c] + r1->x0[3 + c] - r1->x0[c];
+  }
+  if (rnk_reference_twist(q, refs, 0.0, &h) != RNK_OK ||
+      rnk_strains(q, refs, h, kappa, &tau) != RNK_OK)
+    return RN_ERR_GEOMETRY;
+  for (int c = 0; c < 3; ++c) e0->bend.B[c] = 0.5 * (e0->bend.B[c] + e1->bend.B[c]);
+  e0->bend.vlen += e1->bend.vlen;
+  e0->twist.beta = 0.5 * (e0->twist.beta + e1->twist.beta);
+  e0->twist.vlen = e0->bend.vlen;
+  e0->bend.kbar[0] = J->rest == RN_REST_INPUT ? kappa[0] : J->rest_kbar[0];
+  e0->bend.kbar[1] = J->rest == RN_REST_INPUT ? kappa[1] : J->rest_kbar[1];
+  e0->twist.taubar = J->rest == RN_REST_INPUT ? tau : J->rest_taubar;
+  if (J->rest == RN_REST_STRAIGHT)
+    e0->bend.kbar[0] = e0->bend.kbar[1] = e0->twist.taubar = 0;
+  e0->twist.ref_twist = e1->twist.ref_twist = h + 2.0 * RN_PI * J->link;
   return RN_OK;
 }
 
@@ -178,6 +241,12 @@ rn_status rn_joints_build(rn_network *net) {
         return rn_fail(net->ctx, RN_ERR_GEOMETRY, "rn_network_finalize",
                        "joint %d ('%s'): degenerate terminal edge of rod %d", J->gid,
                        J->name ? J->name : "", net->rods[J->rod[k]].gid);
+    if (J->model == RN_JOINT_SMOOTH && J->valence == 2 && build_smooth(net, J))
+      return rn_fail(net->ctx, RN_ERR_GEOMETRY, "rn_network_finalize",
+                     "joint %d ('%s'): the smooth joint's rods point in opposite "
+                     "directions at the joint (a 180 degree kink)",
+                     J->gid, J->name ? J->name : "");
+    if (J->model != RN_JOINT_SMOOTH) rest_frames(J);
     build_indices(net, J);
   }
   return RN_OK;
@@ -200,6 +269,7 @@ void rn_joint_kernel(const rn_network *net, int ij, double load_scale, rnk_frame
   const rn_joint *J = &net->joints[ij];
   memset(kj, 0, sizeof(*kj));
   kj->rigid = rn_joint_has_rotation(J);
+  kj->smooth = J->model == RN_JOINT_SMOOTH;
   kj->valence = J->valence;
   kj->ends = J->ends;
   for (int k = 0; k < J->valence; ++k) {

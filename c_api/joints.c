@@ -16,6 +16,7 @@ void rn_joint_free(rn_joint *J) {
   free(J->idx);
   free(J->image);
   free(J->img);
+  free(J->rest_frames);
   memset(J, 0, sizeof(*J));
 }
 
@@ -189,17 +190,46 @@ rn_status rn_network_add_joint_images(rn_network *net, const char *name,
                    images, joint);
 }
 
+/* A smooth joint joins the end of one rod to the start of another (or of the
+ * same rod: a closed rod); its ends are kept in that order (swapped into
+ * sw_*). */
+static rn_status smooth_ends(const rn_network *net, const char *where, const char *name,
+                             int n_ends, const int **rods, const int **ends,
+                             const int **images, int sw_rods[2], int sw_ends[2],
+                             int sw_images[6]) {
+  if (n_ends != 2 || !*rods || !*ends || (*ends)[0] == (*ends)[1])
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "smooth joint '%s' needs valence 2, the end of one rod and the start "
+                   "of another (reverse a rod to join two starts or two ends)",
+                   name ? name : "");
+  if ((*ends)[0] == RN_END) return RN_OK;
+  for (int k = 0; k < 2; ++k) {
+    sw_rods[k] = (*rods)[1 - k];
+    sw_ends[k] = (*ends)[1 - k];
+    for (int c = 0; c < 3 && *images; ++c)
+      sw_images[3 * k + c] = (*images)[3 * (1 - k) + c];
+  }
+  *rods = sw_rods;
+  *ends = sw_ends;
+  if (*images) *images = sw_images;
+  return RN_OK;
+}
+
 static rn_status add_joint(rn_network *net, const char *where, const char *name,
                            rn_joint_model model, int n_ends, const int *rods,
                            const int *ends, const int *images, int *joint) {
   rn_joint J;
   rn_status st;
-  int keep, m, *buf;
+  int keep, m, *buf, sw_rods[2], sw_ends[2], sw_images[6];
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
-  if (model != RN_JOINT_ELASTIC && model != RN_JOINT_RIGID)
+  if (model != RN_JOINT_ELASTIC && model != RN_JOINT_RIGID && model != RN_JOINT_SMOOTH)
     return rn_fail(net->ctx, RN_ERR_ARG, where, "joint '%s': unknown model %d",
                    name ? name : "", (int)model);
+  if (model == RN_JOINT_SMOOTH &&
+      (st = smooth_ends(net, where, name, n_ends, &rods, &ends, &images, sw_rods, sw_ends,
+                        sw_images)))
+    return st;
   if (n_ends < 1)
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "joint '%s' needs at least one rod end (valence %d)", name ? name : "",
@@ -239,6 +269,8 @@ static rn_status add_joint(rn_network *net, const char *where, const char *name,
   }
   for (int k = 0; k < m; ++k)
     net->rods[buf[n_ends + k]].joint[buf[2 * n_ends + k]] = net->njoints;
+  if (model == RN_JOINT_SMOOTH && m == 2 && buf[n_ends] == buf[n_ends + 1])
+    net->rods[buf[n_ends]].closed = 1; /* its end joined to its start: a ring */
   free(buf);
   net->joints[net->njoints] = J;
   if (joint) *joint = J.gid;
@@ -370,5 +402,109 @@ rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m
   if ((st = check_joint_load(net, "rn_network_add_joint_moment", joint, m, &lj)))
     return rn_not_here_ok(st);
   for (int k = 0; k < 3; ++k) net->joints[lj].M[k] += m[k];
+  return RN_OK;
+}
+
+/* ---- rest shapes and twist ----------------------------------------------------- */
+/* Checks a building call on joint g that sets its rest shape: *lj as for
+ * check_joint_arg; RN_ERR_ARG unless the joint's model is in models (bitmask
+ * of 1 << model) and (need2) its valence is 2. */
+static rn_status check_rest_joint(const rn_network *net, const char *where, int g,
+                                  int models, int need2, int *lj) {
+  rn_status st = check_joint_arg(net, where, g, lj);
+  const rn_joint *J;
+  if (st) return st;
+  J = &net->joints[*lj];
+  if (!((models >> J->model) & 1))
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "joint %d ('%s'): this rest form does not apply to a %s joint", g,
+                   J->name ? J->name : "",
+                   J->model == RN_JOINT_SMOOTH
+                       ? "smooth"
+                       : (J->model == RN_JOINT_RIGID ? "rigid" : "elastic"));
+  if (need2 && J->valence != 2)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "joint %d ('%s'): a straight rest shape needs valence 2, not %d", g,
+                   J->name ? J->name : "", J->valence);
+  return RN_OK;
+}
+
+rn_status rn_network_set_joint_rest_straight(rn_network *net, int joint) {
+  rn_status st;
+  int lj;
+  if (!net) return RN_ERR_ARG;
+  if ((st =
+           check_rest_joint(net, "rn_network_set_joint_rest_straight", joint, 7, 1, &lj)))
+    return rn_not_here_ok(st);
+  net->joints[lj].rest = RN_REST_STRAIGHT;
+  return RN_OK;
+}
+
+/* 1 if the rows of F (row-major) are orthonormal and right-handed to tol. */
+static int is_rotation(const double F[9], double tol) {
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      double d = F[3 * a] * F[3 * b] + F[3 * a + 1] * F[3 * b + 1] +
+                 F[3 * a + 2] * F[3 * b + 2] - (a == b ? 1.0 : 0.0);
+      if (!(fabs(d) <= tol)) return 0;
+    }
+  double det = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+               F[2] * (F[3] * F[7] - F[4] * F[6]);
+  return det > 0.0;
+}
+
+rn_status rn_network_set_joint_rest_frames(rn_network *net, int joint,
+                                           const double *frames) {
+  static const char *where = "rn_network_set_joint_rest_frames";
+  rn_status st;
+  rn_joint *J;
+  int lj, models = (1 << RN_JOINT_ELASTIC) | (1 << RN_JOINT_RIGID);
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_rest_joint(net, where, joint, models, 0, &lj)))
+    return rn_not_here_ok(st);
+  J = &net->joints[lj];
+  if (!frames) return rn_fail(net->ctx, RN_ERR_ARG, where, "frames is NULL");
+  for (int k = 0; k < J->valence; ++k)
+    if (!rn_all_finite(9, frames + 9 * k) || !is_rotation(frames + 9 * k, 1e-9))
+      return rn_fail(net->ctx, RN_ERR_ARG, where,
+                     "joint %d ('%s') end %d: the rest frame (rows t, d1, d2) is not "
+                     "orthonormal and right-handed to 1e-9",
+                     joint, J->name ? J->name : "", k);
+  if (!J->rest_frames &&
+      !(J->rest_frames = malloc(9 * (size_t)J->valence * sizeof(double))))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  memcpy(J->rest_frames, frames, 9 * (size_t)J->valence * sizeof(double));
+  J->rest = RN_REST_FRAMES;
+  return RN_OK;
+}
+
+rn_status rn_network_set_joint_rest_strains(rn_network *net, int joint,
+                                            const double kappa[2], double tau) {
+  static const char *where = "rn_network_set_joint_rest_strains";
+  rn_status st;
+  rn_joint *J;
+  int lj;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_rest_joint(net, where, joint, 1 << RN_JOINT_SMOOTH, 0, &lj)))
+    return rn_not_here_ok(st);
+  if (!kappa) return rn_fail(net->ctx, RN_ERR_ARG, where, "kappa is NULL");
+  if (!rn_all_finite(2, kappa) || !isfinite(tau))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
+                   "joint %d: rest strain is not finite", joint);
+  J = &net->joints[lj];
+  J->rest = RN_REST_STRAINS;
+  memcpy(J->rest_kbar, kappa, sizeof(J->rest_kbar));
+  J->rest_taubar = tau;
+  return RN_OK;
+}
+
+rn_status rn_network_set_joint_link(rn_network *net, int joint, int link) {
+  rn_status st;
+  int lj;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_rest_joint(net, "rn_network_set_joint_link", joint,
+                             1 << RN_JOINT_SMOOTH, 0, &lj)))
+    return rn_not_here_ok(st);
+  net->joints[lj].link = link;
   return RN_OK;
 }

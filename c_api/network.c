@@ -109,6 +109,7 @@ void rn_network_destroy(rn_network **net) {
   rn_hessian_pattern_free(n);
   rn_part_free(&n->part);
   rn_cell_free(&n->cell);
+  rn_contact_free(n);
   free(n);
   *net = NULL;
 }
@@ -197,6 +198,40 @@ rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const do
   if (rod) *rod = r.gid;
   net->nrods++;
   return RN_OK;
+}
+
+rn_status rn_network_add_closed_rod(rn_network *net, const char *name, int nv,
+                                    const double *xyz, const double *d1, int *rod,
+                                    int *joint) {
+  static const char *where = "rn_network_add_closed_rod";
+  double *xc;
+  rn_status st;
+  int r = -1, rods[2], ends[2] = {RN_END, RN_START};
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
+  if (nv < 3)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "closed rod '%s' needs at least 3 vertices, got %d", name ? name : "",
+                   nv);
+  xc = malloc(3 * ((size_t)nv + 1) * sizeof(double));
+  if (!xc) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  memcpy(xc, xyz, 3 * (size_t)nv * sizeof(double));
+  memcpy(xc + 3 * (size_t)nv, xyz, 3 * sizeof(double)); /* the closing vertex */
+  st = rn_network_add_rod(net, name, nv + 1, xc, d1, &r);
+  free(xc);
+  if (st) return st;
+  rods[0] = rods[1] = r;
+  if ((st = rn_network_add_joint(net, name, RN_JOINT_SMOOTH, 2, rods, ends, joint)))
+    return st;
+  if (rod) *rod = r;
+  return RN_OK;
+}
+
+int rn_network_rod_is_closed(const rn_network *net, int rod) {
+  if (!net || rod < 0 || rod >= rn_net_num_rods_g(net)) return 0;
+  if (rn_net_rod(net, "", &rod) != RN_OK) return 0;
+  return net->rods[rod].closed;
 }
 
 /* Checks a building call on rod g (whole-network index) and edge (-1: all):

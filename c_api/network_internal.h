@@ -9,6 +9,8 @@
 #include "dof_layout.h"
 #include "rnk.h"
 #include "rodnet.h"
+#include "rodnet_model.h"
+#include "rodnet_contact.h"
 
 /* One rod: input geometry, properties, BCs and its part of the reference
  * state.  ne = nv - 1 edges, nv - 2 interior vertices. */
@@ -49,7 +51,12 @@ typedef struct rn_rod {
   rnk_bend_param *bp;    /* [nv-2] */
   rnk_twist_param *tp;   /* [nv-2], ref_twist taken from ref_twist[] */
   int joint[2];          /* joint at RN_START / RN_END, -1: none */
+  int closed;            /* 1: a closed rod (rn_network_add_closed_rod): vertex
+                            nv - 1 is vertex 0, joint[] its smooth joint */
 } rn_rod;
+
+/* Rest shape of a joint (rn_network_set_joint_rest_*). */
+enum { RN_REST_INPUT = 0, RN_REST_STRAIGHT, RN_REST_FRAMES, RN_REST_STRAINS };
 
 /* A dead couple on the material frame of one edge. */
 typedef struct rn_moment {
@@ -84,14 +91,18 @@ typedef struct rn_joint {
   double disp[3], rot[3]; /* prescribed motion (unscaled) */
   double force[3], M[3];  /* loads (unscaled) */
   /* reference state */
-  double Qhat[9];     /* rigid: reference rotation; clamped: prescribed rotation */
-  double f0[9];       /* rotation at the last reference update (couple) */
-  double angle0;      /* couple angle accumulated up to that update */
-  double couple_p[3]; /* vector the couple turns (rnk_joint.couple_p) */
-  int *image;         /* periodic cells: lattice shift (3 ints) of each end's
-                         joint copy [3 valence]; NULL: no image ends */
-  int32_t *img;       /* built at finalize: image record of each kernel stencil
-                         entry (periodic.c), -1 none; NULL: no image ends */
+  double Qhat[9];      /* rigid: reference rotation; clamped: prescribed rotation */
+  double f0[9];        /* rotation at the last reference update (couple) */
+  double angle0;       /* couple angle accumulated up to that update */
+  double couple_p[3];  /* vector the couple turns (rnk_joint.couple_p) */
+  int rest;            /* RN_REST_*: where the rest shape comes from */
+  double *rest_frames; /* RN_REST_FRAMES: [9 valence] */
+  double rest_kbar[2], rest_taubar; /* RN_REST_STRAINS (smooth joints) */
+  int link;                         /* smooth joints: full turns of twist added */
+  int *image;   /* periodic cells: lattice shift (3 ints) of each end's
+                   joint copy [3 valence]; NULL: no image ends */
+  int32_t *img; /* built at finalize: image record of each kernel stencil
+                   entry (periodic.c), -1 none; NULL: no image ends */
   /* built at finalize */
   rnk_joint_end *ends; /* kernel parameters [valence]; twist.ref_twist is the
                           reference twist stored at the last update */
@@ -141,8 +152,13 @@ struct rn_network {
   size_t nhzero;
   size_t nnz;
   size_t bandwidth;
-  struct rn_part_data *part; /* NULL: a whole network (part.c) */
-  struct rn_cell *cell;      /* NULL: not periodic (periodic.c) */
+  struct rn_part_data *part;  /* NULL: a whole network (part.c) */
+  struct rn_cell *cell;       /* NULL: not periodic (periodic.c) */
+  int model;                  /* rn_model asked for (planar.c) */
+  int planar;                 /* 1: the planar model is in use (set at finalize) */
+  int planar_ok;              /* 1: the network qualifies for it (set at finalize) */
+  char planar_why[240];       /* if not: what leaves the plane */
+  struct rn_contact *contact; /* NULL: no contact (contact.c) */
 };
 
 /* ---- parts of a network (part.c) ------------------------------------------
@@ -304,6 +320,15 @@ int rn_all_bounded(size_t n, const double *v);
  * range. */
 int rn_wrap_index(int i, int n);
 
+/* ---- the planar model (planar.c; docs/model.md) ----------------------------
+ * Finalize: whether the network qualifies (planar_ok, planar_why; before the
+ * DOF map, on the input data), and, with the planar model, marks the
+ * out-of-plane full DOFs fixed (z of every position, material angles, joint
+ * rotations about x and y; after the rods' and joints' own marks, before the
+ * joint ends alias their joints). */
+void rn_planar_assess(rn_network *net);
+void rn_planar_mark(rn_network *net);
+
 /* ---- fixed components (boundary.c) ------------------------------------------ */
 /* Fixed position components (RN_FIX_* bitmask) of rod vertex v: its pins and
  * the clamps of the rod's ends; of a joint: its pins, all if clamped. */
@@ -450,6 +475,35 @@ static inline int rn_joint_has_rotation(const rn_joint *J) {
   return J->model == RN_JOINT_RIGID || J->clamped;
 }
 void rn_joint_free(rn_joint *J);
+
+/* ---- contact (contact.c) ---------------------------------------------------- */
+typedef struct rn_contact rn_contact;
+/* Pairs of contact edges (indices into the contact edge list), a < b. */
+typedef struct rn_contact_list {
+  int *pair; /* [2 n] */
+  size_t n, cap;
+} rn_contact_list;
+/* At finalize after the DOF map: the contact edges (RN_OK without contact). */
+rn_status rn_contact_build(rn_network *net, const char *where);
+void rn_contact_unbuild(rn_network *net);
+void rn_contact_free(rn_network *net);
+/* Sets flag[r] for the reduced rows of contact vertex positions; returns how
+ * many rows it flagged. */
+size_t rn_contact_pattern_flags(const rn_network *net, unsigned char *flag);
+/* RN_ERR_GEOMETRY if the initial state interpenetrates. */
+rn_status rn_contact_check_initial(const rn_network *net, const char *where);
+/* The pairs within the barrier's reach at x (x NULL: the accepted state); with
+ * ccd, first the continuous check of the motion from the accepted state to x
+ * (RN_DEGENERATE naming the pair if it would cross).  L is freed on error. */
+rn_status rn_contact_candidates(const rn_network *net, const double *x, int ccd,
+                                const char *where, rn_contact_list *L);
+void rn_contact_list_free(rn_contact_list *L);
+/* The 12 full indices of pair (a, b): (p0, p1) of edge a, then of edge b. */
+void rn_contact_pair_idx(const rn_network *net, int a, int b, size_t idx[12]);
+const rnk_contact_param *rn_contact_param(const rn_network *net);
+/* rn_fail with a message naming the pair's rods and edges. */
+rn_status rn_contact_pair_fail(const rn_network *net, rn_status st, const char *where,
+                               int a, int b, const char *what);
 /* Number of full DOFs of all joints. */
 size_t rn_joints_full_count(const rn_network *net);
 /* Finalize steps: BC conflicts with rod vertices, coincident joints

@@ -129,6 +129,24 @@ rn_status rn_network_set_cell_stress(rn_network *net, const double *stress) {
   return RN_OK;
 }
 
+rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
+                                   const double *stress) {
+  static const char *where = "rn_network_set_cell_load";
+  if (!net) return RN_ERR_ARG;
+  if (!net->cell)
+    return rn_fail(net->ctx, RN_ERR_STATE, where,
+                   "the network is not periodic (rn_network_set_periodic)");
+  const int ns = net->cell->nstrain;
+  if ((strain && !rn_all_finite((size_t)ns, strain)) ||
+      (stress && !rn_all_finite((size_t)ns, stress)))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "strain or stress is not finite");
+  for (int v = 0; v < ns; ++v)
+    if (strain && net->cell->fixed[v]) net->cell->strain[v] = strain[v];
+  if (stress) memcpy(net->cell->stress, stress, (size_t)ns * sizeof(double));
+  if (net->finalized) rn_cell_place(net);
+  return RN_OK;
+}
+
 rn_status rn_network_cell_info(const rn_network *net, int *dim, int *nstrain,
                                double *measure, double vectors[9]) {
   if (!net) return RN_ERR_ARG;

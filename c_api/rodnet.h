@@ -144,6 +144,25 @@ void rn_network_destroy(rn_network **net);
 rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const double *xyz,
                              const double *d1, int *rod);
 
+/* Add a closed rod (a ring) through nv >= 3 distinct vertices xyz[3*nv]; the
+ * first vertex is not repeated: edge nv-1 joins the last vertex to the first.
+ * It is stored as a rod of nv + 1 vertices whose last vertex is the first one
+ * (both alias one position) and nv edges, closed by a smooth joint
+ * (RN_JOINT_SMOOTH, named after the rod) at vertex 0 = vertex nv: every
+ * stencil is periodic (stretching of the closing edge, bending and twisting at
+ * every vertex including vertex 0, which is the joint's).  The other calls
+ * on the rod use the stored rod's indices (vertices 0 .. nv, edges 0 .. nv-1;
+ * rest curvature and twist of vertices 1 .. nv-1 by rn_network_set_rest_*, of
+ * vertex 0 by rn_network_set_joint_rest_* on the joint; vertex 0 is
+ * constrained and loaded through the joint).  d1 as for rn_network_add_rod.
+ * *rod and *joint (either may be NULL) receive the indices.  The twist the
+ * ring carries is set by rn_network_set_joint_link. */
+rn_status rn_network_add_closed_rod(rn_network *net, const char *name, int nv,
+                                    const double *xyz, const double *d1, int *rod,
+                                    int *joint);
+/* 1 if rod was added by rn_network_add_closed_rod (0 otherwise or invalid). */
+int rn_network_rod_is_closed(const rn_network *net, int rod);
+
 /* Material and section of a rod's edges: edge = -1 for all edges. */
 rn_status rn_network_set_material(rn_network *net, int rod, int edge,
                                   const rn_material *m);
@@ -270,7 +289,8 @@ rn_status rn_network_load_increment(rn_network *net, const double *x, double t_p
 rn_status rn_network_stretch_correction(const rn_network *net, const double *x,
                                         const double *s, double *f);
 /* Energy split by term: E[RN_TERM_COUNT].  The bending and twisting energy
- * of joints (between terminal and connection edges) counts as RN_TERM_BEND;
+ * of rigid and elastic joints (between terminal and connection edges) counts as
+ * RN_TERM_BEND, a smooth joint's vertex as RN_TERM_BEND and RN_TERM_TWIST;
  * forces and couples on joints as RN_TERM_LOAD. */
 enum { RN_TERM_STRETCH = 0, RN_TERM_BEND, RN_TERM_TWIST, RN_TERM_LOAD, RN_TERM_COUNT };
 rn_status rn_network_energy_terms(const rn_network *net, const double *x, double *E);
@@ -385,7 +405,15 @@ typedef enum rn_joint_model {
   RN_JOINT_ELASTIC = 0,
   /* The joint's rotation is a DOF (rotation vector about a reference rotation
    * that moves on accepted steps); rigid connections (frame theory). */
-  RN_JOINT_RIGID = 1
+  RN_JOINT_RIGID = 1,
+  /* Valence 2, one rod ending and one starting at the joint: the joint vertex
+   * is an ordinary DER vertex between the two terminal edges (bending and
+   * twisting with the stiffness averaged over the two edges, Voronoi length
+   * half their rest lengths), exactly as inside a rod; no rotation DOFs, no
+   * connection edges.  Rest curvature and twist: those of the input shape
+   * unless rn_network_set_joint_rest_* override them.  It closes the ring of
+   * rn_network_add_closed_rod.  Cannot be clamped or carry a couple (pin it). */
+  RN_JOINT_SMOOTH = 2
 } rn_joint_model;
 
 /* Add a joint where n_ends >= 1 rod ends meet: end k is end ends[k]
@@ -422,6 +450,39 @@ rn_status rn_network_displace_joint(rn_network *net, int joint, const double dis
  * rotation about the couple's axis). */
 rn_status rn_network_add_joint_force(rn_network *net, int joint, const double f[3]);
 rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m[3]);
+
+/* Rest shape of a joint (before finalize; docs/joints.md "Rest shapes").  By
+ * default a joint's rest shape is its input geometry.
+ * straight: valence 2 only; the two rods continue each other straight and
+ * untwisted at rest (rigid and elastic joints: the rest frame of the second
+ * end's terminal edge becomes the first's, turned by pi about its d1 if both
+ * rods end or both start there; smooth joints: rest curvature and twist 0).
+ * frames: rigid and elastic joints; frames[9 valence] the rest frame (rows t,
+ * d1, d2, orthonormal and right-handed to 1e-9) of each end's terminal edge,
+ * t along the edge as the rod runs (the frames of the input shape are the
+ * default; only their relative orientation matters).
+ * strains: smooth joints; the rest material curvature kappa[2] (integrated)
+ * and twist tau of the joint vertex.  RN_ERR_ARG for a model or valence the
+ * form does not apply to or frames that are not rotations. */
+rn_status rn_network_set_joint_rest_straight(rn_network *net, int joint);
+rn_status rn_network_set_joint_rest_frames(rn_network *net, int joint,
+                                           const double *frames);
+rn_status rn_network_set_joint_rest_strains(rn_network *net, int joint,
+                                            const double kappa[2], double tau);
+/* Twist carried through a smooth joint (before finalize): the reference twist
+ * at the joint vertex starts at h + 2 pi link instead of h, h in (-pi, pi] the
+ * angle between the two terminal edges' input frames (for a closed rod the
+ * holonomy of its parallel-transported frame; 0 for a planar ring).  The rest
+ * twist is unchanged, so link full turns of twist are stored in the loop: the
+ * total twist of a ring (the sum over its vertices) starts at
+ * h + 2 pi link + the rods' own input twist; for a planar ring link is its
+ * linking number.  The twist is continued on every reference update (never
+ * reduced modulo 2 pi), so the link of a loop is conserved. */
+rn_status rn_network_set_joint_link(rn_network *net, int joint, int link);
+/* Twist at a smooth joint's vertex at the current state (integrated; the
+ * total twist of a closed rod is this plus the sum of its rod's tau of
+ * rn_network_rod_strains).  RN_ERR_ARG for other models. */
+rn_status rn_network_joint_twist(const rn_network *net, int joint, double *twist);
 
 /* Current joint position x[3] and rotation R[9] (row-major, rest = identity).
  * RN_ERR_STATE before finalize, RN_ERR_RANGE for a bad joint, RN_DEGENERATE
@@ -465,6 +526,13 @@ rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
  * cell area / volume, scaled by the load factor): the energy gains
  * -lambda measure sigma . eps (mixed control: stress on the free components). */
 rn_status rn_network_set_cell_stress(rn_network *net, const double *stress);
+/* After finalize (or before): new values of the prescribed strain components
+ * (strain[nstrain]: the entries of components that are DOFs are ignored; NULL
+ * keeps them) and of the applied stress (stress[nstrain]; NULL keeps it), both
+ * scaled by the load factor; which components are prescribed does not change.
+ * Moves the prescribed strain DOFs accordingly (general strain / stress paths). */
+rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
+                                   const double *stress);
 /* Dimension (0 if not periodic), number of strain components, cell area (2D)
  * or volume (3D), lattice vectors vectors[9] (rows; unused rows 0).  Any
  * pointer may be NULL. */

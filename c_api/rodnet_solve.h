@@ -71,9 +71,14 @@ typedef enum rn_preconditioner {
                               iteration); any number of ranks */
   RN_PRECOND_MUELU = 5,    /* one MueLu smoothed-aggregation V-cycle on the whole
                               Hessian (rigid-body near-null space); MPI runtime */
-  RN_PRECOND_IFPACK2 = 6   /* Ifpack2 additive Schwarz, one subdomain per rank with
+  RN_PRECOND_IFPACK2 = 6,  /* Ifpack2 additive Schwarz, one subdomain per rank with
                               overlap 1, local sparse LU (exact on one rank); MPI
                               runtime */
+  RN_PRECOND_FROSCH = 7    /* FROSch two-level overlapping Schwarz: one subdomain per
+                              rank (overlap 1, local sparse LU) plus a coarse space of
+                              the rigid-body modes on the subdomain interfaces (one
+                              rank: the whole network; rigid-body modes of the whole
+                              network only); MPI runtime */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier
@@ -99,10 +104,23 @@ typedef enum rn_factorization {
  * D^{-1/2} H D^{-1/2}, D = |diag H|, which are dimensionless and do not depend on
  * the units or the size of the structure, and have the signs and zero modes of H
  * (rn_network_stability, docs/solvers.md "Stability"). */
+/* rn_solve_options.stability_method, rn_stability.method. */
+typedef enum rn_stability_method {
+  RN_STABILITY_AUTO = 0,
+  RN_STABILITY_CHOLESKY = 1, /* factorisations of H - sigma D (inertia) */
+  RN_STABILITY_LOBPCG = 2    /* Anasazi LOBPCG preconditioned by the solver's
+                                preconditioner (no factorisation of the whole H) */
+} rn_stability_method;
+
+/* The automatic choice's budget: the Cholesky check is used when one numeric
+ * factorisation of the whole Hessian takes at most this many flops. */
+#define RN_STABILITY_MAX_FLOPS 5e10
+
 typedef struct rn_stability {
   int checked;              /* 1 if computed; 0: skipped (rn_solve_options.stability
-                               = 0) or not available (a part of a distributed
-                               network: the check needs the whole Hessian) */
+                               = 0) or not available (rn_network_stability on a
+                               part of a distributed network, or the Cholesky
+                               check forced on one: it needs the whole Hessian) */
   double lowest_eigenvalue; /* lowest eigenvalue of D^{-1/2} H D^{-1/2} outside the
                                zero modes (0 if there is none) */
   double scale;             /* ||D^{-1/2} H D^{-1/2}||_inf, the largest absolute row
@@ -118,6 +136,12 @@ typedef struct rn_stability {
                                among the 10 lowest */
   long factorizations;      /* Cholesky factorisations the check took */
   double time_s;            /* its wall time */
+  int method;               /* how (rn_stability_method): RN_STABILITY_CHOLESKY or
+                               RN_STABILITY_LOBPCG; 0 if not checked */
+  int iterations;           /* LOBPCG iterations (0 for the Cholesky check) */
+  double cholesky_flops;    /* the cost model: flops of one Cholesky factorisation
+                               of the whole Hessian (0 if not estimated: LOBPCG
+                               forced, or a distributed network) */
 } rn_stability;
 
 /* Why a solve stopped. */
@@ -176,6 +200,14 @@ typedef struct rn_solve_options {
    * (rn_solve_report.stability, rn_network_stability); 0: skip it (benchmarks;
    * the check costs one to a few factorisations of the Hessian) */
   int stability;
+  /* How the stability check computes the lowest eigenvalues (docs/solvers.md
+   * "Stability"): RN_STABILITY_AUTO (default) Cholesky inertia and subspace
+   * iteration on factorisations of the whole Hessian when one costs at most
+   * RN_STABILITY_MAX_FLOPS (and always for the solver kinds that factor it),
+   * LOBPCG otherwise and always on a distributed network; CHOLESKY or LOBPCG
+   * force one (CHOLESKY on a part of a distributed network: not checked,
+   * stability.checked = 0; rodnet solve then checks the gathered network). */
+  int stability_method;
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -521,8 +553,9 @@ typedef struct rn_cell_relax_report {
   double residual_scale; /* largest balancing force there (the test is relative) */
 } rn_cell_relax_report;
 /* Equilibrium of the fluctuations at the prescribed macroscopic strain
- * strain[nstrain] (every strain component must be a DOF of net; it is held at
- * that value): from the current state, the tangent predictor
+ * strain[nstrain] (the strain components that are DOFs of net are held at those
+ * values; components the network prescribes keep the network's values and their
+ * entries are ignored): from the current state, the tangent predictor
  * du = -K_uu^-1 (g_u + K_ue d eps) (accepted if it lowers the energy), then
  * Newton with the sparse Cholesky factor of K_uu and a backtracking line search
  * on the energy; where K_uu is not positive definite (past an instability on
@@ -534,6 +567,18 @@ typedef struct rn_cell_relax_report {
  * Leaves the result as the current state; RN_OK when it ran (check
  * rep->converged).  Serial; needs no runtime initialisation. */
 rn_status rn_cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep);
+/* As rn_cell_relax, but a minimisation of the energy over the fluctuations that
+ * may leave the cell-periodic (principal) branch, e.g. onto the bifurcated branch
+ * of a supercell after a perturbation along its critical mode: Newton with the
+ * sparse Cholesky factor of K_uu + mu D (D = |diag K_uu|; mu = 0 where K_uu is
+ * positive definite, else the smallest shift 1e-10 4^k that factors), an Armijo
+ * backtracking line search on the energy and, at a stationary point where K_uu is
+ * indefinite (a saddle), steps along the lowest mode of (K_uu, D) by inverse
+ * iteration.  rep->converged only at an equilibrium with K_uu positive definite
+ * (rep->indefinite 0): a local minimum of the fluctuations at that strain.  No
+ * tangent predictor.  Serial; needs no runtime initialisation. */
+rn_status rn_cell_minimize(rn_network *net, const double *strain,
+                           rn_cell_relax_report *rep);
 
 /* Which Bloch modes rn_cell_bloch examines. */
 typedef enum rn_bloch_modes {

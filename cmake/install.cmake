@@ -21,6 +21,8 @@ install(TARGETS rodnet EXPORT rodnetTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/c_api/rodnet.h ${PROJECT_SOURCE_DIR}/c_api/rodnet_solve.h
+              ${PROJECT_SOURCE_DIR}/c_api/rodnet_model.h
+              ${PROJECT_SOURCE_DIR}/c_api/rodnet_contact.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # The scene reader and result writers (rodnet_scene.h), with the solver only.
 if(TARGET rodnet_scene)

@@ -182,6 +182,7 @@ static int joint_rotation(const double *q, const rnk_joint *j, double Q[9], doub
 }
 
 int rnk_joint_rotation(const double *q, const rnk_joint *j, double R[9]) {
+  if (j->smooth) return rnk_smooth_joint_rotation(q, j, R);
   return joint_rotation(q, j, R, NULL);
 }
 
@@ -209,6 +210,7 @@ static void end_setup(const double *q, const rnk_joint *j, int k, const double Q
 int rnk_jet_joint_twists(const double *q, const rnk_joint *j, double *twist) {
   double Q[9], w0[3] = {0, 0, 0}, q10[10];
   rnk_joint_end_param p;
+  if (j->smooth) return rnk_smooth_joint_twists(q, j, twist);
   int st = joint_rotation(q, j, Q, NULL);
   if (st) return st;
   for (int k = 0; k < j->valence; ++k) {
@@ -242,6 +244,7 @@ static int couple_jet(const rnk_joint *j, const double Qref[9], const double w[3
 
 int rnk_jet_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha) {
   double Q[9], w0[3] = {0, 0, 0};
+  if (j->smooth) return rnk_joint_couple_angle(q, j, alpha);
   int st = joint_rotation(q, j, Q, NULL);
   if (st) return st;
   rnk_joint jj = *j;
@@ -486,15 +489,20 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
   return RNK_OK;
 }
 
+/* A smooth joint's oracle is the vertex stencil's (rnk_bendtwist_*, whose own
+ * oracle tests cover it). */
 int rnk_jet_joint_energy(const double *q, const rnk_joint *j, double *work, double *E) {
+  if (j->smooth) return rnk_joint_energy(q, j, work, E);
   return joint_eval(q, j, 0, work, E, NULL, NULL);
 }
 
 int rnk_jet_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
                        double *g) {
+  if (j->smooth) return rnk_joint_grad(q, j, work, E, g);
   return joint_eval(q, j, 1, work, E, g, NULL);
 }
 
 int rnk_jet_joint_hess(const double *q, const rnk_joint *j, double *work, double *H) {
+  if (j->smooth) return rnk_joint_hess(q, j, work, H);
   return joint_eval(q, j, 2, work, NULL, NULL, H);
 }

@@ -672,11 +672,18 @@ static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
 }
 
 int rnk_joint_energy(const double *q, const rnk_joint *j, double *work, double *E) {
+  if (j->smooth) {
+    double Et = 0.0;
+    int st = rnk_smooth_joint_energy(q, j, E, &Et);
+    *E += Et;
+    return st;
+  }
   return joint_eval(q, j, OP_E, work, E, NULL, NULL, NULL, NULL);
 }
 
 int rnk_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
                    double *g) {
+  if (j->smooth) return rnk_smooth_joint_grad(q, j, E, g);
   return joint_eval(q, j, OP_G, work, E, g, NULL, NULL, NULL);
 }
 
@@ -691,6 +698,7 @@ static void symmetrize(double *H, int n) {
 }
 
 int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H) {
+  if (j->smooth) return rnk_smooth_joint_hess(q, j, H);
   int st = joint_eval(q, j, OP_H, work, NULL, NULL, H, NULL, NULL);
   if (st == RNK_OK) symmetrize(H, (int)rnk_joint_stencil_size(j));
   return st;
@@ -698,6 +706,7 @@ int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H)
 
 int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const double *v,
                   double *Hv) {
+  if (j->smooth) return rnk_smooth_joint_hvp(q, j, v, Hv);
   return joint_eval(q, j, OP_HV, work, NULL, NULL, NULL, v, Hv);
 }
 
@@ -708,6 +717,7 @@ int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist) {
   fq_rot R;
   jq_end X;
   int st;
+  if (j->smooth) return rnk_smooth_joint_twists(q, j, twist);
   if ((st = joint_setup(q, j, 0, &F, &R, &Qref))) return st;
   for (int k = 0; k < j->valence; ++k) {
     double cq[4];
@@ -725,6 +735,10 @@ int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha) {
   jq_fit F;
   fq_rot R;
   int st;
+  if (j->smooth) { /* no couple on a smooth joint */
+    *alpha = 0.0;
+    return RNK_OK;
+  }
   if ((st = joint_setup(q, j, 0, &F, &R, &Qref))) return st;
   return couple_eval(j, Qref, &R, 0, &E, NULL, NULL, alpha);
 }

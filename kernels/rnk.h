@@ -291,6 +291,7 @@ typedef struct rnk_joint_end {
 
 typedef struct rnk_joint {
   int rigid;                 /* 1: rigid (rotation DOFs), 0: elastic */
+  int smooth;                /* 1: a smooth joint (below; rigid = 0, valence 2) */
   int valence;               /* >= 1 */
   const rnk_joint_end *ends; /* [valence] */
   const rnk_frame *refs;     /* reference frames of the terminal edges [valence] */
@@ -321,6 +322,28 @@ int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const doubl
 int rnk_joint_rotation(const double *q, const rnk_joint *j, double R[9]);
 int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist);
 int rnk_joint_couple_angle(const double *q, const rnk_joint *j, double *alpha);
+
+/* Smooth joint (j->smooth = 1, rigid = 0, valence 2): the joint vertex is an
+ * ordinary DER vertex between the two terminal edges, the closing vertex of a
+ * closed rod or a smooth valence-2 connection.  ends[0] has side 0 (its rod
+ * ends at the joint), ends[1] side 1 (its rod starts there); the energy is
+ * rnk_bendtwist_* on the vertex stencil (x_n of end 0, theta_0, x_J, theta_1,
+ * x_n of end 1) with frames (refs[0], refs[1]) and the vertex parameters
+ * ends[0].bend, ends[0].twist (stiffness, rest curvature and twist, Voronoi
+ * length, stored reference twist); ends[1]'s are unused.  rnk_joint_* above
+ * dispatch to these (the same values): the twists are the reference twist at
+ * the vertex continued from ends[0].twist.ref_twist (both entries), the
+ * rotation is F_1 Fbar_1^T (end 1's material frame against its rest frame),
+ * a couple is not modelled (alpha = 0).  Eb and Et split the energy. */
+int rnk_smooth_joint_energy(const double *q, const rnk_joint *j, double *Eb, double *Et);
+int rnk_smooth_joint_grad(const double *q, const rnk_joint *j, double *E, double *g);
+int rnk_smooth_joint_hess(const double *q, const rnk_joint *j, double *H);
+int rnk_smooth_joint_hvp(const double *q, const rnk_joint *j, const double *v,
+                         double *Hv);
+int rnk_smooth_joint_twists(const double *q, const rnk_joint *j, double *twist);
+int rnk_smooth_joint_rotation(const double *q, const rnk_joint *j, double R[9]);
+/* The vertex stencil q11 of a smooth joint's stencil q. */
+void rnk_smooth_joint_vertex(const double *q, double q11[11]);
 
 /* Test oracle: the same functions evaluated with second-order jets
  * (joint.c, joint_net.c; slow).  rnk_jet_joint_work_size doubles of work. */
@@ -362,6 +385,38 @@ void rnk_rotation_exp(const double w[3], double R[9]);
 /* ---- dead force on a vertex: E = -f . x (linear; Hessian zero) ----------- */
 double rnk_force_energy(const double x[3], const double f[3]);
 void rnk_force_grad(const double f[3], double g[3]);
+
+/* ---- contact between two segments (contact.c) ------------------------------
+ * Pair stencil x[12] = (p0, p1, q0, q1): the ends of two edges.  The gap is
+ * the distance between the segments minus radius (the sum of the two rods'
+ * radii); the energy is the barrier of incremental potential contact,
+ * b(y) = -kappa (y - dhat)^2 log(y / dhat) for 0 < y < dhat, 0 beyond.
+ * RNK_DEGENERATE for a zero-length edge or a gap <= 0 (interpenetration). */
+typedef struct rnk_contact_param {
+  double radius; /* sum of the two radii */
+  double dhat;   /* activation distance of the barrier (> 0) */
+  double kappa;  /* stiffness of the barrier (> 0) */
+} rnk_contact_param;
+
+/* Edge-edge regime only when sin^2 of the edges' angle exceeds this. */
+#define RNK_CONTACT_PARALLEL 1e-10
+
+/* Squared distance d2 between the segments (p0, p1) and (q0, q1), with its
+ * gradient g[12] and Hessian H[144] (either may be NULL). */
+int rnk_segment_distance2(const double x[12], double *d2, double *g, double *H);
+/* Gap: distance minus radius. */
+int rnk_contact_gap(const double x[12], double radius, double *gap);
+int rnk_contact_energy(const double x[12], const rnk_contact_param *p, double *E);
+int rnk_contact_grad(const double x[12], const rnk_contact_param *p, double *E,
+                     double g[12]);
+int rnk_contact_hess(const double x[12], const rnk_contact_param *p, double H[144]);
+/* Continuous collision check of the linear motion x0 -> x1 of a pair by
+ * conservative advancement: hit = 0 certifies that the gap stays above
+ * thr = 0.1 min(gap(x0), dhat) all along; hit = 1 if it falls below 2 thr at
+ * some point of the motion (or cannot be certified in 256 advancements, or
+ * the pair starts interpenetrating). */
+int rnk_contact_ccd(const double x0[12], const double x1[12], double radius, double dhat,
+                    int *hit);
 
 /* Dense helper: y = H v for an n x n row-major block. */
 void rnk_block_mv(int n, const double *H, const double *v, double *y);

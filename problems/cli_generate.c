@@ -48,7 +48,18 @@ static const char generate_help[] =
     "                           pull-x|y|z:FORCE      total FORCE on the max face,\n"
     "                             -FORCE on the min face whose centre joint is\n"
     "                             clamped (free lateral contraction)\n"
+    "                           biaxial:EX,EY         (planar lattices) the x and\n"
+    "                             y faces on frictionless grips, the max faces\n"
+    "                             displaced by EX, EY times the extents\n"
+    "                           shear:GAMMA           (planar lattices) the y\n"
+    "                             faces gripped in x and y, the max one moved\n"
+    "                             along x by GAMMA times the height\n"
+    "                           With --periodic: biaxial and shear only, written\n"
+    "                             as prescribed strains (E11, E22 or G12; the\n"
+    "                             other components free)\n"
     "                           At most one --load.\n"
+    "      --model M            planar or 3d: the scene's \"model\" (docs/model.md)\n";
+static const char generate_help2[] =
     "      --periodic           write a periodic cell instead of a finite block:\n"
     "                           the --cells cells on the torus of their lattice\n"
     "                           vectors, rod ends at periodic images (\"image\"),\n"
@@ -62,7 +73,10 @@ static const char generate_help[] =
     "      --perturb AMP        (--periodic) move every joint by a random vector\n"
     "                           with components in [-AMP, AMP] times the mean bar\n"
     "                           length (in plane for 2D cells): a disordered cell\n"
-    "      --seed N             seed of --perturb (default 1)\n"
+    "      --section-scatter S  (--periodic) scale every rod's section (radius, or\n"
+    "                           width and height) by 1 + S g, g a standard normal\n"
+    "                           deviate per rod (floored at 0.05): per-rod scatter\n"
+    "      --seed N             seed of --perturb and --section-scatter (default 1)\n"
     "      --repeat M,N[,K]     (--periodic) write \"repeat\": the scene reader tiles\n"
     "                           the cell M x N (x K) times\n"
     "  -q, --quiet              no summary\n"
@@ -75,7 +89,7 @@ typedef struct gen_args {
   const char *kind_name, *output, *section, *load;
   rn_lattice_kind kind;
   int cells[3], ncells, quiet, periodic, reentrant;
-  double a, slenderness, density, perturb;
+  double a, slenderness, density, perturb, scatter;
   int seed, repeat[3], nrepeat;
   rn_lattice_scene sc;
 } gen_args;
@@ -158,14 +172,36 @@ static int parse_material(gen_args *a, const char *v) {
                             v);
 }
 
+/* biaxial:EX,EY and shear:GAMMA (docs/lattices.md); 1 if v is neither. */
+static int parse_planar_load(gen_args *a, const char *v, int *rc) {
+  double p[2];
+  int n = 0, biaxial = strncmp(v, "biaxial:", 8) == 0;
+  if (!biaxial && strncmp(v, "shear:", 6) != 0) return 1;
+  *rc = 0;
+  if (parse_list(v + (biaxial ? 8 : 6), biaxial ? 2 : 1, p, &n) != 0 ||
+      n != (biaxial ? 2 : 1) || fabs(p[0]) >= 1 || (biaxial && fabs(p[1]) >= 1) ||
+      (p[0] == 0 && (!biaxial || p[1] == 0)))
+    *rc = rn_cli_usage_error("generate",
+                             "--load expects biaxial:EX,EY or shear:GAMMA (strains of "
+                             "magnitude below 1, not all 0), got '%s'",
+                             v);
+  a->sc.load = biaxial ? RN_LLOAD_BIAXIAL : RN_LLOAD_SHEAR;
+  a->sc.load_value = p[0];
+  a->sc.load_value2 = biaxial ? p[1] : 0.0;
+  a->load = v;
+  return 0;
+}
+
 static int parse_load(gen_args *a, const char *v) {
   static const char *const kinds[] = {"stretch-", "compress-", "pull-", "grip-"};
+  int rc = 0;
   /* One load per scene: a second --load used to replace the first silently. */
   if (a->load)
     return rn_cli_usage_error("generate",
                               "--load given twice ('%s', then '%s'): a generated "
                               "scene takes one load",
                               a->load, v);
+  if (parse_planar_load(a, v, &rc) == 0) return rc;
   static const rn_lattice_load_kind load[] = {RN_LLOAD_STRETCH, RN_LLOAD_STRETCH,
                                               RN_LLOAD_PULL, RN_LLOAD_GRIP};
   for (int k = 0; k < 4; k++) {
@@ -192,8 +228,8 @@ static int parse_load(gen_args *a, const char *v) {
   }
   return rn_cli_usage_error("generate",
                             "--load expects stretch-AXIS:STRAIN, compress-AXIS:STRAIN, "
-                            "grip-AXIS:STRAIN or pull-AXIS:FORCE (AXIS x, y or z; value "
-                            "non-zero), got '%s'",
+                            "grip-AXIS:STRAIN, pull-AXIS:FORCE (AXIS x, y or z; value "
+                            "non-zero), biaxial:EX,EY or shear:GAMMA, got '%s'",
                             v);
 }
 
@@ -210,16 +246,24 @@ static int parse_joint_model(gen_args *a, const char *v) {
 
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
-  static const char *const names[] = {"--output",      "--cells",
-                                      "--cell-size",   "--edges-per-rod",
-                                      "--section",     "--material",
-                                      "--joint-model", "--load",
-                                      "--slenderness", "--relative-density",
-                                      "--perturb",     "--seed",
-                                      "--repeat"};
+  static const char *const names[] = {"--output",           "--cells",   "--cell-size",
+                                      "--edges-per-rod",    "--section", "--material",
+                                      "--joint-model",      "--load",    "--slenderness",
+                                      "--relative-density", "--perturb", "--seed",
+                                      "--repeat",           "--model"};
   const char *v = NULL;
   int m = 0, which = -1;
-  for (int k = 0; k < 13 && m == 0; k++) {
+  if ((m = rn_cli_option_value("generate", argc, argv, i, "--section-scatter", NULL,
+                               &v))) {
+    *rc = m < 0
+              ? RN_EXIT_USAGE
+              : rn_cli_parse_double("generate", "--section-scatter", v, 0.0, &a->scatter);
+    if (!*rc && !(a->scatter < 1.0))
+      *rc = rn_cli_usage_error(
+          "generate", "--section-scatter expects a value in [0, 1), got '%s'", v);
+    return 1;
+  }
+  for (int k = 0; k < 14 && m == 0; k++) {
     m = rn_cli_option_value("generate", argc, argv, i, names[k], k == 0 ? "-o" : NULL,
                             &v);
     which = k;
@@ -248,6 +292,11 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
     break;
   case 6:
     *rc = parse_joint_model(a, v);
+    break;
+  case 13:
+    if (strcmp(v, "planar") != 0 && strcmp(v, "3d") != 0)
+      *rc = rn_cli_usage_error("generate", "--model expects planar or 3d, got '%s'", v);
+    a->sc.model = v;
     break;
   case 8:
     *rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
@@ -312,10 +361,16 @@ static int check_args(gen_args *a) {
     return rn_cli_usage_error("generate",
                               "--slenderness, --relative-density and --perturb need "
                               "--periodic");
+  if (!a->periodic && a->scatter > 0.0)
+    return rn_cli_usage_error("generate", "--section-scatter needs --periodic");
   if (a->nrepeat && !a->periodic)
     return rn_cli_usage_error("generate", "--repeat needs --periodic");
-  if (a->periodic && a->sc.load != RN_LLOAD_NONE)
-    return rn_cli_usage_error("generate", "--load does not apply to a periodic cell");
+  if (a->periodic && a->sc.load != RN_LLOAD_NONE && a->sc.load != RN_LLOAD_BIAXIAL &&
+      a->sc.load != RN_LLOAD_SHEAR)
+    return rn_cli_usage_error("generate",
+                              "--load does not apply to a periodic cell except biaxial "
+                              "and shear (prescribed strains), got '%s'",
+                              a->load);
   if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
     return rn_cli_usage_error("generate", "give at most one of --section, --slenderness "
                                           "and --relative-density");
@@ -338,6 +393,15 @@ static int check_args(gen_args *a) {
                               "--cells: the %s lattice is planar, give "
                               "NX[,NY]",
                               a->kind_name);
+  if (dim == 3 && !a->periodic &&
+      (a->sc.load == RN_LLOAD_BIAXIAL || a->sc.load == RN_LLOAD_SHEAR))
+    return rn_cli_usage_error("generate",
+                              "--load %s: biaxial and shear loads of a finite lattice "
+                              "need a planar lattice (or --periodic)",
+                              a->load);
+  if (a->sc.model && strcmp(a->sc.model, "planar") == 0 && dim == 3)
+    return rn_cli_usage_error("generate", "--model planar: the %s lattice is not planar",
+                              a->kind_name);
   if (dim == 2 && a->sc.load != RN_LLOAD_NONE && a->sc.load_axis == 2)
     return rn_cli_usage_error("generate",
                               "--load: the %s lattice lies in the xy plane, load it "
@@ -355,6 +419,7 @@ static int parse_generate_args(int argc, char **argv, gen_args *a) {
     int rc = 0;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       fputs(generate_help, stdout);
+      fputs(generate_help2, stdout);
       return -1;
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
@@ -394,6 +459,8 @@ static void describe(const gen_args *a, char *buf, size_t n) {
                     a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
   if (a->load && len > 0 && (size_t)len < n)
     len += snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
+  if (a->sc.model && len > 0 && (size_t)len < n)
+    len += snprintf(buf + len, n - (size_t)len, " --model %s", a->sc.model);
   if (a->periodic && len > 0 && (size_t)len < n)
     snprintf(buf + len, n - (size_t)len, " --periodic");
 }
@@ -438,6 +505,11 @@ static int generate_periodic(gen_args *a, rn_context *ctx) {
   if (!st) {
     if (a->perturb > 0.0) rn_pcell_perturb(&c, a->perturb, (unsigned long)a->seed);
     pcell_section(a, &c);
+    if (a->scatter > 0.0 &&
+        rn_pcell_section_scatter(&c, a->scatter, (unsigned long)a->seed))
+      st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+  }
+  if (!st) {
     st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc, a->nrepeat ? a->repeat : NULL);
   }
   if (st) {

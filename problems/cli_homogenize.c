@@ -14,6 +14,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "homog_path.h"
+#include "result_json.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 #include "text_file.h"
@@ -52,13 +53,23 @@ static const char homogenize_help[] =
     "                      \"path\" and \"instability\")\n"
     "      --steps N       steps of the path (default 20)\n"
     "      --modes M       Bloch modes examined: all (default), in-plane or\n"
-    "                      out-of-plane (2D cells at planar states)\n"
+    "                      out-of-plane (2D cells at planar states; the planar\n"
+    "                      model has the in-plane modes only)\n"
     "      --bloch-grid G  wave vectors per reciprocal direction (default 16 in 2D,\n"
     "                      6 in 3D), refined around the minimum\n"
     "      --pattern P     after a local instability: the supercell its wave vector\n"
     "                      calls for at the critical strain plus the critical mode\n"
     "                      (scaled for display), written to P.vtu and drawn to\n"
     "                      P.png (docs/render_vtu.py)\n"
+    "      --post-buckling B  after a local instability: continue the path past the\n"
+    "                      critical strain on the bifurcated branch of that supercell\n"
+    "                      (perturbed along the critical mode, minimised by\n"
+    "                      rn_cell_minimize; with --modes in-plane the supercell's\n"
+    "                      out-of-plane DOFs are pinned), the principal branch next to\n"
+    "                      it; the last post-buckled state to B.vtu and B.png;\n"
+    "                      RESULT.json gains \"post_buckling\"\n"
+    "      --post-steps N  steps from the critical strain to the path's end (default "
+    "10)\n"
     "  -q, --quiet         no summary on stdout\n"
     "  -h, --help          show this help\n"
     "\n"
@@ -66,14 +77,15 @@ static const char homogenize_help[] =
     "strain) or unwritable output, 4 the cell is a mechanism or the plot failed.\n";
 
 typedef struct hom_args {
-  const char *scene, *output, *plot, *path, *pattern;
-  int quiet, steps, grid;
+  const char *scene, *output, *plot, *path, *pattern, *post;
+  int quiet, steps, grid, post_steps;
   rn_bloch_modes modes;
 } hom_args;
 
 static int parse_args(int argc, char **argv, hom_args *a) {
   memset(a, 0, sizeof *a);
   a->steps = 20;
+  a->post_steps = 10;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = NULL;
     int m;
@@ -103,6 +115,19 @@ static int parse_args(int argc, char **argv, hom_args *a) {
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--pattern", NULL, &v))) {
       if (m < 0) return RN_EXIT_USAGE;
       a->pattern = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--post-buckling", NULL,
+                                 &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->post = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--post-steps", NULL,
+                                 &v))) {
+      if (m < 0 ||
+          rn_cli_parse_int("homogenize", "--post-steps", v, 1, 10000, &a->post_steps))
+        return RN_EXIT_USAGE;
       continue;
     }
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--steps", NULL, &v))) {
@@ -140,6 +165,8 @@ static int parse_args(int argc, char **argv, hom_args *a) {
   if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
   if (a->pattern && !a->path)
     return rn_cli_usage_error("homogenize", "--pattern needs --path");
+  if (a->post && !a->path)
+    return rn_cli_usage_error("homogenize", "--post-buckling needs --path");
   return 0;
 }
 
@@ -175,6 +202,8 @@ typedef struct hom_out {
   const double *S;
   double seconds;
   const hp_path *path; /* NULL without --path */
+  const rn_network *net;
+  const hp_post *post; /* --post-buckling */
 } hom_out;
 
 /* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
@@ -230,6 +259,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   fprintf(f,
           "\",\n  \"dimension\": %d,\n  \"%s\": %.17g,\n  \"relative_density\": %.17g,\n",
           h->dim, h->dim == 2 ? "area" : "volume", h->measure, h->relative_density);
+  rn_result_put_model(f, o->net);
   fprintf(f, "  \"voigt\": %s,\n",
           n == 3 ? "[\"11\", \"22\", \"12\"]"
                  : "[\"11\", \"22\", \"33\", \"23\", \"13\", \"12\"]");
@@ -253,6 +283,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   }
   fprintf(f, "  \"directional_modulus_angles_deg\": [0, 360, 2],\n");
   if (o->path) hp_write_json(f, o->path);
+  if (o->path && o->post) hp_post_write_json(f, o->path, o->post);
   fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
           o->seconds);
   return RN_OK;
@@ -268,13 +299,6 @@ static double now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* The smallest m <= 12 with m xi an integer (to 1e-3); 0 if none. */
-static int period_of(double xi) {
-  for (int m = 1; m <= 12; ++m)
-    if (fabs(m * xi - round(m * xi)) < 1e-3) return m;
-  return 0;
 }
 
 /* --pattern: the supercell of the critical wave vector on the principal
@@ -298,7 +322,7 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
     return RN_EXIT_OK;
   }
   for (int i = 0; i < path->dim; ++i)
-    if (!(pat->rep[i] = period_of(path->inst.xi[i]))) {
+    if (!(pat->rep[i] = hp_period_of(path->inst.xi[i]))) {
       fprintf(stderr,
               "rodnet homogenize: --pattern: the wave vector is not commensurate with a "
               "supercell of at most 12 cells per direction\n");
@@ -405,6 +429,14 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INPUT;
     goto done;
   }
+  if (a.path && a.modes == RN_BLOCH_OUT_OF_PLANE && rn_network_is_planar(net) == 1) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes out-of-plane: the scene uses the planar "
+            "model, which has no out-of-plane modes (use \"model\": \"3d\")\n",
+            a.scene);
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
   double target[6] = {0};
   if (a.path) {
     int count = 0, ns = 0;
@@ -440,7 +472,9 @@ int rn_cli_homogenize(int argc, char **argv) {
     goto done;
   }
   hp_path path;
+  hp_post post;
   memset(&path, 0, sizeof(path));
+  memset(&post, 0, sizeof(post));
   if (a.path) {
     path.ns = h.nstrain;
     path.dim = h.dim;
@@ -459,12 +493,26 @@ int rn_cli_homogenize(int argc, char **argv) {
       goto done;
     }
   }
+  if (a.post) {
+    post.requested = 1;
+    post.nsteps = a.post_steps;
+#ifdef RN_HAVE_SOLVER
+    st = hp_post_buckling(ctx, a.scene, &path, a.post, &post);
+#endif
+    if (st) {
+      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n",
+              rn_context_last_error(ctx));
+      rc = RN_EXIT_INTERNAL;
+      st = RN_OK;
+    } else if (post.failed)
+      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n", post.failed);
+  }
   if (a.pattern) {
     path.pattern.requested = 1;
     int prc = write_pattern(ctx, &a, &path, &path.pattern);
     if (prc) rc = prc;
   }
-  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL};
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post};
   st = rn_file_write_atomic(ctx, a.output, write_result, &o);
   if (!st && a.path && !a.quiet) {
     if (path.inst.found)
@@ -491,6 +539,18 @@ int rn_cli_homogenize(int argc, char **argv) {
     if (!rc) rc = RN_EXIT_INTERNAL;
   }
   hp_free(&path);
+  if (!st && post.done && !a.quiet) {
+    const hp_post_step *ls = &post.step[post.done - 1];
+    printf("rodnet homogenize: post-buckling: %d x %d supercell, %d steps past the "
+           "critical strain; at load factor %.4g stress [%.6g %.6g %.6g] (principal "
+           "[%.6g %.6g %.6g]), %s; wrote %s.vtu%s%s%s\n",
+           post.rep[0], post.rep[1], post.done, ls->t, ls->stress[0], ls->stress[1],
+           ls->stress[path.ns - 1], ls->principal_stress[0], ls->principal_stress[1],
+           ls->principal_stress[path.ns - 1],
+           ls->verified ? "a verified minimum" : "NOT a verified minimum", a.post,
+           post.png ? " and " : "", post.png ? a.post : "", post.png ? ".png" : "");
+  }
+  hp_post_free(&post);
   if (st) {
     fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
@@ -498,6 +558,7 @@ int rn_cli_homogenize(int argc, char **argv) {
   }
   if (!a.quiet) {
     int n = h.nstrain;
+    char line[320];
     printf("rodnet homogenize: %s: %dD cell, %s %.6g, relative density %.6g, %zu "
            "fluctuation DOFs, %.3g s\n  C =",
            a.scene, h.dim, h.dim == 2 ? "area" : "volume", h.measure, h.relative_density,
@@ -507,6 +568,7 @@ int rn_cli_homogenize(int argc, char **argv) {
       for (int j = 0; j < n; j++) printf("%s%13.6e", j ? " " : "", h.C[i * n + j]);
       printf("]");
     }
+    printf("\n  model %s", rn_result_model_line(net, line, sizeof line));
     printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
            1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], a.output);
   }

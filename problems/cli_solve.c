@@ -54,7 +54,8 @@ static const char solve_help[] =
     "                      gathered (factor's matrix on rank 0: exact, not\n"
     "                      scalable; docs/parallel.md), muelu (algebraic\n"
     "                      multigrid on the whole Hessian), ifpack2 (additive\n"
-    "                      Schwarz, local LU); muelu, ifpack2 need MPI\n"
+    "                      Schwarz, local LU), frosch (two-level Schwarz);\n"
+    "                      muelu, ifpack2, frosch need MPI\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian\n"
     "                      (also spelt --factorisation):\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
@@ -70,13 +71,15 @@ static const char solve_help[] =
     "                      one step, split automatically when a full step fails)\n"
     "      --no-predictor  start each load step where the last one converged (default:\n"
     "                      from the linearised load-increment prediction, kept if\n"
-    "                      it lowers the energy; docs/solvers.md)\n"
-    "      --no-stability  skip the stability check of the result (the lowest\n"
-    "                      Hessian eigenvalues; docs/solvers.md)\n"
-    "  -q, --quiet         no progress lines\n"
-    "  -h, --help          show this help\n";
+    "                      it lowers the energy; docs/solvers.md)\n";
 /* (two strings: one would exceed the 4095 characters C99 guarantees) */
 static const char solve_help_tail[] =
+    "      --no-stability  skip the stability check of the result (the lowest\n"
+    "                      Hessian eigenvalues; docs/solvers.md)\n"
+    "      --stability-method M  how the check computes them: auto (default:\n"
+    "                      Cholesky when affordable, else LOBPCG), cholesky, lobpcg\n"
+    "  -q, --quiet         no progress lines\n"
+    "  -h, --help          show this help\n"
     "\n"
     "Options given here override the scene's \"solver\" block.  Output files are\n"
     "written completely or not at all.\n"
@@ -86,6 +89,7 @@ static const char solve_help_tail[] =
 
 typedef struct solve_args {
   const char *scene, *output, *vtk, *solver, *factorization, *preconditioner;
+  const char *stability_method;
   int quiet, max_iter, load_steps, has_max_iter, has_load_steps, has_gtol, no_predictor;
   int no_stability;
   double gtol;
@@ -110,6 +114,9 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--preconditioner", NULL,
                                     &v)) != 0)
     a->preconditioner = v;
+  else if ((m = rn_cli_option_value("solve", argc, argv, i, "--stability-method", NULL,
+                                    &v)) != 0)
+    a->stability_method = v;
   else if ((m = rn_cli_option_value("solve", argc, argv, i, "--max-iter", NULL, &v)) !=
            0) {
     if (m > 0)
@@ -270,7 +277,7 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown preconditioner '%s' (known: auto, factor, "
-                              "local, gathered, dd, muelu, ifpack2)",
+                              "local, gathered, dd, muelu, ifpack2, frosch)",
                               a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
@@ -283,6 +290,17 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
   if (a->has_load_steps) opt->load_steps = a->load_steps;
   if (a->no_predictor) opt->predictor = 0;
   if (a->no_stability) opt->stability = 0;
+  if (a->stability_method) {
+    static const char *const names[3] = {"auto", "cholesky", "lobpcg"};
+    int k = 0;
+    while (k < 3 && strcmp(a->stability_method, names[k]) != 0) ++k;
+    if (k == 3)
+      return rn_cli_usage_error("solve",
+                                "unknown stability method '%s' (known: auto, "
+                                "cholesky, lobpcg)",
+                                a->stability_method);
+    opt->stability_method = k;
+  }
   return 0;
 }
 
@@ -322,17 +340,19 @@ static void print_stability(const rn_result_info *in) {
     return;
   }
   printf("  stability    %s: lowest Hessian eigenvalue %.6e (scale %.3e), %d zero "
-         "modes; %ld factorisations, %.3f s\n",
+         "modes; %s, %ld factorisations, %d iterations, %.3f s\n",
          st->verified_minimum ? "verified local minimum"
          : in->converged      ? "stationary, not a verified minimum"
                               : "not a verified minimum (not converged)",
-         st->lowest_eigenvalue, st->scale, st->zero_modes, st->factorizations,
-         st->time_s);
+         st->lowest_eigenvalue, st->scale, st->zero_modes,
+         st->method == RN_STABILITY_LOBPCG ? "lobpcg" : "cholesky", st->factorizations,
+         st->iterations, st->time_s);
 }
 
 static void print_summary(const solve_args *a, const rn_scene *scene,
                           const rn_result_info *in) {
   rn_network *net = rn_scene_network(scene);
+  char line[320];
   printf("rodnet solve: %s\n", a->scene);
   /* a converged stationary point that is not a verified minimum says so */
   printf("  status       %s%s (stopped by: %s)\n", in->status,
@@ -346,6 +366,7 @@ static void print_summary(const solve_args *a, const rn_scene *scene,
   printf("  size         %d rods, %ld vertices, %zu free DOFs\n",
          rn_network_num_rods(net), rn_scene_num_vertices(scene),
          rn_network_num_dofs(net));
+  printf("  model        %s\n", rn_result_model_line(net, line, sizeof line));
   printf("  iterations   %d Newton, %ld Krylov, %d load steps (load factor %g), %d "
          "predictor steps\n",
          in->iterations, in->krylov_iterations, in->load_steps,
@@ -518,9 +539,10 @@ static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in
   if (agree(d, st, "rodnet solve: cannot gather the result: ")) return RN_EXIT_INTERNAL;
   st = partition_info(d, in);
   if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INTERNAL;
-  /* the stability check needs the whole Hessian: on rank 0, on the gathered state
-   * (serial; the other ranks wait at the next agreement) */
-  if (d->rank == 0 && !in->stability_note) {
+  /* the solve checks stability on the parts (LOBPCG, collective); if it did not,
+   * the Cholesky check on rank 0 on the gathered state (serial; the other ranks
+   * wait at the next agreement) */
+  if (d->rank == 0 && !in->stability_note && !in->stability.checked) {
     if (rn_network_stability(rn_scene_network(d->whole), &in->stability) == RN_OK)
       in->stability.verified_minimum = in->stability.verified_minimum && in->converged;
     else

@@ -276,8 +276,18 @@ static rn_status write_cell(rn_context *ctx, const sweep_spec *s, const point *p
                  : rn_pcell_from_lattice(ctx, kind, s->cells, 1.0, &c);
   if (st) return st;
   if (s->perturb > 0.0) rn_pcell_perturb(&c, s->perturb, (unsigned long)p->seed);
-  rn_lattice_scene sc = {"rodnet sweep",    s->edges,   p->joint_model, s->E, s->nu,
-                         RN_LSEC_RECTANGLE, {0.0, 0.0}, RN_LLOAD_NONE,  0,    0.0};
+  rn_lattice_scene sc = {"rodnet sweep",
+                         s->edges,
+                         p->joint_model,
+                         s->E,
+                         s->nu,
+                         RN_LSEC_RECTANGLE,
+                         {0.0, 0.0},
+                         RN_LLOAD_NONE,
+                         0,
+                         0.0,
+                         0.0,
+                         NULL};
   rn_pcell_section_for_density(&c, p->rho, &sc);
   st = rn_pcell_write_scene(ctx, path, &c, &sc, NULL);
   rn_pcell_free(&c);

@@ -217,7 +217,7 @@ done:
   return st;
 }
 
-static void put_vec(FILE *f, int n, const double *v) {
+void hp_put_vec(FILE *f, int n, const double *v) {
   fputc('[', f);
   for (int i = 0; i < n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", v[i]);
   fputc(']', f);
@@ -233,7 +233,7 @@ static void put_num(FILE *f, double v) {
 void hp_write_json(FILE *f, const hp_path *p) {
   static const char *const mode_names[] = {"all", "in-plane", "out-of-plane"};
   fputs("  \"path_target\": ", f);
-  put_vec(f, p->ns, p->target);
+  hp_put_vec(f, p->ns, p->target);
   fprintf(f, ",\n  \"path_steps\": %d,\n  \"bloch_modes\": \"%s\",\n", p->steps,
           mode_names[p->modes]);
   fputs("  \"path\": [", f);
@@ -242,9 +242,9 @@ void hp_write_json(FILE *f, const hp_path *p) {
     fprintf(f,
             "%s\n    {\"step\": %d, \"load_factor\": %.17g, \"strain\": ", k ? "," : "",
             k, s->t);
-    put_vec(f, p->ns, s->strain);
+    hp_put_vec(f, p->ns, s->strain);
     fputs(", \"stress\": ", f);
-    put_vec(f, p->ns, s->stress);
+    hp_put_vec(f, p->ns, s->stress);
     fprintf(f, ", \"energy\": %.17g, \"newton_iterations\": %d, \"stable\": %s, ",
             s->energy, s->newton,
             s->stable == 1   ? "true"
@@ -265,27 +265,27 @@ void hp_write_json(FILE *f, const hp_path *p) {
   }
   const hp_instability *in = &p->inst;
   fputs("{\"strain\": ", f);
-  put_vec(f, p->ns, in->strain);
+  hp_put_vec(f, p->ns, in->strain);
   fputs(", \"stress\": ", f);
-  put_vec(f, p->ns, in->stress);
+  hp_put_vec(f, p->ns, in->stress);
   fputs(", \"wave_vector\": ", f);
-  put_vec(f, p->dim, in->xi);
+  hp_put_vec(f, p->dim, in->xi);
   fprintf(f, ", \"kind\": \"%s\", \"multiplicity\": %d, \"load_factor\": %.17g",
           in->kind_macroscopic ? "macroscopic" : "local", in->multiplicity, in->t);
   fputs(", \"bloch_eigenvalues\": ", f);
-  put_vec(f, in->neig, in->eig);
+  hp_put_vec(f, in->neig, in->eig);
   if (in->kind_macroscopic) {
     fputs(", \"direction\": ", f);
-    put_vec(f, 3, in->direction);
+    hp_put_vec(f, 3, in->direction);
     fputs(", \"amplitude\": ", f);
-    put_vec(f, 3, in->amplitude);
+    hp_put_vec(f, 3, in->amplitude);
   }
   fprintf(f, ", \"bisections\": %d},\n", in->bisections);
   const hp_pattern *pt = &p->pattern;
   if (!pt->written) return;
   fputs("  \"pattern\": {\"supercell\": ", f);
   double rep[3] = {pt->rep[0], pt->rep[1], pt->rep[2]};
-  put_vec(f, p->dim, rep);
+  hp_put_vec(f, p->dim, rep);
   fprintf(f,
           ", \"what\": \"principal branch at the critical strain plus the critical "
           "mode\", \"critical_mode_eigenvalue\": %.17g, \"amplitude\": %.17g, "

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "rodnet_solve.h"
+#include "scene.h"
 
 typedef struct hp_step {
   double t;                       /* load factor along the path */
@@ -49,6 +50,50 @@ typedef struct hp_path {
   hp_pattern pattern; /* --pattern (cli_homogenize.c) */
   double seconds;
 } hp_path;
+
+/* --post-buckling (homog_post.c): the bifurcated branch in the supercell. */
+typedef struct hp_post_step {
+  double t, strain[6];       /* path parameter, prescribed macroscopic strain */
+  double stress[6], energy;  /* bifurcated branch: stress, elastic energy per cell */
+  double amplitude;          /* largest |x - x_principal| over rod vertices */
+  int converged, iterations; /* rn_cell_minimize */
+  int verified;              /* rn_network_stability: verified minimum */
+  double lowest;             /* its lowest (scaled) eigenvalue */
+  double principal_stress[6], principal_energy;
+  int principal_converged, principal_verified;
+  double principal_lowest;
+} hp_post_step;
+
+#define HP_MAX_HARMONICS 64
+typedef struct hp_post {
+  int requested, nsteps, done, pinned, written, png;
+  int rep[3];
+  double mode_eigenvalue, perturbation;
+  hp_post_step *step; /* [nsteps] */
+  int nharm;
+  double harm_xi[HP_MAX_HARMONICS][3], harm[HP_MAX_HARMONICS];
+  const char *failed; /* why it was not computed (NULL if it was) */
+} hp_post;
+
+/* The smallest m <= 12 with m xi an integer (to 1e-3); 0 if none. */
+int hp_period_of(double xi);
+/* The supercell rep[dim] of the periodic scene file (without "repeat"), every
+ * strain component a DOF, no applied stress; pin_out_of_plane: z of every joint
+ * and interior vertex and every material angle pinned, the first joint fully. */
+rn_status hp_supercell(rn_context *ctx, const char *scene, const int *rep, int dim,
+                       int pin_out_of_plane, rn_scene **out);
+/* After hp_run found a local instability: the supercell of its wave vector, the
+ * principal branch to the critical strain, the critical mode, then po->nsteps
+ * steps of the path past the critical strain on both branches (principal:
+ * rn_cell_relax; bifurcated: rn_cell_minimize from the principal state plus the
+ * critical mode), each checked by rn_network_stability; the last bifurcated
+ * state written to out_base.vtu and drawn to out_base.png.  po->failed says why
+ * nothing was computed (RN_OK then). */
+rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
+                           const char *out_base, hp_post *po);
+void hp_post_write_json(FILE *f, const hp_path *p, const hp_post *po);
+void hp_post_free(hp_post *po);
+void hp_put_vec(FILE *f, int n, const double *v);
 
 /* Parse "E11,E22,E12" (ns numbers); 0 on success. */
 int hp_parse_strain(const char *s, double *out, int *count);

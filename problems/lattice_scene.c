@@ -37,6 +37,10 @@ static void put_header(scene_out *o) {
   FILE *f = o->f;
   fputs("{\n  \"description\": ", f);
   put_str(f, opt->description ? opt->description : "rodnet lattice");
+  if (opt->model) {
+    fputs(",\n  \"model\": ", f);
+    put_str(f, opt->model);
+  }
   fprintf(f, ",\n  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n",
           opt->E, opt->nu);
   fputs("  \"sections\": {\"section\": ", f);
@@ -186,6 +190,22 @@ static int farthest_node(const rn_lattice *lat, int axis, const node_metric *m) 
  * lateral pin at the node B farthest from the axis through A (rotation about
  * the axis); a planar lattice (z = 0) has z pinned at A, at the node farthest
  * from A and at the node farthest from the line through those two. */
+/* The out-of-plane rigid motions of a planar lattice: z pinned at the centre
+ * node A of the minimum face normal to axis, at the node farthest from A and
+ * at the node farthest from the line through those two. */
+static void planar_z_pins(const rn_lattice *lat, int axis, int *mask) {
+  int a = face_centre_node(lat, axis);
+  node_metric m = {{0, 0, 0}, {0, 0, 0}, axis, 0};
+  rn_lattice_node(lat, a, m.p);
+  mask[a] |= RN_FIX_Z;
+  m.skip = -1;
+  int n2 = farthest_node(lat, axis, &m);
+  rn_lattice_node(lat, n2, m.q);
+  m.line = 1;
+  mask[n2] |= RN_FIX_Z;
+  mask[farthest_node(lat, axis, &m)] |= RN_FIX_Z;
+}
+
 static void rigid_motion_pins(const rn_lattice *lat, int axis, int *mask) {
   int a = face_centre_node(lat, axis), b = (axis + 1) % 3, c = (axis + 2) % 3;
   node_metric m = {{0, 0, 0}, {0, 0, 0}, axis, 0};
@@ -198,13 +218,8 @@ static void rigid_motion_pins(const rn_lattice *lat, int axis, int *mask) {
     mask[n] |= fabs(x[b] - m.p[b]) >= fabs(x[c] - m.p[c]) ? RN_FIX_X << c : RN_FIX_X << b;
     return;
   }
-  mask[a] |= RN_FIX_X << (1 - axis) | RN_FIX_Z;
-  m.skip = -1;
-  int n2 = farthest_node(lat, axis, &m);
-  rn_lattice_node(lat, n2, m.q);
-  m.line = 1;
-  mask[n2] |= RN_FIX_Z;
-  mask[farthest_node(lat, axis, &m)] |= RN_FIX_Z;
+  mask[a] |= RN_FIX_X << (1 - axis);
+  planar_z_pins(lat, axis, mask);
 }
 
 static void put_components(FILE *f, int mask) {
@@ -251,6 +266,74 @@ static rn_status put_stretch(scene_out *o, rn_context *ctx) {
   return RN_OK;
 }
 
+/* Pins (mask) and displacements (d, 3 per node, components dmask) of the
+ * biaxial and shear loads of a planar lattice. */
+static void planar_load(const scene_out *o, int *mask, int *dmask, double *d) {
+  const rn_lattice *lat = o->lat;
+  int nn = rn_lattice_num_nodes(lat), shear = o->opt->load == RN_LLOAD_SHEAR;
+  double ex = rn_lattice_extent(lat, 0), ey = rn_lattice_extent(lat, 1);
+  for (int n = 0; n < nn; n++) {
+    int fx = rn_lattice_face(lat, n, 0), fy = rn_lattice_face(lat, n, 1);
+    if (shear) {
+      if (!fy) continue;
+      mask[n] |= RN_FIX_X | RN_FIX_Y;
+      if (fy > 0) {
+        dmask[n] = RN_FIX_X | RN_FIX_Y;
+        d[3 * n] = o->opt->load_value * ey;
+      }
+      continue;
+    }
+    if (fx) mask[n] |= RN_FIX_X;
+    if (fy) mask[n] |= RN_FIX_Y;
+    if (fx > 0) {
+      dmask[n] |= RN_FIX_X;
+      d[3 * n] = o->opt->load_value * ex;
+    }
+    if (fy > 0) {
+      dmask[n] |= RN_FIX_Y;
+      d[3 * n + 1] = o->opt->load_value2 * ey;
+    }
+  }
+  planar_z_pins(lat, 0, mask);
+}
+
+/* biaxial and shear (planar lattices). */
+static rn_status put_planar_load(scene_out *o, rn_context *ctx) {
+  FILE *f = o->f;
+  int nn = rn_lattice_num_nodes(o->lat), count = 0;
+  int *mask = calloc((size_t)nn, sizeof *mask),
+      *dmask = calloc((size_t)nn, sizeof *dmask);
+  double *d = calloc(3 * (size_t)nn, sizeof *d);
+  if (!mask || !dmask || !d) {
+    free(mask);
+    free(dmask);
+    free(d);
+    return rn_context_set_error(ctx, RN_ERR_ALLOC, "generate: out of memory");
+  }
+  planar_load(o, mask, dmask, d);
+  fputs(",\n  \"constraints\": [", f);
+  for (int n = 0; n < nn; n++)
+    if (mask[n]) {
+      next_entry(f, &count);
+      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"", n + 1);
+      if (mask[n] != RN_FIX_XYZ) put_components(f, mask[n]);
+      fputc('}', f);
+    }
+  for (int n = 0; n < nn; n++)
+    if (dmask[n]) {
+      next_entry(f, &count);
+      fprintf(f, "{\"type\": \"displace\", \"joint\": \"v%d\", \"value\": ", n + 1);
+      put_vec(f, d + 3 * n);
+      put_components(f, dmask[n]);
+      fputc('}', f);
+    }
+  fputs("\n  ]", f);
+  free(mask);
+  free(dmask);
+  free(d);
+  return RN_OK;
+}
+
 static void put_pull(scene_out *o) {
   FILE *f = o->f;
   int axis = o->opt->load_axis, nn = rn_lattice_num_nodes(o->lat), count = 0;
@@ -287,6 +370,8 @@ static rn_status write_scene(FILE *f, void *user, rn_context *ctx) {
   if (o->opt->load == RN_LLOAD_STRETCH || o->opt->load == RN_LLOAD_GRIP)
     st = put_stretch(o, ctx);
   if (o->opt->load == RN_LLOAD_PULL) put_pull(o);
+  if (o->opt->load == RN_LLOAD_BIAXIAL || o->opt->load == RN_LLOAD_SHEAR)
+    st = put_planar_load(o, ctx);
   fputs("\n}\n", f);
   return st;
 }
@@ -295,8 +380,14 @@ rn_status rn_lattice_write_scene(rn_context *ctx, const char *path, const rn_lat
                                  const rn_lattice_scene *opt) {
   if (!lat || !opt || opt->edges_per_rod < 1)
     return rn_context_set_error(ctx, RN_ERR_ARG, "generate: bad arguments");
-  if (opt->load != RN_LLOAD_NONE && (opt->load_axis < 0 || opt->load_axis > 2 ||
-                                     !(rn_lattice_extent(lat, opt->load_axis) > 0)))
+  int planar_load = opt->load == RN_LLOAD_BIAXIAL || opt->load == RN_LLOAD_SHEAR;
+  if (planar_load && rn_lattice_kind_dimension(rn_lattice_get_kind(lat)) != 2)
+    return rn_context_set_error(ctx, RN_ERR_ARG,
+                                "generate: biaxial and shear loads of a finite lattice "
+                                "need a planar lattice (or --periodic)");
+  if (opt->load != RN_LLOAD_NONE && !planar_load &&
+      (opt->load_axis < 0 || opt->load_axis > 2 ||
+       !(rn_lattice_extent(lat, opt->load_axis) > 0)))
     return rn_context_set_error(
         ctx, RN_ERR_ARG,
         "generate: the %s lattice is flat along %c: it cannot "

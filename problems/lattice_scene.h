@@ -28,7 +28,18 @@ typedef enum rn_lattice_load_kind {
    * joints of the maximum face, and -value over those of the minimum face,
    * one of which (the one nearest the face's centre) is clamped instead of
    * loaded. */
-  RN_LLOAD_PULL
+  RN_LLOAD_PULL,
+  /* Biaxial displacement control (planar lattices), frictionless grips on all
+   * four faces: the x faces pinned along x, the y faces along y, the maximum
+   * faces displaced by value * extent along x and value2 * extent along y;
+   * z pinned at three nodes (the out-of-plane rigid motions).  Periodic
+   * cells: the strain (E11, E22) = (value, value2), the others free. */
+  RN_LLOAD_BIAXIAL,
+  /* Simple shear (planar lattices): the joints of the minimum y face pinned in
+   * x and y, those of the maximum y face pinned in x and y and displaced by
+   * value * extent_y along x; z pinned at three nodes.  Periodic cells: the
+   * engineering shear strain G12 = value, the others free. */
+  RN_LLOAD_SHEAR
 } rn_lattice_load_kind;
 
 typedef struct rn_lattice_scene {
@@ -41,6 +52,8 @@ typedef struct rn_lattice_scene {
   rn_lattice_load_kind load;
   int load_axis; /* 0 x, 1 y, 2 z */
   double load_value;
+  double load_value2; /* RN_LLOAD_BIAXIAL: the strain along y */
+  const char *model;  /* top-level "model" ("planar", "3d"), NULL: none */
 } rn_lattice_scene;
 
 /* Write the scene atomically to path: material "material", section

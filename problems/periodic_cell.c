@@ -12,6 +12,7 @@ void rn_pcell_free(rn_pcell *c) {
   if (!c) return;
   free(c->xyz);
   free(c->bar);
+  free(c->section_scale);
   memset(c, 0, sizeof(*c));
 }
 
@@ -234,8 +235,10 @@ rn_status rn_pcell_reentrant(rn_context *ctx, const int cells[2], double a,
   double xyz[6] = {0.0, 0.0, 0.0, 0.0, h, 0.0};
   int bar[15] = {0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, -1, 1, 0};
   rn_pcell prim = {
-      2,  {2.0 * l * cos(th), 0, 0, l * cos(th), h + l * sin(th), 0, 0, 0, 0}, 2, 3, xyz,
-      bar};
+      2,   {2.0 * l * cos(th), 0, 0, l * cos(th), h + l * sin(th), 0, 0, 0, 0},
+      2,   3,
+      xyz, bar,
+      NULL};
   int rep[3] = {cells[0], cells[1], 1};
   return rn_pcell_tile(ctx, &prim, rep, out);
 }
@@ -255,6 +258,19 @@ void rn_pcell_perturb(rn_pcell *c, double amp, unsigned long seed) {
   const double d = amp * L / (c->nbars ? c->nbars : 1);
   for (int n = 0; n < c->nnodes; n++)
     for (int k = 0; k < c->dim; k++) c->xyz[3 * n + k] += d * uniform(&state);
+}
+
+int rn_pcell_section_scatter(rn_pcell *c, double rel, unsigned long seed) {
+  unsigned long long state = (unsigned long long)seed ^ 0x5ec7105ca77e2ULL;
+  free(c->section_scale);
+  c->section_scale = malloc((size_t)(c->nbars ? c->nbars : 1) * sizeof(double));
+  if (!c->section_scale) return -1;
+  for (int e = 0; e < c->nbars; e++) {
+    double u1 = 0.5 * (uniform(&state) + 1.0), u2 = 0.5 * (uniform(&state) + 1.0);
+    double g = sqrt(-2.0 * log(1.0 - u1)) * cos(6.283185307179586 * u2);
+    c->section_scale[e] = fmax(0.05, 1.0 + rel * g);
+  }
+  return 0;
 }
 
 void rn_pcell_measures(const rn_pcell *c, double *length, double *measure) {
@@ -307,18 +323,41 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
     if (c->dim == 3) fprintf(f, ", %d", o->repeat[2]);
     fputc(']', f);
   }
+  if (opt->load == RN_LLOAD_BIAXIAL || opt->load == RN_LLOAD_SHEAR) {
+    /* prescribed strain components (Voigt, engineering shear), the others free */
+    int n = c->dim == 2 ? 3 : 6;
+    fputs(", \"strain\": [", f);
+    for (int v = 0; v < n; v++) {
+      if (v) fputs(", ", f);
+      if (opt->load == RN_LLOAD_BIAXIAL && v < 2)
+        fprintf(f, "%.17g", v == 0 ? opt->load_value : opt->load_value2);
+      else if (opt->load == RN_LLOAD_SHEAR && v == n - 1)
+        fprintf(f, "%.17g", opt->load_value);
+      else
+        fputs("null", f);
+    }
+    fputc(']', f);
+  }
   fputs("},\n", f);
+  if (opt->model) fprintf(f, "  \"model\": \"%s\",\n", opt->model);
   fprintf(f, "  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n", opt->E,
           opt->nu);
-  fputs("  \"sections\": {\"section\": ", f);
-  if (opt->shape == RN_LSEC_CIRCLE)
-    fprintf(f, "{\"shape\": \"circle\", \"radius\": %.17g}", opt->section[0]);
-  else if (opt->shape == RN_LSEC_RECTANGLE)
-    fprintf(f, "{\"shape\": \"rectangle\", \"width\": %.17g, \"height\": %.17g}",
-            opt->section[0], opt->section[1]);
-  else
-    fprintf(f, "{\"shape\": \"ellipse\", \"a\": %.17g, \"b\": %.17g}", opt->section[0],
-            opt->section[1]);
+  fputs("  \"sections\": {", f);
+  for (int e = 0; e < (c->section_scale ? c->nbars : 1); e++) {
+    const double k = c->section_scale ? c->section_scale[e] : 1.0;
+    if (c->section_scale)
+      fprintf(f, "%s\n    \"s%d\": ", e ? "," : "", e + 1);
+    else
+      fputs("\"section\": ", f);
+    if (opt->shape == RN_LSEC_CIRCLE)
+      fprintf(f, "{\"shape\": \"circle\", \"radius\": %.17g}", k * opt->section[0]);
+    else if (opt->shape == RN_LSEC_RECTANGLE)
+      fprintf(f, "{\"shape\": \"rectangle\", \"width\": %.17g, \"height\": %.17g}",
+              k * opt->section[0], k * opt->section[1]);
+    else
+      fprintf(f, "{\"shape\": \"ellipse\", \"a\": %.17g, \"b\": %.17g}",
+              k * opt->section[0], k * opt->section[1]);
+  }
   fputs("},\n  \"rods\": [\n", f);
   for (int e = 0; e < c->nbars; e++) {
     const int *b = c->bar + 5 * e;
@@ -328,10 +367,12 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
       for (int m = 0; m < c->dim; m++) s += b[2 + m] * c->vec[3 * m + k];
       q[k] = c->xyz[3 * b[1] + k] + s;
     }
+    char sec[32] = "section";
+    if (c->section_scale) snprintf(sec, sizeof sec, "s%d", e + 1);
     fprintf(f,
             "    {\"name\": \"e%d\", \"material\": \"material\", \"section\": "
-            "\"section\",\n     \"line\": {\"from\": ",
-            e + 1);
+            "\"%s\",\n     \"line\": {\"from\": ",
+            e + 1, sec);
     put_vec3(f, c->xyz + 3 * b[0]);
     fputs(", \"to\": ", f);
     put_vec3(f, q);

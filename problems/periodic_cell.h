@@ -12,8 +12,9 @@ typedef struct rn_pcell {
   int dim;       /* 2 (xy plane) or 3 */
   double vec[9]; /* lattice vectors (rows) */
   int nnodes, nbars;
-  double *xyz; /* node positions [3 nnodes], inside the cell */
-  int *bar;    /* [5 nbars]: from node, to node, image of the "to" node (3) */
+  double *xyz;           /* node positions [3 nnodes], inside the cell */
+  int *bar;              /* [5 nbars]: from node, to node, image of the "to" node (3) */
+  double *section_scale; /* NULL, or [nbars]: each bar's section dimensions scaled */
 } rn_pcell;
 
 /* The periodic cell of cells[0] x cells[1] (x cells[2]) cells of a lattice kind
@@ -36,6 +37,11 @@ void rn_pcell_free(rn_pcell *c);
  * [-amp, amp] times the mean bar length (2D cells: in plane only), from a
  * deterministic generator seeded by seed. */
 void rn_pcell_perturb(rn_pcell *c, double amp, unsigned long seed);
+/* Per-rod section scatter: each bar's section dimensions (radius; width and
+ * height) scaled by max(0.05, 1 + rel g), g a standard normal deviate (Box-Muller
+ * on the generator of rn_pcell_perturb, seeded by seed and a stream of its own).
+ * Returns 0, -1 out of memory. */
+int rn_pcell_section_scatter(rn_pcell *c, double rel, unsigned long seed);
 /* Sections of relative density rho (docs/homogenization.md): square t x t struts
  * in 2D (t = rho V / L), circles of diameter t in 3D (t = sqrt(4 rho V / (pi L))),
  * V the cell measure and L the total bar length; into opt->shape, section. */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "atomic_file.h"
+#include "rodnet_contact.h"
 #include "num_format.h"
 
 typedef struct json_out {
@@ -113,6 +114,31 @@ static rn_status put_cell(json_out *o, rn_network *net) {
   return RN_OK;
 }
 
+/* "contact" of a scene with contact (docs/contact.md): the settings and, at the
+ * result, the smallest gap, the active pairs, the barrier energy and force. */
+static rn_status put_contact(json_out *o, rn_network *net) {
+  double dhat = 0.0, kappa = 0.0, r = 0.0;
+  if (!rn_network_get_contact(net, &dhat, &kappa, &r)) return RN_OK;
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc((n ? n : 1) * sizeof *x);
+  rn_contact_stats cs;
+  if (!x) return RN_ERR_ALLOC;
+  rn_status st = rn_network_get_dofs(net, x);
+  if (!st) st = rn_network_contact_stats(net, x, &cs);
+  free(x);
+  if (st) return st;
+  const char *keys[6] = {"distance", "stiffness", "radius", "min_gap", "energy", "force"};
+  const double vals[6] = {dhat,       kappa,     r,
+                          cs.min_gap, cs.energy, cs.force}; /* min_gap: null if inf */
+  fputs("  \"contact\": {", o->f);
+  for (int k = 0; k < 6; k++) {
+    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
+    put_num(o, vals[k]);
+  }
+  fprintf(o->f, ", \"active_pairs\": %zu},\n", cs.active);
+  return RN_OK;
+}
+
 /* "equilibrium": the residual on the physical scale that the gradient test used. */
 static void put_equilibrium(json_out *o) {
   const rn_result_info *in = o->info;
@@ -151,7 +177,34 @@ static void put_stability(json_out *o) {
           st->verified_minimum ? "true" : "false", st->zero_modes);
   fprintf(o->f, "    \"factorizations\": %ld, \"time_s\": ", st->factorizations);
   put_num(o, st->time_s);
+  fprintf(o->f, ", \"method\": \"%s\", \"iterations\": %d, \"cholesky_flops\": ",
+          st->method == RN_STABILITY_LOBPCG ? "lobpcg" : "cholesky", st->iterations);
+  put_num(o, st->cholesky_flops);
   fputs("},\n", o->f);
+}
+
+void rn_result_put_model(FILE *f, const rn_network *net) {
+  const char *why = "";
+  int ok = rn_network_planar(net, &why) == 1;
+  fprintf(f, "  \"model\": {\"used\": \"%s\", \"planar\": %s",
+          rn_network_is_planar(net) == 1 ? "planar" : "3d", ok ? "true" : "false");
+  if (!ok) {
+    fputs(", \"not_planar\": ", f);
+    put_str(f, why);
+  }
+  fputs("},\n", f);
+}
+
+const char *rn_result_model_line(const rn_network *net, char *buf, size_t n) {
+  const char *why = "";
+  int ok = rn_network_planar(net, &why) == 1;
+  if (rn_network_is_planar(net) == 1)
+    snprintf(buf, n, "planar (2 DOFs per vertex, no out-of-plane modes)");
+  else if (ok)
+    snprintf(buf, n, "3d (the scene qualifies for \"model\": \"planar\")");
+  else
+    snprintf(buf, n, "3d (not planar: %s)", why);
+  return buf;
 }
 
 static void put_summary(json_out *o, rn_network *net) {
@@ -201,6 +254,7 @@ static void put_summary(json_out *o, rn_network *net) {
           in->krylov_iterations);
   fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
           rn_scene_num_vertices(o->scene));
+  rn_result_put_model(f, net);
   put_equilibrium(o);
   put_stability(o);
   if (in->part_ranks > 0) {
@@ -276,9 +330,12 @@ static rn_status put_joint(json_out *o, rn_network *net, int j) {
   FILE *f = o->f;
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_joint_name(net, j));
-  fprintf(f, ", \"model\": \"%s\", \"valence\": %d,\n     \"position\": ",
-          rn_network_joint_model(net, j) == RN_JOINT_RIGID ? "rigid" : "elastic",
-          rn_network_joint_valence(net, j));
+  fprintf(
+      f, ", \"model\": \"%s\", \"valence\": %d,\n     \"position\": ",
+      rn_network_joint_model(net, j) == RN_JOINT_RIGID
+          ? "rigid"
+          : (rn_network_joint_model(net, j) == RN_JOINT_SMOOTH ? "smooth" : "elastic"),
+      rn_network_joint_valence(net, j));
   put_vec(o, x);
   fputs(",\n     \"rotation\": [", f);
   for (int r = 0; r < 3; r++) {
@@ -384,6 +441,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   put_summary(o, net);
   rn_status st = put_terms(o, net);
   if (!st) st = put_cell(o, net);
+  if (!st) st = put_contact(o, net);
   int nrods = rn_network_num_rods(net), maxnv = 2;
   for (int r = 0; r < nrods; r++)
     if (rn_network_rod_num_vertices(net, r) > maxnv)

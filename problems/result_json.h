@@ -2,7 +2,10 @@
 #ifndef RN_RESULT_JSON_H
 #define RN_RESULT_JSON_H
 
+#include <stdio.h>
+
 #include "rodnet.h"
+#include "rodnet_model.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 
@@ -57,6 +60,12 @@ void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt
  * "note"} when not checked).  Numbers are printed
  * with %.17g; the file is written atomically (atomic_file.h).
  * RN_ERR_NOT_FINITE (and no file) if any value is NaN or infinite. */
+/* The line `  "model": {"used": "planar" or "3d", "planar": QUALIFIES[,
+ * "not_planar": WHY]},` of a result file (docs/model.md), and the text of the
+ * summary's model line into buf[n] (returned). */
+void rn_result_put_model(FILE *f, const rn_network *net);
+const char *rn_result_model_line(const rn_network *net, char *buf, size_t n);
+
 rn_status rn_result_write_json(rn_context *ctx, const char *path, const rn_scene *scene,
                                const rn_result_info *info);
 

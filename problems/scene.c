@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rodnet_contact.h"
+#include "rodnet_model.h"
 #include "scene_internal.h"
 
 static char *dup_string(const char *s) {
@@ -365,11 +367,15 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"nox", RN_SOLVER_NOX},
                                            {"rol-lbfgs", RN_SOLVER_ROL_LBFGS},
                                            {NULL, 0}};
-static const named_value preconditioner_names[] = {
-    {"auto", RN_PRECOND_AUTO},       {"factor", RN_PRECOND_FACTOR},
-    {"local", RN_PRECOND_LOCAL},     {"gathered", RN_PRECOND_GATHERED},
-    {"dd", RN_PRECOND_DD},           {"muelu", RN_PRECOND_MUELU},
-    {"ifpack2", RN_PRECOND_IFPACK2}, {NULL, 0}};
+static const named_value preconditioner_names[] = {{"auto", RN_PRECOND_AUTO},
+                                                   {"factor", RN_PRECOND_FACTOR},
+                                                   {"local", RN_PRECOND_LOCAL},
+                                                   {"gathered", RN_PRECOND_GATHERED},
+                                                   {"dd", RN_PRECOND_DD},
+                                                   {"muelu", RN_PRECOND_MUELU},
+                                                   {"ifpack2", RN_PRECOND_IFPACK2},
+                                                   {"frosch", RN_PRECOND_FROSCH},
+                                                   {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},
                                                   {"sparse", RN_FACTOR_SPARSE},
@@ -506,6 +512,21 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
 
 /* ---- top level ------------------------------------------------------------- */
 
+/* "contact": {"distance": dhat, "stiffness": kappa, "radius": r} (docs/contact.md). */
+static rn_status read_contact(rn_scene_parser *p, const cJSON *v) {
+  static const char *const keys[] = {"distance", "stiffness", "radius", NULL};
+  double dhat = 0.0, kappa = 0.0, r = 0.0;
+  rn_jwalk *w = &p->w;
+  rn_status st = rn_jv_object(w, v);
+  if (!st) st = rn_json_check_keys(w, v, keys);
+  if (!st) st = rn_jm_number(w, v, "distance", 1, RN_J_POSITIVE, &dhat, NULL);
+  if (!st) st = rn_jm_number(w, v, "stiffness", 1, RN_J_POSITIVE, &kappa, NULL);
+  if (!st) st = rn_jm_number(w, v, "radius", 1, RN_J_NONNEG, &r, NULL);
+  if (st) return st;
+  st = rn_network_set_contact(p->scene->net, dhat, kappa, r);
+  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+}
+
 /* The value of top-level key steps[i] (read in this order). */
 static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
   switch (i) {
@@ -528,10 +549,30 @@ static rn_status read_step(rn_scene_parser *p, int i, const cJSON *v) {
   }
 }
 
+/* The top-level "model" (optional): "planar" or "3d" (docs/model.md). */
+static rn_status read_model(rn_scene_parser *p, const cJSON *root) {
+  const char *name = NULL;
+  rn_model model = RN_MODEL_AUTO;
+  size_t mark;
+  rn_status st = rn_jm_string(&p->w, root, "model", 0, &name);
+  if (st || !name) return st;
+  mark = rn_jwalk_key(&p->w, "model");
+  if (!strcmp(name, "planar"))
+    model = RN_MODEL_PLANAR;
+  else if (!strcmp(name, "3d"))
+    model = RN_MODEL_3D;
+  else
+    st = rn_jwalk_error(&p->w, "unknown model \"%s\" (known: planar, 3d)", name);
+  if (!st && (st = rn_network_set_model(p->scene->net, model)))
+    st = rn_scene_lib_error(p, st);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
 static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
-  static const char *const keys[] = {"description", "materials", "sections",    "graph",
-                                     "rods",        "joints",    "constraints", "loads",
-                                     "solver",      "periodic",  NULL};
+  static const char *const keys[] = {
+      "description", "materials", "sections", "graph", "rods",    "joints", "constraints",
+      "loads",       "solver",    "periodic", "model", "contact", NULL};
   static const char *const steps[] = {"materials", "sections",    "graph", "rods",
                                       "joints",    "constraints", "loads", "solver"};
   rn_jwalk *w = &p->w;
@@ -541,6 +582,7 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   if (st) return st;
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
+  if ((st = read_model(p, root))) return st;
   p->constraints = rn_jm_get(root, "constraints");
   if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
     size_t mark = rn_jwalk_key(w, "periodic");
@@ -559,6 +601,11 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
     }
     size_t mark = rn_jwalk_key(w, steps[i]);
     st = read_step(p, i, v);
+    rn_jwalk_pop(w, mark);
+  }
+  if (!st && rn_jm_get(root, "contact")) {
+    size_t mark = rn_jwalk_key(w, "contact");
+    st = read_contact(p, rn_jm_get(root, "contact"));
     rn_jwalk_pop(w, mark);
   }
   if (st) return st;

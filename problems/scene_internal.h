@@ -64,6 +64,9 @@ typedef struct rn_scene_parser {
   /* the scene's "constraints" (NULL if none): a rod given by "line" whose end
    * has a clamp with "at": "midpoint" is laid out for it (scene_rods.c) */
   const cJSON *constraints;
+  /* rest strains of a closed rod's vertex 0 being read (scene_rods.c) */
+  int closed_rest; /* 1: curvature, 2: twist given */
+  double closed_kbar[2], closed_taubar;
 } rn_scene_parser;
 
 /* Wrap the library's last error (status st) at the walker's path, prefixed

@@ -7,7 +7,8 @@
 
 #include "scene_internal.h"
 
-static const char *const model_names[] = {"elastic", "rigid"}; /* rn_joint_model */
+static const char *const model_names[] = {"elastic", "rigid",
+                                          "smooth"}; /* rn_joint_model */
 static const char *const end_names[] = {"start", "end"};
 
 static char *dup_string(const char *s) {
@@ -37,9 +38,12 @@ rn_status rn_scene_joint_model_ref(rn_jwalk *w, const cJSON *obj, const char *ke
     *model = RN_JOINT_ELASTIC;
   else if (strcmp(name, model_names[RN_JOINT_RIGID]) == 0)
     *model = RN_JOINT_RIGID;
+  else if (strcmp(name, model_names[RN_JOINT_SMOOTH]) == 0)
+    *model = RN_JOINT_SMOOTH;
   else {
     size_t mark = rn_jwalk_key(w, key);
-    st = rn_jwalk_error(w, "unknown joint model \"%s\" (known: elastic, rigid)", name);
+    st = rn_jwalk_error(w, "unknown joint model \"%s\" (known: elastic, rigid, smooth)",
+                        name);
     rn_jwalk_pop(w, mark);
   }
   return st;
@@ -206,8 +210,37 @@ static rn_status read_joint_ends(rn_scene_parser *p, const cJSON *list, int **ro
   return st ? st : check_ends_meet(p, *n, *rods, *ends, *images);
 }
 
+/* "rest": "straight", or {"curvature": [k1, k2], "twist": t} (smooth joints). */
+static rn_status read_joint_rest(rn_scene_parser *p, const cJSON *v, int joint) {
+  static const char *const keys[] = {"curvature", "twist", NULL};
+  const cJSON *r = rn_jm_get(v, "rest");
+  rn_network *net = p->scene->net;
+  rn_status st = RN_OK;
+  if (!r) return RN_OK;
+  size_t mark = rn_jwalk_key(&p->w, "rest");
+  if (cJSON_IsString(r)) {
+    if (strcmp(r->valuestring, "straight") != 0)
+      st = rn_jwalk_error(&p->w,
+                          "unknown rest shape \"%s\" (known: \"straight\", or "
+                          "an object {\"curvature\", \"twist\"})",
+                          r->valuestring);
+    else if ((st = rn_network_set_joint_rest_straight(net, joint)))
+      st = rn_jwalk_lib_error(&p->w, st);
+  } else {
+    double k[2] = {0.0, 0.0}, t = 0.0;
+    st = rn_jv_object(&p->w, r);
+    if (!st) st = rn_json_check_keys(&p->w, r, keys);
+    if (!st) st = rn_jm_vec(&p->w, r, "curvature", 1, 2, RN_J_ANY, k, NULL);
+    if (!st) st = rn_jm_number(&p->w, r, "twist", 1, RN_J_ANY, &t, NULL);
+    if (!st && (st = rn_network_set_joint_rest_strains(net, joint, k, t)))
+      st = rn_jwalk_lib_error(&p->w, st);
+  }
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
 static rn_status read_joint(rn_scene_parser *p, const cJSON *v, int json_index) {
-  static const char *const keys[] = {"name", "model", "ends", NULL};
+  static const char *const keys[] = {"name", "model", "ends", "rest", NULL};
   const char *name = NULL;
   const cJSON *list = NULL;
   int model = RN_JOINT_ELASTIC, n = 0, *rods = NULL, *ends = NULL, *images = NULL;
@@ -223,6 +256,7 @@ static rn_status read_joint(rn_scene_parser *p, const cJSON *v, int json_index) 
   }
   if (!st) st = rn_scene_add_joint(p, name, model, n, rods, ends, images, &joint);
   if (!st) p->scene->joints[joint].json_index = json_index;
+  if (!st) st = read_joint_rest(p, v, joint);
   free(rods);
   free(ends);
   free(images);

@@ -371,19 +371,48 @@ static rn_status read_table(rn_jwalk *w, const cJSON *v, int rows, int cols, rn_
   return st;
 }
 
+/* A closed rod's closing joint (-1 if the rod is open). */
+static int closing_joint(const rn_scene *s, int rod) {
+  const rn_scene_rod *r = &s->rods[rod];
+  return (r->joint[RN_START] >= 0 && r->joint[RN_START] == r->joint[RN_END] &&
+          rn_network_rod_is_closed(s->net, rod))
+             ? r->joint[RN_START]
+             : -1;
+}
+
+/* Per-vertex rest values of a closed rod: entry 0 belongs to the closing
+ * joint (rest curvature and twist are set together: the one not given is
+ * the input shape's, read back as 0 curvature / 0 twist only if given). */
+static rn_status closed_rest(rn_scene_parser *p, int rod, int which, const double *buf) {
+  rn_network *net = p->scene->net;
+  if (which == 0) {
+    rn_status st = rn_network_set_rest_curvature(net, rod, buf + 2);
+    if (!st) memcpy(p->closed_kbar, buf, 2 * sizeof(double));
+    p->closed_rest |= 1;
+    return st;
+  }
+  rn_status st = rn_network_set_rest_twist(net, rod, buf + 1);
+  if (!st) p->closed_taubar = buf[0];
+  p->closed_rest |= 2;
+  return st;
+}
+
 static rn_status read_rest_item(rn_scene_parser *p, const cJSON *rest, int rod,
                                 int which) {
   static const char *const key[] = {"curvature", "twist", "lengths"};
   const cJSON *v = rn_jm_get(rest, key[which]);
   if (!v) return RN_OK;
-  int nv = p->scene->rods[rod].nv;
-  int rows = which == 2 ? nv - 1 : nv - 2, cols = which == 0 ? 2 : 0;
+  int nv = p->scene->rods[rod].nv, closed = closing_joint(p->scene, rod) >= 0;
+  int rows = which == 2 ? nv - 1 : (closed ? nv - 1 : nv - 2), cols = which == 0 ? 2 : 0;
   double *buf = malloc(((size_t)rows * 2 + 1) * sizeof *buf);
   if (!buf) return rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
   size_t mark = rn_jwalk_key(&p->w, key[which]);
-  rn_status st = read_table(&p->w, v, rows, cols, which == 2 ? RN_J_POSITIVE : RN_J_ANY,
-                            which == 2 ? "edge" : "interior vertex", buf);
-  if (!st) {
+  rn_status st =
+      read_table(&p->w, v, rows, cols, which == 2 ? RN_J_POSITIVE : RN_J_ANY,
+                 which == 2 ? "edge" : (closed ? "vertex" : "interior vertex"), buf);
+  if (!st && closed && which < 2) {
+    if ((st = closed_rest(p, rod, which, buf))) st = rn_jwalk_lib_error(&p->w, st);
+  } else if (!st) {
     rn_network *net = p->scene->net;
     if (which == 0)
       st = rn_network_set_rest_curvature(net, rod, buf);
@@ -401,7 +430,53 @@ static rn_status read_rest_item(rn_scene_parser *p, const cJSON *rest, int rod,
 static rn_status read_rest(rn_scene_parser *p, const cJSON *rest, int rod) {
   static const char *const keys[] = {"curvature", "twist", "lengths", NULL};
   rn_status st = rn_json_check_keys(&p->w, rest, keys);
+  p->closed_rest = 0;
+  p->closed_kbar[0] = p->closed_kbar[1] = p->closed_taubar = 0.0;
   for (int which = 0; which < 3 && !st; which++) st = read_rest_item(p, rest, rod, which);
+  if (!st && p->closed_rest) { /* vertex 0 of a closed rod: its joint's rest strains */
+    int J = closing_joint(p->scene, rod);
+    if (p->closed_rest != 3)
+      return rn_jwalk_error(&p->w, "a closed rod gives \"curvature\" and \"twist\" "
+                                   "together (vertex 0 is its closing joint's)");
+    st = rn_network_set_joint_rest_strains(p->scene->net, J, p->closed_kbar,
+                                           p->closed_taubar);
+    if (st) st = rn_jwalk_lib_error(&p->w, st);
+  }
+  return st;
+}
+
+/* "closed": true: the vertex list does not repeat the first vertex; the rod is
+ * stored with it repeated and closed by a smooth joint named after it.
+ * "twist": {"link": n}: n full turns of twist stored in the ring
+ * (rn_network_set_joint_link). */
+static rn_status read_closed(rn_scene_parser *p, const cJSON *v, int *closed) {
+  const cJSON *c = rn_jm_get(v, "closed");
+  *closed = 0;
+  if (!c) return RN_OK;
+  size_t mark = rn_jwalk_key(&p->w, "closed");
+  rn_status st = RN_OK;
+  if (!cJSON_IsBool(c))
+    st = rn_jwalk_error(&p->w, "expected true or false");
+  else
+    *closed = cJSON_IsTrue(c);
+  rn_jwalk_pop(&p->w, mark);
+  return st;
+}
+
+static rn_status read_ring_twist(rn_scene_parser *p, const cJSON *v, int joint) {
+  static const char *const keys[] = {"link", NULL};
+  const cJSON *t = rn_jm_get(v, "twist");
+  rn_status st;
+  int link = 0;
+  if (!t) return RN_OK;
+  size_t mark = rn_jwalk_key(&p->w, "twist");
+  st = joint < 0 ? rn_jwalk_error(&p->w, "\"twist\" applies to closed rods only")
+                 : rn_jv_object(&p->w, t);
+  if (!st) st = rn_json_check_keys(&p->w, t, keys);
+  if (!st) st = rn_jm_int(&p->w, t, "link", 1, -1000000, 1000000, &link, NULL);
+  if (!st && (st = rn_network_set_joint_link(p->scene->net, joint, link)))
+    st = rn_jwalk_lib_error(&p->w, st);
+  rn_jwalk_pop(&p->w, mark);
   return st;
 }
 
@@ -483,20 +558,37 @@ static rn_status read_rod_name(rn_scene_parser *p, const cJSON *v, const char **
 }
 
 static rn_status read_rod(rn_scene_parser *p, const cJSON *v, int json_index) {
-  static const char *const keys[] = {"name",     "material", "section",         "line",
-                                     "vertices", "d1",       "edge_properties", "rest",
-                                     NULL};
+  static const char *const keys[] = {
+      "name", "material", "section", "line", "vertices", "d1", "edge_properties",
+      "rest", "closed",   "twist",   NULL};
   const char *name = NULL;
   double *xyz = NULL, d1[3];
-  int nv = 0, has_d1 = 0, m = -1, sec = -1, rod = -1;
+  int nv = 0, has_d1 = 0, m = -1, sec = -1, rod = -1, closed = 0, joint = -1;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = read_rod_name(p, v, &name);
+  if (!st) st = read_closed(p, v, &closed);
   if (!st) st = rn_scene_material_ref(p, v, &m);
   if (!st) st = rn_scene_section_ref(p, v, &sec);
   if (!st) st = read_geometry(&p->w, v, midpoint_clamps(p->constraints, name), &xyz, &nv);
+  if (!st && closed && nv < 3)
+    st = rn_jwalk_error(&p->w, "a closed rod needs at least 3 vertices, got %d", nv);
+  if (!st && closed) { /* repeat the first vertex: the stored rod */
+    double *xc = realloc(xyz, 3 * ((size_t)nv + 1) * sizeof(double));
+    if (!xc) st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+    if (!st) {
+      xyz = xc;
+      memcpy(xyz + 3 * (size_t)nv, xyz, 3 * sizeof(double));
+      nv++;
+    }
+  }
   if (!st) st = read_d1(&p->w, v, xyz, d1, &has_d1);
   if (!st) st = rn_scene_add_rod(p, name, nv, xyz, has_d1 ? d1 : NULL, m, sec, &rod);
   free(xyz);
+  if (!st && closed) {
+    int rods[2] = {rod, rod}, ends[2] = {RN_END, RN_START};
+    st = rn_scene_add_joint(p, name, RN_JOINT_SMOOTH, 2, rods, ends, NULL, &joint);
+  }
+  if (!st) st = read_ring_twist(p, v, joint);
   if (st) return st;
   p->scene->rods[rod].json_index = json_index;
   const cJSON *ep = rn_jm_get(v, "edge_properties"), *rest = rn_jm_get(v, "rest");

@@ -7,7 +7,12 @@
 //           by addition (symmetric), each solved exactly by a local sparse LU
 //           (Amesos2 KLU2 on the rank's own matrix: never a distributed Amesos2
 //           solve).
-// Both are made SPD for an indefinite Hessian the way the DD's AMG coarse solve is
+//  frosch   FROSch (ShyLU-DD) two-level overlapping Schwarz: one subdomain per rank
+//           with algebraic overlap 1 (local sparse LU, Amesos2 KLU2), combined
+//           additively, and an energy-minimising (IPOU harmonic, GDSW interface
+//           partition of unity) coarse space spanned by the rigid-body modes,
+//           its coarse matrix gathered to one rank and factored there (KLU2).
+// All three are made SPD for an indefinite Hessian the way the DD's AMG coarse solve is
 // (multigrid.cpp): A + t |diag A| with t raised by factors of 100 until a short
 // preconditioned CG probe meets no nonpositive curvature.
 #ifndef RODNET_SHIM_ALT_PRECONDITIONERS_HPP
@@ -52,6 +57,22 @@ private:
   mutable Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
+class FroschPreconditioner : public Preconditioner {
+public:
+  // nullspace: rigid-body modes on the System's map (null: FROSch's constants).
+  explicit FroschPreconditioner(const Teuchos::RCP<const TMV> &nullspace = Teuchos::null);
+  ~FroschPreconditioner() override;
+  void setup(System &sys) override;
+  Teuchos::RCP<const Tpetra::Operator<>> inverse() const override;
+  std::string name() const override { return "frosch"; }
+  double shift() const;
+  struct Impl;
+
+private:
+  std::shared_ptr<Impl> impl_;
+  mutable Teuchos::RCP<const Tpetra::Operator<>> op_;
+};
+
 // Rigid-body modes (6 columns: translations x, y, z, rotations about x, y, z through
 // the origin) of DOFs of the given DofBlocks kinds (0-2 position, 3-5 rotation, 6
 // angle), points and axes (3 per DOF, rn_network_dof_blocks), on map (one entry per
@@ -60,7 +81,8 @@ Teuchos::RCP<TMV> rigid_body_modes(const Teuchos::RCP<const TMap> &map, const in
                                    const double *point, const double *axis);
 
 // A preconditioner by name: "dd" (coarse solve chosen by size), "dd-direct",
-// "dd-amg", "muelu", "ifpack2".  nullspace: for "muelu" (may be null).  Returns null
+// "dd-amg", "muelu", "ifpack2", "frosch".  nullspace: for "muelu" and "frosch" (may
+// be null).  Returns null
 // for an unknown name.
 std::unique_ptr<Preconditioner>
 make_preconditioner(const std::string &name,

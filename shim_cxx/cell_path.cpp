@@ -82,7 +82,10 @@ bool dense_indefinite_solve(const CellBlocks &cb, std::vector<double> &rhs) {
 
 class Relax {
 public:
-  Relax(rn_network *net) : p_(net), cb_(p_, "rn_cell_relax") {
+  // descend: a minimisation that may leave the cell-periodic branch (rn_cell_minimize)
+  Relax(rn_network *net, bool descend)
+      : p_(net), cb_(p_, descend ? "rn_cell_minimize" : "rn_cell_relax", false),
+        descend_(descend) {
     x_.resize(cb_.n);
     g_.resize(cb_.n);
     check_status(rn_network_get_dofs(net, x_.data()), "rn_network_get_dofs");
@@ -95,7 +98,8 @@ public:
       throw Error(RN_ERR_GEOMETRY, "rn_cell_relax: the starting state is degenerate");
     factor_at(x_);
     std::vector<double> xs(x_);
-    for (int v = 0; v < cb_.ns; ++v) xs[nu + static_cast<size_t>(v)] = strain[v];
+    for (int v = 0; v < cb_.ns; ++v)
+      xs[nu + static_cast<size_t>(v)] = strain[cb_.comp[v]];
     // the tangent predictor from the current (equilibrium) state
     if (pd_) {
       std::vector<double> s(nu);
@@ -103,7 +107,7 @@ public:
         double r = g_[i];
         for (int v = 0; v < cb_.ns; ++v)
           r += cb_.kue[static_cast<size_t>(v) * nu + i] *
-               (strain[v] - x_[nu + static_cast<size_t>(v)]);
+               (strain[cb_.comp[v]] - x_[nu + static_cast<size_t>(v)]);
         s[i] = -r;
       }
       chol_->solve(s.data());
@@ -118,7 +122,10 @@ public:
     }
     x_ = xs;
     p_.accept(x_.data());
-    newton(rep);
+    if (descend_)
+      descent(rep);
+    else
+      newton(rep);
   }
 
 private:
@@ -199,6 +206,138 @@ private:
     }
   }
 
+  // D = |diag K_uu| on the pattern of K_uu (floored at 1e-12 of its largest entry).
+  void diag_pattern(std::vector<double> &d) const {
+    d.assign(cb_.uval.size(), 0.0);
+    double dmax = 0.0;
+    for (size_t i = 0; i < cb_.nu; ++i)
+      for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
+        if (static_cast<size_t>(cb_.ucol[static_cast<size_t>(q)]) == i)
+          dmax = std::max(dmax, std::fabs(cb_.uval[static_cast<size_t>(q)]));
+    for (size_t i = 0; i < cb_.nu; ++i)
+      for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
+        if (static_cast<size_t>(cb_.ucol[static_cast<size_t>(q)]) == i)
+          d[static_cast<size_t>(q)] =
+              std::max(std::fabs(cb_.uval[static_cast<size_t>(q)]), 1e-12 * dmax);
+  }
+
+  // Factor K_uu + mu D with the smallest mu = 0 or 1e-10 * 4^k that is positive
+  // definite; returns mu (the factor is in chol_).
+  double factor_shifted(const std::vector<double> &d) {
+    if (pd_) return 0.0;
+    for (double mu = 1e-10; mu < 1e3; mu *= 4.0)
+      if (chol_->factor(cb_.uval.data(), mu, d.data())) return mu;
+    throw Error(RN_ERR_SOLVER, "rn_cell_minimize: no positive definite shift of K_uu");
+  }
+
+  // Lowest eigenvector of the pencil (K_uu, D) by inverse iteration with the
+  // shifted factor (mu > 0: K_uu + mu D positive definite); returns the Rayleigh
+  // quotient.
+  double lowest_mode(const std::vector<double> &d, std::vector<double> &v) {
+    const size_t nu = cb_.nu;
+    std::vector<double> dv(nu), kv(nu);
+    std::vector<double> dd(nu, 0.0);
+    for (size_t i = 0; i < nu; ++i)
+      for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
+        if (static_cast<size_t>(cb_.ucol[static_cast<size_t>(q)]) == i)
+          dd[i] = d[static_cast<size_t>(q)];
+    v.assign(nu, 0.0);
+    for (size_t i = 0; i < nu; ++i)
+      v[i] = 1.0 + 0.37 * std::sin(1.7 * static_cast<double>(i));
+    double rq = 0.0;
+    for (int it = 0; it < 60; ++it) {
+      for (size_t i = 0; i < nu; ++i) dv[i] = dd[i] * v[i];
+      chol_->solve(dv.data());
+      const double m = max_abs(nu, dv.data());
+      if (!(m > 0.0)) break;
+      for (size_t i = 0; i < nu; ++i) v[i] = dv[i] / m;
+      // Rayleigh quotient v'Kv / v'Dv
+      std::fill(kv.begin(), kv.end(), 0.0);
+      for (size_t i = 0; i < nu; ++i)
+        for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
+          kv[i] += cb_.uval[static_cast<size_t>(q)] *
+                   v[static_cast<size_t>(cb_.ucol[static_cast<size_t>(q)])];
+      double vkv = 0.0, vdv = 0.0;
+      for (size_t i = 0; i < nu; ++i) {
+        vkv += v[i] * kv[i];
+        vdv += v[i] * dd[i] * v[i];
+      }
+      const double rq_new = vkv / vdv;
+      if (it > 5 && std::fabs(rq_new - rq) <= 1e-10 * std::fabs(rq_new)) {
+        rq = rq_new;
+        break;
+      }
+      rq = rq_new;
+    }
+    return rq;
+  }
+
+  // Minimisation of the energy over the fluctuations: Newton with the Cholesky
+  // factor of K_uu + mu D (mu = 0 where K_uu is positive definite, else the smallest
+  // shift that factors), an Armijo backtracking line search on the energy, and,
+  // where the gradient vanishes but K_uu is indefinite (a saddle), a step along the
+  // lowest mode of (K_uu, D).  Converged only at a state with K_uu positive definite.
+  void descent(rn_cell_relax_report &rep) {
+    const size_t nu = cb_.nu;
+    std::vector<double> s(nu), xt, d, v;
+    int saddle_steps = 0;
+    for (int it = 0; it < 200; ++it) {
+      double E = 0.0, res = 0.0, scale = 0.0;
+      if (p_.gradient(x_.data(), &E, g_.data()) != RN_OK)
+        throw Error(RN_ERR_GEOMETRY, "rn_cell_minimize: degenerate state");
+      residual(res, scale);
+      rep.residual = res;
+      rep.residual_scale = scale;
+      factor_at(x_);
+      rep.indefinite = !pd_;
+      diag_pattern(d);
+      const bool small = res <= 1e-9 * scale;
+      if (small && pd_) {
+        rep.converged = 1;
+        return;
+      }
+      const double mu = factor_shifted(d);
+      bool accepted = false;
+      if (!small) {
+        for (size_t i = 0; i < nu; ++i) s[i] = -g_[i];
+        chol_->solve(s.data());
+        const double gs = dot(nu, g_.data(), s.data());
+        for (double alpha = 1.0; alpha > 1e-12 && !accepted; alpha *= 0.5) {
+          trial(x_, s, alpha, nu, xt);
+          double Et = 0.0;
+          accepted = p_.energy(xt.data(), &Et) == RN_OK && Et <= E + 1e-4 * alpha * gs;
+        }
+      }
+      if (!accepted && !pd_ && saddle_steps < 20) {
+        // negative curvature: the lowest mode, both signs, from a step of 1e-3 of
+        // the cell size up, backtracking
+        ++saddle_steps;
+        lowest_mode(d, v);
+        const double gv = dot(nu, g_.data(), v.data());
+        if (gv > 0.0)
+          for (double &vi : v) vi = -vi;
+        const double h = 1e-2 * std::pow(cb_.measure, 1.0 / cb_.dim);
+        for (double alpha = h; alpha > 1e-8 * h && !accepted; alpha *= 0.5) {
+          trial(x_, v, alpha, nu, xt);
+          double Et = 0.0;
+          accepted = p_.energy(xt.data(), &Et) == RN_OK && Et < E;
+        }
+      }
+      ++rep.iterations;
+      if (!accepted) return;
+      double step = 0.0;
+      for (size_t i = 0; i < nu; ++i) step = std::max(step, std::fabs(xt[i] - x_[i]));
+      x_ = xt;
+      p_.accept(x_.data());
+      if (mu == 0.0 && step <= 1e-14 * (1.0 + max_abs(cb_.n, x_.data()))) {
+        p_.gradient(x_.data(), &E, g_.data()); // stalled at round-off on a minimum
+        residual(rep.residual, rep.residual_scale);
+        rep.converged = 1;
+        return;
+      }
+    }
+  }
+
   Problem p_;
   CellBlocks cb_;
   std::vector<double> x_, g_;
@@ -206,6 +345,7 @@ private:
   std::vector<int32_t> col_;
   std::unique_ptr<SparseCholesky> chol_;
   bool pd_ = false;
+  bool descend_ = false;
 };
 
 // ---- Bloch-Floquet analysis -----------------------------------------------------
@@ -661,24 +801,39 @@ rn_status guarded(rn_network *net, const char *where, F &&f) {
 } // namespace
 } // namespace rodnet
 
-extern "C" rn_status rn_cell_relax(rn_network *net, const double *strain,
-                                   rn_cell_relax_report *rep) {
+namespace rodnet {
+namespace {
+rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep,
+                     bool descend) {
+  const char *where = descend ? "rn_cell_minimize" : "rn_cell_relax";
   if (!net) return RN_ERR_ARG;
   if (!strain)
-    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
-                                "rn_cell_relax: strain is NULL");
+    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG, "%s: strain is NULL",
+                                where);
   rn_cell_relax_report local{};
   rn_cell_relax_report &r = rep ? *rep : local;
   r = rn_cell_relax_report{};
-  return rodnet::guarded(net, "rn_cell_relax", [&] {
+  return guarded(net, where, [&] {
     int ns = 0;
-    rodnet::check_status(rn_network_cell_info(net, nullptr, &ns, nullptr, nullptr),
-                         "rn_network_cell_info");
+    check_status(rn_network_cell_info(net, nullptr, &ns, nullptr, nullptr),
+                 "rn_network_cell_info");
     for (int v = 0; v < ns; ++v)
       if (!std::isfinite(strain[v]))
-        throw rodnet::Error(RN_ERR_NOT_FINITE, "rn_cell_relax: strain is not finite");
-    rodnet::Relax(net).run(strain, r);
+        throw Error(RN_ERR_NOT_FINITE, std::string(where) + ": strain is not finite");
+    Relax(net, descend).run(strain, r);
   });
+}
+} // namespace
+} // namespace rodnet
+
+extern "C" rn_status rn_cell_relax(rn_network *net, const double *strain,
+                                   rn_cell_relax_report *rep) {
+  return rodnet::cell_relax(net, strain, rep, false);
+}
+
+extern "C" rn_status rn_cell_minimize(rn_network *net, const double *strain,
+                                      rn_cell_relax_report *rep) {
+  return rodnet::cell_relax(net, strain, rep, true);
 }
 
 extern "C" void rn_bloch_options_default(rn_bloch_options *opt) {

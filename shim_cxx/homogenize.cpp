@@ -22,20 +22,27 @@
 
 namespace rodnet {
 
-CellBlocks::CellBlocks(Problem &p, const std::string &where) {
+CellBlocks::CellBlocks(Problem &p, const std::string &where, bool all_free) {
   rn_network *net = p.network();
-  check_status(rn_network_cell_info(net, &dim, &ns, &measure, nullptr),
+  int nstrain = 0;
+  check_status(rn_network_cell_info(net, &dim, &nstrain, &measure, nullptr),
                "rn_network_cell_info");
   if (dim == 0) throw Error(RN_ERR_ARG, where + ": the network is not periodic");
   int64_t sidx[6];
   check_status(rn_network_cell_strain_dofs(net, sidx), "rn_network_cell_strain_dofs");
   n = p.size();
-  nu = n - static_cast<size_t>(ns);
-  for (int v = 0; v < ns; ++v)
-    if (sidx[v] != static_cast<int64_t>(nu) + v)
+  ns = 0;
+  for (int v = 0; v < nstrain; ++v) {
+    if (sidx[v] < 0 && all_free)
       throw Error(RN_ERR_ARG,
                   where + ": every strain component must be a DOF (strain component " +
                       std::to_string(v) + " is prescribed)");
+    if (sidx[v] >= 0) comp[ns++] = v;
+  }
+  nu = n - static_cast<size_t>(ns);
+  for (int k = 0; k < ns; ++k) // the free strain DOFs are the last reduced DOFs
+    if (sidx[comp[k]] != static_cast<int64_t>(nu) + k)
+      throw Error(RN_ERR_STATE, where + ": unexpected strain DOF layout");
 }
 
 void CellBlocks::extract(const Problem &p) {

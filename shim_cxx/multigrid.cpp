@@ -16,6 +16,7 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
 #include "alt_preconditioners.hpp"
+#include "spd_guard.hpp"
 #include "shim_error.hpp"
 
 namespace rodnet {
@@ -68,6 +69,51 @@ amg_parameters(int nranks, const Teuchos::RCP<const TMV> &nullspace, int block) 
     p.sublist("user data").set("Nullspace", Teuchos::rcp_const_cast<TMV>(nullspace));
   return p;
 }
+
+class AmgCoarse : public CoarseSolver {
+public:
+  // block: DOFs per node (rows 6 n .. 6 n + 5 for the DD's coarse matrix), 1 for a
+  // matrix without node structure.
+  explicit AmgCoarse(int block, std::string xml = std::string())
+      : block_(block), xml_(std::move(xml)) {}
+  void setup(const Teuchos::RCP<const TCrs> &S,
+             const Teuchos::RCP<const TMV> &nullspace) override {
+    if (!mpi_backed(*S->getComm()))
+      throw Error(
+          RN_ERR_TRILINOS,
+          "algebraic multigrid (MueLu) needs the MPI runtime in Trilinos 13.2: run "
+          "under mpirun or with RODNET_MPI=1 (docs/solvers.md)");
+    const int nranks = S->getComm()->getSize();
+    guard_.setup(
+        *S,
+        [&](const Teuchos::RCP<TCrs> &A) -> Teuchos::RCP<Tpetra::Operator<>> {
+          Teuchos::ParameterList params = amg_parameters(nranks, nullspace, block_);
+          if (!xml_.empty())
+            Teuchos::updateParametersFromXmlFile(xml_, Teuchos::inOutArg(params));
+          return MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Tpetra::Operator<>>(A),
+                                                   params);
+        },
+        "AMG");
+    // matrix and hierarchy (operator complexity of smoothed aggregation ~1.5): estimate
+    bytes_ = 2.5 * 12.0 * static_cast<double>(guard_.A->getNodeNumEntries());
+  }
+  void solve(const TMV &b, TMV &y) const override { guard_.P->apply(b, y); }
+  double shift() const override { return guard_.shift; }
+  double bytes() const override { return bytes_; }
+  std::string name() const override { return "amg"; }
+
+private:
+  int block_;
+  std::string xml_;
+  SpdGuard guard_;
+  double bytes_ = 0.0;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+} // namespace
 
 // A copy of S with t D added to the diagonal (D = |diag S| floored at 1e-8 max).
 Teuchos::RCP<TCrs> shifted_copy(const TCrs &S, double t) {
@@ -131,115 +177,6 @@ bool probe_positive(const TCrs &A, const Tpetra::Operator<> &P, int its) {
   }
   return true;
 }
-
-// Builds a preconditioner P of A = S + t |diag S| for t = 0 (or a hundredth of the
-// last shift that worked: a buckled state stays buckled for a few Newton steps),
-// 1e-8, 1e-6, ..., 1e10 until probe_positive(A, P) holds.  Throws Error if none does.
-struct SpdGuard {
-  double shift = 0.0;
-  Teuchos::RCP<TCrs> A;
-  Teuchos::RCP<Tpetra::Operator<>> P;
-  static constexpr int probe_iterations = 20;
-
-  template <class Build>
-  void setup(const TCrs &S, Build &&build, const char *what) {
-    double t = shift > 0.0 ? shift / 100.0 : 0.0;
-    for (;;) {
-      A = shifted_copy(S, t);
-      P = build(A);
-      if (probe_positive(*A, *P, probe_iterations)) break;
-      if (t >= 1e10)
-        throw Error(RN_ERR_LAPACK, std::string(what) +
-                                       ": the matrix stays indefinite up to a shift of "
-                                       "1e10 |diag| (non-finite entries?)");
-      t = t == 0.0 ? 1e-8 : 100.0 * t;
-    }
-    shift = t;
-  }
-};
-
-class AmgCoarse : public CoarseSolver {
-public:
-  // block: DOFs per node (rows 6 n .. 6 n + 5 for the DD's coarse matrix), 1 for a
-  // matrix without node structure.
-  explicit AmgCoarse(int block, std::string xml = std::string())
-      : block_(block), xml_(std::move(xml)) {}
-  void setup(const Teuchos::RCP<const TCrs> &S,
-             const Teuchos::RCP<const TMV> &nullspace) override {
-    if (!mpi_backed(*S->getComm()))
-      throw Error(
-          RN_ERR_TRILINOS,
-          "algebraic multigrid (MueLu) needs the MPI runtime in Trilinos 13.2: run "
-          "under mpirun or with RODNET_MPI=1 (docs/solvers.md)");
-    const int nranks = S->getComm()->getSize();
-    guard_.setup(
-        *S,
-        [&](const Teuchos::RCP<TCrs> &A) -> Teuchos::RCP<Tpetra::Operator<>> {
-          Teuchos::ParameterList params = amg_parameters(nranks, nullspace, block_);
-          if (!xml_.empty())
-            Teuchos::updateParametersFromXmlFile(xml_, Teuchos::inOutArg(params));
-          return MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Tpetra::Operator<>>(A),
-                                                   params);
-        },
-        "AMG");
-    // matrix and hierarchy (operator complexity of smoothed aggregation ~1.5): estimate
-    bytes_ = 2.5 * 12.0 * static_cast<double>(guard_.A->getNodeNumEntries());
-  }
-  void solve(const TMV &b, TMV &y) const override { guard_.P->apply(b, y); }
-  double shift() const override { return guard_.shift; }
-  double bytes() const override { return bytes_; }
-  std::string name() const override { return "amg"; }
-
-private:
-  int block_;
-  std::string xml_;
-  SpdGuard guard_;
-  double bytes_ = 0.0;
-};
-
-// Applies a CoarseSolver-like callable as a Tpetra operator, counting in stats.
-template <class Apply>
-class StatsOperator : public Tpetra::Operator<> {
-public:
-  StatsOperator(Teuchos::RCP<const TMap> map, Apply apply, PreconditionerStats *stats)
-      : map_(std::move(map)), apply_(std::move(apply)), stats_(stats), tmp_(map_, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp, double alpha,
-             double beta) const override {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (alpha == 1.0 && beta == 0.0) {
-      apply_(X, Y);
-    } else {
-      if (tmp_.getNumVectors() != X.getNumVectors()) tmp_ = TMV(map_, X.getNumVectors());
-      apply_(X, tmp_);
-      Y.update(alpha, tmp_, beta);
-    }
-    stats_->applies++;
-    stats_->apply_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
-
-private:
-  Teuchos::RCP<const TMap> map_;
-  Apply apply_;
-  PreconditionerStats *stats_;
-  mutable TMV tmp_;
-};
-
-template <class Apply>
-Teuchos::RCP<const Tpetra::Operator<>> stats_operator(Teuchos::RCP<const TMap> map,
-                                                      Apply apply,
-                                                      const PreconditionerStats *stats) {
-  return Teuchos::rcp(new StatsOperator<Apply>(std::move(map), std::move(apply),
-                                               const_cast<PreconditionerStats *>(stats)));
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-} // namespace
 
 std::unique_ptr<CoarseSolver> make_amg_coarse_solver(const std::string &xml) {
   return std::unique_ptr<CoarseSolver>(new AmgCoarse(6, xml));
@@ -346,6 +283,8 @@ make_preconditioner(const std::string &name, const Teuchos::RCP<const TMV> &null
     return std::unique_ptr<Preconditioner>(new MueluPreconditioner(nullspace));
   if (name == "ifpack2")
     return std::unique_ptr<Preconditioner>(new SchwarzPreconditioner);
+  if (name == "frosch")
+    return std::unique_ptr<Preconditioner>(new FroschPreconditioner(nullspace));
   return nullptr;
 }
 

@@ -87,8 +87,11 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "predictor must be 0 or 1";
   else if (o.stability != 0 && o.stability != 1)
     bad = "stability must be 0 or 1";
+  else if (o.stability_method < RN_STABILITY_AUTO ||
+           o.stability_method > RN_STABILITY_LOBPCG)
+    bad = "unknown stability_method";
   else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
-           enum_value(o.preconditioner) > RN_PRECOND_IFPACK2)
+           enum_value(o.preconditioner) > RN_PRECOND_FROSCH)
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -334,11 +337,13 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   if (rep) {
     fill_report(p, tot, force_scale,
                 std::chrono::duration<double>(Clock::now() - start).count(), rep);
-    // the stability of the returned state needs the whole Hessian: not on a part
-    if (opt.stability && !dist) {
-      check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
-      p.assemble_hessian(x.data());
-      rep->stability = hessian_stability(p, tot.factorization);
+    // the stability of the returned state (LOBPCG on a part: collective)
+    if (opt.stability) {
+      if (!dist) {
+        check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
+        p.assemble_hessian(x.data());
+      }
+      rep->stability = solve_stability(p, dist.get(), opt, tot.factorization);
       rep->stability.verified_minimum = rep->stability.verified_minimum && rep->converged;
     }
   }
@@ -393,6 +398,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->predictor = 1;
   opt->preconditioner = RN_PRECOND_AUTO;
   opt->stability = 1;
+  opt->stability_method = RN_STABILITY_AUTO;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -474,14 +480,16 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "muelu";
   case RN_PRECOND_IFPACK2:
     return "ifpack2";
+  case RN_PRECOND_FROSCH:
+    return "frosch";
   }
   return "unknown";
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
   const rn_preconditioner kinds[] = {
-      RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,  RN_PRECOND_GATHERED,
-      RN_PRECOND_DD,   RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2};
+      RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,   RN_PRECOND_GATHERED,
+      RN_PRECOND_DD,   RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2, RN_PRECOND_FROSCH};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 

@@ -186,6 +186,7 @@ rn_stability hessian_stability(Problem &p, rn_factorization kind) {
   const long factorizations0 = p.counters.factorizations;
   rn_stability st{};
   st.checked = 1;
+  st.method = RN_STABILITY_CHOLESKY;
   const size_t n = p.size();
   const std::vector<double> d = hessian_metric(p, kMetricFloor);
   st.scale = row_sum_norm(p, d);

@@ -38,6 +38,32 @@ constexpr int kStabilityBlock = 10;
 // checked = 1.  Throws Error.
 rn_stability hessian_stability(Problem &p, rn_factorization kind);
 
+class System;
+
+// The same check without factorising the whole Hessian (stability_lobpcg.cpp): the
+// lowest min(n, kStabilityBlock - 2) eigenvalues of D^{-1/2} H D^{-1/2} by Anasazi
+// LOBPCG (block kStabilityBlock), preconditioned by the SPD preconditioner opt
+// names for sys (make_preconditioner, set up on sys.hessian(), which must be
+// assembled at the state).  A Ritz pair is converged when ||A y - mu y|| <= 1e-10
+// scale (||y|| = 1, A the scaled Hessian); verified_minimum needs every requested
+// pair converged and the lowest outside the zero band above it.  No inertia
+// certificate: an eigenvalue LOBPCG misses is not seen.  factorizations counts
+// none (the preconditioner's own are not counted).  Collective over sys's
+// communicator; memory ~ 6 kStabilityBlock vectors per rank plus the
+// preconditioner.  Throws Error.
+rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt);
+
+// The stability check after rn_solve, by opt.stability_method (rn_solve_options):
+// on dist (a distributed System, not null: LOBPCG; checked = 0 if CHOLESKY is
+// forced, which needs the whole Hessian) or on p (one process; the
+// Hessian assembled at the state) with the factorisation kind.  AUTO: the Cholesky
+// check when the solver factors the whole Hessian itself (every kind but
+// tr-krylov and nox with a preconditioner other than factor) or when one
+// factorisation costs at most RN_STABILITY_MAX_FLOPS (banded: n (kd+1)^2; sparse:
+// the symbolic analysis's count), LOBPCG otherwise.  Collective.  Throws Error.
+rn_stability solve_stability(Problem &p, System *dist, const rn_solve_options &opt,
+                             rn_factorization kind);
+
 } // namespace rodnet
 
 #endif

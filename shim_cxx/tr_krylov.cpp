@@ -539,9 +539,11 @@ std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
     return std::make_unique<LocalPreconditioner>();
   case RN_PRECOND_DD:
   case RN_PRECOND_MUELU:
-  case RN_PRECOND_IFPACK2: {
-    Teuchos::RCP<const TMV> modes; // MueLu's near-null space (whole network only)
-    if (kind == RN_PRECOND_MUELU && serial) {
+  case RN_PRECOND_IFPACK2:
+  case RN_PRECOND_FROSCH: {
+    // MueLu's near-null space, FROSch's coarse space (whole network only)
+    Teuchos::RCP<const TMV> modes;
+    if ((kind == RN_PRECOND_MUELU || kind == RN_PRECOND_FROSCH) && serial) {
       const NetworkDofs d =
           network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
       modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());

@@ -4,6 +4,8 @@
 # component pins.
 rn_add_test(api_lifecycle SOURCES unit/api_lifecycle.c LIBS rodnet LABELS unit)
 rn_add_test(api_sections SOURCES unit/api_sections.c LIBS rodnet LABELS unit)
+# The planar model (rodnet_model.h): requests, free DOFs, qualification report.
+rn_add_test(api_planar SOURCES unit/api_planar.c LIBS rodnet LABELS unit)
 rn_add_test(api_conformance SOURCES unit/api_conformance.c LIBS rodnet LABELS unit)
 rn_add_test(api_fields SOURCES unit/api_fields.c LIBS rodnet LABELS unit)
 rn_add_test(api_joints SOURCES unit/api_joints.c LIBS rodnet LABELS unit)
@@ -26,3 +28,12 @@ rn_add_test(api_stretch_correction SOURCES unit/api_stretch_correction.c LIBS ro
 # Periodic cells: rod ends at periodic images, macroscopic strain DOFs (FD
 # h-sweeps over fluctuation and strain DOFs, images, uniform strain, errors).
 rn_add_test(api_periodic SOURCES unit/api_periodic.c LIBS rodnet m LABELS unit)
+# Contact (rodnet_contact.h): FD h-sweeps of the network with contact pairs
+# (crossing rods, a hairpin in self contact), CSR Hessian = HVP, the closed-form
+# gap, the continuous check against tunnelling, errors.
+rn_add_test(api_contact SOURCES unit/api_contact.c LIBS rodnet m LABELS unit)
+# Closed rods and smooth joints (issue 10 section 4): derivatives (h-sweep), a
+# free ring at its rest polygon, two rods closed by smooth joints against the
+# closed rod, link conservation over large rotations, Michell's twisted ring.
+rn_add_test(api_rings SOURCES unit/api_rings.c LIBS rodnet ${LAPACK_LIBRARIES} m
+            LABELS unit validation)

@@ -57,10 +57,24 @@ foreach(solver rol-ls-newton nox tr-minres)
             ${hard_dir}/hc4_${solver}.json --verified ${verified} --zero-modes 0)
   set_tests_properties(stability_honeycomb_${solver}_check PROPERTIES LABELS unit
                        FIXTURES_REQUIRED stability_honeycomb_${solver})
+  # the LOBPCG check forced: the same verdict, zero modes and lowest eigenvalue
+  rn_cli_test(stability_honeycomb_lobpcg_${solver} 0 "${expect}"
+    ARGS solve ${hard_dir}/hc4.json -o ${hard_dir}/hc4_lobpcg_${solver}.json -q
+         --solver ${solver} --stability-method lobpcg
+    REMOVE ${hard_dir}/hc4_lobpcg_${solver}.json
+    FIXTURE_SETUP stability_honeycomb_lobpcg_${solver})
+  set_tests_properties(stability_honeycomb_lobpcg_${solver} PROPERTIES
+                       FIXTURES_REQUIRED stability_honeycomb)
+  add_test(NAME stability_honeycomb_lobpcg_${solver}_check
+    COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_stability.py
+            ${hard_dir}/hc4_lobpcg_${solver}.json --verified ${verified} --zero-modes 0
+            --method lobpcg --same-as ${hard_dir}/hc4_${solver}.json)
+  set_tests_properties(stability_honeycomb_lobpcg_${solver}_check PROPERTIES LABELS unit
+    FIXTURES_REQUIRED "stability_honeycomb_${solver};stability_honeycomb_lobpcg_${solver}")
 endforeach()
 
-# Under mpirun (2 ranks, tr-krylov) the CLI checks the stability on rank 0 from the
-# gathered state: the same verdict as one process.
+# Under mpirun (2 ranks, tr-krylov) the solve checks the stability on the parts
+# (LOBPCG): the same verdict as one process.
 if(MPIEXEC_EXECUTABLE)
   add_test(NAME stability_honeycomb_mpi
            COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
@@ -77,3 +91,11 @@ if(MPIEXEC_EXECUTABLE)
   set_tests_properties(stability_honeycomb_mpi_check PROPERTIES LABELS mpi
                        FIXTURES_REQUIRED stability_honeycomb_mpi)
 endif()
+
+# Contact (docs/contact.md): hard_contact.c, one ctest per case.
+add_executable(hard_contact unit/hard_contact.c)
+target_link_libraries(hard_contact PRIVATE rn_testutil rodnet m)
+foreach(c crossed plectoneme)
+  add_test(NAME hard_contact_${c} COMMAND hard_contact ${c})
+  set_tests_properties(hard_contact_${c} PROPERTIES LABELS "hard" TIMEOUT 900)
+endforeach()

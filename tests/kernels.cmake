@@ -8,3 +8,5 @@ rn_add_test(kernels_closed_form SOURCES unit/kernels_closed_form.c
             LIBS rodnet_kernels_static LABELS unit)
 rn_add_test(kernels_joint_closed SOURCES unit/kernels_joint_closed.c
             LIBS rodnet_kernels_static LABELS unit)
+rn_add_test(kernels_contact SOURCES unit/kernels_contact.c
+            LIBS rodnet_kernels_static LABELS unit)

@@ -319,6 +319,20 @@ static void test_uniform_strain(rn_context *ctx) {
   CHECK_STATUS(rn_network_cell_stress(net, x, sig), RN_OK);
   CHECK_REL(sig[0], 1e3 * sec.A * 1e-3, 1e-9); /* EA e / a per unit length */
   CHECK_NEAR(sig[1], 0.0, 1e-12);
+  { /* rn_network_set_cell_load after finalize: the prescribed strain moves (scaled
+     * by the load factor), the applied stress enters the gradient of free ones */
+    double s2[3] = {2e-3, -1e-3, 0.0}, st2[3] = {0.5, 0.25, 0.0}, e[3];
+    CHECK_STATUS(rn_network_set_load_factor(net, 0.5), RN_OK);
+    CHECK_STATUS(rn_network_set_cell_load(net, s2, st2), RN_OK);
+    CHECK_STATUS(rn_network_cell_strain(net, NULL, e), RN_OK);
+    CHECK_NEAR(e[0], 1e-3, 1e-15);
+    CHECK_NEAR(e[1], -5e-4, 1e-15);
+    CHECK_NEAR(e[2], 0.0, 1e-15);
+    CHECK_STATUS(rn_network_cell_stress(net, x, sig), RN_OK); /* elastic part only */
+    CHECK_STATUS(rn_network_set_cell_load(net, NULL, NULL), RN_OK);
+    s2[0] = NAN;
+    CHECK_STATUS(rn_network_set_cell_load(net, s2, NULL), RN_ERR_NOT_FINITE);
+  }
   rn_network_destroy(&net);
 }
 

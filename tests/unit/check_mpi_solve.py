@@ -12,6 +12,9 @@ compare the two RESULT.json files (issue 7, the `mpi` tests):
   the largest coordinate); with --same-iterations (the same preconditioner on both,
   e.g. gathered) the Newton iterations and load steps are equal, otherwise they are
   printed;
+- "stability": both checked or neither; verified_minimum and zero_modes equal,
+  the lowest eigenvalues within 1e-6 relative (+ 1e-12 scale), scale to 1e-12
+  (one rank: the Cholesky check by default; N ranks: LOBPCG on the parts);
 - "partition": one rank has "ranks": 1 with one-element lists equal to the
   network's free DOFs; N ranks have N-element lists whose sums are the one-rank
   totals, and with more than one rod per rank no rank owns more than max-share of
@@ -87,6 +90,19 @@ def main():
     for k in keys:
         if one[k] != many[k]:
             fail("%s: %s vs %s" % (k, one[k], many[k]))
+    s1, sn = one["stability"], many["stability"]
+    print("stability: one rank %s, %d ranks %s" % (s1, a.np, sn))
+    if s1["checked"] != sn["checked"]:
+        fail("stability checked on one side only")
+    if s1["checked"]:
+        for k in ("verified_minimum", "zero_modes"):
+            if s1[k] != sn[k]:
+                fail("stability %s: %s vs %s" % (k, s1[k], sn[k]))
+        d = abs(s1["lowest_eigenvalue"] - sn["lowest_eigenvalue"])
+        if d > 1e-6 * abs(s1["lowest_eigenvalue"]) + 1e-12 * s1["scale"]:
+            fail("lowest eigenvalues differ by %.3g" % d)
+        if abs(s1["scale"] - sn["scale"]) > 1e-12 * s1["scale"]:
+            fail("stability scales differ")
     p1, pn = one["partition"], many["partition"]
     if p1["ranks"] != 1 or p1["owned_dofs"] != [one["num_dofs"]]:
         fail("one-rank partition block %s" % p1)

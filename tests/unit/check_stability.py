@@ -2,13 +2,16 @@
 """check_stability.py - the "stability" block of a rodnet RESULT.json.
 
     check_stability.py RESULT.json [--verified true|false] [--zero-modes K]
-                       [--min-abs-z Z]
+                       [--min-abs-z Z] [--method cholesky|lobpcg]
+                       [--same-as OTHER.json]
 
 Fails (exit 1) unless the block has every contract key (checked, lowest_eigenvalue,
 scale, verified_minimum, zero_modes) with finite numbers, the run converged when it
 claims a verified minimum, verified_minimum is the one asked for, zero_modes equals K,
 and (--min-abs-z) some rod vertex lies at |z| >= Z (a planar lattice buckled out of
-its plane)."""
+its plane); --method: the check's method; --same-as: the lowest eigenvalue within
+1e-6 relative (+ 1e-12 scale) of OTHER's, the same zero modes and verdict (the
+same state checked by the other method)."""
 import argparse
 import json
 import math
@@ -26,6 +29,8 @@ def main():
     ap.add_argument("--verified", choices=("true", "false"))
     ap.add_argument("--zero-modes", type=int)
     ap.add_argument("--min-abs-z", type=float)
+    ap.add_argument("--method", choices=("cholesky", "lobpcg"))
+    ap.add_argument("--same-as")
     a = ap.parse_args()
     with open(a.result) as f:
         r = json.load(f)
@@ -53,6 +58,19 @@ def main():
         if not zmax >= a.min_abs_z:
             fail("max |z| = %g < %g: not buckled out of plane" % (zmax, a.min_abs_z))
         print("check_stability: max |z| = %g" % zmax)
+    if a.method and st.get("method") != a.method:
+        fail("method %r, expected %s" % (st.get("method"), a.method))
+    if a.same_as:
+        with open(a.same_as) as f:
+            o = json.load(f)["stability"]
+        d = abs(st["lowest_eigenvalue"] - o["lowest_eigenvalue"])
+        print("check_stability: lowest eigenvalue %.10g vs %.10g (%s)" %
+              (st["lowest_eigenvalue"], o["lowest_eigenvalue"], a.same_as))
+        if d > 1e-6 * abs(o["lowest_eigenvalue"]) + 1e-12 * o["scale"]:
+            fail("lowest eigenvalues differ by %g" % d)
+        for key in ("zero_modes", "verified_minimum"):
+            if st[key] != o[key]:
+                fail("%s %r vs %r" % (key, st[key], o[key]))
     print("check_stability: ok: %s %r" % (a.result, st))
 
 

@@ -206,7 +206,8 @@ static const bad_case cases[] = {
     /* JSON joints */
     {"unknown model",
      RODS("{'name': 'j', 'model': 'welded', 'ends': [{'rod': 'a', 'end': 'end'}]}", ""),
-     "$.joints[0].model", "unknown joint model \"welded\" (known: elastic, rigid)"},
+     "$.joints[0].model",
+     "unknown joint model \"welded\" (known: elastic, rigid, smooth)"},
     {"end used twice",
      RODS(J_AB ", {'name': 'k', 'ends': [{'rod': 'b', 'end': 'start'}]}", ""),
      "$.joints[1].ends[0]", "the start of rod \"b\" is already joined at joint \"j\""},

@@ -108,7 +108,7 @@ int main(int argc, char **argv) {
                          0.5,
                          0.25,
                          0.125,
-                         {1, -2.5e-3, 40.0, 0, 2, 3, 0.5},
+                         {1, -2.5e-3, 40.0, 0, 2, 3, 0.5, RN_STABILITY_CHOLESKY, 0, 0.0},
                          NULL};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);

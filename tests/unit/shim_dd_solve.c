@@ -1,10 +1,10 @@
 /* shim_dd_solve.c - rn_solve's Newton-Krylov trust region (tr-krylov) with every
- * preconditioner (auto = dd, dd, muelu, ifpack2, factor) on lattices of `rodnet
+ * preconditioner (auto = dd, dd, muelu, ifpack2, frosch, factor) on lattices of `rodnet
  * generate` (honeycomb 4x4 with rigid and with elastic joints, octet 2x2x2 rigid,
  * uniaxial stretch 1e-3): converged, the preconditioner reported, and the same
  * equilibrium as the exact trust region (tr-minres): every vertex within 1e-7 of
  * the largest displacement, energies within 1e-9 relative.  In the serial runtime
- * muelu and ifpack2 fail with a clear error (they need MPI in Trilinos 13.2); run
+ * muelu, ifpack2 and frosch fail with a clear error (they need MPI in Trilinos 13.2); run
  * with the argument "mpi" and RODNET_MPI=1 they must work. */
 #include <math.h>
 #include <stdio.h>
@@ -38,8 +38,10 @@ static double *vertices(const rn_network *net, size_t *count) {
 
 static void check_case(rn_context *ctx, rn_lattice_kind kind, int cells, int model,
                        const char *name) {
-  const rn_preconditioner precs[5] = {RN_PRECOND_AUTO, RN_PRECOND_DD, RN_PRECOND_MUELU,
-                                      RN_PRECOND_IFPACK2, RN_PRECOND_FACTOR};
+  enum { NPREC = 6 };
+  const rn_preconditioner precs[NPREC] = {RN_PRECOND_AUTO,   RN_PRECOND_DD,
+                                          RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2,
+                                          RN_PRECOND_FROSCH, RN_PRECOND_FACTOR};
   rn_scene *scene = lattice(ctx, kind, cells, model);
   rn_network *net = rn_scene_network(scene);
   rn_state *initial = NULL;
@@ -56,15 +58,17 @@ static void check_case(rn_context *ctx, rn_lattice_kind kind, int cells, int mod
   for (size_t i = 0; i < n; ++i) umax = fmax(umax, fabs(x_ref[i] - x0[i]));
   printf("%s: tr-minres its=%d krylov=%ld E=%.12e, largest displacement %.3e\n", name,
          rep.iterations, rep.krylov_iterations, rep.energy, umax);
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < NPREC; ++k) {
     CHECK_STATUS(rn_network_state_restore(net, initial), RN_OK);
     rn_solve_options_default(&opt);
     opt.solver = RN_SOLVER_TR_KRYLOV;
     opt.preconditioner = precs[k];
     const rn_status st = rn_solve(net, &opt, &rep);
-    if ((precs[k] == RN_PRECOND_MUELU || precs[k] == RN_PRECOND_IFPACK2) &&
+    if ((precs[k] == RN_PRECOND_MUELU || precs[k] == RN_PRECOND_IFPACK2 ||
+         precs[k] == RN_PRECOND_FROSCH) &&
         !g_require_mpi && st == RN_ERR_TRILINOS) {
-      /* the serial runtime: MueLu and Ifpack2 13.2 cannot run there, a clear error */
+      /* the serial runtime: MueLu, Ifpack2 and FROSch 13.2 cannot run there, a clear
+       * error */
       printf("  tr-krylov %s: %s\n", rn_preconditioner_name(precs[k]),
              rn_context_last_error(ctx));
       CHECK(strstr(rn_context_last_error(ctx), "MPI runtime") != NULL);

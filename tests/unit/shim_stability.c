@@ -68,7 +68,10 @@ static void check_against_dense(const rn_network *net, const rn_stability *st,
   CHECK_REL(st->scale, norm_inf, 1e-12);
   CHECK((size_t)st->zero_modes == z);
   CHECK(fabs(st->lowest_eigenvalue - w[first]) <= 1e-6 * fabs(w[first]));
-  CHECK(st->factorizations >= 1);
+  if (st->method == RN_STABILITY_LOBPCG)
+    CHECK(st->factorizations == 0 && st->iterations >= 1);
+  else
+    CHECK(st->method == RN_STABILITY_CHOLESKY && st->factorizations >= 1);
   free(w);
 }
 
@@ -98,7 +101,7 @@ static void cantilever(rn_context *ctx) {
 }
 
 /* A quarter circle of radius 1 (15 vertices), no supports, no loads. */
-static void free_rod(rn_context *ctx) {
+static rn_network *free_quarter_circle(rn_context *ctx) {
   enum { NV = 15 };
   rn_network *net = NULL;
   rn_material m;
@@ -118,6 +121,11 @@ static void free_rod(rn_context *ctx) {
   CHECK_STATUS(rn_network_set_material(net, rod, -1, &m), RN_OK);
   CHECK_STATUS(rn_network_set_section(net, rod, -1, &s), RN_OK);
   CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  return net;
+}
+
+static void free_rod(rn_context *ctx) {
+  rn_network *net = free_quarter_circle(ctx);
   rn_stability st;
   CHECK_STATUS(rn_network_stability(net, &st), RN_OK);
   check_against_dense(net, &st, "free quarter circle");
@@ -126,13 +134,19 @@ static void free_rod(rn_context *ctx) {
   rn_network_destroy(&net);
 }
 
+static rn_network *grid(rn_context *ctx) { return shimnet_grid(ctx, 4, 0.02); }
+
 /* The clamped-free column of shim_buckling.c at 1.3 x its Euler load. */
-static void straight_column(rn_context *ctx) {
+static rn_network *column_above_buckling(rn_context *ctx) {
   rn_section s;
   double f[3] = {0.0, 0.0, 0.0};
   CHECK_STATUS(rn_section_rectangle(0.02, 0.01, &s), RN_OK);
   f[2] = -1.3 * SHIM_PI * SHIM_PI * 1e7 * fmin(s.I11, s.I22) / 4.0;
-  rn_network *net = shim_clamped_rod(ctx, 21, 1.0, 2, &s, 1e7, f);
+  return shim_clamped_rod(ctx, 21, 1.0, 2, &s, 1e7, f);
+}
+
+static void straight_column(rn_context *ctx) {
+  rn_network *net = column_above_buckling(ctx);
   rn_solve_options opt;
   rn_solve_report rep;
   rn_solve_options_default(&opt);
@@ -144,8 +158,6 @@ static void straight_column(rn_context *ctx) {
   CHECK(rep.stability.lowest_eigenvalue < 0.0);
   rn_network_destroy(&net);
 }
-
-static rn_network *grid(rn_context *ctx) { return shimnet_grid(ctx, 4, 0.02); }
 
 static void grid_all_kinds(rn_context *ctx) {
   for (int k = 0; k < 5; ++k) {
@@ -175,6 +187,58 @@ static void grid_all_kinds(rn_context *ctx) {
   rn_network_destroy(&net);
 }
 
+/* The LOBPCG check forced (rn_solve_options.stability_method) on the scenes above,
+ * against dsyev as the Cholesky check is (same tolerances): tr-krylov and nox
+ * with their default (dd) preconditioner, tr-minres with it too. */
+static void lobpcg_forced(rn_context *ctx) {
+  const rn_solver_kind lk[3] = {RN_SOLVER_TR_KRYLOV, RN_SOLVER_NOX, RN_SOLVER_TR_MINRES};
+  for (int k = 0; k < 3; ++k) {
+    rn_solve_options opt;
+    rn_solve_report rep;
+    rn_solve_options_default(&opt);
+    opt.solver = lk[k];
+    opt.stability_method = RN_STABILITY_LOBPCG;
+    char label[64];
+    rn_network *net = shim_cantilever(ctx, 0.3 * 3.0 * shim_cantilever_EI());
+    CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+    CHECK(rep.converged == 1);
+    snprintf(label, sizeof label, "lobpcg, cantilever, %s", rn_solver_name(lk[k]));
+    check_against_dense(net, &rep.stability, label);
+    CHECK(rep.stability.verified_minimum == 1 && rep.stability.zero_modes == 0);
+    rn_network_destroy(&net);
+    net = grid(ctx);
+    CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+    CHECK(rep.converged == 1);
+    snprintf(label, sizeof label, "lobpcg, grid, %s", rn_solver_name(lk[k]));
+    check_against_dense(net, &rep.stability, label);
+    CHECK(rep.stability.verified_minimum == 1);
+    rn_network_destroy(&net);
+  }
+  rn_solve_options opt;
+  rn_solve_report rep;
+  rn_solve_options_default(&opt);
+  opt.solver = RN_SOLVER_TR_KRYLOV;
+  opt.stability_method = RN_STABILITY_LOBPCG;
+  rn_network *net = free_quarter_circle(ctx);
+  opt.solver = RN_SOLVER_TR_MINRES; /* converges at once: the state is the rest state */
+  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+  CHECK(rep.converged == 1);
+  check_against_dense(net, &rep.stability, "lobpcg, free quarter circle");
+  CHECK(rep.stability.zero_modes == 6 && rep.stability.verified_minimum == 1);
+  rn_network_destroy(&net);
+  net = column_above_buckling(ctx);
+  opt.solver = RN_SOLVER_NOX;
+  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+  CHECK(rep.converged == 1);
+  check_against_dense(net, &rep.stability, "lobpcg, nox, straight column");
+  CHECK(rep.stability.verified_minimum == 0 && rep.stability.lowest_eigenvalue < 0.0);
+  rn_network_destroy(&net);
+  opt.stability_method = 3;
+  net = grid(ctx);
+  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_ERR_ARG);
+  rn_network_destroy(&net);
+}
+
 int main(int argc, char **argv) {
   rn_context *ctx = NULL;
   CHECK_STATUS(rn_runtime_initialize(&argc, &argv), RN_OK);
@@ -183,6 +247,7 @@ int main(int argc, char **argv) {
   free_rod(ctx);
   straight_column(ctx);
   grid_all_kinds(ctx);
+  lobpcg_forced(ctx);
   rn_context_destroy(&ctx);
   rn_runtime_finalize();
   return rn_test_finish("shim_stability");

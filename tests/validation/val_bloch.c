@@ -76,8 +76,18 @@ static rn_scene *cell(rn_context *ctx, rn_lattice_kind kind, int rep, int N, dou
   must(ctx, rn_pcell_tile(ctx, &prim, r, &c), "tile");
   for (int m = 0; m < c.dim; ++m) apply_xform(c.vec + 3 * m);
   for (int j = 0; j < c.nnodes; ++j) apply_xform(c.xyz + 3 * j);
-  rn_lattice_scene sc = {"val_bloch",       N,      RN_JOINT_RIGID, 1.0, 0.3,
-                         RN_LSEC_RECTANGLE, {0, 0}, RN_LLOAD_NONE,  0,   0.0};
+  rn_lattice_scene sc = {"val_bloch",
+                         N,
+                         RN_JOINT_RIGID,
+                         1.0,
+                         0.3,
+                         RN_LSEC_RECTANGLE,
+                         {0, 0},
+                         RN_LLOAD_NONE,
+                         0,
+                         0.0,
+                         0.0,
+                         NULL};
   sc.section[0] = sc.section[1] = 0.05 * *l;
   snprintf(path, sizeof path, "%s/val_bloch_%s_%d_%d.json", dir,
            rn_lattice_kind_name(kind), rep, N);

@@ -63,7 +63,9 @@ static lattice_result run(rn_context *ctx, rn_lattice_kind kind, int n,
                          {1.0 / 50, 0},
                          load,
                          0,
-                         eps};
+                         eps,
+                         0.0,
+                         NULL};
   lattice_result res = {0};
   snprintf(path, sizeof path, "%s/val_lattice_%s_%d.json", dir,
            rn_lattice_kind_name(kind), (int)load);

