@@ -240,10 +240,14 @@ double rn_prescribed_rotation_rate(const rn_network *net) {
   return w;
 }
 
+int rn_ramp_steps(double turn) {
+  if (!(turn > RN_RAMP_ANGLE) || !(turn <= RN_RAMP_ANGLE * RN_RAMP_MAX_STEPS)) return 1;
+  return (int)ceil(turn / RN_RAMP_ANGLE);
+}
+
 void rn_ramp_load_factor(rn_network *net, double lambda) {
-  const double from = net->lambda,
-               turn = fabs(lambda - from) * rn_prescribed_rotation_rate(net);
-  const int n = turn > RN_RAMP_ANGLE ? (int)ceil(turn / RN_RAMP_ANGLE) : 1;
+  const double from = net->lambda;
+  const int n = rn_ramp_steps(fabs(lambda - from) * rn_prescribed_rotation_rate(net));
   for (int k = 1; k <= n; ++k) {
     net->lambda = k == n ? lambda : from + (lambda - from) * (double)k / (double)n;
     rn_apply_load_factor(net);

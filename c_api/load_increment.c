@@ -71,8 +71,7 @@ static void save_clamp_frames(const rn_network *net, rnk_frame *frames) {
  * increment of w is (t - t_prev) rot. */
 static rn_status fixed_increment(rn_network *net, double t_prev, double t, double *dfull,
                                  rnk_frame *frames, double *phi) {
-  const double turn = fabs(t - t_prev) * rn_prescribed_rotation_rate(net);
-  const int n = turn > RN_RAMP_ANGLE ? (int)ceil(turn / RN_RAMP_ANGLE) : 1;
+  const int n = rn_ramp_steps(fabs(t - t_prev) * rn_prescribed_rotation_rate(net));
   rnk_frame *prev = frames, *cur = frames + 2 * (size_t)net->nrods, *tmp;
   double *full_t = dfull;
   memset(phi, 0, 2 * (size_t)net->nrods * sizeof(double));

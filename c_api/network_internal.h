@@ -444,6 +444,11 @@ double rn_prescribed_rotation_rate(const rn_network *net);
  * prescribed rotation by more than RN_RAMP_ANGLE, each rn_apply_load_factor, so the
  * reference twists next to turned clamps keep their winding. */
 void rn_ramp_load_factor(rn_network *net, double lambda);
+/* Steps of at most RN_RAMP_ANGLE for a turn (rad): 1 for a turn up to RN_RAMP_ANGLE,
+ * or beyond RN_RAMP_MAX_STEPS steps (or not finite: such a turn is applied at once
+ * and its winding is not followed). */
+#define RN_RAMP_MAX_STEPS 16384
+int rn_ramp_steps(double turn);
 /* Builds the Hessian pattern (hessian.c). */
 rn_status rn_build_hessian_pattern(rn_network *net);
 /* Adds the free-free entries of a dense n x n stencil block at full index s

@@ -110,19 +110,32 @@ struct SolveTotals {
   DistSystem *dist = nullptr; // the System of a part (nullptr: a whole network)
 };
 
-// One minimisation at load factor t from the current state, converged at t_prev
-// (0: the starting state); first the predictor (opt.predictor).
+// Whether a load step starts with the predictor (opt.predictor; rol-lbfgs uses
+// gradients only: no predictor, which would factor the Hessian).
+bool uses_predictor(const rn_solve_options &opt) {
+  return opt.predictor && opt.solver != RN_SOLVER_ROL_LBFGS;
+}
+
+// The load-step predictor from t_prev to t (predictor.hpp): true if its state was
+// accepted (the network at t either way).  With tr-krylov it uses its preconditioner
+// and MINRES, distributed on a part; the other kinds factor the whole Hessian.
+bool run_predictor(Problem &p, const rn_solve_options &opt, double t_prev, double t,
+                   SolveTotals &tot) {
+  const bool accepted = tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
+                        : opt.solver == RN_SOLVER_TR_KRYLOV
+                            ? predict_step_krylov(p, opt, t_prev, t)
+                            : predict_load_step(p, tot.factorization, t_prev, t);
+  if (accepted) ++tot.predictor_steps;
+  return accepted;
+}
+
+// One minimisation at load factor t from the current state (the predictor's, if
+// predicted), converged at t_prev (0: the starting state); first the predictor
+// (uses_predictor) unless predicted.
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
-                     double force_scale, Clock::time_point start, SolveTotals &tot) {
-  // (with tr-krylov the predictor uses its preconditioner and MINRES, distributed on
-  // a part; the other kinds factor the whole Hessian)
-  // (rol-lbfgs uses gradients only: no predictor, which would factor the Hessian)
-  if (opt.predictor && opt.solver != RN_SOLVER_ROL_LBFGS &&
-      (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
-       : opt.solver == RN_SOLVER_TR_KRYLOV
-           ? predict_step_krylov(p, opt, t_prev, t)
-           : predict_load_step(p, tot.factorization, t_prev, t)))
-    ++tot.predictor_steps;
+                     double force_scale, Clock::time_point start, SolveTotals &tot,
+                     bool predicted = false) {
+  if (!predicted && uses_predictor(opt)) run_predictor(p, opt, t_prev, t, tot);
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
   switch (opt.solver) {
@@ -158,45 +171,128 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   return mon.converged();
 }
 
-// Sub-steps of a load step from t_prev to t so that no rod edge near a prescribed
-// motion changes by more than kRampStretch of its length and no prescribed rotation
-// turns by more than kRampAngle within one (the largest count over the parts).
-constexpr double kRampStretch = 0.25;
+// The sub-step rule of a load step (docs/solvers.md, "Prescribed motions of any
+// size"): within one sub-step no prescribed rotation turns by more than kRampAngle
+// and the first trial state shortens no rod edge along itself by more than
+// kRampShortening of its length.  The trial state is the predictor's where it is
+// accepted (the interior moved with the prescribed motion), else the jumped one (free
+// DOFs held).  kRampMaxSubsteps bounds the sub-steps of one load step, kRampDepth the
+// nested splits.
+constexpr double kRampShortening = 0.5;
 constexpr double kRampAngle = 0.7853981633974483; // pi/4
 constexpr int kRampMaxSubsteps = 1 << 16;
+constexpr int kRampDepth = 8;
 
-int ramp_substeps(Problem &p, const SolveTotals &tot, double t_prev, double t) {
-  double stretch = 0.0, angle = 0.0;
-  rn_status st = rn_network_load_step_size(p.network(), t_prev, t, &stretch, &angle);
-  const double need = std::max(stretch / kRampStretch, angle / kRampAngle);
-  int n = st != RN_OK                   ? -1
-          : !(need <= kRampMaxSubsteps) ? kRampMaxSubsteps
-                                        : std::max(1, static_cast<int>(std::ceil(need)));
-  if (tot.dist) {
-    int all = n;
-    Teuchos::reduceAll(*tot.dist->comm(), Teuchos::REDUCE_MIN, n, Teuchos::outArg(all));
-    if (all < 0) {
-      if (st != RN_OK) check_status(st, "rn_network_load_step_size");
-      throw Error(RN_ERR_SOLVER, "rn_solve: rn_network_load_step_size failed on a part");
-    }
-    Teuchos::reduceAll(*tot.dist->comm(), Teuchos::REDUCE_MAX, n, Teuchos::outArg(all));
-    n = all;
-  } else {
-    check_status(st, "rn_network_load_step_size");
-  }
-  return n;
+// The largest of v over the parts of a distributed network (v on a whole network).
+double max_over_parts(const SolveTotals &tot, double v) {
+  if (!tot.dist) return v;
+  double all = v;
+  Teuchos::reduceAll(*tot.dist->comm(), Teuchos::REDUCE_MAX, v, Teuchos::outArg(all));
+  return all;
 }
 
-// One load step from t_prev to t in ramp_substeps equal sub-steps (the first trial
-// state is never one where the prescribed motion jumped past the edges next to it).
+// Sub-steps for a measure (need = measure / limit): at least 1, at most
+// kRampMaxSubsteps (also for an infinite or NaN measure).
+int substeps_for(double need) {
+  return !(need <= kRampMaxSubsteps) ? kRampMaxSubsteps
+                                     : std::max(1, static_cast<int>(std::ceil(need)));
+}
+
+// Whether the network (a part: its owned rods) holds rod ir's current state.
+bool owns_rod(const rn_network *net, int part, int ir) {
+  return rn_network_rod_owner(net, ir) == part;
+}
+
+// The network's part (0: a whole network).
+int part_of(const rn_network *net) {
+  rn_part_info info;
+  check_status(rn_network_part_info(net, &info), "rn_network_part_info");
+  return info.part;
+}
+
+// The current vertex positions of the rods the network owns, rod after rod.
+std::vector<double> rod_positions(const rn_network *net) {
+  std::vector<double> xyz;
+  const int part = part_of(net);
+  for (int ir = 0, nr = rn_network_num_rods(net); ir < nr; ++ir) {
+    if (!owns_rod(net, part, ir)) continue;
+    const size_t at = xyz.size();
+    xyz.resize(at + 3 * static_cast<size_t>(rn_network_rod_num_vertices(net, ir)));
+    check_status(rn_network_rod_vertices(net, ir, xyz.data() + at),
+                 "rn_network_rod_vertices");
+  }
+  return xyz;
+}
+
+// The largest shortening of a rod edge along itself over its length from positions
+// a to b (rod_positions of the same network): -(e_b - e_a) . e_a / |e_a|^2, > 1 where
+// the edge turned over (HUGE_VAL for a zero-length edge that changes).
+double largest_shortening(const rn_network *net, const std::vector<double> &a,
+                          const std::vector<double> &b) {
+  double ratio = 0.0;
+  size_t v0 = 0;
+  const int part = part_of(net);
+  for (int ir = 0, nr = rn_network_num_rods(net); ir < nr; ++ir) {
+    if (!owns_rod(net, part, ir)) continue;
+    const int nv = rn_network_rod_num_vertices(net, ir);
+    const int ne = rn_network_rod_is_closed(net, ir) == 1 ? nv : nv - 1;
+    for (int j = 0; j < ne; ++j) {
+      const size_t i0 = 3 * (v0 + j), i1 = 3 * (v0 + (j + 1) % nv);
+      double e2 = 0.0, de = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double e = a[i1 + k] - a[i0 + k];
+        e2 += e * e;
+        de += ((b[i1 + k] - b[i0 + k]) - e) * e;
+      }
+      if (de < 0.0) ratio = e2 > 0.0 ? std::max(ratio, -de / e2) : HUGE_VAL;
+      if (std::isnan(de)) ratio = HUGE_VAL;
+    }
+    v0 += static_cast<size_t>(nv);
+  }
+  return ratio;
+}
+
+// Sub-steps of a load step from t_prev to t (each a load step of its own) so that
+// the first trial state of each is never one where the prescribed motion jumped past
+// the edges next to it: the rule above, applied again within each sub-step.
 bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
-                      double force_scale, Clock::time_point start, SolveTotals &tot) {
-  const int n = ramp_substeps(p, tot, t_prev, t);
+                      double force_scale, Clock::time_point start, SolveTotals &tot,
+                      int depth = 0) {
+  rn_network *net = p.network();
+  double stretch = 0.0, angle = 0.0;
+  rn_status st = rn_network_load_step_size(net, t_prev, t, &stretch, &angle);
+  if (tot.dist) st = tot.dist->agree(st); // an error on any part throws on all
+  check_status(st, "rn_network_load_step_size");
+  int n = substeps_for(max_over_parts(tot, angle) / kRampAngle);
+  bool predicted = false;
+  // (an edge's shortening over its length is at most its stretch)
+  if (n == 1 && max_over_parts(tot, stretch) > kRampShortening && depth < kRampDepth) {
+    Snapshot before;
+    before.save(net);
+    const std::vector<double> x0 = rod_positions(net);
+    check_status(rn_network_set_load_factor(net, t), "rn_network_set_load_factor");
+    const double held =
+        max_over_parts(tot, largest_shortening(net, x0, rod_positions(net)));
+    before.restore(net);
+    if (held > kRampShortening) { // the jumped state is too far: try the predictor's
+      if (uses_predictor(opt) && run_predictor(p, opt, t_prev, t, tot)) {
+        const double r =
+            max_over_parts(tot, largest_shortening(net, x0, rod_positions(net)));
+        predicted = r <= kRampShortening;
+        if (!predicted) n = std::max(2, substeps_for(r / kRampShortening));
+      } else {
+        n = substeps_for(held / kRampShortening);
+      }
+      if (!predicted) before.restore(net);
+    }
+  }
+  if (n == 1)
+    return solve_load_step(p, opt, t_prev, t, force_scale, start, tot, predicted);
   for (int k = 1; k <= n; ++k) {
     const double a =
         k == 1 ? t_prev : t_prev + (t - t_prev) * static_cast<double>(k - 1) / n;
     const double b = k == n ? t : t_prev + (t - t_prev) * static_cast<double>(k) / n;
-    if (!solve_load_step(p, opt, a, b, force_scale, start, tot)) return false;
+    if (!ramped_load_step(p, opt, a, b, force_scale, start, tot, depth + 1)) return false;
   }
   return true;
 }
