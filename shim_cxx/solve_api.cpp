@@ -269,6 +269,9 @@ bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, do
   if (n == 1 && max_over_parts(tot, stretch) > kRampShortening && depth < kRampDepth) {
     Snapshot before;
     before.save(net);
+    // (the state converged at t_prev; at the start of a solve the network may sit at
+    // the target load factor, finalize's)
+    check_status(rn_network_set_load_factor(net, t_prev), "rn_network_set_load_factor");
     const std::vector<double> x0 = rod_positions(net);
     check_status(rn_network_set_load_factor(net, t), "rn_network_set_load_factor");
     const double held =
