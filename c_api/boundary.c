@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rodnet_ramp.h"
 
 /* Checks a call on end `end` of rod g (whole-network index); *lr receives the
  * local index, RN_NOT_HERE if another part holds the rod. */
@@ -329,3 +330,7 @@ rn_status rn_network_load_step_size(rn_network *net, double t0, double t1,
 }
 
 double rn_network_load_factor(const rn_network *net) { return net ? net->lambda : 0.0; }
+
+double rn_network_dofs_load_factor(const rn_network *net) {
+  return net && net->finalized ? net->lambda_x : NAN;
+}

@@ -267,7 +267,7 @@ rn_status rn_network_finalize(rn_network *net) {
      * prescribed motions are ramped to the load factor (keeping twist windings; the
      * state there may be a degenerate trial point, which the solver ramps through) */
     const double target = net->lambda;
-    net->lambda = 0.0;
+    net->lambda = net->lambda_x = 0.0; /* the initial geometry is load factor 0's */
     rn_apply_load_factor(net);
     if (!(st = rn_joints_check_initial(net, where)) &&
         !(st = rn_contact_check_initial(net, where))) {

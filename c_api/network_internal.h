@@ -137,7 +137,8 @@ struct rn_network {
   int njoints, cap_joints;
   double gravity[3];
   int finalized;
-  double lambda; /* load factor */
+  double lambda;   /* load factor */
+  double lambda_x; /* load factor at which the free DOFs were last set */
   size_t nfull, nred;
   int64_t *map;      /* full -> reduced index, -1 if fixed [nfull] */
   int64_t *red2full; /* reduced -> full [nred] */

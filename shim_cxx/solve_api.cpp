@@ -17,6 +17,7 @@
 #include "path.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
+#include "rodnet_ramp.h"
 #include "rodnet_solve.h"
 #include "runtime.hpp"
 #include "shim_error.hpp"
@@ -259,8 +260,16 @@ bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, do
                       double force_scale, Clock::time_point start, SolveTotals &tot,
                       int depth = 0) {
   rn_network *net = p.network();
+  // The free DOFs belong to t_prev after a load step and to load factor 0 for the
+  // initial geometry; when rn_solve is called again at a larger load factor they
+  // belong to the last one converged, between t_prev = 0 and t: the prescribed
+  // motion jumps from there (rn_network_dofs_load_factor), and sub-steps go on from
+  // there too.
+  const double t_x = rn_network_dofs_load_factor(net);
+  const double from =
+      (t_x > std::min(t_prev, t) && t_x < std::max(t_prev, t)) ? t_x : t_prev;
   double stretch = 0.0, angle = 0.0;
-  rn_status st = rn_network_load_step_size(net, t_prev, t, &stretch, &angle);
+  rn_status st = rn_network_load_step_size(net, from, t, &stretch, &angle);
   if (tot.dist) st = tot.dist->agree(st); // an error on any part throws on all
   check_status(st, "rn_network_load_step_size");
   int n = substeps_for(max_over_parts(tot, angle) / kRampAngle);
@@ -269,9 +278,8 @@ bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, do
   if (n == 1 && max_over_parts(tot, stretch) > kRampShortening && depth < kRampDepth) {
     Snapshot before;
     before.save(net);
-    // (the state converged at t_prev; at the start of a solve the network may sit at
-    // the target load factor, finalize's)
-    check_status(rn_network_set_load_factor(net, t_prev), "rn_network_set_load_factor");
+    // (the network itself may sit at the target load factor, finalize's)
+    check_status(rn_network_set_load_factor(net, from), "rn_network_set_load_factor");
     const std::vector<double> x0 = rod_positions(net);
     check_status(rn_network_set_load_factor(net, t), "rn_network_set_load_factor");
     const double held =
@@ -292,9 +300,8 @@ bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, do
   if (n == 1)
     return solve_load_step(p, opt, t_prev, t, force_scale, start, tot, predicted);
   for (int k = 1; k <= n; ++k) {
-    const double a =
-        k == 1 ? t_prev : t_prev + (t - t_prev) * static_cast<double>(k - 1) / n;
-    const double b = k == n ? t : t_prev + (t - t_prev) * static_cast<double>(k) / n;
+    const double a = k == 1 ? from : from + (t - from) * static_cast<double>(k - 1) / n;
+    const double b = k == n ? t : from + (t - from) * static_cast<double>(k) / n;
     if (!ramped_load_step(p, opt, a, b, force_scale, start, tot, depth + 1)) return false;
   }
   return true;
