@@ -1,9 +1,11 @@
 /* boundary.c - boundary conditions (clamp, pin, fixed angle, prescribed
  * motions) and the load factor that moves the fixed DOFs. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "network_internal.h"
+#include "rodnet_ramp.h"
 
 /* Checks a call on end `end` of rod g (whole-network index); *lr receives the
  * local index, RN_NOT_HERE if another part holds the rod. */
@@ -223,6 +225,36 @@ rn_status rn_apply_load_factor(rn_network *net) {
   return RN_OK;
 }
 
+double rn_prescribed_rotation_rate(const rn_network *net) {
+  double w = 0.0;
+  for (int ir = 0; ir < net->nrods; ++ir)
+    for (int end = RN_START; end <= RN_END; ++end) {
+      const double *v = net->rods[ir].end_rot[end];
+      if (net->rods[ir].clamped[end] && net->rods[ir].has_end_motion[end])
+        w = fmax(w, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const double *v = net->joints[ij].rot;
+    if (net->joints[ij].clamped)
+      w = fmax(w, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  }
+  return w;
+}
+
+int rn_ramp_steps(double turn) {
+  if (!(turn > RN_RAMP_ANGLE) || !(turn <= RN_RAMP_ANGLE * RN_RAMP_MAX_STEPS)) return 1;
+  return (int)ceil(turn / RN_RAMP_ANGLE);
+}
+
+void rn_ramp_load_factor(rn_network *net, double lambda) {
+  const double from = net->lambda;
+  const int n = rn_ramp_steps(fabs(lambda - from) * rn_prescribed_rotation_rate(net));
+  for (int k = 1; k <= n; ++k) {
+    net->lambda = k == n ? lambda : from + (lambda - from) * (double)k / (double)n;
+    rn_apply_load_factor(net);
+  }
+}
+
 rn_status rn_network_set_load_factor(rn_network *net, double lambda) {
   static const char *where = "rn_network_set_load_factor";
   if (!net) return RN_ERR_ARG;
@@ -231,8 +263,74 @@ rn_status rn_network_set_load_factor(rn_network *net, double lambda) {
   if (lambda < 0.0 || lambda > 1.0)
     return rn_fail(net->ctx, RN_ERR_ARG, where, "load factor %g is outside [0, 1]",
                    lambda);
-  net->lambda = lambda;
-  return net->finalized ? rn_apply_load_factor(net) : RN_OK;
+  if (!net->finalized) {
+    net->lambda = lambda;
+    return RN_OK;
+  }
+  rn_ramp_load_factor(net, lambda);
+  return RN_OK;
+}
+
+/* Largest |change of an edge vector| / |edge| over the rod edges, between the
+ * fixed entries of xa and xb (free entries equal). */
+static double edge_stretch(const rn_network *net, const double *xa, const double *xb) {
+  double ratio = 0.0;
+  for (int ir = 0; ir < net->nrods; ++ir) {
+    const rn_rod *r = &net->rods[ir];
+    for (int j = 0; j + 1 < r->nv; ++j) {
+      const size_t a = rn_dof_vertex(r->off, j), b = rn_dof_vertex(r->off, j + 1);
+      double e2 = 0.0, d2 = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double e = xa[b + k] - xa[a + k];
+        const double d = (xb[b + k] - xb[a + k]) - e;
+        e2 += e * e;
+        d2 += d * d;
+      }
+      if (d2 == 0.0) continue;
+      ratio = e2 > 0.0 ? fmax(ratio, sqrt(d2 / e2)) : HUGE_VAL;
+    }
+  }
+  return ratio;
+}
+
+rn_status rn_network_load_step_size(rn_network *net, double t0, double t1,
+                                    double *stretch, double *angle) {
+  static const char *where = "rn_network_load_step_size";
+  rn_state *saved = NULL;
+  double *xa = NULL;
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!stretch || !angle) return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL output");
+  if (!isfinite(t0) || !isfinite(t1))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "load factor is not finite");
+  if (t0 < 0.0 || t0 > 1.0 || t1 < 0.0 || t1 > 1.0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "load factors %g, %g: outside [0, 1]", t0,
+                   t1);
+  *angle = fabs(t1 - t0) * rn_prescribed_rotation_rate(net);
+  *stretch = 0.0;
+  if (!net->nfull) return RN_OK;
+  if ((st = rn_network_state_save(net, &saved))) return st;
+  xa = malloc(net->nfull * sizeof(double));
+  if (!xa) {
+    st = rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  } else {
+    rn_ramp_load_factor(net, t0);
+    memcpy(xa, net->xfull, net->nfull * sizeof(double));
+    rn_ramp_load_factor(net, t1);
+    *stretch = edge_stretch(net, xa, net->xfull);
+  }
+  free(xa);
+  {
+    rn_status st2 = rn_network_state_restore(net, saved);
+    rn_state_destroy(&saved);
+    if (!st) st = st2;
+  }
+  return st;
 }
 
 double rn_network_load_factor(const rn_network *net) { return net ? net->lambda : 0.0; }
+
+double rn_network_dofs_load_factor(const rn_network *net) {
+  return net && net->finalized ? net->lambda_x : NAN;
+}

@@ -263,11 +263,21 @@ rn_status rn_network_finalize(rn_network *net) {
     undo_finalize(net);
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
-  rn_apply_load_factor(net);
-  if ((st = init_moments(net)) || (st = rn_joints_check_initial(net, where)) ||
-      (st = rn_contact_check_initial(net, where))) {
-    undo_finalize(net);
-    return st;
+  { /* the joints are checked on the initial geometry (load factor 0); then the
+     * prescribed motions are ramped to the load factor (keeping twist windings; the
+     * state there may be a degenerate trial point, which the solver ramps through) */
+    const double target = net->lambda;
+    net->lambda = net->lambda_x = 0.0; /* the initial geometry is load factor 0's */
+    rn_apply_load_factor(net);
+    if (!(st = rn_joints_check_initial(net, where)) &&
+        !(st = rn_contact_check_initial(net, where))) {
+      rn_ramp_load_factor(net, target);
+      st = init_moments(net);
+    }
+    if (st) {
+      undo_finalize(net);
+      return st;
+    }
   }
   net->finalized = 1;
   return RN_OK;

@@ -64,31 +64,50 @@ static void save_clamp_frames(const rn_network *net, rnk_frame *frames) {
 }
 
 /* dfull = the increment of the fixed entries of the full state from t_prev to
- * t (free entries 0) with the network at t_prev on return.  Joint rotations of
- * clamped joints: Q = exp(w) Qhat with Qhat = exp(lambda rot), so the increment
- * of w is (t - t_prev) rot. */
+ * t (free entries 0) with the network at t_prev on return.  The material angles
+ * of turned clamped edges are summed over sub-steps of at most RN_RAMP_ANGLE of
+ * turn (phi[2 nrods]), so a turn of any size keeps its winding.  Joint rotations
+ * of clamped joints: Q = exp(w) Qhat with Qhat = exp(lambda rot), so the
+ * increment of w is (t - t_prev) rot. */
 static rn_status fixed_increment(rn_network *net, double t_prev, double t, double *dfull,
-                                 rnk_frame *frames) {
+                                 rnk_frame *frames, double *phi) {
+  const int n = rn_ramp_steps(fabs(t - t_prev) * rn_prescribed_rotation_rate(net));
+  rnk_frame *prev = frames, *cur = frames + 2 * (size_t)net->nrods, *tmp;
   double *full_t = dfull;
-  net->lambda = t;
-  rn_apply_load_factor(net);
+  memset(phi, 0, 2 * (size_t)net->nrods * sizeof(double));
+  rn_ramp_load_factor(net, t_prev);
+  save_clamp_frames(net, prev);
+  for (int k = 1; k <= n; ++k) {
+    rn_ramp_load_factor(net, k == n ? t : t_prev + (t - t_prev) * (double)k / (double)n);
+    save_clamp_frames(net, cur);
+    for (int ir = 0; ir < net->nrods; ++ir) {
+      const rn_rod *r = &net->rods[ir];
+      for (int end = RN_START; end <= RN_END; ++end) {
+        int j = rn_end_edge(r->nv, end);
+        double p = 0.0;
+        if (!r->clamped[end] || !r->has_end_motion[end] ||
+            net->map[rn_dof_theta(r->off, j)] >= 0)
+          continue;
+        if (clamp_angle(net->xfull, rn_dof_edge_stencil(r->off, j), &prev[2 * ir + end],
+                        &cur[2 * ir + end], &p) != RNK_OK)
+          return rn_fail(net->ctx, RN_DEGENERATE, where,
+                         "clamped edge %d of rod %d ('%s') is degenerate", j, r->gid,
+                         r->name ? r->name : "");
+        phi[2 * ir + end] += p;
+      }
+    }
+    tmp = prev;
+    prev = cur;
+    cur = tmp;
+  }
   memcpy(full_t, net->xfull, net->nfull * sizeof(double));
-  save_clamp_frames(net, frames);
-  net->lambda = t_prev;
-  rn_apply_load_factor(net);
+  rn_ramp_load_factor(net, t_prev);
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];
     for (int end = RN_START; end <= RN_END; ++end) {
-      int j = rn_end_edge(r->nv, end);
-      size_t th = rn_dof_theta(r->off, j);
-      double phi = 0.0;
+      size_t th = rn_dof_theta(r->off, rn_end_edge(r->nv, end));
       if (!r->clamped[end] || !r->has_end_motion[end] || net->map[th] >= 0) continue;
-      if (clamp_angle(full_t, rn_dof_edge_stencil(r->off, j), &r->ref[j],
-                      &frames[2 * ir + end], &phi) != RNK_OK)
-        return rn_fail(net->ctx, RN_DEGENERATE, where,
-                       "clamped edge %d of rod %d ('%s') is degenerate", j, r->gid,
-                       r->name ? r->name : "");
-      full_t[th] = net->xfull[th] + phi; /* the difference below gives phi */
+      full_t[th] = net->xfull[th] + phi[2 * ir + end]; /* the difference below */
     }
   }
   for (size_t i = 0; i < net->nfull; ++i)
@@ -106,17 +125,19 @@ static rn_status increment_at(rn_network *net, const double *x, double t_prev, d
                               double *dg) {
   double *dfull = malloc((net->nfull + 1) * sizeof(double));
   double *rate = malloc((net->nred + 1) * sizeof(double));
-  rnk_frame *frames = malloc((2 * (size_t)net->nrods + 1) * sizeof(rnk_frame));
+  double *phi = malloc((2 * (size_t)net->nrods + 1) * sizeof(double));
+  rnk_frame *frames = malloc((4 * (size_t)net->nrods + 1) * sizeof(rnk_frame));
   rn_status st = RN_ERR_ALLOC;
-  if (!dfull || !rate || !frames) {
+  if (!dfull || !rate || !frames || !phi) {
     rn_fail(net->ctx, st, where, "out of memory");
-  } else if (!(st = fixed_increment(net, t_prev, t, dfull, frames)) &&
+  } else if (!(st = fixed_increment(net, t_prev, t, dfull, frames, phi)) &&
              !(st = rn_eval_fixed_hvp(net, x, dfull, dg, where)) &&
              !(st = rn_eval_load_rate(net, x, rate, where))) {
     for (size_t i = 0; i < net->nred; ++i) dg[i] += (t - t_prev) * rate[i];
   }
   free(dfull);
   free(rate);
+  free(phi);
   free(frames);
   return st;
 }

@@ -418,6 +418,7 @@ rn_status rn_network_set_dofs(rn_network *net, const double *x) {
   if (!rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
   rn_expand_state(net, x, net->xfull); /* every alias of a reduced DOF */
+  net->lambda_x = net->lambda;
   return RN_OK;
 }
 

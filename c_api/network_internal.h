@@ -143,7 +143,8 @@ struct rn_network {
   int njoints, cap_joints;
   double gravity[3];
   int finalized;
-  double lambda; /* load factor */
+  double lambda;   /* load factor */
+  double lambda_x; /* load factor at which the free DOFs were last set */
   size_t nfull, nred;
   int64_t *map;      /* full -> reduced index, -1 if fixed [nfull] */
   int64_t *red2full; /* reduced -> full [nred] */
@@ -441,6 +442,20 @@ void rn_mat_vec3(const double R[9], const double v[3], double out[3]);
 /* Writes the fixed entries of net->xfull for the current load factor and the
  * reference frames of clamped ends with a prescribed rotation. */
 rn_status rn_apply_load_factor(rn_network *net);
+/* The largest prescribed rotation per unit load factor (rad): clamped rod ends
+ * with a prescribed motion and clamped joints. */
+double rn_prescribed_rotation_rate(const rn_network *net);
+/* Largest turn of a prescribed rotation per step of rn_ramp_load_factor (rad). */
+#define RN_RAMP_ANGLE 0.7853981633974483
+/* Moves the applied load factor from net->lambda to lambda in steps that turn no
+ * prescribed rotation by more than RN_RAMP_ANGLE, each rn_apply_load_factor, so the
+ * reference twists next to turned clamps keep their winding. */
+void rn_ramp_load_factor(rn_network *net, double lambda);
+/* Steps of at most RN_RAMP_ANGLE for a turn (rad): 1 for a turn up to RN_RAMP_ANGLE,
+ * or beyond RN_RAMP_MAX_STEPS steps (or not finite: such a turn is applied at once
+ * and its winding is not followed). */
+#define RN_RAMP_MAX_STEPS 16384
+int rn_ramp_steps(double turn);
 /* Builds the Hessian pattern (hessian.c). */
 rn_status rn_build_hessian_pattern(rn_network *net);
 /* Adds the free-free entries of a dense n x n stencil block at full index s

@@ -246,7 +246,10 @@ rn_status rn_network_update_reference(rn_network *net, double *x) {
   }
   if (!st) st = update_moments(net, u.full, &u);
   if (!st) st = update_joints(net, &u);
-  if (!st) commit(net, &u, x);
+  if (!st) {
+    commit(net, &u, x);
+    net->lambda_x = net->lambda;
+  }
   ref_update_free(&u);
   return st;
 }

@@ -228,6 +228,18 @@ rn_status rn_network_finalize(rn_network *net);
  * motions; moves the fixed DOFs accordingly.  Default 1. */
 rn_status rn_network_set_load_factor(rn_network *net, double lambda);
 double rn_network_load_factor(const rn_network *net);
+/* How far the prescribed motions move between load factors t0 and t1 with the
+ * free DOFs held: *stretch = the largest change of a rod edge's vector over its
+ * length at t0 (HUGE_VAL for a zero-length edge; 0 if no prescribed motion
+ * reaches an edge), *angle = the largest prescribed rotation turned (rad).
+ * rn_solve splits load steps by them (docs/solvers.md, "Prescribed motions of
+ * any size").  Prescribed rotations are followed in turns of at most pi/4 here
+ * and in rn_network_set_load_factor, so windings beyond pi are kept.  The
+ * network's state is left as it was.  A part of a distributed network: its own
+ * rods (not collective).  RN_ERR_ARG for t0, t1 outside [0, 1] or NULL outputs,
+ * RN_ERR_NOT_FINITE, RN_ERR_STATE before finalize. */
+rn_status rn_network_load_step_size(rn_network *net, double t0, double t1,
+                                    double *stretch, double *angle);
 
 /* ---- sizes and state ----------------------------------------------------- */
 size_t rn_network_num_dofs(const rn_network *net); /* reduced */

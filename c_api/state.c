@@ -18,7 +18,7 @@ struct rn_state {
   const rn_network *net; /* the network it belongs to */
   size_t nfull, nedges, ninterior, nends;
   int nrods, nmom, njoints;
-  double lambda;
+  double lambda, lambda_x;
   double *xfull;      /* [nfull] */
   rnk_frame *frames;  /* reference frames, rods concatenated [nedges] */
   double *twists;     /* reference twists, rods concatenated [ninterior] */
@@ -142,6 +142,7 @@ rn_status rn_network_state_save(const rn_network *net, rn_state **out) {
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
   s->lambda = net->lambda;
+  s->lambda_x = net->lambda_x;
   memcpy(s->xfull, net->xfull, net->nfull * sizeof(double));
   copy_rods_out(net, s);
   copy_moments_out(net, s);
@@ -160,6 +161,7 @@ rn_status rn_network_state_restore(rn_network *net, const rn_state *s) {
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "the state was saved from another network");
   net->lambda = s->lambda;
+  net->lambda_x = s->lambda_x;
   memcpy(net->xfull, s->xfull, net->nfull * sizeof(double));
   copy_rods_in(net, s);
   copy_moments_in(net, s);

@@ -25,6 +25,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/c_api/rodnet.h ${PROJECT_SOURCE_DIR}/c_api/r
               ${PROJECT_SOURCE_DIR}/c_api/rodnet_contact.h
               ${PROJECT_SOURCE_DIR}/c_api/rodnet_couple.h
               ${PROJECT_SOURCE_DIR}/c_api/rodnet_ring.h
+              ${PROJECT_SOURCE_DIR}/c_api/rodnet_ramp.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # The scene reader and result writers (rodnet_scene.h), with the solver only.
 if(TARGET rodnet_scene)

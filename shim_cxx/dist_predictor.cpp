@@ -66,8 +66,9 @@ bool predict_load_step(DistSystem &sys, const rn_solve_options &opt, double t_pr
   sys.add_preconditioner_time(prec->stats().setup_seconds, prec->stats().apply_seconds);
   double E0 = 0.0, E1 = 0.0;
   xs.update(1.0, x, 1.0, s, 0.0);
-  if (sys.energy(x, &E0) != RN_OK || sys.energy(xs, &E1) != RN_OK) return false;
-  if (!(E1 < E0)) return false;
+  // (the jumped state x may be degenerate: then the evaluable prediction is better)
+  if (sys.energy(xs, &E1) != RN_OK) return false;
+  if (sys.energy(x, &E0) == RN_OK && !(E1 < E0)) return false;
   sys.accept(xs);
   return true;
 }

@@ -51,8 +51,9 @@ bool predict_load_step(Problem &p, const PredictorSolve &solve, double t_prev, d
   if (!have_step) return false;
   double E0 = 0.0, E1 = 0.0;
   for (size_t i = 0; i < n; ++i) xs[i] = x[i] + s[i];
-  if (p.energy(x.data(), &E0) != RN_OK || p.energy(xs.data(), &E1) != RN_OK) return false;
-  if (!(E1 < E0)) return false;
+  // (the jumped state x may be degenerate: then the evaluable prediction is better)
+  if (p.energy(xs.data(), &E1) != RN_OK) return false;
+  if (p.energy(x.data(), &E0) == RN_OK && !(E1 < E0)) return false;
   p.accept(xs.data());
   return true;
 }

@@ -6,7 +6,9 @@
 // moved to t, the free DOFs following to first order), instead of at x, where only
 // the prescribed DOFs have jumped.  H is factored as the solver does (shifted by
 // the metric |diag H| if it is not positive definite).  The prediction is accepted
-// (x + s becomes the state, reference updated) only if it lowers the energy at t.
+// (x + s becomes the state, reference updated) only if it lowers the energy at t
+// (or the energy at x cannot be evaluated at t: the prescribed motion jumped the
+// state to a degenerate one).
 #ifndef RODNET_SHIM_PREDICTOR_HPP
 #define RODNET_SHIM_PREDICTOR_HPP
 

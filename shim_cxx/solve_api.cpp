@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include "banded.hpp"
 #include "dist_predictor.hpp"
 #include "dist_system.hpp"
@@ -16,6 +18,7 @@
 #include "path.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
+#include "rodnet_ramp.h"
 #include "rodnet_solve.h"
 #include "runtime.hpp"
 #include "shim_error.hpp"
@@ -124,19 +127,32 @@ struct SolveTotals {
   DistSystem *dist = nullptr; // the System of a part (nullptr: a whole network)
 };
 
-// One minimisation at load factor t from the current state, converged at t_prev
-// (0: the starting state); first the predictor (opt.predictor).
+// Whether a load step starts with the predictor (opt.predictor; rol-lbfgs uses
+// gradients only: no predictor, which would factor the Hessian).
+bool uses_predictor(const rn_solve_options &opt) {
+  return opt.predictor && opt.solver != RN_SOLVER_ROL_LBFGS;
+}
+
+// The load-step predictor from t_prev to t (predictor.hpp): true if its state was
+// accepted (the network at t either way).  With tr-krylov it uses its preconditioner
+// and MINRES, distributed on a part; the other kinds factor the whole Hessian.
+bool run_predictor(Problem &p, const rn_solve_options &opt, double t_prev, double t,
+                   SolveTotals &tot) {
+  const bool accepted = tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
+                        : opt.solver == RN_SOLVER_TR_KRYLOV
+                            ? predict_step_krylov(p, opt, t_prev, t)
+                            : predict_load_step(p, tot.factorization, t_prev, t);
+  if (accepted) ++tot.predictor_steps;
+  return accepted;
+}
+
+// One minimisation at load factor t from the current state (the predictor's, if
+// predicted), converged at t_prev (0: the starting state); first the predictor
+// (uses_predictor) unless predicted.
 bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
-                     double force_scale, Clock::time_point start, SolveTotals &tot) {
-  // (with tr-krylov the predictor uses its preconditioner and MINRES, distributed on
-  // a part; the other kinds factor the whole Hessian)
-  // (rol-lbfgs uses gradients only: no predictor, which would factor the Hessian)
-  if (opt.predictor && opt.solver != RN_SOLVER_ROL_LBFGS &&
-      (tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
-       : opt.solver == RN_SOLVER_TR_KRYLOV
-           ? predict_step_krylov(p, opt, t_prev, t)
-           : predict_load_step(p, tot.factorization, t_prev, t)))
-    ++tot.predictor_steps;
+                     double force_scale, Clock::time_point start, SolveTotals &tot,
+                     bool predicted = false) {
+  if (!predicted && uses_predictor(opt)) run_predictor(p, opt, t_prev, t, tot);
   check_status(rn_network_set_load_factor(p.network(), t), "rn_network_set_load_factor");
   Monitor mon(opt, force_scale, t, start, tot.iterations);
   switch (opt.solver) {
@@ -172,6 +188,141 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
   return mon.converged();
 }
 
+// The sub-step rule of a load step (docs/solvers.md, "Prescribed motions of any
+// size"): within one sub-step no prescribed rotation turns by more than kRampAngle
+// and the first trial state shortens no rod edge along itself by more than
+// kRampShortening of its length.  The trial state is the predictor's where it is
+// accepted (the interior moved with the prescribed motion), else the jumped one (free
+// DOFs held).  kRampMaxSubsteps bounds the sub-steps of one load step, kRampDepth the
+// nested splits.
+constexpr double kRampShortening = 0.5;
+constexpr double kRampAngle = 0.7853981633974483; // pi/4
+constexpr int kRampMaxSubsteps = 1 << 16;
+constexpr int kRampDepth = 8;
+
+// The largest of v over the parts of a distributed network (v on a whole network).
+double max_over_parts(const SolveTotals &tot, double v) {
+  if (!tot.dist) return v;
+  double all = v;
+  Teuchos::reduceAll(*tot.dist->comm(), Teuchos::REDUCE_MAX, v, Teuchos::outArg(all));
+  return all;
+}
+
+// Sub-steps for a measure (need = measure / limit): at least 1, at most
+// kRampMaxSubsteps (also for an infinite or NaN measure).
+int substeps_for(double need) {
+  return !(need <= kRampMaxSubsteps) ? kRampMaxSubsteps
+                                     : std::max(1, static_cast<int>(std::ceil(need)));
+}
+
+// Whether the network (a part: its owned rods) holds rod ir's current state.
+bool owns_rod(const rn_network *net, int part, int ir) {
+  return rn_network_rod_owner(net, ir) == part;
+}
+
+// The network's part (0: a whole network).
+int part_of(const rn_network *net) {
+  rn_part_info info;
+  check_status(rn_network_part_info(net, &info), "rn_network_part_info");
+  return info.part;
+}
+
+// The current vertex positions of the rods the network owns, rod after rod.
+std::vector<double> rod_positions(const rn_network *net) {
+  std::vector<double> xyz;
+  const int part = part_of(net);
+  for (int ir = 0, nr = rn_network_num_rods(net); ir < nr; ++ir) {
+    if (!owns_rod(net, part, ir)) continue;
+    const size_t at = xyz.size();
+    xyz.resize(at + 3 * static_cast<size_t>(rn_network_rod_num_vertices(net, ir)));
+    check_status(rn_network_rod_vertices(net, ir, xyz.data() + at),
+                 "rn_network_rod_vertices");
+  }
+  return xyz;
+}
+
+// The largest shortening of a rod edge along itself over its length from positions
+// a to b (rod_positions of the same network): -(e_b - e_a) . e_a / |e_a|^2, > 1 where
+// the edge turned over (HUGE_VAL for a zero-length edge that changes).
+double largest_shortening(const rn_network *net, const std::vector<double> &a,
+                          const std::vector<double> &b) {
+  double ratio = 0.0;
+  size_t v0 = 0;
+  const int part = part_of(net);
+  for (int ir = 0, nr = rn_network_num_rods(net); ir < nr; ++ir) {
+    if (!owns_rod(net, part, ir)) continue;
+    const int nv = rn_network_rod_num_vertices(net, ir);
+    const int ne = rn_network_rod_is_closed(net, ir) == 1 ? nv : nv - 1;
+    for (int j = 0; j < ne; ++j) {
+      const size_t i0 = 3 * (v0 + j), i1 = 3 * (v0 + (j + 1) % nv);
+      double e2 = 0.0, de = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double e = a[i1 + k] - a[i0 + k];
+        e2 += e * e;
+        de += ((b[i1 + k] - b[i0 + k]) - e) * e;
+      }
+      if (de < 0.0) ratio = e2 > 0.0 ? std::max(ratio, -de / e2) : HUGE_VAL;
+      if (std::isnan(de)) ratio = HUGE_VAL;
+    }
+    v0 += static_cast<size_t>(nv);
+  }
+  return ratio;
+}
+
+// Sub-steps of a load step from t_prev to t (each a load step of its own) so that
+// the first trial state of each is never one where the prescribed motion jumped past
+// the edges next to it: the rule above, applied again within each sub-step.
+bool ramped_load_step(Problem &p, const rn_solve_options &opt, double t_prev, double t,
+                      double force_scale, Clock::time_point start, SolveTotals &tot,
+                      int depth = 0) {
+  rn_network *net = p.network();
+  // The free DOFs belong to t_prev after a load step and to load factor 0 for the
+  // initial geometry; when rn_solve is called again at a larger load factor they
+  // belong to the last one converged, between t_prev = 0 and t: the prescribed
+  // motion jumps from there (rn_network_dofs_load_factor), and sub-steps go on from
+  // there too.
+  const double t_x = rn_network_dofs_load_factor(net);
+  const double from =
+      (t_x > std::min(t_prev, t) && t_x < std::max(t_prev, t)) ? t_x : t_prev;
+  double stretch = 0.0, angle = 0.0;
+  rn_status st = rn_network_load_step_size(net, from, t, &stretch, &angle);
+  if (tot.dist) st = tot.dist->agree(st); // an error on any part throws on all
+  check_status(st, "rn_network_load_step_size");
+  int n = substeps_for(max_over_parts(tot, angle) / kRampAngle);
+  bool predicted = false;
+  // (an edge's shortening over its length is at most its stretch)
+  if (n == 1 && max_over_parts(tot, stretch) > kRampShortening && depth < kRampDepth) {
+    Snapshot before;
+    before.save(net);
+    // (the network itself may sit at the target load factor, finalize's)
+    check_status(rn_network_set_load_factor(net, from), "rn_network_set_load_factor");
+    const std::vector<double> x0 = rod_positions(net);
+    check_status(rn_network_set_load_factor(net, t), "rn_network_set_load_factor");
+    const double held =
+        max_over_parts(tot, largest_shortening(net, x0, rod_positions(net)));
+    before.restore(net);
+    if (held > kRampShortening) { // the jumped state is too far: try the predictor's
+      if (uses_predictor(opt) && run_predictor(p, opt, t_prev, t, tot)) {
+        const double r =
+            max_over_parts(tot, largest_shortening(net, x0, rod_positions(net)));
+        predicted = r <= kRampShortening;
+        if (!predicted) n = std::max(2, substeps_for(r / kRampShortening));
+      } else {
+        n = substeps_for(held / kRampShortening);
+      }
+      if (!predicted) before.restore(net);
+    }
+  }
+  if (n == 1)
+    return solve_load_step(p, opt, t_prev, t, force_scale, start, tot, predicted);
+  for (int k = 1; k <= n; ++k) {
+    const double a = k == 1 ? from : from + (t - from) * static_cast<double>(k - 1) / n;
+    const double b = k == n ? t : from + (t - from) * static_cast<double>(k) / n;
+    if (!ramped_load_step(p, opt, a, b, force_scale, start, tot, depth + 1)) return false;
+  }
+  return true;
+}
+
 // Fixed continuation: load_steps equal increments up to the target.
 void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
                     double force_scale, Clock::time_point start, SolveTotals &tot) {
@@ -180,7 +331,7 @@ void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
         target * static_cast<double>(k) / static_cast<double>(opt.load_steps);
     const double t_prev =
         target * static_cast<double>(k - 1) / static_cast<double>(opt.load_steps);
-    if (!solve_load_step(p, opt, t_prev, t, force_scale, start, tot)) return;
+    if (!ramped_load_step(p, opt, t_prev, t, force_scale, start, tot)) return;
   }
 }
 
@@ -196,7 +347,7 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
   int cuts = 0;
   for (;;) {
     const double t = (target - t_done <= inc) ? target : t_done + inc;
-    if (solve_load_step(p, opt, t_done, t, force_scale, start, tot)) {
+    if (ramped_load_step(p, opt, t_done, t, force_scale, start, tot)) {
       if (t >= target) return;
       t_done = t;
       done.save(p.network());
@@ -254,19 +405,33 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   // its graph is built once for the solve), the gradient norm over all ranks.
   std::unique_ptr<DistSystem> dist;
   if (rn_network_is_part(net)) dist = std::make_unique<DistSystem>(net, world_comm());
+  // The gradient norm at the start (the fallback scale of the stopping test).  A
+  // prescribed motion that jumps past the edges next to it makes the state at the
+  // target degenerate: then the scale is taken at load factor 0 (the solve ramps
+  // the motion in sub-steps, ramped_load_step); degenerate there too is bad input.
   double force_scale = 0.0;
-  if (dist) {
-    TMV xd(dist->map(), 1), gd(dist->map(), 1);
-    dist->get_state(xd);
-    if (dist->gradient(xd, nullptr, gd) != RN_OK)
-      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-    Teuchos::Array<double> nrm(1);
-    gd.norm2(nrm());
-    force_scale = nrm[0];
-  } else {
-    if (p.gradient(x.data(), nullptr, g.data()) != RN_OK)
-      throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-    force_scale = norm2(p.size(), g.data());
+  auto start_gradient = [&](double *scale) {
+    if (dist) {
+      TMV xd(dist->map(), 1), gd(dist->map(), 1);
+      dist->get_state(xd);
+      if (dist->gradient(xd, nullptr, gd) != RN_OK) return false;
+      Teuchos::Array<double> nrm(1);
+      gd.norm2(nrm());
+      *scale = nrm[0];
+      return true;
+    }
+    if (p.gradient(x.data(), nullptr, g.data()) != RN_OK) return false;
+    *scale = norm2(p.size(), g.data());
+    return true;
+  };
+  if (!start_gradient(&force_scale)) {
+    bool ok = target > 0.0;
+    if (ok) {
+      check_status(rn_network_set_load_factor(net, 0.0), "rn_network_set_load_factor");
+      ok = start_gradient(&force_scale);
+      check_status(rn_network_set_load_factor(net, target), "rn_network_set_load_factor");
+    }
+    if (!ok) throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
   }
   SolveTotals tot;
   tot.dist = dist.get();

@@ -12,6 +12,10 @@ rn_add_test(api_joints SOURCES unit/api_joints.c LIBS rodnet LABELS unit)
 rn_add_test(api_overflow SOURCES unit/api_overflow.c LIBS rodnet LABELS unit)
 rn_add_test(api_components SOURCES unit/api_components.c LIBS rodnet m LABELS unit)
 rn_add_test(api_load_increment SOURCES unit/api_load_increment.c LIBS rodnet m LABELS unit)
+# rn_network_dofs_load_factor (rodnet_ramp.h): finalize, set_dofs, update_reference,
+# state restore; unchanged by load factor changes and failed updates.
+rn_add_test(api_dofs_load_factor SOURCES unit/api_dofs_load_factor.c LIBS rodnet m
+            LABELS unit)
 # Parts of a network (distributed solves) built in one process: sums of the
 # parts' energies, gradients, HVPs and Hessians by global DOF against the whole
 # network, before and after reference updates; ownership counts.

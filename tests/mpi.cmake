@@ -140,6 +140,19 @@ add_test(NAME mpi_solve_more_ranks
                  --same-iterations)
 set_tests_properties(mpi_solve_more_ranks PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                      ENVIRONMENT "${RN_MPI_ENV}")
+
+# Prescribed displacements larger than the edges next to them (issue 10 section 2):
+# a 4x4 square lattice compressed by 5 % (the face moves by 0.2, edges 0.125) ramped in
+# sub-steps on 2 ranks (tr-krylov distributed), past bar buckling to a verified minimum.
+if(RN_VTK_PYTHON)
+  add_test(NAME mpi_ramp_square_compress
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_ramp.py
+                   ${CMAKE_BINARY_DIR}/rodnet ${RN_MPI_OUT}/ramp --solvers tr-krylov
+                   --edges 8 --cells 4,4 --strain 0.05 "--mpiexec=${MPIEXEC_EXECUTABLE} -q ${MPIEXEC_NUMPROC_FLAG} 2")
+  set_tests_properties(mpi_ramp_square_compress PROPERTIES LABELS mpi TIMEOUT 600
+                       PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}")
+endif()
+
 # The planar model against the 3D model (docs/model.md): positions, energies,
 # reactions, the homogenised C and a strain path to 1e-10 on lattices and single
 # rods, tr-minres, tr-krylov and tr-krylov on 2 ranks; the scene checks of
