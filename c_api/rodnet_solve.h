@@ -117,10 +117,10 @@ typedef enum rn_stability_method {
 #define RN_STABILITY_MAX_FLOPS 5e10
 
 typedef struct rn_stability {
-  int checked;              /* 1 if computed; 0: skipped (rn_solve_options.stability
-                               = 0) or not available (rn_network_stability on a
-                               part of a distributed network, or the Cholesky
-                               check forced on one: it needs the whole Hessian) */
+  int checked;              /* 1 if computed; 0: skipped (stability = 0), not
+                               available (a part of a distributed network, Cholesky
+                               forced on one: it needs the whole Hessian) or LOBPCG
+                               gave no converged eigenpair (method stays LOBPCG) */
   double lowest_eigenvalue; /* lowest eigenvalue of D^{-1/2} H D^{-1/2} outside the
                                zero modes (0 if there is none) */
   double scale;             /* ||D^{-1/2} H D^{-1/2}||_inf, the largest absolute row
@@ -137,7 +137,7 @@ typedef struct rn_stability {
   long factorizations;      /* Cholesky factorisations the check took */
   double time_s;            /* its wall time */
   int method;               /* how (rn_stability_method): RN_STABILITY_CHOLESKY or
-                               RN_STABILITY_LOBPCG; 0 if not checked */
+                               RN_STABILITY_LOBPCG; 0 if skipped */
   int iterations;           /* LOBPCG iterations (0 for the Cholesky check) */
   double cholesky_flops;    /* the cost model: flops of one Cholesky factorisation
                                of the whole Hessian (0 if not estimated: LOBPCG

@@ -55,10 +55,10 @@ void throw_if_any(const Comm &comm, bool failed, rn_status status,
 
 // Smallest shift s in {0} u {1e-10, 1e-9, ..., 1e10} for which try_factor(s)
 // succeeds (bisection on the exponent; the factorisation of the returned shift is
-// the last one made).  Returns -1 if none does.
+// the last one made).  Returns -1 if none does.  zero_failed: 0 is known to fail.
 template <class F>
-double smallest_shift(F &&try_factor) {
-  if (try_factor(0.0)) return 0.0;
+double smallest_shift(F &&try_factor, bool zero_failed = false) {
+  if (!zero_failed && try_factor(0.0)) return 0.0;
   if (!try_factor(1e10)) return -1.0;
   int lo = -11, hi = 10; // lo fails (-11 stands for 0), hi succeeds
   while (hi - lo > 1) {
@@ -116,6 +116,24 @@ bool factor_rod(Rod &r, const double *vals, std::vector<double> &ab) {
   };
   r.shift = smallest_shift(try_factor);
   return r.shift >= 0.0;
+}
+
+// Factor the band of rod r + shift D_r for the given shift only; false if that is not
+// positive definite (the uniform-shift search, DdPreconditioner::setup).
+bool factor_rod_at(Rod &r, const double *vals, std::vector<double> &ab, double shift) {
+  const int n = r.n(), ld = r.kd + 1;
+  ab.assign(static_cast<size_t>(ld) * static_cast<size_t>(n), 0.0);
+  for (size_t e = 0; e < r.band_src.size(); ++e) ab[r.band_dst[e]] = vals[r.band_src[e]];
+  std::vector<double> d(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) d[static_cast<size_t>(i)] = ab[static_cast<size_t>(i * ld)];
+  floored_abs(d);
+  r.fac = ab;
+  for (int i = 0; i < n; ++i)
+    r.fac[static_cast<size_t>(i * ld)] += shift * d[static_cast<size_t>(i)];
+  int info = 0;
+  dpbtrf_("L", &n, &r.kd, r.fac.data(), &ld, &info, 1);
+  r.shift = shift;
+  return info == 0;
 }
 
 // y <- L^-1 y (length n) for y zero before row j0, L the factor of dpbtrf in lower
@@ -423,6 +441,8 @@ public:
   double shift() const override { return shift_; }
   double bytes() const override { return bytes_; }
   std::string name() const override { return "direct"; }
+  void set_strict(bool strict) override { strict_ = strict; }
+  bool failed() const override { return failed_; }
   bool declined() const override { return declined_; }
   double flops() const override { return flops_; }
   long long separator_rows() const override { return nred_; }
@@ -456,6 +476,7 @@ private:
   mutable Teuchos::RCP<TMV> bov_, yov_, br_, yr_;
   mutable std::vector<double> x_;
   double shift_ = 0.0, bytes_ = 0.0, max_flops_ = 0.0, flops_ = 0.0;
+  bool strict_ = false, failed_ = false;
   bool declined_ = false;
 };
 
@@ -730,11 +751,18 @@ void SubstructuredCoarse::setup(const Teuchos::RCP<const TCrs> &S,
     R_->fillComplete(gmap_, gmap_);
     return root_->setup(R_); // true if declined: ends the search
   };
-  shift_ = smallest_shift(try_factor);
-  throw_if_any(
-      *comm, shift_ < 0.0, RN_ERR_LAPACK,
-      "dd preconditioner: the coarse matrix has no positive definite shift up to "
-      "1e10 |diag| (non-finite entries?)");
+  failed_ = false;
+  if (strict_) {
+    shift_ = 0.0;
+    failed_ = !try_factor(0.0);
+    if (failed_) return;
+  } else {
+    shift_ = smallest_shift(try_factor);
+    throw_if_any(
+        *comm, shift_ < 0.0, RN_ERR_LAPACK,
+        "dd preconditioner: the coarse matrix has no positive definite shift up to "
+        "1e10 |diag| (non-finite entries?)");
+  }
   bytes_ = analysis_ ? 8.0 * static_cast<double>(analysis_->factor_entries()) +
                            36.0 * static_cast<double>(src_.size())
                      : 0.0;
@@ -796,6 +824,7 @@ struct DdPreconditioner::Impl {
   std::vector<LO> iface_rows;              // owned local row of owned coarse row k
   std::vector<Rod> rods;
   std::vector<size_t> gg_src, gg_dst; // H_GG: H value index -> Sov value index
+  std::vector<size_t> gg_diag;        // the gg entries on H's diagonal
   std::vector<size_t> cross; // H entries between two rods' interiors: must be zero
   std::vector<size_t> sdiag; // S value index of each owned coarse row's diagonal
   Teuchos::RCP<TCrs> Sov, S;
@@ -811,7 +840,13 @@ struct DdPreconditioner::Impl {
   mutable std::vector<double> t, w;
 
   void build(const System &sys, const TCrs &H);
-  void numeric(const TCrs &H);
+  // The numeric setup.  uniform < 0: every indefinite piece shifted by its own
+  // smallest decade (rod blocks, coarse matrix).  uniform >= 0: the DD of
+  // H + uniform D (D = |diag H| floored per rod and on the interface), no other
+  // shift; returns false on every rank if a rod block or the coarse matrix is then
+  // not positive definite (only with the direct coarse solve).
+  bool numeric(const TCrs &H, double uniform = -1.0);
+  double uniform_shift = 0.0; // of the last setup (0: none)
   void apply(const TMV &X, TMV &Y, double alpha, double beta) const;
   double bytes() const;
 };
@@ -993,6 +1028,10 @@ void DdPreconditioner::Impl::build(const System &sys, const TCrs &H) {
     gg_dst.push_back(find_entry(slcl, static_cast<LO>(gg_row[e]),
                                 scol->getLocalElement(gg[e].second)));
   }
+  gg_diag.clear();
+  for (size_t e = 0; e < gg.size(); ++e)
+    if (cov->getGlobalElement(static_cast<LO>(gg_row[e])) == gg[e].second)
+      gg_diag.push_back(e);
   exporter = Teuchos::rcp(new Tpetra::Export<>(cov, cmap));
   importer = Teuchos::rcp(new Tpetra::Import<>(cmap, cov));
   S_built = false;
@@ -1022,7 +1061,7 @@ void DdPreconditioner::Impl::build(const System &sys, const TCrs &H) {
   t.assign(nloc, 0.0);
 }
 
-void DdPreconditioner::Impl::numeric(const TCrs &H) {
+bool DdPreconditioner::Impl::numeric(const TCrs &H, double uniform) {
   auto comm = map->getComm();
   auto lcl = H.getLocalMatrixHost();
   const double *vals = lcl.values.data();
@@ -1030,6 +1069,18 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
   Sov->setAllToScalar(0.0);
   auto sv = Sov->getLocalMatrixHost().values;
   for (size_t e = 0; e < gg_src.size(); ++e) sv(gg_dst[e]) += vals[gg_src[e]];
+  if (uniform > 0.0) {
+    // + uniform D_G on the interface diagonal, D_G = |diag H_GG| floored at 1e-8 of
+    // its largest entry over the ranks
+    double mx = 0.0, gmx = 0.0;
+    for (size_t e : gg_diag) mx = std::max(mx, std::fabs(vals[gg_src[e]]));
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, mx, Teuchos::outArg(gmx));
+    for (size_t e : gg_diag) {
+      const double d = std::fabs(vals[gg_src[e]]);
+      sv(gg_dst[e]) += uniform * (gmx > 0.0 ? std::max(d, 1e-8 * gmx) : 1.0);
+    }
+  }
+  uniform_shift = uniform > 0.0 ? uniform : 0.0;
   bool coupled = false;
   for (size_t q : cross) coupled = coupled || vals[q] != 0.0;
   throw_if_any(
@@ -1044,7 +1095,8 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
     r.b_val.resize(r.b_src.size());
     for (size_t e = 0; e < r.b_src.size(); ++e) r.b_val[e] = vals[r.b_src[e]];
     if (r.n() == 0) continue;
-    if (!factor_rod(r, vals, ab)) {
+    if (uniform >= 0.0 ? !factor_rod_at(r, vals, ab, uniform)
+                       : !factor_rod(r, vals, ab)) {
       failed = true;
       continue;
     }
@@ -1078,12 +1130,20 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
       }
     for (size_t e = 0; e < C.size(); ++e) sv(r.s_pos[e]) -= C[e];
   }
+  if (uniform >= 0.0) {
+    int f = failed ? 1 : 0, any = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, f, Teuchos::outArg(any));
+    if (any) {
+      Sov->fillComplete(cmap, cmap);
+      return false;
+    }
+  }
   throw_if_any(*comm, failed, RN_ERR_LAPACK,
                "dd preconditioner: a rod block has no positive definite shift up to 1e10 "
                "|diag| (non-finite entries?)");
   rods_shifted = sum_over_ranks(*comm, shifted);
   Sov->fillComplete(cmap, cmap);
-  if (coarse_rows == 0) return;
+  if (coarse_rows == 0) return true;
   if (!S_built) {
     // The graph of the owned rows once; then S on that (static) graph is refilled by
     // summing the exported values into it.
@@ -1116,7 +1176,9 @@ void DdPreconditioner::Impl::numeric(const TCrs &H) {
     }
   }
   S->fillComplete(cmap, cmap);
+  coarse->set_strict(uniform >= 0.0);
   coarse->setup(S, nullspace);
+  return !coarse->failed();
 }
 
 void DdPreconditioner::Impl::apply(const TMV &X, TMV &Y, double alpha,
@@ -1244,7 +1306,22 @@ void DdPreconditioner::setup(System &sys) {
       break;
     }
   }
-  impl_->numeric(*H);
+  if (!opt_.uniform_shift) {
+    impl_->numeric(*H);
+  } else if (!impl_->numeric(*H, 0.0)) {
+    // H is indefinite: the DD of H + sigma D for the smallest decade sigma that makes
+    // every rod block and (with the direct coarse solve) the coarse matrix positive
+    // definite, so that M is the exact inverse of one shifted Hessian (the factor
+    // preconditioner's norm), not of independently shifted pieces; the multigrid
+    // coarse solve, which cannot certify, shifts S further itself if it must
+    // (docs/solvers.md)
+    Impl &im = *impl_;
+    const double sigma =
+        smallest_shift([&](double t) { return im.numeric(*H, t); }, true);
+    if (sigma < 0.0)
+      throw Error(RN_ERR_LAPACK, "dd preconditioner: no shift up to 1e10 |diag| makes "
+                                 "the Hessian positive definite (non-finite entries?)");
+  }
   if (impl_->coarse->declined() && mpi_backed(*H->getComm())) {
     // Auto: the direct factorisation costs too much
     impl_->declined_flops = impl_->coarse->flops();
@@ -1254,7 +1331,8 @@ void DdPreconditioner::setup(System &sys) {
   stats_.setups++;
   stats_.setup_seconds += seconds_since(t0);
   stats_.bytes = impl_->bytes();
-  stats_.shifted = impl_->rods_shifted > 0 || coarse_shift() > 0.0;
+  stats_.shifted =
+      impl_->rods_shifted > 0 || coarse_shift() > 0.0 || impl_->uniform_shift > 0.0;
 }
 
 Teuchos::RCP<const Tpetra::Operator<>> DdPreconditioner::inverse() const {
@@ -1265,11 +1343,13 @@ Teuchos::RCP<const Tpetra::Operator<>> DdPreconditioner::inverse() const {
 
 long long DdPreconditioner::coarse_rows() const { return impl_->coarse_rows; }
 long long DdPreconditioner::rods_shifted() const { return impl_->rods_shifted; }
+double DdPreconditioner::uniform_shift() const { return impl_->uniform_shift; }
 double DdPreconditioner::coarse_shift() const {
   return impl_->coarse ? impl_->coarse->shift() : 0.0;
 }
 bool DdPreconditioner::exact() const {
   return impl_->rods_shifted == 0 && coarse_shift() == 0.0 &&
+         impl_->uniform_shift == 0.0 &&
          (impl_->coarse_rows == 0 || coarse_solver() == "direct");
 }
 

@@ -55,6 +55,10 @@ public:
   // Rows of the reduced (inter-rank separator) matrix of the direct solver (0 on one
   // rank and for the other solvers).
   virtual long long separator_rows() const { return 0; }
+  // Strict: the next setup tries S itself (no shift) and reports failure by failed()
+  // instead of shifting (the direct solver; the others ignore it and never fail).
+  virtual void set_strict(bool) {}
+  virtual bool failed() const { return false; }
 };
 
 // Exact solve of the coarse matrix by rodnet's sparse Cholesky (METIS ordering),
@@ -93,6 +97,11 @@ struct DdOptions {
   // then the AMG one (only with an MPI runtime, mpi_backed(); otherwise the
   // direct one whatever it costs).
   double direct_max_flops = 5e10;
+  // An indefinite H: true, the DD of H + sigma D with one shift sigma for every piece
+  // (the smallest decade that makes them all positive definite; with the direct
+  // coarse solve M is then exactly (H + sigma D)^-1); false, each rod block and the
+  // coarse matrix shifted by its own smallest decade (docs/solvers.md).
+  bool uniform_shift = true;
   // MueLu parameter file overriding the AMG coarse solve's defaults (empty: none).
   std::string amg_xml;
 };
@@ -111,6 +120,8 @@ public:
   long long coarse_rows() const;
   long long rods_shifted() const;
   double coarse_shift() const;
+  // sigma of the DD of H + sigma D (DdOptions::uniform_shift; 0: none)
+  double uniform_shift() const;
   std::string coarse_solver() const;
   // Factorisation flops of the direct coarse solve (also when it declined), else 0.
   double coarse_flops() const;

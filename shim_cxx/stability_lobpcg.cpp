@@ -172,16 +172,31 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt) {
     pl.set("Locking Tolerance", 0.1 * kLobpcgResidual * st.scale);
     pl.set("Relative Locking Tolerance", false);
     pl.set("Full Ortho", true);
+    // library code prints nothing: Anasazi's messages (errors included) go to a sink
     pl.set("Verbosity", static_cast<int>(Anasazi::Errors));
+    pl.set("Output Stream",
+           Teuchos::getFancyOStream(Teuchos::rcp(new Teuchos::oblackholestream)));
     Anasazi::LOBPCGSolMgr<double, TMV, TOp> solver(problem, pl);
-    const Anasazi::ReturnType ret = solver.solve();
+    Anasazi::ReturnType ret = Anasazi::Unconverged;
+    try {
+      ret = solver.solve();
+    } catch (const Error &) {
+      throw;
+    } catch (const std::exception &) {
+      // a breakdown inside Anasazi (a rank-deficient block, a preconditioner that is
+      // not SPD enough for the Rayleigh-Ritz step): no verdict, not an error of the solve
+      st.checked = 0;
+    }
     st.iterations = solver.getNumIters();
     const Anasazi::Eigensolution<double, TMV> &sol = problem->getSolution();
     std::vector<double> mu;
     for (int i = 0; i < sol.numVecs; ++i)
       mu.push_back(sol.Evals[static_cast<size_t>(i)].realpart);
     std::sort(mu.begin(), mu.end());
-    if (!mu.empty()) {
+    // no Ritz pair came out (LOBPCG broke down or converged none): the check did
+    // not happen, which is not the same as a lowest eigenvalue of 0
+    if (mu.empty()) st.checked = 0;
+    if (st.checked && !mu.empty()) {
       size_t j = 0;
       while (j < mu.size() && std::fabs(mu[j]) <= delta) ++j;
       if (mu[0] < -delta) {

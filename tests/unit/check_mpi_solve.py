@@ -14,7 +14,9 @@ compare the two RESULT.json files (issue 7, the `mpi` tests):
   printed;
 - "stability": both checked or neither; verified_minimum and zero_modes equal,
   the lowest eigenvalues within 1e-6 relative (+ 1e-12 scale), scale to 1e-12
-  (one rank: the Cholesky check by default; N ranks: LOBPCG on the parts);
+  (one rank: the Cholesky check by default; N ranks: LOBPCG on the parts, or the
+  Cholesky check on rank 0's gathered state where LOBPCG gave no eigenpair);
+- standard output holds rodnet's summary only (no solver library's messages);
 - "partition": one rank has "ranks": 1 with one-element lists equal to the
   network's free DOFs; N ranks have N-element lists whose sums are the one-rank
   totals, and with more than one rod per rank no rank owns more than max-share of
@@ -33,6 +35,11 @@ def run(cmd):
                        timeout=1200)
     sys.stdout.write(p.stdout)
     sys.stdout.write(p.stderr)
+    # the library prints nothing: standard output is rodnet's summary only (its lines
+    # start with "rodnet " or are indented), no solver library's messages
+    for line in p.stdout.splitlines():
+        if line and not line.startswith(("rodnet ", " ")):
+            fail("a line on standard output that is not rodnet's summary: %r" % line)
     return p.returncode
 
 
