@@ -184,7 +184,9 @@ static void rest_frames(rn_joint *J) {
 /* A smooth joint's vertex parameters in ends[0]: stiffness averaged over the
  * two terminal edges, Voronoi length half their rest lengths, rest curvature
  * and twist (input shape, straight or given), reference twist h + 2 pi link
- * with h the input twist between the terminal edges' frames. */
+ * with h the input twist between the terminal edges' frames (a ring with a
+ * total twist: the whole turns of it, the remainder spread over the ring's
+ * rest twist). */
 static rn_status build_smooth(const rn_network *net, rn_joint *J) {
   const rn_rod *r0 = &net->rods[J->rod[0]], *r1 = &net->rods[J->rod[1]];
   int j0 = rn_end_edge(r0->nv, RN_END), j1 = rn_end_edge(r1->nv, RN_START);
@@ -208,7 +210,24 @@ static rn_status build_smooth(const rn_network *net, rn_joint *J) {
   e0->twist.taubar = J->rest == RN_REST_INPUT ? tau : J->rest_taubar;
   if (J->rest == RN_REST_STRAIGHT)
     e0->bend.kbar[0] = e0->bend.kbar[1] = e0->twist.taubar = 0;
-  e0->twist.ref_twist = e1->twist.ref_twist = h + 2.0 * RN_PI * J->link;
+  double turns = J->link;
+  if (J->has_total_twist) {
+    /* a ring with total twist T: the reference twist h + 2 pi k (it must stay
+     * the geometric angle, mod 2 pi) with k the nearest whole turns of
+     * T - h - s (s the input twist of the other vertices); the remainder
+     * (within [-pi, pi]) lowers the rest twist of every vertex of the ring in
+     * proportion to its Voronoi length, so the ring stores T - h - s evenly */
+    double s = 0.0, len = e0->twist.vlen;
+    for (int i = 0; i < r0->nv - 2; ++i) {
+      s += r0->ref_twist[i];
+      len += r0->tp[i].vlen;
+    }
+    turns = nearbyint((J->total_twist - h - s) / (2.0 * RN_PI));
+    double rem = J->total_twist - h - s - 2.0 * RN_PI * turns;
+    for (int i = 0; i < r0->nv - 2; ++i) r0->tp[i].taubar -= rem * r0->tp[i].vlen / len;
+    e0->twist.taubar -= rem * e0->twist.vlen / len;
+  }
+  e0->twist.ref_twist = e1->twist.ref_twist = h + 2.0 * RN_PI * turns;
   return RN_OK;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rodnet_ring.h"
 
 void rn_joint_free(rn_joint *J) {
   free(J->name);
@@ -506,5 +507,29 @@ rn_status rn_network_set_joint_link(rn_network *net, int joint, int link) {
                              1 << RN_JOINT_SMOOTH, 0, &lj)))
     return rn_not_here_ok(st);
   net->joints[lj].link = link;
+  net->joints[lj].has_total_twist = 0;
+  return RN_OK;
+}
+
+rn_status rn_network_set_ring_total_twist(rn_network *net, int joint, double total) {
+  static const char *where = "rn_network_set_ring_total_twist";
+  rn_status st;
+  int lj;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_rest_joint(net, where, joint, 1 << RN_JOINT_SMOOTH, 0, &lj)))
+    return rn_not_here_ok(st);
+  rn_joint *J = &net->joints[lj];
+  if (J->valence != 2 || J->rod[0] != J->rod[1] || !net->rods[J->rod[0]].closed)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "joint %d ('%s') does not close a ring (a total twist applies to "
+                   "closed rods only)",
+                   joint, J->name ? J->name : "");
+  if (!isfinite(total))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where,
+                   "joint %d ('%s'): total twist is not finite", joint,
+                   J->name ? J->name : "");
+  J->has_total_twist = 1;
+  J->total_twist = total;
+  J->link = 0;
   return RN_OK;
 }

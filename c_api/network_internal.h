@@ -99,6 +99,8 @@ typedef struct rn_joint {
   double *rest_frames; /* RN_REST_FRAMES: [9 valence] */
   double rest_kbar[2], rest_taubar; /* RN_REST_STRAINS (smooth joints) */
   int link;                         /* smooth joints: full turns of twist added */
+  int has_total_twist;              /* ring joints: total twist given */
+  double total_twist;               /* (rn_network_set_ring_total_twist) */
   int *image;   /* periodic cells: lattice shift (3 ints) of each end's
                    joint copy [3 valence]; NULL: no image ends */
   int32_t *img; /* built at finalize: image record of each kernel stencil

@@ -23,6 +23,7 @@ install(TARGETS rodnet EXPORT rodnetTargets
 install(FILES ${PROJECT_SOURCE_DIR}/c_api/rodnet.h ${PROJECT_SOURCE_DIR}/c_api/rodnet_solve.h
               ${PROJECT_SOURCE_DIR}/c_api/rodnet_model.h
               ${PROJECT_SOURCE_DIR}/c_api/rodnet_contact.h
+              ${PROJECT_SOURCE_DIR}/c_api/rodnet_ring.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # The scene reader and result writers (rodnet_scene.h), with the solver only.
 if(TARGET rodnet_scene)

@@ -210,9 +210,63 @@ static rn_status read_joint_ends(rn_scene_parser *p, const cJSON *list, int **ro
   return st ? st : check_ends_meet(p, *n, *rods, *ends, *images);
 }
 
-/* "rest": "straight", or {"curvature": [k1, k2], "twist": t} (smooth joints). */
+/* 1 if the rows of F (row-major) are orthonormal and right-handed to tol. */
+static int rest_frame_ok(const double F[9], double tol) {
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      double d = F[3 * a] * F[3 * b] + F[3 * a + 1] * F[3 * b + 1] +
+                 F[3 * a + 2] * F[3 * b + 2] - (a == b ? 1.0 : 0.0);
+      if (!(fabs(d) <= tol)) return 0;
+    }
+  double det = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+               F[2] * (F[3] * F[7] - F[4] * F[6]);
+  return det > 0.0;
+}
+
+/* "frames": one rest frame [t, d1, d2] (3 rows of 3 numbers) per end of the
+ * joint, in the order of "ends" (rn_network_set_joint_rest_frames). */
+static rn_status read_rest_frames(rn_scene_parser *p, const cJSON *r, int joint) {
+  rn_network *net = p->scene->net;
+  int n = 0, valence = rn_network_joint_valence(net, joint);
+  const cJSON *list = rn_jm_get(r, "frames");
+  size_t mark = rn_jwalk_key(&p->w, "frames");
+  rn_status st = rn_jv_array(&p->w, list, &n);
+  if (!st && n != valence)
+    st = rn_jwalk_error(&p->w,
+                        "expected %d frames (one per end, in the order of \"ends\"), "
+                        "got %d",
+                        valence, n);
+  double *F = st ? NULL : malloc(9 * (size_t)(n > 0 ? n : 1) * sizeof(double));
+  if (!st && !F) st = rn_jwalk_fail(&p->w, RN_ERR_ALLOC, "out of memory");
+  int k = 0;
+  for (const cJSON *f = list ? list->child : NULL; f && !st; f = f->next, k++) {
+    size_t mk = rn_jwalk_index(&p->w, k);
+    int rows = 0;
+    st = rn_jv_array(&p->w, f, &rows);
+    if (!st && rows != 3)
+      st = rn_jwalk_error(&p->w, "expected 3 rows [t, d1, d2], got %d", rows);
+    int i = 0;
+    for (const cJSON *row = f->child; row && !st; row = row->next, i++) {
+      size_t mr = rn_jwalk_index(&p->w, i);
+      st = rn_jv_vec(&p->w, row, 3, RN_J_ANY, F + 9 * k + 3 * i);
+      rn_jwalk_pop(&p->w, mr);
+    }
+    if (!st && !rest_frame_ok(F + 9 * k, 1e-9))
+      st = rn_jwalk_error(&p->w, "the rest frame (rows t, d1, d2) is not orthonormal and "
+                                 "right-handed to 1e-9");
+    rn_jwalk_pop(&p->w, mk);
+  }
+  rn_jwalk_pop(&p->w, mark);
+  if (!st && (st = rn_network_set_joint_rest_frames(net, joint, F)))
+    st = rn_jwalk_lib_error(&p->w, st);
+  free(F);
+  return st;
+}
+
+/* "rest": "straight", {"curvature": [k1, k2], "twist": t} (smooth joints) or
+ * {"frames": [...]} (rigid and elastic joints). */
 static rn_status read_joint_rest(rn_scene_parser *p, const cJSON *v, int joint) {
-  static const char *const keys[] = {"curvature", "twist", NULL};
+  static const char *const keys[] = {"curvature", "twist", "frames", NULL};
   const cJSON *r = rn_jm_get(v, "rest");
   rn_network *net = p->scene->net;
   rn_status st = RN_OK;
@@ -222,7 +276,7 @@ static rn_status read_joint_rest(rn_scene_parser *p, const cJSON *v, int joint) 
     if (strcmp(r->valuestring, "straight") != 0)
       st = rn_jwalk_error(&p->w,
                           "unknown rest shape \"%s\" (known: \"straight\", or "
-                          "an object {\"curvature\", \"twist\"})",
+                          "an object {\"curvature\", \"twist\"} or {\"frames\"})",
                           r->valuestring);
     else if ((st = rn_network_set_joint_rest_straight(net, joint)))
       st = rn_jwalk_lib_error(&p->w, st);
@@ -230,10 +284,18 @@ static rn_status read_joint_rest(rn_scene_parser *p, const cJSON *v, int joint) 
     double k[2] = {0.0, 0.0}, t = 0.0;
     st = rn_jv_object(&p->w, r);
     if (!st) st = rn_json_check_keys(&p->w, r, keys);
-    if (!st) st = rn_jm_vec(&p->w, r, "curvature", 1, 2, RN_J_ANY, k, NULL);
-    if (!st) st = rn_jm_number(&p->w, r, "twist", 1, RN_J_ANY, &t, NULL);
-    if (!st && (st = rn_network_set_joint_rest_strains(net, joint, k, t)))
-      st = rn_jwalk_lib_error(&p->w, st);
+    if (!st && rn_jm_get(r, "frames")) {
+      if (rn_jm_get(r, "curvature") || rn_jm_get(r, "twist"))
+        st = rn_jwalk_error(&p->w,
+                            "give either \"frames\" (rigid and elastic joints) or "
+                            "\"curvature\" and \"twist\" (smooth joints), not both");
+      if (!st) st = read_rest_frames(p, r, joint);
+    } else {
+      if (!st) st = rn_jm_vec(&p->w, r, "curvature", 1, 2, RN_J_ANY, k, NULL);
+      if (!st) st = rn_jm_number(&p->w, r, "twist", 1, RN_J_ANY, &t, NULL);
+      if (!st && (st = rn_network_set_joint_rest_strains(net, joint, k, t)))
+        st = rn_jwalk_lib_error(&p->w, st);
+    }
   }
   rn_jwalk_pop(&p->w, mark);
   return st;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rodnet_ring.h"
 #include "scene_internal.h"
 
 /* Largest vertex count accepted for one rod (keeps allocations sane). */
@@ -448,7 +449,8 @@ static rn_status read_rest(rn_scene_parser *p, const cJSON *rest, int rod) {
 /* "closed": true: the vertex list does not repeat the first vertex; the rod is
  * stored with it repeated and closed by a smooth joint named after it.
  * "twist": {"link": n}: n full turns of twist stored in the ring
- * (rn_network_set_joint_link). */
+ * (rn_network_set_joint_link); {"total": T}: the ring's total twist starts at T
+ * radians (rn_network_set_ring_total_twist). */
 static rn_status read_closed(rn_scene_parser *p, const cJSON *v, int *closed) {
   const cJSON *c = rn_jm_get(v, "closed");
   *closed = 0;
@@ -464,17 +466,26 @@ static rn_status read_closed(rn_scene_parser *p, const cJSON *v, int *closed) {
 }
 
 static rn_status read_ring_twist(rn_scene_parser *p, const cJSON *v, int joint) {
-  static const char *const keys[] = {"link", NULL};
+  static const char *const keys[] = {"link", "total", NULL};
   const cJSON *t = rn_jm_get(v, "twist");
   rn_status st;
-  int link = 0;
+  int link = 0, has_link = 0, has_total = 0;
+  double total = 0.0;
   if (!t) return RN_OK;
   size_t mark = rn_jwalk_key(&p->w, "twist");
   st = joint < 0 ? rn_jwalk_error(&p->w, "\"twist\" applies to closed rods only")
                  : rn_jv_object(&p->w, t);
   if (!st) st = rn_json_check_keys(&p->w, t, keys);
-  if (!st) st = rn_jm_int(&p->w, t, "link", 1, -1000000, 1000000, &link, NULL);
-  if (!st && (st = rn_network_set_joint_link(p->scene->net, joint, link)))
+  if (!st && rn_jm_get(t, "link") && rn_jm_get(t, "total"))
+    st = rn_jwalk_error(&p->w, "give either \"link\" or \"total\", not both");
+  if (!st) st = rn_jm_int(&p->w, t, "link", 0, -1000000, 1000000, &link, &has_link);
+  if (!st) st = rn_jm_number(&p->w, t, "total", 0, RN_J_ANY, &total, &has_total);
+  if (!st && !has_link && !has_total)
+    st = rn_jwalk_error(&p->w, "expected \"link\" (full turns) or \"total\" (radians)");
+  if (!st && has_link && (st = rn_network_set_joint_link(p->scene->net, joint, link)))
+    st = rn_jwalk_lib_error(&p->w, st);
+  if (!st && has_total &&
+      (st = rn_network_set_ring_total_twist(p->scene->net, joint, total)))
     st = rn_jwalk_lib_error(&p->w, st);
   rn_jwalk_pop(&p->w, mark);
   return st;

@@ -30,6 +30,14 @@ endif()
 # ---- C tests ------------------------------------------------------------------------
 rn_add_test(problems_scene_errors SOURCES unit/problems_scene_errors_test.c
             LIBS rodnet_problems LABELS unit)
+# A closed rod's twist as a total twist ("twist": {"total": T}): link and total
+# agree, a fractional total against GJ T^2 / (2 L), errors.
+rn_add_test(problems_ring_twist SOURCES unit/problems_ring_twist_test.c
+            LIBS rodnet_problems m LABELS unit)
+# Joint rest frames in the scene ("rest": {"frames": [...]}): the scene equals
+# the C API, a loop with straight rest frames stores no kink, errors.
+rn_add_test(problems_joint_rest SOURCES unit/problems_joint_rest_test.c
+            LIBS rodnet_problems m LABELS unit)
 file(GLOB RN_EXAMPLE_SCENES ${RN_SCENES}/*.json)
 rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_EXAMPLE_SCENES})

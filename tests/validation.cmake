@@ -12,6 +12,9 @@ if(RN_WITH_TRILINOS)
               LABELS validation ARGS ${RN_PATH_SCENES} validation)
   add_test(NAME val_path_strip COMMAND val_path ${RN_PATH_SCENES} hard)
   set_tests_properties(val_path_strip PROPERTIES LABELS hard TIMEOUT 600)
+  # The shallow arch's snap-through against the elastica (arch_elastica.py).
+  add_test(NAME val_path_arch COMMAND val_path ${RN_PATH_SCENES} arch)
+  set_tests_properties(val_path_arch PROPERTIES LABELS hard TIMEOUT 300)
   # Lattices of `rodnet generate` under stretch (frictionless grips) and grip.
   file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/val_lattice)
   rn_add_test(val_lattice_stretch SOURCES validation/val_lattice_stretch.c

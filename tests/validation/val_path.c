@@ -1,6 +1,6 @@
 /* val_path.c - path following (rn_path_follow, docs/path-following.md) against
  * closed forms, on the scenes of problems/scenes/path/ (argv[1]: that folder;
- * argv[2]: "validation" or "hard", which cases to run):
+ * argv[2]: "validation", "hard" or "arch", which cases to run):
  *  (1) von Mises truss, load control: the limit point is located where the
  *      closed form puts it.  The rod's two edges stretch (E A / L0) and its apex
  *      bends by a linear spring in the apex height h (the turning angle's
@@ -37,7 +37,15 @@
  *      to 1e-8), and the energy is continuous: sum over the steps of
  *      |dE - (F1 + F0)/2 du| (trapezoidal work of the conjugate force) is
  *      below 2 % of the energy's range.  Then back from the mirror image (the
- *      end state asserted; its continuity measured only, see strip()). */
+ *      end state asserted; its continuity measured only, see strip()).
+ *  (5) arch: snap-through of a pinned shallow circular arch under a central
+ *      load (load control, steps of at most 0.01): stable up to the upper limit
+ *      point, unstable down to the lower one, stable on the inverted arch (2
+ *      limit points, no bifurcation: the rise parameter h/r = 3 makes the snap
+ *      symmetric); both limit loads within 3e-3 of the extensible elastica
+ *      (tests/validation/arch_elastica.py) at 32 edges; the upper limit load at
+ *      16, 32, 64 edges converges at order 2 (asserted in [1.8, 2.2]) and its
+ *      Richardson extrapolation matches the elastica to 1e-6 relative. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -328,15 +336,162 @@ static void strip(rn_context *ctx, const char *dir) {
   rn_scene_destroy(&s);
 }
 
+/* ---- (5) shallow arch snap-through (hard) ------------------------------------ */
+/* The pinned circular arch of problems/scenes/path/shallow_arch.json: span
+ * arch_L, rise arch_h, EI = 1, EA = 1e4 (rise parameter h / r = 3, r the radius
+ * of gyration), n edges (n even: a vertex at the crown), in the x-z plane (every
+ * vertex held in y), a load arch_P down on the crown.  Reference limit loads:
+ * the extensible elastica with the arch's rest curvature, shot on the half arch
+ * by tests/validation/arch_elastica.py (RK4 at 200, 400, 800 steps: the digits
+ * below are stable to 1e-12). */
+static const double arch_L = 1.0, arch_h = 0.03, arch_P = 3.0;
+static const double arch_upper = 2.0725733696, arch_lower = 0.9102677165;
+/* Steps of at most 0.01: with the default largest step (0.05) the corrector
+ * next to the upper limit point lands on the inverted branch and the path runs
+ * on without an event (docs/path-following.md, Limits). */
+static const double arch_ds = 0.01;
+
+/* The arch scene with n edges, as JSON text (malloc'ed). */
+static char *arch_json(int n) {
+  size_t cap = 4096 + (size_t)n * 160;
+  char *t = malloc(cap);
+  size_t k = 0;
+  const double R = (arch_h * arch_h + 0.25 * arch_L * arch_L) / (2 * arch_h);
+  const double alpha = asin(0.5 * arch_L / R);
+  k += (size_t)snprintf(
+      t + k, cap - k,
+      "{\"materials\": {\"m\": {\"E\": 1.0, \"nu\": 0.3}},\n"
+      " \"sections\": {\"s\": {\"shape\": \"explicit\", \"A\": 1.0e4, "
+      "\"I11\": 1.0, \"I22\": 1.0, \"J\": 1.0}},\n"
+      " \"rods\": [{\"name\": \"arch\", \"material\": \"m\", \"section\": "
+      "\"s\", \"d1\": [0, 1, 0], \"vertices\": [");
+  for (int i = 0; i <= n; i++) {
+    double phi = alpha * (2.0 * i / n - 1.0);
+    /* the crown exactly at x = 0 */
+    double x = i == n / 2 ? 0.0 : R * sin(phi), z = R * cos(phi) - (R - arch_h);
+    k += (size_t)snprintf(t + k, cap - k, "%s[%.17g, 0, %.17g]", i ? ", " : "", x, z);
+  }
+  k += (size_t)snprintf(
+      t + k, cap - k,
+      "]}],\n \"constraints\": [{\"type\": \"pin\", \"rod\": \"arch\", "
+      "\"vertex\": 0}, {\"type\": \"pin\", \"rod\": \"arch\", \"vertex\": "
+      "-1}, {\"type\": \"fix_theta\", \"rod\": \"arch\", \"edge\": 0}");
+  for (int i = 1; i < n; i++)
+    k += (size_t)snprintf(t + k, cap - k,
+                          ",\n  {\"type\": \"pin\", \"rod\": \"arch\", \"vertex\": %d, "
+                          "\"components\": [\"y\"]}",
+                          i);
+  k += (size_t)snprintf(t + k, cap - k,
+                        "],\n \"loads\": [{\"type\": \"force\", \"rod\": \"arch\", "
+                        "\"vertex\": %d, \"value\": [0, 0, %.17g]}]}\n",
+                        n / 2, -arch_P);
+  CHECK(k < cap);
+  return t;
+}
+
+static rn_scene *arch_scene(rn_context *ctx, int n) {
+  char *text = arch_json(n);
+  rn_scene *s = NULL;
+  CHECK_STATUS(rn_scene_parse(ctx, "arch.json", text, strlen(text), &s), RN_OK);
+  free(text);
+  return s;
+}
+
+static int stop_at_limit(void *user, const rn_path_point *pt) {
+  collect(user, pt);
+  return pt->event == RN_PATH_LIMIT;
+}
+
+/* Load control from the unloaded arch to its first limit point (n edges):
+ * returns the limit load. */
+static double arch_limit(rn_context *ctx, int n) {
+  rn_scene *s = arch_scene(ctx, n);
+  rn_network *net = rn_scene_network(s);
+  static points ps;
+  rn_path_options o = start(net, 0.0, &ps);
+  o.ds = o.ds_max = arch_ds;
+  o.callback = stop_at_limit;
+  rn_path_report rep;
+  CHECK_STATUS(rn_path_follow(net, &o, &rep), RN_OK);
+  CHECK(rep.stop == RN_PATH_STOP_CALLBACK);
+  CHECK(rep.limit_points == 1);
+  CHECK(rep.bifurcations == 0); /* a symmetric limit point, no bifurcation first */
+  for (int i = 0; i + 1 < ps.n; i++) CHECK(ps.p[i].stability == 1);
+  printf("arch, %d edges: first limit point at load %.10f (%d steps)\n", n,
+         rep.limit_load_factor * arch_P, rep.steps);
+  rn_scene_destroy(&s);
+  return rep.limit_load_factor * arch_P;
+}
+
+/* The whole snap-through on the shipped scene (32 edges), then the limit load's
+ * convergence in the number of edges. */
+static void arch(rn_context *ctx, const char *dir) {
+  rn_scene *s = load(ctx, dir, "shallow_arch.json");
+  rn_network *net = rn_scene_network(s);
+  static points ps;
+  rn_path_options o = start(net, 0.0, &ps);
+  o.ds = o.ds_max = arch_ds;
+  o.max_steps = 1000;
+  rn_path_report rep;
+  CHECK_STATUS(rn_path_follow(net, &o, &rep), RN_OK);
+  /* stable up to the upper limit point, unstable down to the lower one, stable
+   * on the inverted arch up to the scene's load */
+  CHECK(rep.stop == RN_PATH_STOP_TARGET);
+  CHECK(rep.limit_points == 2);
+  CHECK(rep.bifurcations == 0);
+  int phase = 0, nlim = 0;
+  double lim[2] = {NAN, NAN};
+  for (int i = 0; i < ps.n; i++) {
+    const rn_path_point *p = &ps.p[i];
+    if (p->event == RN_PATH_LIMIT) {
+      if (nlim < 2) lim[nlim] = p->load_factor * arch_P;
+      nlim++;
+      phase++;
+      continue;
+    }
+    CHECK(p->event == RN_PATH_POINT);
+    CHECK(p->stability == (phase == 1 ? -1 : 1));
+  }
+  const rn_path_point *last = &ps.p[ps.n - 1];
+  CHECK(nlim == 2);
+  CHECK_NEAR(last->load_factor, 1.0, 1e-14);
+  /* snapped: the crown below the supports (inverted) */
+  CHECK(last->control < -0.5 * arch_h);
+  printf("arch (shallow_arch.json, 32 edges): %d steps, %d points, %ld corrector "
+         "iterations, %.3f s; limit points at load %.10f (crown %.8f) and %.10f; "
+         "end: crown %.6f at load %.3f\n",
+         rep.steps, ps.n, rep.corrector_iterations, rep.time_s, lim[0], rep.limit_control,
+         lim[1], last->control, last->load_factor * arch_P);
+  CHECK_REL(rep.limit_load_factor * arch_P, lim[0], 1e-15);
+  /* 32 edges: within 3e-3 of the elastica (the O(1/n^2) error is -1.8e-3) */
+  CHECK_REL(lim[0], arch_upper, 3e-3);
+  CHECK_REL(lim[1], arch_lower, 3e-3);
+  rn_scene_destroy(&s);
+  /* the same load from the arch generated here (the scene file's geometry) */
+  double p[3];
+  for (int i = 0; i < 3; i++) p[i] = arch_limit(ctx, 16 << i);
+  CHECK_REL(p[1], lim[0], 1e-8);
+  double order = log((p[1] - p[0]) / (p[2] - p[1])) / log(2.0);
+  double extrap = p[2] + (p[2] - p[1]) / 3.0;
+  printf("  upper limit load at 16, 32, 64 edges: %.10f %.10f %.10f, order %.3f, "
+         "extrapolated %.10f, elastica %.10f (relative %.2e)\n",
+         p[0], p[1], p[2], order, extrap, arch_upper, extrap / arch_upper - 1);
+  CHECK(order > 1.8 && order < 2.2);
+  /* observed 1.5e-7: the rest of the O(1/n^2) series and the event's location */
+  CHECK_REL(extrap, arch_upper, 1e-6);
+}
+
 int main(int argc, char **argv) {
   if (argc < 3) {
-    fprintf(stderr, "usage: val_path SCENE_DIR validation|hard\n");
+    fprintf(stderr, "usage: val_path SCENE_DIR validation|hard|arch\n");
     return 2;
   }
   rn_context *ctx = NULL;
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
   if (strcmp(argv[2], "hard") == 0) {
     strip(ctx, argv[1]);
+  } else if (strcmp(argv[2], "arch") == 0) {
+    arch(ctx, argv[1]);
   } else {
     truss_load(ctx, argv[1]);
     truss_dof(ctx, argv[1]);
