@@ -52,6 +52,8 @@ constexpr int kSecantIts = 30;       // event location: secant/bisection steps
 constexpr double kMinresTol = 1e-12; // relative MINRES residual of the solves
 constexpr int kMinresIts = 1000;
 constexpr double kMaxTurn = 0.5; // radians between consecutive tangents at most
+// the corrected point at most this many step lengths (W metric) from the predictor
+constexpr double kMaxCorrection = 1.0;
 
 // y = A x with the (modified) assembled Hessian.
 class HessianOp : public VectorOperator {
@@ -329,7 +331,19 @@ bool PathFollower::step_from(const Point &from, double ds, const std::vector<dou
   for (size_t i = 0; i < n_; ++i) ax[i] = w_[i] * tx[i];
   const double amu = w_mu_ * tmu;
   const double target = dot(n_, ax.data(), to.x.data()) + amu * to.mu;
+  const std::vector<double> px = to.x;
+  const double pmu = to.mu;
   if (!correct(to, ax, amu, target)) return false;
+  if (check_turn) {
+    // a corrector that moved farther from the predictor than the step is long
+    // converged on another branch (the shallow arch's snap at steps near its limit
+    // point, docs/path-following.md): shorter steps follow the path
+    std::vector<double> dx(n_);
+    for (size_t i = 0; i < n_; ++i) dx[i] = to.x[i] - px[i];
+    const double dmu = to.mu - pmu;
+    if (std::sqrt(weighted_dot(dx, dmu, dx, dmu)) > kMaxCorrection * std::fabs(ds))
+      return false;
+  }
   if (!tangent(to, tx, tmu)) return false;
   // a step whose tangent turned by more than kMaxTurn jumped (or may jump) between
   // branches: shorter steps follow the path
