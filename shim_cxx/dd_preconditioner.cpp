@@ -1306,15 +1306,16 @@ void DdPreconditioner::setup(System &sys) {
       break;
     }
   }
-  if (!opt_.uniform_shift) {
-    impl_->numeric(*H);
-  } else if (!impl_->numeric(*H, 0.0)) {
-    // H is indefinite: the DD of H + sigma D for the smallest decade sigma that makes
-    // every rod block and (with the direct coarse solve) the coarse matrix positive
-    // definite, so that M is the exact inverse of one shifted Hessian (the factor
-    // preconditioner's norm), not of independently shifted pieces; the multigrid
-    // coarse solve, which cannot certify, shifts S further itself if it must
-    // (docs/solvers.md)
+  impl_->numeric(*H);
+  if (opt_.uniform_shift && impl_->rods_shifted > 0) {
+    // Rod blocks indefinite (buckled rods): each shifted by its own decade, M would
+    // be the inverse of no single modification of H, and the trust region in its
+    // norm cycles (docs/solvers.md).  Instead the DD of H + sigma D for the smallest
+    // decade sigma that makes every rod block and (with the direct coarse solve) the
+    // coarse matrix positive definite: M = (H + sigma D)^-1 exactly, the factor
+    // preconditioner's norm.  (Only the coarse matrix shifted is already one
+    // modification of H, on the interface: kept.)  The multigrid coarse solve, which
+    // cannot certify, shifts S further itself if it must.
     Impl &im = *impl_;
     const double sigma =
         smallest_shift([&](double t) { return im.numeric(*H, t); }, true);
