@@ -97,9 +97,12 @@ struct Rod {
   int m() const { return static_cast<int>(coarse.size()); }
 };
 
-// Factor the band of rod r from H's values (shifted if indefinite); false if no
-// shift up to 1e10 works.
-bool factor_rod(Rod &r, const double *vals, std::vector<double> &ab) {
+// Factor the band of rod r from H's values plus shift D_r.  shift < 0: the smallest
+// of smallest_shift's ladder (shifted only if indefinite), false if none up to 1e10
+// works; shift >= 0: that shift only (the uniform-shift search,
+// DdPreconditioner::setup), false if it is not positive definite.
+bool factor_rod(Rod &r, const double *vals, std::vector<double> &ab,
+                double shift = -1.0) {
   const int n = r.n(), ld = r.kd + 1;
   ab.assign(static_cast<size_t>(ld) * static_cast<size_t>(n), 0.0);
   for (size_t e = 0; e < r.band_src.size(); ++e) ab[r.band_dst[e]] = vals[r.band_src[e]];
@@ -114,26 +117,12 @@ bool factor_rod(Rod &r, const double *vals, std::vector<double> &ab) {
     dpbtrf_("L", &n, &r.kd, r.fac.data(), &ld, &info, 1);
     return info == 0;
   };
+  if (shift >= 0.0) {
+    r.shift = shift;
+    return try_factor(shift);
+  }
   r.shift = smallest_shift(try_factor);
   return r.shift >= 0.0;
-}
-
-// Factor the band of rod r + shift D_r for the given shift only; false if that is not
-// positive definite (the uniform-shift search, DdPreconditioner::setup).
-bool factor_rod_at(Rod &r, const double *vals, std::vector<double> &ab, double shift) {
-  const int n = r.n(), ld = r.kd + 1;
-  ab.assign(static_cast<size_t>(ld) * static_cast<size_t>(n), 0.0);
-  for (size_t e = 0; e < r.band_src.size(); ++e) ab[r.band_dst[e]] = vals[r.band_src[e]];
-  std::vector<double> d(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) d[static_cast<size_t>(i)] = ab[static_cast<size_t>(i * ld)];
-  floored_abs(d);
-  r.fac = ab;
-  for (int i = 0; i < n; ++i)
-    r.fac[static_cast<size_t>(i * ld)] += shift * d[static_cast<size_t>(i)];
-  int info = 0;
-  dpbtrf_("L", &n, &r.kd, r.fac.data(), &ld, &info, 1);
-  r.shift = shift;
-  return info == 0;
 }
 
 // y <- L^-1 y (length n) for y zero before row j0, L the factor of dpbtrf in lower
@@ -1095,8 +1084,7 @@ bool DdPreconditioner::Impl::numeric(const TCrs &H, double uniform) {
     r.b_val.resize(r.b_src.size());
     for (size_t e = 0; e < r.b_src.size(); ++e) r.b_val[e] = vals[r.b_src[e]];
     if (r.n() == 0) continue;
-    if (uniform >= 0.0 ? !factor_rod_at(r, vals, ab, uniform)
-                       : !factor_rod(r, vals, ab)) {
+    if (!factor_rod(r, vals, ab, uniform)) {
       failed = true;
       continue;
     }
