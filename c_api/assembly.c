@@ -441,19 +441,34 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
  * 12-DOF stencil of the ends of two edges gathered and scattered by index.
  * The energy and gradient first check the motion from the accepted state
  * (continuous collision check): a step that would cross is a degenerate
- * trial point. */
+ * trial point.  A pair outside the Hessian pattern (built at the accepted
+ * state) that comes within the activation distance makes x a degenerate trial
+ * point too: the pattern holds every pair the Hessian can couple. */
 static rn_status contact_eval(const rn_network *net, eval_args *a) {
-  const rnk_contact_param *p = rn_contact_param(net);
   rn_contact_list L;
   rn_status st = rn_contact_candidates(net, a->x, a->op == OP_ENERGY || a->op == OP_GRAD,
                                        a->where, &L);
   if (st) return st;
   for (size_t i = 0; i < L.n && !st; ++i) {
+    const int pa = L.pair[2 * i], pb = L.pair[2 * i + 1];
+    const rnk_contact_param pp = rn_contact_pair_param(net, pa, pb);
+    const rnk_contact_param *p = &pp;
     size_t idx[12];
-    double q[12], vl[12], loc[144], E = 0.0;
+    double q[12], vl[12], loc[144], E = 0.0, gap = 0.0;
     int rc = RNK_OK;
-    rn_contact_pair_idx(net, L.pair[2 * i], L.pair[2 * i + 1], idx);
+    rn_contact_pair_idx(net, pa, pb, idx);
     rn_gather_idx(net, a->x, idx, 12, q);
+    if (!rn_contact_in_pattern(net, pa, pb)) {
+      if (rnk_contact_gap(q, p->radius, &gap) == RNK_OK && gap >= p->dhat)
+        continue; /* no force, no Hessian block */
+      st = rn_contact_pair_fail(
+          net, RN_DEGENERATE, a->where, pa, pb,
+          gap > 0.0 ? "two edges outside the Hessian pattern of the accepted state "
+                      "come within the activation distance (a shorter step brings "
+                      "them into the pattern)"
+                    : "interpenetrating edges (or a zero-length edge)");
+      break;
+    }
     switch (a->op) {
     case OP_ENERGY:
       rc = rnk_contact_energy(q, p, &E);
@@ -481,8 +496,7 @@ static rn_status contact_eval(const rn_network *net, eval_args *a) {
       break;
     }
     if (rc != RNK_OK)
-      st = rn_contact_pair_fail(net, RN_DEGENERATE, a->where, L.pair[2 * i],
-                                L.pair[2 * i + 1],
+      st = rn_contact_pair_fail(net, RN_DEGENERATE, a->where, pa, pb,
                                 "interpenetrating edges (or a zero-length edge)");
     a->E[RN_TERM_LOAD] += E; /* (rodnet_contact.h) */
   }

@@ -268,7 +268,7 @@ rn_status rn_network_set_load_factor(rn_network *net, double lambda) {
     return RN_OK;
   }
   rn_ramp_load_factor(net, lambda);
-  return RN_OK;
+  return rn_contact_pattern_update(net, 0, where); /* prescribed positions moved */
 }
 
 /* Largest |change of an edge vector| / |edge| over the rod edges, between the

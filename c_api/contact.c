@@ -12,25 +12,29 @@
 #include "network_internal.h"
 
 /* One contact edge: its rod and index, the full indices of its two end
- * vertices (p0 then p1, 3 components each), and the rest arc length from the
- * rod's start to each of its ends. */
+ * vertices (p0 then p1, 3 components each), the rest arc length from the
+ * rod's start to each of its ends, and its rod's contact radius. */
 typedef struct rn_contact_edge {
   int rod, j;
   size_t idx[6];
-  double s0, s1;
+  double s0, s1, r;
 } rn_contact_edge;
 
 struct rn_contact {
-  rnk_contact_param p; /* radius: the sum of two rods' radii */
-  double radius;       /* of one rod */
+  rnk_contact_param p; /* radius: twice the default radius */
+  double radius;       /* the default radius of a rod */
+  double *rrod;        /* per-rod radius [nrad] (< 0: the default) */
+  int nrad;
   int nedges;
   rn_contact_edge *e;
-  double *len; /* rest length of each rod [nrods] */
+  double *len;   /* rest length of each rod [nrods] */
+  double margin; /* of the pattern pairs beyond the barrier's reach */
+  /* The pattern pairs (a ne + b, a < b, ascending): the pairs whose boxes,
+   * inflated by the radius, dhat / 2 and margin / 2, overlapped at the accepted
+   * state the pattern was built at. */
+  uint64_t *pat;
+  size_t npat;
 };
-
-/* Largest number of reduced position rows coupled by the contact pattern
- * (every contact vertex with every other one: rows^2 entries). */
-enum { RN_CONTACT_MAX_ROWS = 6000 };
 
 rn_status rn_network_set_contact(rn_network *net, double distance, double stiffness,
                                  double radius) {
@@ -69,17 +73,57 @@ int rn_network_get_contact(const rn_network *net, double *distance, double *stif
   return 1;
 }
 
+rn_status rn_network_set_rod_contact_radius(rn_network *net, int rod, double radius) {
+  static const char *where = "rn_network_set_rod_contact_radius";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (!net->contact)
+    return rn_fail(net->ctx, RN_ERR_STATE, where,
+                   "contact is off (rn_network_set_contact first)");
+  if (rod < 0 || rod >= net->nrods)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d out of range [0, %d)", rod,
+                   net->nrods);
+  if (!(isfinite(radius) && radius >= 0.0))
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "rod %d contact radius %g: must be >= 0",
+                   rod, radius);
+  rn_contact *c = net->contact;
+  if (rod >= c->nrad) {
+    double *p = realloc(c->rrod, (size_t)net->nrods * sizeof(double));
+    if (!p) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+    for (int k = c->nrad; k < net->nrods; ++k) p[k] = -1.0;
+    c->rrod = p;
+    c->nrad = net->nrods;
+  }
+  c->rrod[rod] = radius;
+  return RN_OK;
+}
+
+double rn_network_rod_contact_radius(const rn_network *net, int rod) {
+  if (!net || !net->contact || rod < 0 || rod >= net->nrods) return NAN;
+  const rn_contact *c = net->contact;
+  return rod < c->nrad && c->rrod[rod] >= 0.0 ? c->rrod[rod] : c->radius;
+}
+
+unsigned long rn_network_pattern_version(const rn_network *net) {
+  return net ? net->pattern_version : 0;
+}
+
 void rn_contact_unbuild(rn_network *net) {
   if (!net->contact) return;
   free(net->contact->e);
   free(net->contact->len);
+  free(net->contact->pat);
   net->contact->e = NULL;
   net->contact->len = NULL;
+  net->contact->pat = NULL;
+  net->contact->npat = 0;
   net->contact->nedges = 0;
 }
 
 void rn_contact_free(rn_network *net) {
   rn_contact_unbuild(net);
+  if (net->contact) free(net->contact->rrod);
   free(net->contact);
   net->contact = NULL;
 }
@@ -109,37 +153,18 @@ rn_status rn_contact_build(rn_network *net, const char *where) {
       e->s0 = s;
       s += r->lbar[j];
       e->s1 = s;
+      e->r = rn_network_rod_contact_radius(net, ir);
     }
     c->len[ir] = s;
   }
   c->nedges = ne;
-  size_t rows = 0;
-  unsigned char *flag = calloc(net->nred ? net->nred : 1, 1);
-  if (!flag) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  rows = rn_contact_pattern_flags(net, flag);
-  free(flag);
-  if (rows > RN_CONTACT_MAX_ROWS)
-    return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "contact couples %zu free position DOFs, more than the %d the "
-                   "contact Hessian pattern (all contact vertices with each other) "
-                   "allows; see docs/contact.md",
-                   rows, (int)RN_CONTACT_MAX_ROWS);
+  /* the pattern's margin: dhat plus half the mean rest edge length */
+  double sum = 0.0;
+  for (int ir = 0; ir < net->nrods; ++ir) sum += c->len[ir];
+  c->margin = c->p.dhat + (ne > 0 ? 0.5 * sum / ne : 0.0);
+  c->pat = NULL;
+  c->npat = 0;
   return RN_OK;
-}
-
-size_t rn_contact_pattern_flags(const rn_network *net, unsigned char *flag) {
-  const rn_contact *c = net->contact;
-  size_t rows = 0;
-  if (!c) return 0;
-  for (int k = 0; k < c->nedges; ++k)
-    for (int m = 0; m < 6; ++m) {
-      int64_t r = net->map[c->e[k].idx[m]];
-      if (r >= 0 && !flag[r]) {
-        flag[r] = 1;
-        rows++;
-      }
-    }
-  return rows;
 }
 
 /* Arc length along rod e's centre line from its end `end` to the nearer end
@@ -155,7 +180,7 @@ static double arc_to_end(const rn_contact *c, const rn_contact_edge *e, int end)
 static int excluded(const rn_network *net, const rn_contact_edge *a,
                     const rn_contact_edge *b) {
   const rn_contact *c = net->contact;
-  const double reach = c->p.radius + c->p.dhat;
+  const double reach = a->r + b->r + c->p.dhat;
   if (a->rod == b->rod) {
     if (abs(a->j - b->j) <= 1) return 1;
     const rn_contact_edge *lo = a->j < b->j ? a : b, *hi = a->j < b->j ? b : a;
@@ -209,8 +234,8 @@ static int push_pair(rn_contact_list *L, int a, int b) {
 }
 
 /* Broad phase: the non-excluded pairs whose boxes (of the ends in P, and in Q
- * if given: the box of the motion), inflated by pad each, overlap; sort and
- * sweep along x. */
+ * if given: the box of the motion), inflated by their edge's radius plus pad
+ * each, overlap; sort and sweep along x. */
 static rn_status broad_phase(const rn_network *net, const double *P, const double *Q,
                              double pad, rn_contact_list *L) {
   const rn_contact *c = net->contact;
@@ -226,8 +251,8 @@ static rn_status broad_phase(const rn_network *net, const double *P, const doubl
         lo = fmin(lo, fmin(Q[6 * k + d], Q[6 * k + 3 + d]));
         hi = fmax(hi, fmax(Q[6 * k + d], Q[6 * k + 3 + d]));
       }
-      bk->lo[d] = lo - pad;
-      bk->hi[d] = hi + pad;
+      bk->lo[d] = lo - pad - c->e[k].r;
+      bk->hi[d] = hi + pad + c->e[k].r;
     }
   }
   qsort(b, (size_t)c->nedges, sizeof(box), cmp_box);
@@ -255,8 +280,10 @@ void rn_contact_pair_idx(const rn_network *net, int a, int b, size_t idx[12]) {
   memcpy(idx + 6, net->contact->e[b].idx, 6 * sizeof(size_t));
 }
 
-const rnk_contact_param *rn_contact_param(const rn_network *net) {
-  return &net->contact->p;
+rnk_contact_param rn_contact_pair_param(const rn_network *net, int a, int b) {
+  rnk_contact_param p = net->contact->p;
+  p.radius = net->contact->e[a].r + net->contact->e[b].r;
+  return p;
 }
 
 rn_status rn_contact_pair_fail(const rn_network *net, rn_status st, const char *where,
@@ -280,14 +307,14 @@ static rn_status ccd_check(const rn_network *net, const double *P0, const double
                            const char *where) {
   const rn_contact *c = net->contact;
   rn_contact_list L = {NULL, 0, 0};
-  rn_status st = broad_phase(net, P0, P, 0.5 * (c->p.radius + c->p.dhat), &L);
+  rn_status st = broad_phase(net, P0, P, 0.5 * c->p.dhat, &L);
   if (st) return rn_fail(net->ctx, st, where, "out of memory");
   for (size_t i = 0; i < L.n && !st; ++i) {
     double x0[12], x1[12];
     int hit = 1, a = L.pair[2 * i], b = L.pair[2 * i + 1];
     pair_stencil(P0, a, b, x0);
     pair_stencil(P, a, b, x1);
-    int rc = rnk_contact_ccd(x0, x1, c->p.radius, c->p.dhat, &hit);
+    int rc = rnk_contact_ccd(x0, x1, c->e[a].r + c->e[b].r, c->p.dhat, &hit);
     if (rc != RNK_OK || hit)
       st = rn_contact_pair_fail(net, RN_DEGENERATE, where, a, b,
                                 "the motion from the accepted state brings two edges "
@@ -315,11 +342,84 @@ rn_status rn_contact_candidates(const rn_network *net, const double *x, int ccd,
     else if (st)
       st = rn_fail(net->ctx, st, where, "out of memory");
   }
-  if (!st && (st = broad_phase(net, P, NULL, 0.5 * (c->p.radius + c->p.dhat), L)))
+  if (!st && (st = broad_phase(net, P, NULL, 0.5 * c->p.dhat, L)))
     st = rn_fail(net->ctx, st, where, "out of memory");
   free(P);
   free(P0);
   if (st) rn_contact_list_free(L);
+  return st;
+}
+
+/* ---- the Hessian pattern's pairs ------------------------------------------- */
+
+static int cmp_u64(const void *a, const void *b) {
+  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return (x > y) - (x < y);
+}
+
+static uint64_t pair_key(const rn_contact *c, int a, int b) {
+  return (uint64_t)a * (uint64_t)c->nedges + (uint64_t)b;
+}
+
+int rn_contact_in_pattern(const rn_network *net, int a, int b) {
+  const rn_contact *c = net->contact;
+  const uint64_t k = pair_key(c, a, b);
+  return c->npat && bsearch(&k, c->pat, c->npat, sizeof(uint64_t), cmp_u64) != NULL;
+}
+
+size_t rn_contact_pattern_count(const rn_network *net) {
+  return net->contact ? net->contact->npat : 0;
+}
+
+void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]) {
+  const rn_contact *c = net->contact;
+  const uint64_t k = c->pat[i];
+  rn_contact_pair_idx(net, (int)(k / (uint64_t)c->nedges), (int)(k % (uint64_t)c->nedges),
+                      idx);
+}
+
+rn_status rn_contact_pattern_update(rn_network *net, int force, const char *where) {
+  rn_contact *c = net->contact;
+  rn_contact_list L = {NULL, 0, 0};
+  rn_status st = RN_OK;
+  if (!c || !c->nedges) return RN_OK;
+  double *P = malloc(6 * (size_t)c->nedges * sizeof(double));
+  if (!P) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  edge_positions(net, NULL, P);
+  if (!force) { /* every pair within half the margin is in the pattern: keep it */
+    if ((st = broad_phase(net, P, NULL, 0.5 * c->p.dhat + 0.25 * c->margin, &L))) {
+      free(P);
+      return rn_fail(net->ctx, st, where, "out of memory");
+    }
+    size_t i = 0;
+    while (i < L.n && rn_contact_in_pattern(net, L.pair[2 * i], L.pair[2 * i + 1])) ++i;
+    force = i < L.n;
+    rn_contact_list_free(&L);
+  }
+  if (force) {
+    uint64_t *keep = c->pat, *keys = NULL;
+    size_t nkeep = c->npat;
+    st = broad_phase(net, P, NULL, 0.5 * (c->p.dhat + c->margin), &L);
+    if (!st && !(keys = malloc((L.n ? L.n : 1) * sizeof(uint64_t)))) st = RN_ERR_ALLOC;
+    if (!st) {
+      for (size_t i = 0; i < L.n; ++i)
+        keys[i] = pair_key(c, L.pair[2 * i], L.pair[2 * i + 1]);
+      qsort(keys, L.n, sizeof(uint64_t), cmp_u64);
+      c->pat = keys;
+      c->npat = L.n;
+      if ((st = rn_rebuild_hessian_pattern(net))) { /* the old pattern stays */
+        c->pat = keep;
+        c->npat = nkeep;
+        free(keys);
+      } else {
+        free(keep);
+        net->pattern_version++;
+      }
+    }
+    rn_contact_list_free(&L);
+    if (st) st = rn_fail(net->ctx, st, where, "out of memory");
+  }
+  free(P);
   return st;
 }
 
@@ -337,13 +437,13 @@ rn_status rn_contact_check_initial(const rn_network *net, const char *where) {
     const rn_rod *r = &net->rods[c->e[k].rod];
     memcpy(P + 6 * k, r->x0 + 3 * c->e[k].j, 6 * sizeof(double));
   }
-  if ((st = broad_phase(net, P, NULL, 0.5 * (c->p.radius + c->p.dhat), &L)))
+  if ((st = broad_phase(net, P, NULL, 0.5 * c->p.dhat, &L)))
     st = rn_fail(net->ctx, st, where, "out of memory");
   for (size_t i = 0; i < L.n && !st; ++i) {
     double x[12], gap = 0.0;
     int a = L.pair[2 * i], b = L.pair[2 * i + 1];
     pair_stencil(P, a, b, x);
-    if (rnk_contact_gap(x, c->p.radius, &gap) != RNK_OK || !(gap > 0.0))
+    if (rnk_contact_gap(x, c->e[a].r + c->e[b].r, &gap) != RNK_OK || !(gap > 0.0))
       st = rn_contact_pair_fail(net, RN_ERR_GEOMETRY, where, a, b,
                                 "the initial state interpenetrates (distance below "
                                 "twice the contact radius)");
@@ -368,10 +468,12 @@ rn_status rn_network_contact_stats(const rn_network *net, const double *x,
     for (size_t i = 0; i < L.n && !st; ++i) {
       size_t idx[12];
       double q[12], g[12], gap = 0.0, E = 0.0, f[3];
+      const rnk_contact_param pp =
+          rn_contact_pair_param(net, L.pair[2 * i], L.pair[2 * i + 1]);
       rn_contact_pair_idx(net, L.pair[2 * i], L.pair[2 * i + 1], idx);
       rn_gather_idx(net, x, idx, 12, q);
-      if (rnk_contact_gap(q, net->contact->p.radius, &gap) != RNK_OK ||
-          rnk_contact_grad(q, &net->contact->p, &E, g) != RNK_OK) {
+      if (rnk_contact_gap(q, pp.radius, &gap) != RNK_OK ||
+          rnk_contact_grad(q, &pp, &E, g) != RNK_OK) {
         st = rn_contact_pair_fail(net, RN_DEGENERATE, where, L.pair[2 * i],
                                   L.pair[2 * i + 1],
                                   "interpenetrating edges (or a zero-length edge)");

@@ -274,6 +274,7 @@ rn_status rn_network_finalize(rn_network *net) {
       rn_ramp_load_factor(net, target);
       st = init_moments(net);
     }
+    if (!st) st = rn_contact_pattern_update(net, 1, where);
     if (st) {
       undo_finalize(net);
       return st;

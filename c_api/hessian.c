@@ -1,4 +1,5 @@
-/* hessian.c - CSR pattern of the reduced Hessian (fixed at finalize) and the
+/* hessian.c - CSR pattern of the reduced Hessian (built at finalize; rebuilt
+ * when the contact pattern pairs change, contact.c) and the
  * scatter of stencil blocks into it.  Rows collect the columns of every
  * stencil touching them: rod stencils as ranges of their rod's full vector,
  * joint stencils by their index lists, through the aliases of joint
@@ -142,10 +143,47 @@ static int push(col_buf *b, int64_t c) {
   return 0;
 }
 
+/* Contact: for each reduced row, the reduced columns of the stencils of the
+ * pattern's contact pairs (contact.c) that contain it (CSR, with duplicates). */
+typedef struct contact_rows {
+  size_t *ptr;  /* [nred + 1] */
+  int32_t *col; /* [ptr[nred]] */
+} contact_rows;
+
+static int contact_rows_build(const rn_network *net, contact_rows *C) {
+  const size_t np = rn_contact_pattern_count(net);
+  C->ptr = calloc(net->nred + 1, sizeof(size_t));
+  if (!C->ptr) return -1;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t i = 0; i < np; ++i) {
+      size_t idx[12];
+      int64_t m[12];
+      int nm = 0;
+      rn_contact_pattern_idx(net, i, idx);
+      for (int k = 0; k < 12; ++k)
+        if ((m[nm] = net->map[idx[k]]) >= 0) nm++;
+      for (int k = 0; k < nm; ++k) {
+        if (pass == 0) {
+          C->ptr[m[k] + 1] += (size_t)nm;
+          continue;
+        }
+        for (int l = 0; l < nm; ++l) C->col[C->ptr[m[k]]++] = (int32_t)m[l];
+      }
+    }
+    if (pass == 0) {
+      for (size_t r = 0; r < net->nred; ++r) C->ptr[r + 1] += C->ptr[r];
+      if (!(C->col = malloc((C->ptr[net->nred] + 1) * sizeof(int32_t)))) return -1;
+    }
+  }
+  for (size_t r = net->nred; r > 0; --r) C->ptr[r] = C->ptr[r - 1];
+  C->ptr[0] = 0;
+  return 0;
+}
+
 /* Candidate columns of row r appended to b (unsorted, with duplicates). */
 static int row_candidates(const rn_network *net, const row_lists *L, const size_t *lo,
                           const size_t *hi, const unsigned char *touch,
-                          const unsigned char *cflag, size_t r, col_buf *b) {
+                          const contact_rows *C, size_t r, col_buf *b) {
   for (size_t p = L->fptr[r]; p < L->fptr[r + 1]; ++p) {
     size_t a = L->full[p];
     for (size_t c = lo[a]; c <= hi[a]; ++c)
@@ -162,9 +200,9 @@ static int row_candidates(const rn_network *net, const row_lists *L, const size_
         if (push(b, (int64_t)q)) return -1;
       }
   }
-  if (cflag && cflag[r]) /* contact: every contact vertex with every other */
-    for (size_t q = 0; q < net->nred; ++q)
-      if (cflag[q] && push(b, (int64_t)q)) return -1;
+  if (C->ptr) /* contact: the pattern pairs' stencils */
+    for (size_t p = C->ptr[r]; p < C->ptr[r + 1]; ++p)
+      if (push(b, C->col[p])) return -1;
   return 0;
 }
 
@@ -172,11 +210,11 @@ static int row_candidates(const rn_network *net, const row_lists *L, const size_
  * the column buffer (for plain rods they are already sorted and unique). */
 static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo,
                            const size_t *hi, const unsigned char *touch,
-                           const unsigned char *cflag, col_buf *b) {
+                           const contact_rows *C, col_buf *b) {
   for (size_t row = 0; row < net->nred; ++row) {
     size_t start = b->n, u = start;
     net->rowptr[row] = (int64_t)start;
-    if (row_candidates(net, L, lo, hi, touch, cflag, row, b)) return RN_ERR_ALLOC;
+    if (row_candidates(net, L, lo, hi, touch, C, row, b)) return RN_ERR_ALLOC;
     if (!increasing(b->c + start, b->n - start)) /* rows away from joints are */
       sort_columns(b->c + start, b->n - start);
     for (size_t p = start; p < b->n; ++p) {
@@ -357,7 +395,8 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   size_t *hi = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   row_lists L = {NULL, NULL, NULL, NULL};
   col_buf b = {NULL, 0, 0};
-  unsigned char *touch = NULL, *cflag = NULL;
+  unsigned char *touch = NULL;
+  contact_rows C = {NULL, NULL};
   rn_status st = RN_ERR_ALLOC;
   net->rowptr = malloc((net->nred + 1) * sizeof(int64_t));
   if (!lo || !hi || !net->rowptr || row_lists_build(net, &L)) goto done;
@@ -368,12 +407,8 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
     if (!touch) goto done;
     rn_cell_pattern_flags(net, lo, hi, touch);
   }
-  if (net->contact) { /* rows of contact vertex positions */
-    cflag = calloc(net->nred ? net->nred : 1, 1);
-    if (!cflag) goto done;
-    rn_contact_pattern_flags(net, cflag);
-  }
-  if (fill_rows(net, &L, lo, hi, touch, cflag, &b)) goto done;
+  if (net->contact && contact_rows_build(net, &C)) goto done;
+  if (fill_rows(net, &L, lo, hi, touch, &C, &b)) goto done;
   net->nnz = b.n;
   { /* shrink to fit (also allocates when there are no entries) */
     int32_t *p = realloc(b.c, (b.n ? b.n : 1) * sizeof(int32_t));
@@ -386,12 +421,45 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   if (st == RN_OK) st = build_assign(net);
 done:
   free(touch);
-  free(cflag);
+  free(C.ptr);
+  free(C.col);
   free(b.c);
   free(lo);
   free(hi);
   row_lists_free(&L);
   return st;
+}
+
+rn_status rn_rebuild_hessian_pattern(rn_network *net) {
+  int64_t *rowptr = net->rowptr, *hzero = net->hzero;
+  int32_t *col = net->col;
+  rn_band_row *band = net->band;
+  int *rod_direct = net->rod_direct;
+  size_t nhzero = net->nhzero, nnz = net->nnz, bandwidth = net->bandwidth;
+  net->rowptr = NULL;
+  net->col = NULL;
+  net->band = NULL;
+  net->rod_direct = NULL;
+  net->hzero = NULL;
+  rn_status st = rn_build_hessian_pattern(net);
+  if (st) { /* back to the old one */
+    rn_hessian_pattern_free(net);
+    net->rowptr = rowptr;
+    net->col = col;
+    net->band = band;
+    net->rod_direct = rod_direct;
+    net->hzero = hzero;
+    net->nhzero = nhzero;
+    net->nnz = nnz;
+    net->bandwidth = bandwidth;
+    return st;
+  }
+  free(rowptr);
+  free(col);
+  free(band);
+  free(rod_direct);
+  free(hzero);
+  return RN_OK;
 }
 
 /* Position of column c in row r, or -1. */

@@ -419,7 +419,7 @@ rn_status rn_network_set_dofs(rn_network *net, const double *x) {
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
   rn_expand_state(net, x, net->xfull); /* every alias of a reduced DOF */
   net->lambda_x = net->lambda;
-  return RN_OK;
+  return rn_contact_pattern_update(net, 0, where);
 }
 
 /* ---- stencil gather / scatter --------------------------------------------- */

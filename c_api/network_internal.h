@@ -159,13 +159,14 @@ struct rn_network {
   size_t nhzero;
   size_t nnz;
   size_t bandwidth;
-  struct rn_part_data *part;  /* NULL: a whole network (part.c) */
-  struct rn_cell *cell;       /* NULL: not periodic (periodic.c) */
-  int model;                  /* rn_model asked for (planar.c) */
-  int planar;                 /* 1: the planar model is in use (set at finalize) */
-  int planar_ok;              /* 1: the network qualifies for it (set at finalize) */
-  char planar_why[240];       /* if not: what leaves the plane */
-  struct rn_contact *contact; /* NULL: no contact (contact.c) */
+  unsigned long pattern_version; /* + 1 at each rebuild (rodnet_contact.h) */
+  struct rn_part_data *part;     /* NULL: a whole network (part.c) */
+  struct rn_cell *cell;          /* NULL: not periodic (periodic.c) */
+  int model;                     /* rn_model asked for (planar.c) */
+  int planar;                    /* 1: the planar model is in use (set at finalize) */
+  int planar_ok;                 /* 1: the network qualifies for it (set at finalize) */
+  char planar_why[240];          /* if not: what leaves the plane */
+  struct rn_contact *contact;    /* NULL: no contact (contact.c) */
 };
 
 /* ---- parts of a network (part.c) ------------------------------------------
@@ -458,6 +459,9 @@ void rn_ramp_load_factor(rn_network *net, double lambda);
 int rn_ramp_steps(double turn);
 /* Builds the Hessian pattern (hessian.c). */
 rn_status rn_build_hessian_pattern(rn_network *net);
+/* Builds the pattern again (contact pairs changed); keeps the old one and
+ * returns RN_ERR_ALLOC on failure. */
+rn_status rn_rebuild_hessian_pattern(rn_network *net);
 /* Adds the free-free entries of a dense n x n stencil block at full index s
  * into CSR values (hessian.c). */
 void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
@@ -499,9 +503,18 @@ typedef struct rn_contact_list {
 rn_status rn_contact_build(rn_network *net, const char *where);
 void rn_contact_unbuild(rn_network *net);
 void rn_contact_free(rn_network *net);
-/* Sets flag[r] for the reduced rows of contact vertex positions; returns how
- * many rows it flagged. */
-size_t rn_contact_pattern_flags(const rn_network *net, unsigned char *flag);
+/* The Hessian pattern's contact pairs (docs/contact.md, "Hessian pattern"):
+ * the pairs whose boxes, inflated by the radius, dhat / 2 and margin / 2,
+ * overlap at the accepted state.  rn_contact_pattern_update keeps them (force
+ * 0) if every pair within half the margin at the accepted state is one of
+ * them, else rebuilds them there and the CSR pattern with them
+ * (pattern_version + 1); the old pattern stays on failure.  Called at
+ * finalize and wherever the accepted state changes. */
+rn_status rn_contact_pattern_update(rn_network *net, int force, const char *where);
+int rn_contact_in_pattern(const rn_network *net, int a, int b);
+size_t rn_contact_pattern_count(const rn_network *net);
+/* The 12 full indices of pattern pair i. */
+void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]);
 /* RN_ERR_GEOMETRY if the initial state interpenetrates. */
 rn_status rn_contact_check_initial(const rn_network *net, const char *where);
 /* The pairs within the barrier's reach at x (x NULL: the accepted state); with
@@ -512,7 +525,8 @@ rn_status rn_contact_candidates(const rn_network *net, const double *x, int ccd,
 void rn_contact_list_free(rn_contact_list *L);
 /* The 12 full indices of pair (a, b): (p0, p1) of edge a, then of edge b. */
 void rn_contact_pair_idx(const rn_network *net, int a, int b, size_t idx[12]);
-const rnk_contact_param *rn_contact_param(const rn_network *net);
+/* The kernel parameters of pair (a, b): radius the sum of the rods' radii. */
+rnk_contact_param rn_contact_pair_param(const rn_network *net, int a, int b);
 /* rn_fail with a message naming the pair's rods and edges. */
 rn_status rn_contact_pair_fail(const rn_network *net, rn_status st, const char *where,
                                int a, int b, const char *what);

@@ -251,5 +251,6 @@ rn_status rn_network_update_reference(rn_network *net, double *x) {
     net->lambda_x = net->lambda;
   }
   ref_update_free(&u);
+  if (!st) st = rn_contact_pattern_update(net, 0, where);
   return st;
 }

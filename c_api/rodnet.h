@@ -296,7 +296,9 @@ enum { RN_TERM_STRETCH = 0, RN_TERM_BEND, RN_TERM_TWIST, RN_TERM_LOAD, RN_TERM_C
 rn_status rn_network_energy_terms(const rn_network *net, const double *x, double *E);
 
 /* Sparse Hessian in CSR, both triangles, on the reduced DOFs.  The pattern is
- * fixed at finalize (borrowed arrays valid until destroy):
+ * fixed at finalize (borrowed arrays valid until destroy), except with contact,
+ * where a new accepted state may rebuild it (rn_network_pattern_version in
+ * rodnet_contact.h; the arrays are then valid until the version changes):
  * rowptr[num_dofs+1], col[nnz] sorted per row. */
 rn_status rn_network_hessian_pattern(const rn_network *net, size_t *nnz,
                                      const int64_t **rowptr, const int32_t **col);

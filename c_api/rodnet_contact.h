@@ -29,14 +29,33 @@
 extern "C" {
 #endif
 
-/* Switches contact on, before finalize (off by default).  RN_ERR_ARG unless
- * distance > 0, stiffness > 0 and radius >= 0 (finite); RN_ERR_STATE after
- * finalize or in a part of a distributed network.  Finalize then fails with
- * RN_ERR_GEOMETRY if the initial state interpenetrates (naming the pair),
- * RN_ERR_STATE for a periodic cell, RN_ERR_RANGE above 6000 free position
- * DOFs in contact edges (the Hessian pattern couples all of them). */
+/* Switches contact on, before finalize (off by default); radius is every
+ * rod's unless rn_network_set_rod_contact_radius sets another.  RN_ERR_ARG
+ * unless distance > 0, stiffness > 0 and radius >= 0 (finite); RN_ERR_STATE
+ * after finalize or in a part of a distributed network.  Finalize then fails
+ * with RN_ERR_GEOMETRY if the initial state interpenetrates (naming the pair),
+ * RN_ERR_STATE for a periodic cell. */
 rn_status rn_network_set_contact(rn_network *net, double distance, double stiffness,
                                  double radius);
+
+/* The contact radius of one rod (0-based index of an added rod), before
+ * finalize and after rn_network_set_contact: a pair's gap is the distance of
+ * its edges minus the sum of their rods' radii.  RN_ERR_STATE without contact
+ * or after finalize, RN_ERR_ARG for a bad rod or a radius < 0. */
+rn_status rn_network_set_rod_contact_radius(rn_network *net, int rod, double radius);
+/* A rod's contact radius (NaN without contact or for a bad rod). */
+double rn_network_rod_contact_radius(const rn_network *net, int rod);
+
+/* The version of the Hessian's CSR pattern (rn_network_hessian_pattern).  With
+ * contact the pattern holds the contact pairs near the accepted state (pairs
+ * whose edge boxes, inflated by the radii, distance and a margin, overlap) and
+ * is rebuilt when a new accepted state (rn_network_update_reference,
+ * rn_network_set_dofs, rn_network_state_restore, rn_network_set_load_factor)
+ * brings other pairs near: then the version changes and the pointers the last
+ * rn_network_hessian_pattern returned are invalid.  Evaluations at a trial
+ * state where a pair outside the pattern comes within distance return
+ * RN_DEGENERATE.  Without contact the version never changes. */
+unsigned long rn_network_pattern_version(const rn_network *net);
 
 /* 1 (and the settings; any pointer may be NULL) if contact is on, else 0. */
 int rn_network_get_contact(const rn_network *net, double *distance, double *stiffness,

@@ -134,7 +134,10 @@ static rn_status put_contact(json_out *o, rn_network *net) {
   fputs("  \"contact\": {", o->f);
   for (int k = 0; k < 6; k++) {
     fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
-    put_num(o, vals[k]);
+    if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
+      fputs("null", o->f); /* no pair within reach: a valid result */
+    else
+      put_num(o, vals[k]);
   }
   fprintf(o->f, ", \"active_pairs\": %zu},\n", cs.active);
   return RN_OK;
@@ -150,7 +153,10 @@ static void put_equilibrium(json_out *o) {
   fputs("  \"equilibrium\": {", o->f);
   for (int k = 0; k < 6; k++) {
     fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
-    put_num(o, vals[k]);
+    if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
+      fputs("null", o->f); /* no pair within reach: a valid result */
+    else
+      put_num(o, vals[k]);
   }
   fputs(",\n    \"relative_force_residual\": ", o->f);
   put_num(o, in->force_scale > 0.0 ? in->force_residual / in->force_scale : 0.0);

@@ -512,9 +512,30 @@ void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt) {
 
 /* ---- top level ------------------------------------------------------------- */
 
-/* "contact": {"distance": dhat, "stiffness": kappa, "radius": r} (docs/contact.md). */
+/* "radii": {"rod name": r, ...} of "contact": the rods whose contact radius
+ * differs from "radius". */
+static rn_status read_contact_radii(rn_scene_parser *p, const cJSON *v) {
+  rn_jwalk *w = &p->w;
+  rn_status st = rn_jv_object(w, v);
+  const cJSON *item;
+  cJSON_ArrayForEach(item, v) {
+    if (st) break;
+    size_t mark = rn_jwalk_key(w, item->string);
+    double r = 0.0;
+    int rod = rn_scene_find_rod(p->scene, item->string);
+    if (rod < 0) st = rn_jwalk_error(w, "no rod named \"%s\"", item->string);
+    if (!st) st = rn_jv_number(w, item, RN_J_NONNEG, &r);
+    if (!st && (st = rn_network_set_rod_contact_radius(p->scene->net, rod, r)))
+      st = rn_jwalk_lib_error(w, st);
+    rn_jwalk_pop(w, mark);
+  }
+  return st;
+}
+
+/* "contact": {"distance": dhat, "stiffness": kappa, "radius": r, "radii": {...}}
+ * (docs/contact.md). */
 static rn_status read_contact(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"distance", "stiffness", "radius", NULL};
+  static const char *const keys[] = {"distance", "stiffness", "radius", "radii", NULL};
   double dhat = 0.0, kappa = 0.0, r = 0.0;
   rn_jwalk *w = &p->w;
   rn_status st = rn_jv_object(w, v);
@@ -523,8 +544,14 @@ static rn_status read_contact(rn_scene_parser *p, const cJSON *v) {
   if (!st) st = rn_jm_number(w, v, "stiffness", 1, RN_J_POSITIVE, &kappa, NULL);
   if (!st) st = rn_jm_number(w, v, "radius", 1, RN_J_NONNEG, &r, NULL);
   if (st) return st;
-  st = rn_network_set_contact(p->scene->net, dhat, kappa, r);
-  return st ? rn_jwalk_lib_error(w, st) : RN_OK;
+  if ((st = rn_network_set_contact(p->scene->net, dhat, kappa, r)))
+    return rn_jwalk_lib_error(w, st);
+  if (rn_jm_get(v, "radii")) {
+    size_t mark = rn_jwalk_key(w, "radii");
+    st = read_contact_radii(p, rn_jm_get(v, "radii"));
+    rn_jwalk_pop(w, mark);
+  }
+  return st;
 }
 
 /* The value of top-level key steps[i] (read in this order). */

@@ -58,6 +58,11 @@ BandedSpd::BandedSpd(size_t n, size_t kd) : n_(n), kd_(kd) {
 }
 
 bool BandedSpd::factor(const Problem &p, double shift, const double *m) {
+  if (p.bandwidth() != kd_) { // a new pattern (contact, Problem::pattern_version)
+    lapack_int((p.bandwidth() + 1) * (n_ > 0 ? n_ : 1), "band storage");
+    kd_ = p.bandwidth();
+    ab_.assign(n_ * (kd_ + 1), 0.0);
+  }
   ++p.counters.factorizations;
   load_band(p, shift, m, kd_, ab_);
   const int n = static_cast<int>(n_), kd = static_cast<int>(kd_), ld = kd + 1;

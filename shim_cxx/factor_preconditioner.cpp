@@ -54,7 +54,11 @@ void FactorPreconditioner::setup(System &sys) {
   const Clock::time_point t0 = Clock::now();
   Problem &p = serial->problem();
   if (!factor_) factor_ = make_spd_factor(p, kind_);
-  if (metric_.empty()) metric_ = diagonal_on_pattern(p, hessian_metric(p));
+  if (metric_d_.empty()) metric_d_ = hessian_metric(p);
+  if (metric_.empty() || metric_version_ != p.pattern_version()) {
+    metric_ = diagonal_on_pattern(p, metric_d_);
+    metric_version_ = p.pattern_version();
+  }
   sigma_ = factor_shifted(*factor_, p, 0.0, metric_.data());
   if (op_.is_null()) op_ = Teuchos::rcp(new FactorInverse(sys.map(), *factor_, stats_));
   ++stats_.setups;

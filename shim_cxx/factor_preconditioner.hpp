@@ -30,7 +30,9 @@ public:
 private:
   rn_factorization kind_;
   std::unique_ptr<SpdFactor> factor_;
-  std::vector<double> metric_; // D as CSR values on the Hessian's pattern
+  std::vector<double> metric_;       // D as CSR values on the Hessian's pattern
+  std::vector<double> metric_d_;     // D itself
+  unsigned long metric_version_ = 0; // of the pattern metric_ is on
   double sigma_ = 0.0;
   Teuchos::RCP<Tpetra::Operator<>> op_;
 };

@@ -79,6 +79,22 @@ private:
   mutable long applies_ = 0;
 };
 
+// W: applies the System's Hessian of the moment (with contact, assemble_hessian may
+// replace the matrix by one on a new pattern, system_serial.hpp).
+class CurrentHessian : public Tpetra::Operator<> {
+public:
+  explicit CurrentHessian(const System &sys) : sys_(sys) {}
+  Teuchos::RCP<const TMap> getDomainMap() const override { return sys_.map(); }
+  Teuchos::RCP<const TMap> getRangeMap() const override { return sys_.map(); }
+  void apply(const TMV &X, TMV &Y, Teuchos::ETransp mode, double alpha,
+             double beta) const override {
+    sys_.hessian()->apply(X, Y, mode, alpha, beta);
+  }
+
+private:
+  const System &sys_;
+};
+
 // Residual f(x) = grad E(x), Jacobian W = Hessian, preconditioner = the SPD M^{-1}.
 class GradientModel : public ::Thyra::StateFuncModelEvaluatorBase<double> {
   using InArgs = ::Thyra::ModelEvaluatorBase::InArgs<double>;
@@ -112,10 +128,11 @@ public:
   InArgs getNominalValues() const override { return nominal_; }
   InArgs createInArgs() const override { return in_; }
   Teuchos::RCP<::Thyra::LinearOpBase<double>> create_W_op() const override {
-    // The Hessian's CrsMatrix, whose values assemble_hessian() overwrites in place.
-    auto H = Teuchos::rcp_const_cast<TCrs>(sys_.hessian());
+    // The Hessian, whose values assemble_hessian() overwrites in place.
     return ::Thyra::createLinearOp<double, LO, GO>(
-        Teuchos::rcp_implicit_cast<Tpetra::Operator<>>(H), space_, space_);
+        Teuchos::rcp_implicit_cast<Tpetra::Operator<>>(
+            Teuchos::rcp(new CurrentHessian(sys_))),
+        space_, space_);
   }
   Teuchos::RCP<::Thyra::PreconditionerBase<double>> create_W_prec() const override {
     return Teuchos::rcp(new ::Thyra::DefaultPreconditioner<double>());

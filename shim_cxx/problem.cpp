@@ -3,6 +3,8 @@
 
 #include <chrono>
 
+#include "rodnet_contact.h"
+
 #include <algorithm>
 
 #include "cholmod_factor.hpp"
@@ -13,11 +15,24 @@ namespace rodnet {
 
 Problem::Problem(rn_network *net) : net_(net) {
   if (!net) throw Error(RN_ERR_ARG, "rn_solve: network is NULL");
-  check_status(rn_network_hessian_pattern(net, &nnz_, &rowptr_, &col_),
-               "rn_network_hessian_pattern");
   n_ = rn_network_num_dofs(net);
-  kd_ = rn_network_hessian_bandwidth(net);
+  contact_ = rn_network_get_contact(net, nullptr, nullptr, nullptr) == 1;
+  take_pattern();
+}
+
+void Problem::take_pattern() {
+  const int64_t *rowptr = nullptr;
+  const int32_t *col = nullptr;
+  check_status(rn_network_hessian_pattern(net_, &nnz_, &rowptr, &col),
+               "rn_network_hessian_pattern");
+  version_ = rn_network_pattern_version(net_);
+  kd_ = rn_network_hessian_bandwidth(net_);
+  rowptr_.assign(rowptr, rowptr + n_ + 1);
+  col_.assign(col, col + nnz_);
+  if (col_.empty()) col_.push_back(0); // (data() never NULL)
   vals_.assign(nnz_, 0.0);
+  analysis_.reset();
+  cholmod_analysis_.reset();
 }
 
 rn_status Problem::energy(const double *x, double *E) {
@@ -46,6 +61,7 @@ double seconds_since_steady(double t0) { return steady_now() - t0; }
 
 void Problem::assemble_hessian(const double *x) {
   ++counters.hessian;
+  if (rn_network_pattern_version(net_) != version_) take_pattern();
   const double t0 = steady_now();
   const rn_status st = check_status(rn_network_hessian_values(net_, x, vals_.data()),
                                     "rn_network_hessian_values");
@@ -75,14 +91,16 @@ void Problem::pattern_apply(const double *m, const double *v, double *y) const {
   }
 }
 
-std::shared_ptr<const SparseAnalysis> Problem::sparse_analysis() {
-  if (!analysis_) analysis_ = std::make_shared<SparseAnalysis>(n_, rowptr_, col_);
+std::shared_ptr<const SparseAnalysis> Problem::sparse_analysis() const {
+  if (!analysis_)
+    analysis_ = std::make_shared<SparseAnalysis>(n_, rowptr_.data(), col_.data());
   return analysis_;
 }
 
-std::shared_ptr<const CholmodAnalysis> Problem::cholmod_analysis() {
+std::shared_ptr<const CholmodAnalysis> Problem::cholmod_analysis() const {
   if (!cholmod_analysis_)
-    cholmod_analysis_ = std::make_shared<CholmodAnalysis>(n_, rowptr_, col_);
+    cholmod_analysis_ =
+        std::make_shared<CholmodAnalysis>(n_, rowptr_.data(), col_.data());
   return cholmod_analysis_;
 }
 

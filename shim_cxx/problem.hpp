@@ -40,6 +40,15 @@ public:
   rn_network *network() const { return net_; }
   size_t size() const { return n_; }
   size_t bandwidth() const { return kd_; }
+  // Whether the network has contact (its Hessian pattern may change, see below).
+  bool has_contact() const { return contact_; }
+  // The version of the Hessian pattern held here (rn_network_pattern_version when it
+  // was last taken).  With contact a new accepted state may rebuild the network's
+  // pattern; assemble_hessian() takes the new one (a copy: rowptr(), col() and the
+  // values stay consistent until then), resizes the values and drops the symbolic
+  // analyses.  Whatever is built on the pattern (factorisations, metrics on the
+  // pattern, Tpetra graphs) is rebuilt when this changes.
+  unsigned long pattern_version() const { return version_; }
 
   // Pure evaluations.  Return RN_OK or a positive, recoverable status (RN_DEGENERATE,
   // RN_OVERFLOW: a trial point to reject); throw Error on any error status.  E may be
@@ -57,8 +66,8 @@ public:
   // y = M v for CSR values m on the Hessian's pattern (not counted).
   void pattern_apply(const double *m, const double *v, double *y) const;
   // Entry (i, j) of the assembled Hessian in CSR form.
-  const int64_t *rowptr() const { return rowptr_; }
-  const int32_t *col() const { return col_; }
+  const int64_t *rowptr() const { return rowptr_.data(); }
+  const int32_t *col() const { return col_.data(); }
   const double *values() const { return vals_.data(); }
   // The assembled values, to be modified in place (e.g. a constrained Hessian for
   // path following: path.cpp); hessian_apply and the factorisations use them.
@@ -66,9 +75,10 @@ public:
 
   // Symbolic analysis of the Hessian's pattern for the sparse Cholesky factorisation
   // (sparse_cholesky.hpp), computed on first use and shared by every factorisation.
-  std::shared_ptr<const SparseAnalysis> sparse_analysis();
+  // (Of the pattern of pattern_version().)
+  std::shared_ptr<const SparseAnalysis> sparse_analysis() const;
   // The same for CHOLMOD (cholmod_factor.hpp).
-  std::shared_ptr<const CholmodAnalysis> cholmod_analysis();
+  std::shared_ptr<const CholmodAnalysis> cholmod_analysis() const;
 
   // Accept x as the new state (explicit reference update).  x is updated in place
   // (rigid-joint rotation DOFs move into the reference; the energy is unchanged).
@@ -77,13 +87,17 @@ public:
   mutable Counters counters; // counted by const users too (factorisations)
 
 private:
+  void take_pattern(); // the network's pattern, its version and bandwidth
+
   rn_network *net_;
   size_t n_ = 0, nnz_ = 0, kd_ = 0;
-  const int64_t *rowptr_ = nullptr;
-  const int32_t *col_ = nullptr;
+  bool contact_ = false;
+  unsigned long version_ = 0;
+  std::vector<int64_t> rowptr_;
+  std::vector<int32_t> col_;
   std::vector<double> vals_;
-  std::shared_ptr<const SparseAnalysis> analysis_;
-  std::shared_ptr<const CholmodAnalysis> cholmod_analysis_;
+  mutable std::shared_ptr<const SparseAnalysis> analysis_;
+  mutable std::shared_ptr<const CholmodAnalysis> cholmod_analysis_;
 };
 
 // Small dense vector helpers on host arrays of length n.

@@ -112,7 +112,11 @@ bool RodObjective::take_accepted(double *step_norm, double *energy_change) {
 void RodObjective::ensure_hessian() {
   if (hess_ok_) return;
   p_.assemble_hessian(x_acc_.data());
-  if (metric_.empty()) metric_ = diagonal_on_pattern(p_, hessian_metric(p_));
+  if (metric_d_.empty()) metric_d_ = hessian_metric(p_);
+  if (metric_.empty() || metric_version_ != p_.pattern_version()) {
+    metric_ = diagonal_on_pattern(p_, metric_d_);
+    metric_version_ = p_.pattern_version();
+  }
   hess_ok_ = true;
 }
 

@@ -66,6 +66,8 @@ private:
   rn_factorization factorization_;
   std::vector<double> x_acc_, x_prev_;
   std::vector<double> metric_; // D = |diag H| (first Hessian), CSR values on its pattern
+  std::vector<double> metric_d_;     // D itself
+  unsigned long metric_version_ = 0; // of the pattern metric_ is on
   std::vector<double> x_last_; // point of the last finite value() (E there: e_last_)
   double e_last_ = 0.0;
   double e_acc_ = 0.0, e_prev_ = 0.0, sigma_ = 0.0;

@@ -14,23 +14,38 @@ namespace rodnet {
 
 namespace {
 
+// The Problem's symbolic analysis for a sparse Cholesky class.
+std::shared_ptr<const SparseAnalysis> analysis_for(const Problem &p, SparseCholesky *) {
+  return p.sparse_analysis();
+}
+std::shared_ptr<const CholmodAnalysis> analysis_for(const Problem &p, CholmodCholesky *) {
+  return p.cholmod_analysis();
+}
+
 // SpdFactor on a sparse Cholesky class (SparseCholesky, CholmodCholesky) whose
-// symbolic analysis the Problem computes once and shares.
+// symbolic analysis the Problem computes once per pattern and shares; a new pattern
+// (contact: Problem::pattern_version) takes the new analysis.
 template <class Cholesky>
 class SparseSpd : public SpdFactor {
 public:
-  template <class Analysis>
-  explicit SparseSpd(std::shared_ptr<const Analysis> analysis)
-      : chol_(std::move(analysis)) {}
+  explicit SparseSpd(const Problem &p)
+      : chol_(new Cholesky(analysis_for(p, static_cast<Cholesky *>(nullptr)))),
+        version_(p.pattern_version()) {}
   bool factor(const Problem &p, double shift, const double *m) override {
+    if (p.pattern_version() != version_) {
+      chol_.reset(); // (the old factor first: one in memory at a time)
+      chol_.reset(new Cholesky(analysis_for(p, static_cast<Cholesky *>(nullptr))));
+      version_ = p.pattern_version();
+    }
     ++p.counters.factorizations;
-    return chol_.factor(p.values(), shift, m);
+    return chol_->factor(p.values(), shift, m);
   }
-  void solve(double *x) const override { chol_.solve(x); }
-  bool factored() const override { return chol_.factored(); }
+  void solve(double *x) const override { chol_->solve(x); }
+  bool factored() const override { return chol_->factored(); }
 
 private:
-  Cholesky chol_;
+  std::unique_ptr<Cholesky> chol_;
+  unsigned long version_;
 };
 
 } // namespace
@@ -39,15 +54,14 @@ rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested
   if (requested == RN_FACTOR_BANDED || requested == RN_FACTOR_SPARSE ||
       requested == RN_FACTOR_CHOLMOD)
     return requested;
+  if (p.has_contact()) return RN_FACTOR_SPARSE; // its pattern, and band, may change
   return p.bandwidth() <= kBandedMaxBandwidth ? RN_FACTOR_BANDED : RN_FACTOR_SPARSE;
 }
 
 std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested) {
   const rn_factorization kind = choose_factor_kind(p, requested);
-  if (kind == RN_FACTOR_SPARSE)
-    return std::make_unique<SparseSpd<SparseCholesky>>(p.sparse_analysis());
-  if (kind == RN_FACTOR_CHOLMOD)
-    return std::make_unique<SparseSpd<CholmodCholesky>>(p.cholmod_analysis());
+  if (kind == RN_FACTOR_SPARSE) return std::make_unique<SparseSpd<SparseCholesky>>(p);
+  if (kind == RN_FACTOR_CHOLMOD) return std::make_unique<SparseSpd<CholmodCholesky>>(p);
   const double bytes =
       8.0 * static_cast<double>(p.size()) * static_cast<double>(p.bandwidth() + 1);
   if (bytes > 4.0 * 1024.0 * 1024.0 * 1024.0)

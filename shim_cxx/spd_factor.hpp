@@ -39,8 +39,9 @@ public:
 // Largest half bandwidth for which the automatic choice is the banded factorisation.
 constexpr size_t kBandedMaxBandwidth = 64;
 
-// RN_FACTOR_AUTO: banded if the half bandwidth is at most kBandedMaxBandwidth,
-// sparse otherwise; the other values (banded, sparse, cholmod) force one.
+// RN_FACTOR_AUTO: banded if the half bandwidth is at most kBandedMaxBandwidth and
+// the network has no contact, sparse otherwise; the other values (banded, sparse,
+// cholmod) force one.
 rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested);
 // A factorisation of the chosen kind.  Throws Error (RN_ERR_ARG) for a forced banded
 // factorisation whose band would need more than 4 GiB.

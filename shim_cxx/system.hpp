@@ -83,7 +83,8 @@ public:
   virtual rn_status energy(const TMV &x, double *E) = 0;
   // Energy (may be NULL) and gradient at x.
   virtual rn_status gradient(const TMV &x, double *E, TMV &g) = 0;
-  // Assemble the Hessian at x into hessian() (same graph every time); throws if x is
+  // Assemble the Hessian at x into hessian() (same graph every time, except with
+  // contact when the pattern changed: system_serial.hpp); throws if x is
   // degenerate (call it only at accepted states).
   virtual void assemble_hessian(const TMV &x) = 0;
   virtual Teuchos::RCP<const TCrs> hessian() const = 0;

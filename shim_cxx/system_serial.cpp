@@ -13,9 +13,17 @@
 namespace rodnet {
 
 SerialSystem::SerialSystem(Problem &p) : p_(p) {
+  map_ = make_local_map(p.size());
+  build_graph();
+  equilibrium_.reset(new Equilibrium(p));
+  build_blocks();
+}
+
+// The Hessian's CrsMatrix on the graph of the Problem's CSR pattern (sorted columns,
+// all of them local), of pattern version version_.
+void SerialSystem::build_graph() {
+  const Problem &p = p_;
   const size_t n = p.size();
-  map_ = make_local_map(n);
-  // The graph of the network's CSR pattern (sorted columns, all of them local).
   Teuchos::ArrayRCP<size_t> rowptr(n + 1);
   const size_t nnz = static_cast<size_t>(p.rowptr()[n]);
   Teuchos::ArrayRCP<LO> col(std::max<size_t>(nnz, 1));
@@ -29,8 +37,7 @@ SerialSystem::SerialSystem(Problem &p) : p_(p) {
   if (H_->getNodeNumEntries() != nnz)
     throw Error(RN_ERR_INTERNAL,
                 "rn_solve: Tpetra Hessian graph differs from the pattern");
-  equilibrium_.reset(new Equilibrium(p));
-  build_blocks();
+  version_ = p.pattern_version();
 }
 
 SerialSystem::~SerialSystem() { rn_state_destroy(&snapshot_); }
@@ -55,6 +62,9 @@ Counters &SerialSystem::report_counters() { return p_.counters; }
 
 void SerialSystem::assemble_hessian(const TMV &x) {
   p_.assemble_hessian(host_data(x));
+  // Contact: a new accepted state may have changed the pattern; then a new matrix
+  // (users that cache its structure compare its graph, dd_preconditioner.cpp).
+  if (p_.pattern_version() != version_) build_graph();
   auto vals = H_->getLocalMatrixDevice().values; // Serial node: host memory
   const size_t nnz = vals.extent(0);
   if (nnz) std::memcpy(vals.data(), p_.values(), nnz * sizeof(double));

@@ -2,8 +2,10 @@
 //
 // SerialSystem wraps a Problem (problem.hpp): vectors live on a map of all reduced DOFs
 // over MPI_COMM_SELF, evaluations are the Problem's (counted there), and the Hessian
-// is a Tpetra::CrsMatrix whose graph is the network's CSR pattern, built once; each
-// assemble_hessian() copies the assembled values into it.  Any communicator of size 1.
+// is a Tpetra::CrsMatrix whose graph is the network's CSR pattern, built once (again
+// when the pattern changes, with contact: Problem::pattern_version; hessian() then
+// returns a new matrix); each assemble_hessian() copies the assembled values into it.
+// Any communicator of size 1.
 #ifndef RODNET_SHIM_SYSTEM_SERIAL_HPP
 #define RODNET_SHIM_SYSTEM_SERIAL_HPP
 
@@ -38,10 +40,12 @@ public:
 
 private:
   void build_blocks();
+  void build_graph();
 
   Problem &p_;
   Teuchos::RCP<const TMap> map_;
   Teuchos::RCP<TCrs> H_;
+  unsigned long version_ = 0; // the pattern version of H_'s graph
   DofBlocks blocks_;
   std::unique_ptr<Equilibrium> equilibrium_;
   rn_state *snapshot_ = nullptr;

@@ -199,8 +199,9 @@ private:
   Monitor &mon_;
   const rn_solve_options &opt_;
   size_t n_;
-  std::vector<double> d_; // D = |diag H_0| (floored)
-  std::vector<double> m_; // metric M = D as CSR values on the Hessian's pattern
+  std::vector<double> d_;       // D = |diag H_0| (floored)
+  std::vector<double> m_;       // metric M = D as CSR values on the Hessian's pattern
+  unsigned long m_version_ = 0; // the pattern's version (Problem::pattern_version)
   // Factorisations of H + sigma0 M (f0_) and of H + fl_lambda_ M (fl_; fl_lambda_ is
   // NaN when fl_ holds no factorisation of the current H at a known multiplier).
   std::unique_ptr<SpdFactor> f0_, fl_;
@@ -225,9 +226,10 @@ private:
 // 10 % of the diagonal one on the cantilever and buckling problems.)
 void TrustRegionMinres::analyse_hessian(const double *x) {
   p_.assemble_hessian(x);
-  if (m_.empty()) {
-    d_ = hessian_metric(p_);
+  if (m_.empty()) d_ = hessian_metric(p_);
+  if (m_.empty() || m_version_ != p_.pattern_version()) { // (contact: a new pattern)
     m_ = diagonal_on_pattern(p_, d_);
+    m_version_ = p_.pattern_version();
   }
   negcurv_ = false;
   mu_ = 0.0;

@@ -23,9 +23,10 @@ enum { NV = 9, MAXN = 256 };
 static uint64_t rng = 777;
 
 /* Rod a along x at z = 0 (clamped at both ends), rod b along y at height zb,
- * crossing a's edge 4 in its middle (clamped at its start only). */
-static rn_network *crossing(rn_context *ctx, double zb, double r, double dhat,
-                            double kappa, rn_status want) {
+ * crossing a's edge 4 in its middle (clamped at its start only); contact radius
+ * r, or rb for rod b if rb >= 0. */
+static rn_network *crossing2(rn_context *ctx, double zb, double r, double rb, double dhat,
+                             double kappa, rn_status want) {
   rn_network *net = NULL;
   double xa[3 * NV], xb[3 * NV];
   rn_material m = {10.0, 4.0, 0.0};
@@ -51,9 +52,15 @@ static rn_network *crossing(rn_context *ctx, double zb, double r, double dhat,
   CHECK_STATUS(rn_network_clamp(net, 0, RN_END), RN_OK);
   CHECK_STATUS(rn_network_clamp(net, 1, RN_START), RN_OK);
   CHECK_STATUS(rn_network_set_contact(net, dhat, kappa, r), RN_OK);
+  if (rb >= 0.0) CHECK_STATUS(rn_network_set_rod_contact_radius(net, 1, rb), RN_OK);
   CHECK_STATUS(rn_network_finalize(net), want);
   if (want != RN_OK) rn_network_destroy(&net);
   return net;
+}
+
+static rn_network *crossing(rn_context *ctx, double zb, double r, double dhat,
+                            double kappa, rn_status want) {
+  return crossing2(ctx, zb, r, -1.0, dhat, kappa, want);
 }
 
 static double dot(size_t n, const double *a, const double *b) {
@@ -218,11 +225,160 @@ static void test_hairpin(rn_context *ctx) {
   rn_network_destroy(&net);
 }
 
+/* The Hessian pattern follows the accepted state: rod b starts far above a
+ * (its pair outside the pattern); a trial state that lowers b to within dhat
+ * of a is degenerate (a pair outside the pattern comes within reach); once
+ * accepted (rn_network_set_dofs) the pattern holds the pair (a new version,
+ * more entries), and the CSR Hessian equals the HVP there. */
+static void test_pattern_change(rn_context *ctx) {
+  const double r = 0.02, dhat = 0.05, kappa = 3.0, far = 2 * r + 0.5;
+  const double near = 2 * r + 0.6 * dhat;
+  rn_network *net = crossing(ctx, far, r, dhat, kappa, RN_OK);
+  size_t n = rn_network_num_dofs(net), nnz0, nnz1;
+  const int64_t *rp;
+  const int32_t *cl;
+  double x[MAXN], y[MAXN], d[MAXN], E;
+  rn_contact_stats cs;
+  CHECK_STATUS(rn_network_hessian_pattern(net, &nnz0, &rp, &cl), RN_OK);
+  const unsigned long v0 = rn_network_pattern_version(net);
+  CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+  for (size_t i = 0; i < n; ++i) y[i] = fabs(x[i] - far) < 1e-15 ? near : x[i];
+  CHECK_STATUS(rn_network_contact_stats(net, y, &cs), RN_OK);
+  CHECK(cs.active == 1);
+  CHECK_NEAR(cs.min_gap, 0.6 * dhat, 1e-14);
+  CHECK_STATUS(rn_network_energy(net, y, &E), RN_DEGENERATE);
+  CHECK(strstr(rn_context_last_error(ctx), "outside the Hessian pattern") != NULL);
+  CHECK_STATUS(rn_network_set_dofs(net, y), RN_OK); /* accepted: the pattern follows */
+  CHECK(rn_network_pattern_version(net) != v0);
+  CHECK_STATUS(rn_network_hessian_pattern(net, &nnz1, &rp, &cl), RN_OK);
+  CHECK(nnz1 > nnz0);
+  CHECK_STATUS(rn_network_energy(net, y, &E), RN_OK);
+  for (size_t i = 0; i < n; ++i) {
+    y[i] += 0.001 * rn_test_rand(&rng);
+    d[i] = rn_test_rand(&rng);
+  }
+  fd_sweep(net, y, d, "pattern changed");
+  /* back up (accepted): the pair stays in the pattern, no new version */
+  const unsigned long v1 = rn_network_pattern_version(net);
+  CHECK_STATUS(rn_network_set_dofs(net, x), RN_OK);
+  CHECK(rn_network_pattern_version(net) == v1);
+  rn_network_destroy(&net);
+}
+
+/* Per-rod contact radius: the gap of the crossing is zb - (ra + rb). */
+static void test_rod_radius(rn_context *ctx) {
+  const double ra = 0.01, rb = 0.03, dhat = 0.05, kappa = 3.0, zb = ra + rb + 0.02;
+  rn_network *net = crossing2(ctx, zb, ra, rb, dhat, kappa, RN_OK);
+  double x[MAXN], d[MAXN];
+  size_t n = rn_network_num_dofs(net);
+  rn_contact_stats cs;
+  CHECK_NEAR(rn_network_rod_contact_radius(net, 0), ra, 0.0);
+  CHECK_NEAR(rn_network_rod_contact_radius(net, 1), rb, 0.0);
+  CHECK(isnan(rn_network_rod_contact_radius(net, 2)));
+  CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+  CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+  CHECK_NEAR(cs.min_gap, 0.02, 1e-15);
+  CHECK(cs.active == 1);
+  CHECK_NEAR(cs.energy, -kappa * 0.03 * 0.03 * log(0.4), 1e-15);
+  for (size_t i = 0; i < n; ++i) {
+    x[i] += 0.002 * rn_test_rand(&rng);
+    d[i] = rn_test_rand(&rng);
+  }
+  fd_sweep(net, x, d, "per-rod radius");
+  CHECK_STATUS(rn_network_set_rod_contact_radius(net, 0, 0.1), RN_ERR_STATE);
+  rn_network_destroy(&net);
+  /* with rb the start interpenetrates */
+  crossing2(ctx, ra + 0.02 + 0.01, ra, 0.021 + 0.01, dhat, kappa, RN_ERR_GEOMETRY);
+  {
+    rn_network *bad = NULL;
+    double xyz[6] = {0, 0, 0, 1, 0, 0};
+    int rod;
+    CHECK_STATUS(rn_network_create(ctx, &bad), RN_OK);
+    CHECK_STATUS(rn_network_add_rod(bad, "a", 2, xyz, NULL, &rod), RN_OK);
+    CHECK_STATUS(rn_network_set_rod_contact_radius(bad, 0, 0.1), RN_ERR_STATE);
+    CHECK_STATUS(rn_network_set_contact(bad, 0.1, 1.0, 0.1), RN_OK);
+    CHECK_STATUS(rn_network_set_rod_contact_radius(bad, 1, 0.1), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_rod_contact_radius(bad, 0, -0.1), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_rod_contact_radius(bad, 0, INFINITY), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_rod_contact_radius(bad, 0, 0.2), RN_OK);
+    CHECK_NEAR(rn_network_rod_contact_radius(bad, 0), 0.2, 0.0);
+    rn_network_destroy(&bad);
+  }
+}
+
+/* A k x k grid of crossings (rods of 4 (k + 2) edges of length 0.25 at spacing
+ * 1, crossing at edge midpoints away from the clamped starts, the layers at
+ * half dhat): the contact entries of
+ * the Hessian pattern (nnz with contact minus without) grow like the number
+ * of crossings, k^2, not like the square of the contact vertices. */
+static size_t grid_nnz(rn_context *ctx, int k, int contact) {
+  enum { MAXV = 41 };
+  const double r = 0.01, dhat = 0.02, z = 2 * r + 0.5 * dhat;
+  rn_material m = {1e3, 4e2, 0.0};
+  rn_section s;
+  rn_network *net = NULL;
+  double xyz[3 * MAXV];
+  const int nv = 4 * (k + 2) + 1;
+  int rod;
+  size_t nnz;
+  const int64_t *rp;
+  const int32_t *cl;
+  CHECK(nv <= MAXV);
+  CHECK_STATUS(rn_section_circle(r, &s), RN_OK);
+  CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+  for (int layer = 0; layer < 2; ++layer)
+    for (int j = 0; j < k; ++j) {
+      const double c = 1.625 + j; /* the middle of an edge of the other layer */
+      for (int i = 0; i < nv; ++i) {
+        const double t = 0.25 * i;
+        xyz[3 * i] = layer ? c : t;
+        xyz[3 * i + 1] = layer ? t : c;
+        xyz[3 * i + 2] = layer ? z : 0.0;
+      }
+      const int id = layer * k + j;
+      CHECK_STATUS(rn_network_add_rod(net, NULL, nv, xyz, NULL, &rod), RN_OK);
+      CHECK_STATUS(rn_network_set_material(net, id, -1, &m), RN_OK);
+      CHECK_STATUS(rn_network_set_section(net, id, -1, &s), RN_OK);
+      CHECK_STATUS(rn_network_clamp(net, id, RN_START), RN_OK);
+    }
+  if (contact) CHECK_STATUS(rn_network_set_contact(net, dhat, 1.0, r), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  CHECK_STATUS(rn_network_hessian_pattern(net, &nnz, &rp, &cl), RN_OK);
+  if (contact) {
+    double *x = malloc(rn_network_num_dofs(net) * sizeof(double));
+    rn_contact_stats cs;
+    CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+    CHECK_STATUS(rn_network_contact_stats(net, x, &cs), RN_OK);
+    CHECK(cs.active == (size_t)(k * k)); /* every crossing one active pair */
+    free(x);
+  }
+  rn_network_destroy(&net);
+  return nnz;
+}
+
+static void test_pattern_linear(rn_context *ctx) {
+  const int ks[3] = {2, 4, 8};
+  size_t extra[3];
+  for (int i = 0; i < 3; ++i) {
+    size_t on = grid_nnz(ctx, ks[i], 1), off = grid_nnz(ctx, ks[i], 0);
+    CHECK(on > off);
+    extra[i] = on - off;
+    printf("  grid %d x %d: Hessian entries %zu with contact, %zu without (%zu per "
+           "crossing)\n",
+           ks[i], ks[i], on, off, extra[i] / (size_t)(ks[i] * ks[i]));
+  }
+  for (int i = 1; i < 3; ++i)
+    CHECK(extra[i] * (size_t)(ks[0] * ks[0]) == extra[0] * (size_t)(ks[i] * ks[i]));
+}
+
 int main(void) {
   rn_context *ctx = NULL;
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
   test_crossing(ctx);
   test_hairpin(ctx);
+  test_pattern_change(ctx);
+  test_rod_radius(ctx);
+  test_pattern_linear(ctx);
   rn_context_destroy(&ctx);
   return rn_test_finish("api_contact");
 }
