@@ -790,6 +790,17 @@ rn_cli_test(problems_contact_bad_distance 3
 rn_cli_test(problems_contact_interpenetrating 3
             "interpenetrating.json: .*contact: the initial state interpenetrates.*rod 0 \\('a'\\) edge 4 and rod 1 \\('b'\\) edge 3"
             STDERR_LINES 1 ARGS check ${RN_CONTACT}/interpenetrating.json)
+# "radii": rod b's contact radius 0.03 instead of 0.02 lifts b by 0.01 at the same
+# gap (the force balance is unchanged), so the energy is crossed.json's
+# (-0.0059825379162) plus the load's work F * 0.01 = 0.004; an unknown rod name in
+# "radii" is refused with its place.
+rn_cli_test(problems_contact_radii 0
+            "energy +-0\\.001982537916.*verified local minimum"
+            REMOVE ${RN_CLI_OUT}/contact_radii.json
+            ARGS solve ${RN_CONTACT}/crossed_radii.json -o ${RN_CLI_OUT}/contact_radii.json)
+rn_cli_test(problems_contact_bad_radii 3
+            "contact_radii.json: .\\.contact\\.radii\\.c: no rod named \"c\""
+            STDERR_LINES 1 ARGS check ${RN_BAD}/contact_radii.json)
 # Closed rods and joint rest shapes (issue 10 section 4): the derivative check of a
 # twisted closed rod and of a loop through a smooth and a rigid "straight" joint.
 # (twisted_ring is not a shipped example: unloaded and self-stressed, its force
