@@ -11,7 +11,13 @@
  *               localised helix) in 100 load steps (0.4 turn each), until it
  *               winds onto itself (first contact near 23 turns): every step
  *               converges, no accepted state interpenetrates (min gap > 0), the
- *               final state is in self contact and a verified minimum. */
+ *               final state is in self contact and a verified minimum;
+ *   lattice     a 2 x 2 honeycomb (tests/data/contact/honeycomb_dense.json, the
+ *               path given as argv[2]) compressed by 70 % between gripped faces
+ *               until its cell walls touch, one rn_solve (automatic load
+ *               steps): converged, no accepted iterate on the way
+ *               interpenetrates (min gap > 0 at every Newton iteration), pairs in
+ *               contact at the end, a verified minimum. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +25,7 @@
 
 #include "rodnet.h"
 #include "rodnet_contact.h"
+#include "rodnet_scene.h"
 #include "rodnet_solve.h"
 #include "testutil.h"
 
@@ -165,6 +172,74 @@ static void plectoneme(rn_context *ctx) {
   rn_network_destroy(&net);
 }
 
+/* The contact state at every Newton iteration of a solve (its accepted state). */
+typedef struct path_watch {
+  rn_network *net;
+  double *x;
+  double min_gap;
+  long iterations, in_contact; /* iterations seen, those with active pairs */
+  double first_contact;        /* load factor of the first contact (-1: none) */
+  int failed;
+} path_watch;
+
+static void watch_iteration(void *user, const rn_iteration_info *info) {
+  path_watch *w = user;
+  rn_contact_stats cs;
+  if (rn_network_get_dofs(w->net, w->x) || rn_network_contact_stats(w->net, w->x, &cs)) {
+    w->failed = 1;
+    return;
+  }
+  w->iterations++;
+  if (cs.min_gap < w->min_gap) w->min_gap = cs.min_gap;
+  if (cs.active) {
+    w->in_contact++;
+    if (w->first_contact < 0.0) w->first_contact = info->load_factor;
+  }
+}
+
+/* The compressed honeycomb: one rn_solve to the full compression (its
+ * automatic load steps), the contact state of every accepted iterate on the
+ * way (progress callback). */
+static void lattice(rn_context *ctx, const char *path) {
+  rn_scene *scene = NULL;
+  CHECK_STATUS(rn_scene_load(ctx, path, &scene), RN_OK);
+  if (!scene) return;
+  rn_network *net = rn_scene_network(scene);
+  size_t n = rn_network_num_dofs(net);
+  path_watch w = {net, malloc(n * sizeof(double)), INFINITY, 0, 0, -1.0, 0};
+  rn_contact_stats cs = {INFINITY, 0, 0.0, 0.0};
+  rn_solve_options opt;
+  rn_solve_report rep;
+  const unsigned long v0 = rn_network_pattern_version(net);
+  CHECK(rn_network_get_contact(net, NULL, NULL, NULL) == 1);
+  CHECK(rn_network_load_factor(net) == 1.0);
+  rn_solve_options_default(&opt);
+  rn_scene_apply_solver(scene, &opt);
+  opt.progress = watch_iteration;
+  opt.progress_user = &w;
+  CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+  CHECK_STATUS(rn_network_get_dofs(net, w.x), RN_OK);
+  CHECK_STATUS(rn_network_contact_stats(net, w.x, &cs), RN_OK);
+  printf("  lattice: %s %s, %d its, %d load steps, energy %.9g; final min gap %.4g, "
+         "active pairs %zu, contact force %.4g; on the path: %ld iterates, %ld in "
+         "contact (first at load factor %.3f), smallest gap %.4g, pattern rebuilds "
+         "%lu; stability: verified %d, lowest eigenvalue %.3g (scale %.3g)\n",
+         rn_solve_stop_name(rep.stop), rep.converged ? "converged" : "NOT converged",
+         rep.iterations, rep.load_steps, rep.energy, cs.min_gap, cs.active, cs.force,
+         w.iterations, w.in_contact, w.first_contact, w.min_gap,
+         rn_network_pattern_version(net) - v0, rep.stability.verified_minimum,
+         rep.stability.lowest_eigenvalue, rep.stability.scale);
+  CHECK(!w.failed);
+  CHECK(w.iterations >= rep.iterations); /* every iterate seen */
+  CHECK(w.min_gap > 0.0);                /* no accepted state interpenetrates */
+  CHECK(w.in_contact > 0 && w.first_contact > 0.0); /* the cell walls touch */
+  CHECK(rep.converged == 1);
+  CHECK(cs.active > 0 && cs.min_gap > 0.0 && cs.min_gap < 0.01);
+  CHECK(rep.stability.checked == 1 && rep.stability.verified_minimum == 1);
+  free(w.x);
+  rn_scene_destroy(&scene);
+}
+
 int main(int argc, char **argv) {
   rn_context *ctx = NULL;
   const char *which = argc > 1 ? argv[1] : "crossed";
@@ -173,6 +248,8 @@ int main(int argc, char **argv) {
     crossed(ctx);
   else if (!strcmp(which, "plectoneme"))
     plectoneme(ctx);
+  else if (!strcmp(which, "lattice") && argc > 2)
+    lattice(ctx, argv[2]);
   else
     rn_test_fail(__FILE__, __LINE__, "unknown case %s", which);
   rn_context_destroy(&ctx);
