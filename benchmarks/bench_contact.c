@@ -11,20 +11,27 @@
  *   grid        --grid n rods along x under n rods along y (16 edges each),
  *               the layers at half the activation distance: n^2 crossings
  *               pressed together (every crossing an active pair), with and
- *               without contact.
+ *               without contact;
+ *   lattice     the scene --lattice FILE (a lattice with "contact", e.g.
+ *               tests/data/contact/honeycomb_dense.json) solved by one
+ *               rn_solve (automatic load steps) to its load factor 1 with
+ *               contact; the evaluations at that state, with contact and on the
+ *               scene read without its "contact" set to the same state.
  *
  *   bench_contact [--turns 40] [--steps 100] [--grid 8] [--repeats 9]
- *                 [--out FILE.csv]
+ *                 [--lattice FILE] [--out FILE.csv]
  *
  * CSV: bench "contact", case "<case>-<on|off>", size the number of edges; extra
  * columns contact (1/0), active_pairs, nnz (Hessian entries), us_median, us_min
  * (microseconds per energy + gradient + Hessian evaluation). */
+#include <cjson/cJSON.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_util.h"
 #include "rodnet_contact.h"
+#include "rodnet_scene.h"
 #include "rodnet_solve.h"
 
 #ifndef M_PI
@@ -34,7 +41,7 @@
 static int usage(const char *msg) {
   fprintf(stderr,
           "bench_contact: %s\nusage: bench_contact [--turns T] [--steps N] [--grid n] "
-          "[--repeats R] [--out FILE.csv]\n",
+          "[--repeats R] [--lattice FILE] [--out FILE.csv]\n",
           msg);
   return 2;
 }
@@ -145,10 +152,72 @@ static int row(FILE *f, const char *case_name, long edges, rn_network *net,
   return 0;
 }
 
+/* The lattice scene at path with contact (on) and read again without its
+ * "contact" (off). */
+static rn_status lattice_scenes(rn_context *ctx, const char *path, rn_scene **on,
+                                rn_scene **off) {
+  rn_status st = rn_scene_load(ctx, path, on);
+  if (st) return st;
+  FILE *f = fopen(path, "rb");
+  char *text = NULL, *plain = NULL;
+  long len = -1;
+  if (f && !fseek(f, 0, SEEK_END) && (len = ftell(f)) >= 0 && !fseek(f, 0, SEEK_SET) &&
+      (text = malloc((size_t)len + 1)) && fread(text, 1, (size_t)len, f) == (size_t)len)
+    text[len] = 0;
+  else
+    len = -1;
+  if (f) fclose(f);
+  cJSON *root = len >= 0 ? cJSON_Parse(text) : NULL;
+  if (root) cJSON_DeleteItemFromObject(root, "contact");
+  if (root) plain = cJSON_PrintUnformatted(root);
+  st = plain ? rn_scene_parse(ctx, path, plain, strlen(plain), off) : RN_ERR_IO;
+  cJSON_Delete(root);
+  free(plain);
+  free(text);
+  return st;
+}
+
+/* Solves the lattice with contact (its contact state on the way is checked by
+ * hard_contact_lattice, not here), sets the twin without contact to the final
+ * state and writes both rows. */
+static int lattice_rows(FILE *f, rn_context *ctx, const char *path, int repeats) {
+  rn_scene *son = NULL, *soff = NULL;
+  rn_status st = lattice_scenes(ctx, path, &son, &soff);
+  rn_network *on = son ? rn_scene_network(son) : NULL;
+  rn_network *off = soff ? rn_scene_network(soff) : NULL;
+  long edges = 0;
+  if (!st) {
+    rn_solve_options opt;
+    rn_solve_report rep;
+    rn_solve_options_default(&opt);
+    rn_scene_apply_solver(son, &opt);
+    opt.stability = 0;
+    if (!(st = rn_network_set_load_factor(on, 1.0)) && !(st = rn_solve(on, &opt, &rep)) &&
+        !rep.converged)
+      st = RN_ERR_SOLVER;
+  }
+  size_t n = on ? rn_network_num_dofs(on) : 0;
+  double *x = malloc((n ? n : 1) * sizeof(double));
+  if (!st && !x) st = RN_ERR_ALLOC;
+  if (!st && !(st = rn_network_get_dofs(on, x)) &&
+      !(st = rn_network_set_load_factor(off, 1.0)) && !(st = rn_network_set_dofs(off, x)))
+    st = rn_network_update_reference(off, x);
+  for (int ir = 0; on && ir < rn_network_num_rods(on); ++ir)
+    edges += rn_network_rod_num_vertices(on, ir) - 1;
+  int fail = st != RN_OK;
+  if (fail) rn_bench_report_error("lattice", ctx, st);
+  if (!fail) fail = row(f, "lattice", edges, on, x, 1, repeats, ctx);
+  if (!fail) fail = row(f, "lattice", edges, off, x, 0, repeats, ctx);
+  free(x);
+  rn_scene_destroy(&son);
+  rn_scene_destroy(&soff);
+  return fail;
+}
+
 int main(int argc, char **argv) {
   double turns = 40.0;
   long steps = 100, grid = 8, repeats = 9;
-  const char *out = NULL;
+  const char *out = NULL, *lattice = NULL;
   for (int i = 1; i < argc; ++i) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!v) return usage("missing value");
@@ -162,6 +231,8 @@ int main(int argc, char **argv) {
       repeats = atol(v);
     else if (!strcmp(a, "--out"))
       out = v;
+    else if (!strcmp(a, "--lattice"))
+      lattice = v;
     else
       return usage("unknown option");
     ++i;
@@ -212,6 +283,7 @@ int main(int argc, char **argv) {
     free(y);
     rn_network_destroy(&net);
   }
+  if (!fail && lattice) fail = lattice_rows(f, ctx, lattice, (int)repeats);
   rn_context_destroy(&ctx);
   if (out) fclose(f);
   return fail ? 1 : 0;
