@@ -798,6 +798,10 @@ rn_cli_test(problems_contact_radii 0
             "energy +-0\\.001982537916.*verified local minimum"
             REMOVE ${RN_CLI_OUT}/contact_radii.json
             ARGS solve ${RN_CONTACT}/crossed_radii.json -o ${RN_CLI_OUT}/contact_radii.json)
+# No pair within reach: RESULT.json is written with "min_gap": null.
+rn_cli_test(problems_contact_apart 0 "wrote .*contact_apart.json"
+            REMOVE ${RN_CLI_OUT}/contact_apart.json
+            ARGS solve ${RN_CONTACT}/apart.json -o ${RN_CLI_OUT}/contact_apart.json)
 rn_cli_test(problems_contact_bad_radii 3
             "contact_radii.json: .\\.contact\\.radii\\.c: no rod named \"c\""
             STDERR_LINES 1 ARGS check ${RN_BAD}/contact_radii.json)
