@@ -159,6 +159,9 @@ struct rn_network {
   size_t nhzero;
   size_t nnz;
   size_t bandwidth;
+  size_t pattern_work;        /* entries the pattern build's candidate loops
+                                 looked at (hessian.c; a test asserts that it grows
+                                 linearly with a periodic supercell) */
   struct rn_part_data *part;  /* NULL: a whole network (part.c) */
   struct rn_cell *cell;       /* NULL: not periodic (periodic.c) */
   int model;                  /* rn_model asked for (planar.c) */
