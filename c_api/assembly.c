@@ -347,6 +347,37 @@ static int joint_energy_split(rn_joint_scratch *s, rnk_joint *kj, eval_args *a) 
   return RNK_OK;
 }
 
+/* The direction on a joint stencil into s->v (OP_HVP). */
+static void gather_joint_dir(const rn_network *net, const rn_joint *J,
+                             rn_joint_scratch *s, const eval_args *a) {
+  if (a->vfull) {
+    rn_gather_fixed_dir_idx(net, a->vfull, J->idx, s->n, s->v);
+    rn_cell_gather_fixed_dir(net, a->vfull, 0, J->idx, J->img, s->n, s->v);
+  } else {
+    rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
+    rn_cell_gather_dir(net, a->v, 0, J->idx, J->img, s->n, s->v);
+  }
+}
+
+/* s->loc, a product (OP_HVP) or a block (OP_HESS) of a joint stencil, into
+ * the outputs. */
+static void scatter_joint_hv(const rn_network *net, const rn_joint *J,
+                             const rn_joint_scratch *s, eval_args *a) {
+  rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->Hv);
+  rn_cell_scatter(net, s->loc, 0, J->idx, J->img, s->n, a->Hv);
+}
+
+static void scatter_joint_hess(const rn_network *net, const rn_joint *J,
+                               const rn_joint_scratch *s, eval_args *a) {
+  a->unbounded |= !rn_all_bounded((size_t)s->n * (size_t)s->n, s->loc);
+  if (a->bloch) {
+    rn_bloch_add_block(net, a->bloch, 0, J->idx, J->img, s->n, s->loc, J);
+    return;
+  }
+  rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
+  rn_cell_hess_block(net, 0, J->idx, J->img, s->n, s->loc, a->vals);
+}
+
 static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_scratch *s,
                            rnk_joint *kj, eval_args *a) {
   double E = 0.0;
@@ -360,26 +391,13 @@ static int joint_kernel_op(const rn_network *net, const rn_joint *J, rn_joint_sc
     scatter_grad(net, a, s->loc, 0, J->idx, J->img, s->n);
     break;
   case OP_HVP: /* matrix-free: the kernel never forms the block */
-    if (a->vfull) {
-      rn_gather_fixed_dir_idx(net, a->vfull, J->idx, s->n, s->v);
-      rn_cell_gather_fixed_dir(net, a->vfull, 0, J->idx, J->img, s->n, s->v);
-    } else {
-      rn_gather_dir_idx(net, a->v, J->idx, s->n, s->v);
-      rn_cell_gather_dir(net, a->v, 0, J->idx, J->img, s->n, s->v);
-    }
+    gather_joint_dir(net, J, s, a);
     if ((rc = rnk_joint_hvp(s->q, kj, s->work, s->v, s->loc)) != RNK_OK) return rc;
-    rn_scatter_add_idx(net, s->loc, J->idx, s->n, a->Hv);
-    rn_cell_scatter(net, s->loc, 0, J->idx, J->img, s->n, a->Hv);
+    scatter_joint_hv(net, J, s, a);
     break;
   case OP_HESS:
     if ((rc = rnk_joint_hess(s->q, kj, s->work, s->loc)) != RNK_OK) return rc;
-    a->unbounded |= !rn_all_bounded((size_t)s->n * (size_t)s->n, s->loc);
-    if (a->bloch) {
-      rn_bloch_add_block(net, a->bloch, 0, J->idx, J->img, s->n, s->loc, J);
-      break;
-    }
-    rn_csr_add_block_idx(net, J->idx, s->n, s->loc, a->vals);
-    rn_cell_hess_block(net, 0, J->idx, J->img, s->n, s->loc, a->vals);
+    scatter_joint_hess(net, J, s, a);
     break;
   }
   return rc;
@@ -401,6 +419,36 @@ static int joint_couple_grad(const rn_network *net, const rn_joint *J,
   return RNK_OK;
 }
 
+/* A couple fixed in space on the joint rotation (rodnet_couple.h): no energy;
+ * the gradient gets -Q, the Hessian -J (nonsymmetric), scattered like the
+ * joint's own terms; also in the loads-only gradient. */
+static int joint_fixed_couple(const rn_network *net, const rn_joint *J,
+                              rn_joint_scratch *s, const rnk_joint *kj, eval_args *a) {
+  const int n = s->n;
+  double M[3], *Q = s->fix, *Jm = s->fix ? s->fix + n : NULL;
+  int rc;
+  if (!s->fix || a->op == OP_ENERGY) return RNK_OK;
+  for (int k = 0; k < 3; ++k) M[k] = a->lambda * J->Mfix[k];
+  rc =
+      rnk_joint_couple_fixed_force(s->q, kj, M, s->work, Q, a->op == OP_GRAD ? NULL : Jm);
+  if (rc != RNK_OK) return rc;
+  if (a->op == OP_GRAD) {
+    for (int i = 0; i < n; ++i) s->loc[i] = -Q[i];
+    scatter_grad(net, a, s->loc, 0, J->idx, J->img, n);
+  } else if (a->op == OP_HVP) {
+    gather_joint_dir(net, J, s, a);
+    for (int i = 0; i < n; ++i) {
+      s->loc[i] = 0.0;
+      for (int j = 0; j < n; ++j) s->loc[i] -= Jm[n * i + j] * s->v[j];
+    }
+    scatter_joint_hv(net, J, s, a);
+  } else {
+    for (int i = 0; i < n * n; ++i) s->loc[i] = -Jm[i];
+    scatter_joint_hess(net, J, s, a);
+  }
+  return RNK_OK;
+}
+
 /* The whole-joint stencil, gathered and scattered by its index list; the
  * dead force on the joint position, E = -lambda F . (x_J - x_J0) (from the initial
  * position, as forces_eval). */
@@ -418,6 +466,7 @@ static rn_status joint_eval(const rn_network *net, int ij, eval_args *a) {
   rn_cell_gather(net, a->x, 0, J->idx, J->img, s.n, s.q);
   rc = a->loads_only ? joint_couple_grad(net, J, &s, &kj, a)
                      : joint_kernel_op(net, J, &s, &kj, a);
+  if (rc == RNK_OK) rc = joint_fixed_couple(net, J, &s, &kj, a);
   rn_joint_scratch_free(&s);
   if (rc != RNK_OK)
     return rn_fail(

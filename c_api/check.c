@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rodnet_couple.h"
 
 static const char *where = "rn_network_check_derivatives";
 
@@ -348,12 +349,14 @@ rn_status rn_network_check_derivatives(const rn_network *net, const double *x,
                    "need n_random >= 0 and finite perturb >= 0");
   if (x && !rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
-  if (net->nfixed_couples > 0) /* no energy: its gradient is not a derivative */
+  if (net->nfixed_couples > 0) { /* no energy: its gradient is not a derivative */
+    char which[160];
     return rn_fail(net->ctx, RN_ERR_ARG, where,
-                   "the moment on rod %d vertex %d is a couple fixed in space (no "
-                   "energy): the gradient and Hessian checks against the energy do not "
-                   "apply (its force and Jacobian are checked in the unit tests)",
-                   net->fixed_rod, net->fixed_vertex);
+                   "the moment on %s is a couple fixed in space (no energy): the "
+                   "gradient and Hessian checks against the energy do not apply (its "
+                   "force and Jacobian are checked in the unit tests)",
+                   rn_network_fixed_couple_where(net, which, sizeof which));
+  }
   memset(rep, 0, sizeof(*rep));
   rep->grad_order = rep->hvp_order = NAN;
   if (net->nred == 0) return RN_OK;

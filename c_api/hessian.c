@@ -129,6 +129,8 @@ static int increasing(const int32_t *c, size_t n) {
 typedef struct col_buf {
   int32_t *c;
   size_t n, cap;
+  size_t examined; /* entries the candidate loops of rods, joints and the
+                      periodic cell looked at (pattern_work; not contact) */
 } col_buf;
 
 static int push(col_buf *b, int64_t c) {
@@ -180,25 +182,52 @@ static int contact_rows_build(const rn_network *net, contact_rows *C) {
   return 0;
 }
 
+/* Periodic cells: the rows flagged by rn_cell_pattern_flags (1: a stencil at
+ * a periodic image, 2: a strain DOF), listed once so that each row takes its
+ * strain columns (and each strain row the flagged rows) without a pass over
+ * every row: the pattern is built in time linear in its size. */
+typedef struct cell_rows {
+  const unsigned char *flag; /* [nred] */
+  int32_t *all, *strain;     /* the flagged rows, the strain rows (ascending) */
+  size_t nall, nstrain;
+} cell_rows;
+
+static int cell_rows_build(const rn_network *net, const unsigned char *touch,
+                           cell_rows *T) {
+  T->flag = touch;
+  T->nall = T->nstrain = 0;
+  T->all = malloc((net->nred ? net->nred : 1) * sizeof(int32_t));
+  T->strain = malloc(6 * sizeof(int32_t));
+  if (!T->all || !T->strain) return -1;
+  for (size_t q = 0; q < net->nred; ++q) {
+    if (touch[q]) T->all[T->nall++] = (int32_t)q;
+    if (touch[q] == 2 && T->nstrain < 6) T->strain[T->nstrain++] = (int32_t)q;
+  }
+  return 0;
+}
+
 /* Candidate columns of row r appended to b (unsorted, with duplicates). */
 static int row_candidates(const rn_network *net, const row_lists *L, const size_t *lo,
-                          const size_t *hi, const unsigned char *touch,
+                          const size_t *hi, const cell_rows *T,
                           const contact_rows *C, size_t r, col_buf *b) {
   for (size_t p = L->fptr[r]; p < L->fptr[r + 1]; ++p) {
     size_t a = L->full[p];
+    b->examined += hi[a] - lo[a] + 1;
     for (size_t c = lo[a]; c <= hi[a]; ++c)
       if (net->map[c] >= 0 && push(b, net->map[c])) return -1;
   }
   for (size_t p = L->jptr[r]; p < L->jptr[r + 1]; ++p) {
     const rn_joint *J = &net->joints[L->jnt[p]];
+    b->examined += (size_t)joint_stencil_n(J);
     for (int k = 0; k < joint_stencil_n(J); ++k)
       if (net->map[J->idx[k]] >= 0 && push(b, net->map[J->idx[k]])) return -1;
   }
-  if (touch && touch[r]) { /* periodic: rows coupled to the strain DOFs */
-    for (size_t q = 0; q < net->nred; ++q)
-      if (touch[q] == 2 || (touch[r] == 2 && touch[q])) {
-        if (push(b, (int64_t)q)) return -1;
-      }
+  if (T && T->flag[r]) { /* periodic: rows coupled to the strain DOFs */
+    const int32_t *q = T->flag[r] == 2 ? T->all : T->strain;
+    size_t nq = T->flag[r] == 2 ? T->nall : T->nstrain;
+    b->examined += nq;
+    for (size_t k = 0; k < nq; ++k)
+      if (push(b, q[k])) return -1;
   }
   if (C->ptr) /* contact: the pattern pairs' stencils */
     for (size_t p = C->ptr[r]; p < C->ptr[r + 1]; ++p)
@@ -209,12 +238,12 @@ static int row_candidates(const rn_network *net, const row_lists *L, const size_
 /* Rows in order: candidates sorted and made unique in place at the end of
  * the column buffer (for plain rods they are already sorted and unique). */
 static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo,
-                           const size_t *hi, const unsigned char *touch,
+                           const size_t *hi, const cell_rows *T,
                            const contact_rows *C, col_buf *b) {
   for (size_t row = 0; row < net->nred; ++row) {
     size_t start = b->n, u = start;
     net->rowptr[row] = (int64_t)start;
-    if (row_candidates(net, L, lo, hi, touch, C, row, b)) return RN_ERR_ALLOC;
+    if (row_candidates(net, L, lo, hi, T, C, row, b)) return RN_ERR_ALLOC;
     if (!increasing(b->c + start, b->n - start)) /* rows away from joints are */
       sort_columns(b->c + start, b->n - start);
     for (size_t p = start; p < b->n; ++p) {
@@ -394,9 +423,10 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   size_t *lo = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   size_t *hi = malloc((net->nfull ? net->nfull : 1) * sizeof(size_t));
   row_lists L = {NULL, NULL, NULL, NULL};
-  col_buf b = {NULL, 0, 0};
+  col_buf b = {NULL, 0, 0, 0};
   unsigned char *touch = NULL;
   contact_rows C = {NULL, NULL};
+  cell_rows T = {NULL, NULL, NULL, 0, 0};
   rn_status st = RN_ERR_ALLOC;
   net->rowptr = malloc((net->nred + 1) * sizeof(int64_t));
   if (!lo || !hi || !net->rowptr || row_lists_build(net, &L)) goto done;
@@ -406,10 +436,12 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
     touch = calloc(net->nred ? net->nred : 1, 1);
     if (!touch) goto done;
     rn_cell_pattern_flags(net, lo, hi, touch);
+    if (cell_rows_build(net, touch, &T)) goto done;
   }
   if (net->contact && contact_rows_build(net, &C)) goto done;
-  if (fill_rows(net, &L, lo, hi, touch, &C, &b)) goto done;
+  if (fill_rows(net, &L, lo, hi, net->cell ? &T : NULL, &C, &b)) goto done;
   net->nnz = b.n;
+  net->pattern_work = b.examined;
   { /* shrink to fit (also allocates when there are no entries) */
     int32_t *p = realloc(b.c, (b.n ? b.n : 1) * sizeof(int32_t));
     if (p) b.c = p;
@@ -420,6 +452,8 @@ rn_status rn_build_hessian_pattern(rn_network *net) {
   if (st == RN_OK) st = build_rod_direct(net);
   if (st == RN_OK) st = build_assign(net);
 done:
+  free(T.all);
+  free(T.strain);
   free(touch);
   free(C.ptr);
   free(C.col);

@@ -123,7 +123,8 @@ static rn_status check_coincident(const rn_network *net, const char *where) {
 static rn_status check_smooth(const rn_network *net, const char *where, int ij) {
   const rn_joint *J = &net->joints[ij];
   if (J->model != RN_JOINT_SMOOTH) return RN_OK;
-  if (J->clamped || J->M[0] != 0.0 || J->M[1] != 0.0 || J->M[2] != 0.0)
+  if (J->clamped || J->M[0] != 0.0 || J->M[1] != 0.0 || J->M[2] != 0.0 ||
+      J->Mfix[0] != 0.0 || J->Mfix[1] != 0.0 || J->Mfix[2] != 0.0)
     return rn_fail(net->ctx, RN_ERR_BC, where,
                    "joint %d ('%s') is smooth (no rotation): it cannot be %s; pin it, or "
                    "clamp or load an edge of its rods",
@@ -312,6 +313,8 @@ rn_status rn_joint_scratch_init(const rn_joint *J, rn_joint_scratch *s) {
   kj.valence = J->valence;
   n = rnk_joint_stencil_size(&kj);
   need = 2 * n + n * n + rnk_joint_work_size(&kj);
+  int fixed = J->Mfix[0] != 0.0 || J->Mfix[1] != 0.0 || J->Mfix[2] != 0.0;
+  if (fixed) need += n + n * n;
   s->n = (int)n;
   s->heap = NULL;
   s->heap_refs = NULL;
@@ -328,6 +331,7 @@ rn_status rn_joint_scratch_init(const rn_joint *J, rn_joint_scratch *s) {
   s->v = s->q + n;
   s->loc = s->v + n;
   s->work = s->loc + n * n;
+  s->fix = fixed ? s->work + rnk_joint_work_size(&kj) : NULL;
   return RN_OK;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "network_internal.h"
+#include "rodnet_couple.h"
 #include "rodnet_ring.h"
 
 void rn_joint_free(rn_joint *J) {
@@ -397,12 +398,28 @@ rn_status rn_network_add_joint_force(rn_network *net, int joint, const double f[
 }
 
 rn_status rn_network_add_joint_moment(rn_network *net, int joint, const double m[3]) {
+  return rn_network_add_joint_moment_model(net, joint, m, RN_COUPLE_CONSERVATIVE);
+}
+
+rn_status rn_network_add_joint_moment_model(rn_network *net, int joint, const double m[3],
+                                            rn_couple_model model) {
+  static const char *where = "rn_network_add_joint_moment";
   rn_status st;
   int lj;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_load(net, "rn_network_add_joint_moment", joint, m, &lj)))
-    return rn_not_here_ok(st);
-  for (int k = 0; k < 3; ++k) net->joints[lj].M[k] += m[k];
+  if (model != RN_COUPLE_CONSERVATIVE && model != RN_COUPLE_FIXED)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "joint %d: unknown couple model %d",
+                   joint, (int)model);
+  st = check_joint_load(net, where, joint, m, &lj);
+  if (st && st != RN_NOT_HERE) return st;
+  if (model == RN_COUPLE_FIXED && net->nfixed_couples++ == 0) {
+    net->fixed_on_joint = 1;
+    net->fixed_joint = joint;
+    net->fixed_rod = net->fixed_vertex = -1;
+  }
+  if (st == RN_NOT_HERE) return RN_OK;
+  double *dst = model == RN_COUPLE_FIXED ? net->joints[lj].Mfix : net->joints[lj].M;
+  for (int k = 0; k < 3; ++k) dst[k] += m[k];
   return RN_OK;
 }
 

@@ -1,5 +1,6 @@
 /* loads.c - dead loads: point forces, couples, line loads, gravity, and
  * their lumping to vertex forces at finalize. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -79,6 +80,7 @@ rn_status rn_network_add_moment_model(rn_network *net, int rod, int vertex,
   if (st && st != RN_NOT_HERE) return st;
   gid = rn_part_next_moment(net);
   if (model == RN_COUPLE_FIXED && net->nfixed_couples++ == 0) {
+    net->fixed_on_joint = 0;
     net->fixed_rod = rod;
     net->fixed_vertex = v;
   }
@@ -108,6 +110,34 @@ int rn_network_fixed_couples(const rn_network *net, int *rod, int *vertex) {
     if (vertex) *vertex = net->fixed_vertex;
   }
   return net->nfixed_couples;
+}
+
+int rn_network_fixed_couple_joint(const rn_network *net, int *joint) {
+  if (!net) return 0;
+  if (net->nfixed_couples > 0 && joint)
+    *joint = net->fixed_on_joint ? net->fixed_joint : -1;
+  return net->nfixed_couples;
+}
+
+const char *rn_network_fixed_couple_where(const rn_network *net, char *buf, size_t n) {
+  const char *name = NULL;
+  if (!buf || n == 0) return buf;
+  buf[0] = '\0';
+  if (!net || net->nfixed_couples == 0) return buf;
+  if (net->fixed_on_joint) {
+    name = rn_network_joint_name(net, net->fixed_joint);
+    if (name && name[0])
+      snprintf(buf, n, "joint '%s'", name);
+    else
+      snprintf(buf, n, "joint %d", net->fixed_joint);
+    return buf;
+  }
+  name = rn_network_rod_name(net, net->fixed_rod);
+  if (name && name[0])
+    snprintf(buf, n, "rod '%s' vertex %d", name, net->fixed_vertex);
+  else
+    snprintf(buf, n, "rod %d vertex %d", net->fixed_rod, net->fixed_vertex);
+  return buf;
 }
 
 rn_status rn_network_add_line_load(rn_network *net, int rod, const double w[3]) {

@@ -90,7 +90,8 @@ typedef struct rn_joint {
   int clamped;    /* position and rotation fixed */
   int has_motion;
   double disp[3], rot[3]; /* prescribed motion (unscaled) */
-  double force[3], M[3];  /* loads (unscaled) */
+  double force[3], M[3];  /* loads (unscaled); M: the conservative couple */
+  double Mfix[3];         /* the couple fixed in space (RN_COUPLE_FIXED) */
   /* reference state */
   double Qhat[9];      /* rigid: reference rotation; clamped: prescribed rotation */
   double f0[9];        /* rotation at the last reference update (couple) */
@@ -137,8 +138,10 @@ struct rn_network {
   rn_moment *moments;
   int nmom, cap_mom;
   /* couples fixed in space added to the whole network (also those another
-   * part holds), and the rod and vertex of the first (rodnet_couple.h) */
-  int nfixed_couples, fixed_rod, fixed_vertex;
+   * part holds), and where the first is: on joint fixed_joint if
+   * fixed_on_joint, else on rod fixed_rod, vertex fixed_vertex
+   * (rodnet_couple.h) */
+  int nfixed_couples, fixed_rod, fixed_vertex, fixed_on_joint, fixed_joint;
   rn_joint *joints;
   int njoints, cap_joints;
   double gravity[3];
@@ -160,6 +163,9 @@ struct rn_network {
   size_t nnz;
   size_t bandwidth;
   unsigned long pattern_version; /* + 1 at each rebuild (rodnet_contact.h) */
+  size_t pattern_work;           /* entries the pattern build's candidate loops
+                                    looked at (hessian.c; a test asserts that it grows
+                                    linearly with a periodic supercell) */
   struct rn_part_data *part;     /* NULL: a whole network (part.c) */
   struct rn_cell *cell;          /* NULL: not periodic (periodic.c) */
   int model;                     /* rn_model asked for (planar.c) */
@@ -571,6 +577,8 @@ enum { RN_JOINT_STACK = 5120, RN_JOINT_STACK_ENDS = 8 };
 typedef struct rn_joint_scratch {
   int n; /* stencil size */
   double *q, *v, *loc, *work;
+  double *fix; /* a fixed couple's force and Jacobian (n + n n), NULL if the
+                  joint has none */
   rnk_frame *refs;
   double *heap; /* NULL if the buffers below suffice */
   rnk_frame *heap_refs;

@@ -121,7 +121,7 @@ static int joint_checks(rn_network *net, const rn_joint *J, double z0, double to
                joint_name(J), J->x0[2], z0);
   if (leaves(J->force, 1))
     return why(net, "joint %d ('%s'): a force out of the plane", J->gid, joint_name(J));
-  if (leaves(J->M, 0))
+  if (leaves(J->M, 0) || leaves(J->Mfix, 0))
     return why(net, "joint %d ('%s'): a couple about an in-plane axis", J->gid,
                joint_name(J));
   if (J->has_motion && (leaves(J->disp, 1) || leaves(J->rot, 0)))

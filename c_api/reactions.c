@@ -128,6 +128,7 @@ rn_status rn_network_applied_load_max(const rn_network *net, double *force,
   for (int ij = 0; ij < net->njoints; ++ij) {
     fbig = fmax(fbig, norm3(net->joints[ij].force));
     mbig = fmax(mbig, norm3(net->joints[ij].M));
+    mbig = fmax(mbig, norm3(net->joints[ij].Mfix));
   }
   *force = fabs(net->lambda) * fbig;
   *moment = fabs(net->lambda) * mbig;
@@ -314,6 +315,30 @@ static void applied_couple(const rn_network *net, const rn_moment *mo, double m[
     memcpy(m, mo->M, 3 * sizeof(double));
 }
 
+/* The same for the couples on joint ij: M for the one fixed in space plus,
+ * for the conservative one, f x (M x f) / |n x f|^2 with f = Q couple_p, Q
+ * the joint's current rotation (M where that is degenerate). */
+static void applied_joint_couple(const rn_network *net, int ij, double m[3]) {
+  const rn_joint *J = &net->joints[ij];
+  double mc[3], Q[9], F[9];
+  rn_joint_scratch s;
+  rnk_joint kj;
+  memcpy(mc, J->M, sizeof mc);
+  if (norm3(J->M) > 0.0 && J->model != RN_JOINT_SMOOTH && !J->ghost &&
+      rn_joint_scratch_init(J, &s) == RN_OK) {
+    rn_joint_kernel(net, ij, 1.0, s.refs, &kj);
+    rn_joint_gather_full(net, J, net->xfull, s.q);
+    if (rnk_joint_rotation(s.q, &kj, Q) == RNK_OK) {
+      for (int a = 0; a < 3; ++a) /* rows of F: the columns of Q */
+        for (int k = 0; k < 3; ++k) F[3 * k + a] = Q[3 * a + k];
+      if (rnk_moment_spatial(F, J->couple_p, J->M, mc) != RNK_OK)
+        memcpy(mc, J->M, sizeof mc);
+    }
+    rn_joint_scratch_free(&s);
+  }
+  for (int k = 0; k < 3; ++k) m[k] = mc[k] + J->Mfix[k];
+}
+
 rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
                                        double moment[3]) {
   static const char *where = "rn_network_applied_resultant";
@@ -342,7 +367,9 @@ rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
     const double f[3] = {lam * J->force[0], lam * J->force[1], lam * J->force[2]};
     add_scaled(F, 1.0, f);
     cross_add(&xf[rn_dof_joint_position(J->off)], f, M);
-    add_scaled(M, lam, J->M);
+    double m[3];
+    applied_joint_couple(net, ij, m);
+    add_scaled(M, lam, m);
   }
   memcpy(force, F, sizeof F);
   memcpy(moment, M, sizeof M);

@@ -750,8 +750,11 @@ rn_status rn_network_reactions(const rn_network *net, const double *x, rn_reacti
 /* The resultant of the applied loads at the current state and load factor:
  * force[3] (point forces, lumped line loads and gravity, joint forces) and
  * moment[3] about the origin (their moments x x f at the current positions,
- * plus the couples' vectors).  At equilibrium it balances the resultant of the
- * reactions (rn_network_reactions): their sum is zero.  RN_ERR_ARG. */
+ * plus the spatial moment each couple applies at the current state: M for a
+ * couple fixed in space, m = f x (M x f) / |n x f|^2 for a conservative one,
+ * on a rod edge or a joint; rodnet_couple.h, docs/model.md "Loads").  At
+ * equilibrium it balances the resultant of the reactions
+ * (rn_network_reactions): their sum is zero.  RN_ERR_ARG. */
 rn_status rn_network_applied_resultant(const rn_network *net, double force[3],
                                        double moment[3]);
 

@@ -1,5 +1,5 @@
 /* rodnet_couple.h - the models of a couple (a `moment` load) on a rod vertex
- * (docs/model.md, "Loads").
+ * or a joint (docs/model.md, "Loads").
  *
  * RN_COUPLE_CONSERVATIVE (rn_network_add_moment): the potential
  * -|M| phi, phi the rotation about the fixed axis n = M/|M| of a vector f
@@ -9,7 +9,9 @@
  * departs from M, keeping m . n = |M|, once the edge turns f out of that plane.
  *
  * RN_COUPLE_FIXED: a couple fixed in space, the virtual work M . omega with
- * omega the angular velocity of the edge's material frame.  It has no
+ * omega the angular velocity of the edge's material frame (on a joint: of the
+ * joint's rotation Q, [omega] = dQ Q^T; the rotation DOFs of a rigid joint,
+ * the terminal edges through the rotation fit of an elastic one).  It has no
  * potential in 3D: it enters the network's gradient (the residual; the
  * energy gets no term) and Hessian (its Jacobian, nonsymmetric), so a
  * network with one is solved only by RN_SOLVER_NOX (Newton on the residual
@@ -17,10 +19,13 @@
  * refuse it.
  *
  * rn_network_applied_resultant counts each couple as the spatial moment it
- * applies at the current state: m for the conservative couple, M for the
- * fixed one (so the reactions balance it in 3D too). */
+ * applies at the current state: m for the conservative couple (of a rod
+ * edge or a joint), M for the fixed one (so the reactions balance it in 3D
+ * too). */
 #ifndef RODNET_COUPLE_H
 #define RODNET_COUPLE_H
+
+#include <stddef.h>
 
 #include "rodnet.h"
 
@@ -40,11 +45,35 @@ typedef enum rn_couple_model {
 rn_status rn_network_add_moment_model(rn_network *net, int rod, int vertex,
                                       const double m[3], rn_couple_model model);
 
-/* Number of RN_COUPLE_FIXED couples added to the whole network (0: the
- * problem is conservative), and the rod and vertex of the first of them into
- * *rod and *vertex (either may be NULL; untouched when there is none).  Not
- * collective (every part makes the same building calls). */
+/* As rn_network_add_joint_moment (a couple m on the rotation of joint
+ * `joint`), with the model named.  RN_COUPLE_FIXED: on a rigid joint it acts
+ * on the rotation DOFs, on an elastic joint on the rotation of the fit (so on
+ * the terminal edges), on a clamped joint it does nothing (its rotation is
+ * held); a smooth joint refuses it at finalize (RN_ERR_BC, no rotation).
+ * Both models may load the same joint.  Building phase only.  RN_ERR_ARG for
+ * an unknown model.  In a part of a distributed network every part must make
+ * the same calls (whole-network indices). */
+rn_status rn_network_add_joint_moment_model(rn_network *net, int joint, const double m[3],
+                                            rn_couple_model model);
+
+/* Number of RN_COUPLE_FIXED couples added to the whole network, on rods and
+ * on joints (0: the problem is conservative), and the rod and vertex of the
+ * first of them into *rod and *vertex (either may be NULL; untouched when
+ * there is none; -1 and -1 when the first is on a joint:
+ * rn_network_fixed_couple_joint).  Not collective (every part makes the same
+ * building calls). */
 int rn_network_fixed_couples(const rn_network *net, int *rod, int *vertex);
+
+/* The same count; *joint (may be NULL) gets the joint of the first
+ * RN_COUPLE_FIXED couple, -1 if it is on a rod (untouched when there is
+ * none). */
+int rn_network_fixed_couple_joint(const rn_network *net, int *joint);
+
+/* The first RN_COUPLE_FIXED couple for messages: "rod 'name' vertex V" or
+ * "joint 'name'" (the index instead of a name that is empty or held by
+ * another part), "" if there is none, into buf[n] (truncated; n > 0).
+ * Returns buf. */
+const char *rn_network_fixed_couple_where(const rn_network *net, char *buf, size_t n);
 
 #ifdef __cplusplus
 }

@@ -29,6 +29,7 @@
 
 #include "frameq.h"
 #include "rnk.h"
+#include "rnk_couple.h"
 
 /* ---- 3x3 helpers (row-major) ---- */
 static void m3_mul(const double A[9], const double B[9], double C[9]) {
@@ -232,6 +233,27 @@ static int couple_eval(const rnk_joint *j, const double Qref[9], const fq_rot *R
     }
   }
   return RNK_OK;
+}
+
+/* ---- a couple fixed in space on the joint rotation ------------------------------ */
+/* The couple M does the virtual work M . omega, omega the angular velocity of
+ * Q = R(P(w)) Qref: [omega] = dQ Q^T, omega = 2 Im(dP (x) P*) (P is a unit
+ * quaternion for every w).  In the sign of an energy gradient (the residual
+ * gets -M . omega_a): Gw[a] -= M . omega_a and Hww[a][b] -= M . d omega_a /
+ * d w_b = 2 M . Im(d2P_ab (x) P* + dP_a (x) dP_b*) (nonsymmetric). */
+static void fixed_eval(const double M[3], const fq_rot *R, int ord, double Gw[3],
+                       double Hww[3][3]) {
+  double t[4], u[4];
+  for (int a = 0; a < 3 && ord >= 1; ++a) {
+    rq_qmul_c(R->dP[a], 0, R->P, 1, t);
+    Gw[a] -= 2.0 * (M[0] * t[1] + M[1] * t[2] + M[2] * t[3]);
+    for (int b = 0; b < 3 && ord >= 2; ++b) {
+      rq_qmul_c(R->d2P[a][b], 0, R->P, 1, t);
+      rq_qmul_c(R->dP[a], 0, R->dP[b], 1, u);
+      for (int c = 0; c < 3; ++c) t[1 + c] += u[1 + c];
+      Hww[a][b] -= 2.0 * (M[0] * t[1] + M[1] * t[2] + M[2] * t[3]);
+    }
+  }
 }
 
 /* ---- maps y -> e -> stencil ----------------------------------------------------- */
@@ -513,7 +535,8 @@ static int joint_setup(const double *q, const rnk_joint *j, int ord, jq_fit *F, 
 }
 
 static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
-                      double *E, double *g, double *H, const double *v, double *Hv) {
+                      double *E, double *g, double *H, const double *v, double *Hv,
+                      const double *Mfix) {
   int n = (int)rnk_joint_stencil_size(j), nv = j->valence, st;
   int ord = op == OP_HV ? 2 : op;
   double Gw[3] = {0, 0, 0}, Hww[3][3] = {{0}}, Etot = 0.0;
@@ -530,6 +553,10 @@ static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
   for (int k = 0; k < nv; ++k) {
     double cq[4];
     int base = end_base(j, k);
+    if (Mfix) { /* the fixed couple alone: the ends carry no energy */
+      if (!j->rigid) memset(work + (size_t)JQ_STORE * k, 0, JQ_P1 * sizeof(double));
+      continue;
+    }
     end_edge(q, j, k, &X.T, &X.s);
     connection_quat(Qref, j->ends[k].cbar, cq);
     if ((st = end_eval(&j->ends[k], &R, cq, ord, &X))) return st;
@@ -576,7 +603,10 @@ static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
       end_out_hvp(base, X.s, &X.T, gy, hy, de, 1, Hv);
     }
   }
-  if ((st = couple_eval(j, Qref, &R, ord, &Etot, Gw, Hww, NULL))) return st;
+  if (Mfix)
+    fixed_eval(Mfix, &R, ord, Gw, Hww);
+  else if ((st = couple_eval(j, Qref, &R, ord, &Etot, Gw, Hww, NULL)))
+    return st;
   if (E) *E = Etot;
   if (ord < 1) return RNK_OK;
   if (j->rigid) {
@@ -678,13 +708,13 @@ int rnk_joint_energy(const double *q, const rnk_joint *j, double *work, double *
     *E += Et;
     return st;
   }
-  return joint_eval(q, j, OP_E, work, E, NULL, NULL, NULL, NULL);
+  return joint_eval(q, j, OP_E, work, E, NULL, NULL, NULL, NULL, NULL);
 }
 
 int rnk_joint_grad(const double *q, const rnk_joint *j, double *work, double *E,
                    double *g) {
   if (j->smooth) return rnk_smooth_joint_grad(q, j, E, g);
-  return joint_eval(q, j, OP_G, work, E, g, NULL, NULL, NULL);
+  return joint_eval(q, j, OP_G, work, E, g, NULL, NULL, NULL, NULL);
 }
 
 /* The blocks above are symmetric up to rounding (projections applied to
@@ -699,7 +729,7 @@ static void symmetrize(double *H, int n) {
 
 int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H) {
   if (j->smooth) return rnk_smooth_joint_hess(q, j, H);
-  int st = joint_eval(q, j, OP_H, work, NULL, NULL, H, NULL, NULL);
+  int st = joint_eval(q, j, OP_H, work, NULL, NULL, H, NULL, NULL, NULL);
   if (st == RNK_OK) symmetrize(H, (int)rnk_joint_stencil_size(j));
   return st;
 }
@@ -707,10 +737,22 @@ int rnk_joint_hess(const double *q, const rnk_joint *j, double *work, double *H)
 int rnk_joint_hvp(const double *q, const rnk_joint *j, double *work, const double *v,
                   double *Hv) {
   if (j->smooth) return rnk_smooth_joint_hvp(q, j, v, Hv);
-  return joint_eval(q, j, OP_HV, work, NULL, NULL, NULL, v, Hv);
+  return joint_eval(q, j, OP_HV, work, NULL, NULL, NULL, v, Hv, NULL);
 }
 
 /* Twists of every end and the couple's angle at the current state. */
+int rnk_joint_couple_fixed_force(const double *q, const rnk_joint *j, const double M[3],
+                                 double *work, double *Q, double *J) {
+  int n = (int)rnk_joint_stencil_size(j), st;
+  if (j->smooth) return RNK_DEGENERATE; /* no rotation to turn */
+  if ((st = joint_eval(q, j, OP_G, work, NULL, Q, NULL, NULL, NULL, M))) return st;
+  for (int i = 0; i < n; ++i) Q[i] = -Q[i];
+  if (!J) return RNK_OK;
+  if ((st = joint_eval(q, j, OP_H, work, NULL, NULL, J, NULL, NULL, M))) return st;
+  for (int i = 0; i < n * n; ++i) J[i] = -J[i];
+  return RNK_OK;
+}
+
 int rnk_joint_twists(const double *q, const rnk_joint *j, double *twist) {
   const double *Qref;
   jq_fit F;
@@ -770,7 +812,7 @@ int rnk_joint_end_energy(const double q[10], const rnk_frame *ref,
   rnk_joint_end en;
   double qj[10];
   end_joint(q, ref, p, &en, &j, qj);
-  return joint_eval(qj, &j, OP_E, NULL, E, NULL, NULL, NULL, NULL);
+  return joint_eval(qj, &j, OP_E, NULL, E, NULL, NULL, NULL, NULL, NULL);
 }
 
 int rnk_joint_end_grad(const double q[10], const rnk_frame *ref,
@@ -779,7 +821,7 @@ int rnk_joint_end_grad(const double q[10], const rnk_frame *ref,
   rnk_joint_end en;
   double qj[10], gj[10];
   end_joint(q, ref, p, &en, &j, qj);
-  int st = joint_eval(qj, &j, OP_G, NULL, E, gj, NULL, NULL, NULL);
+  int st = joint_eval(qj, &j, OP_G, NULL, E, gj, NULL, NULL, NULL, NULL);
   for (int i = 0; i < 10; ++i) g[end_perm[i]] = gj[i];
   return st;
 }
@@ -790,7 +832,7 @@ int rnk_joint_end_hess(const double q[10], const rnk_frame *ref,
   rnk_joint_end en;
   double qj[10], Hj[100];
   end_joint(q, ref, p, &en, &j, qj);
-  int st = joint_eval(qj, &j, OP_H, NULL, NULL, NULL, Hj, NULL, NULL);
+  int st = joint_eval(qj, &j, OP_H, NULL, NULL, NULL, Hj, NULL, NULL, NULL);
   if (st == RNK_OK) symmetrize(Hj, 10);
   for (int a = 0; a < 10; ++a)
     for (int b = 0; b < 10; ++b) H[10 * end_perm[a] + end_perm[b]] = Hj[10 * a + b];
@@ -804,7 +846,7 @@ int rnk_joint_end_hvp(const double q[10], const rnk_frame *ref,
   double qj[10], vj[10], Hj[10];
   end_joint(q, ref, p, &en, &j, qj);
   for (int i = 0; i < 10; ++i) vj[i] = v[end_perm[i]];
-  int st = joint_eval(qj, &j, OP_HV, NULL, NULL, NULL, NULL, vj, Hj);
+  int st = joint_eval(qj, &j, OP_HV, NULL, NULL, NULL, NULL, vj, Hj, NULL);
   for (int i = 0; i < 10; ++i) Hv[end_perm[i]] = Hj[i];
   return st;
 }

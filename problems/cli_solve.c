@@ -407,22 +407,17 @@ static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *s
  * RN_EXIT_USAGE with a message naming the load (printed if loud), else 0. */
 static int refuse_fixed_couples(const solve_args *a, const rn_network *net,
                                 const rn_solve_options *opt, int loud) {
-  int rod = -1, vertex = -1;
-  if (opt->solver == RN_SOLVER_NOX || rn_network_fixed_couples(net, &rod, &vertex) == 0)
+  if (opt->solver == RN_SOLVER_NOX || rn_network_fixed_couples(net, NULL, NULL) == 0)
     return 0;
-  const char *name = rn_network_rod_name(net, rod);
-  char which[64];
-  if (name && name[0])
-    snprintf(which, sizeof which, "'%.50s'", name);
-  else /* the graph pass of a distributed solve has no names */
-    snprintf(which, sizeof which, "%d", rod);
+  char which[160]; /* the graph pass of a distributed solve has no names */
   if (loud)
-    fprintf(stderr,
-            "rodnet solve: %s: the moment on rod %s vertex %d is a couple fixed in "
-            "space (\"model\": \"fixed\"), a nonconservative load with no energy: the "
-            "energy minimiser '%s' cannot solve it; use --solver nox (Newton on the "
-            "residual)\n",
-            a->scene, which, vertex, rn_solver_name(opt->solver));
+    fprintf(
+        stderr,
+        "rodnet solve: %s: the moment on %s is a couple fixed in space (\"model\": "
+        "\"fixed\"), a nonconservative load with no energy: the energy minimiser '%s' "
+        "cannot solve it; use --solver nox (Newton on the residual)\n",
+        a->scene, rn_network_fixed_couple_where(net, which, sizeof which),
+        rn_solver_name(opt->solver));
   return RN_EXIT_USAGE;
 }
 

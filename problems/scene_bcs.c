@@ -407,10 +407,9 @@ enum { L_FORCE = 0, L_MOMENT, L_LINE_LOAD, L_GRAVITY, L_COUNT };
 static const char *const load_names[L_COUNT] = {"force", "moment", "line_load",
                                                 "gravity"};
 
-/* The optional "model" of a moment load (rodnet_couple.h): "conservative"
- * (default) or "fixed"; joint couples take only "conservative" for now. */
-static rn_status read_couple_model(rn_jwalk *w, const cJSON *v, int joint,
-                                   rn_couple_model *model) {
+/* The optional "model" of a moment load on a rod vertex or a joint
+ * (rodnet_couple.h): "conservative" (default) or "fixed". */
+static rn_status read_couple_model(rn_jwalk *w, const cJSON *v, rn_couple_model *model) {
   const char *s = "conservative";
   rn_status st = rn_jm_string(w, v, "model", 0, &s);
   if (st) return st;
@@ -419,12 +418,8 @@ static rn_status read_couple_model(rn_jwalk *w, const cJSON *v, int joint,
     return RN_OK;
   }
   size_t mark = rn_jwalk_key(w, "model");
-  if (strcmp(s, "fixed") == 0 && !joint)
+  if (strcmp(s, "fixed") == 0)
     *model = RN_COUPLE_FIXED;
-  else if (strcmp(s, "fixed") == 0)
-    st =
-        rn_jwalk_error(w, "a couple fixed in space on a joint is not supported yet "
-                          "(only on a rod vertex; the joint couple is \"conservative\")");
   else
     st = rn_jwalk_error(w, "unknown moment model \"%s\" (known: conservative, fixed)", s);
   rn_jwalk_pop(w, mark);
@@ -439,12 +434,12 @@ static rn_status read_joint_load(rn_scene_parser *p, const cJSON *v, int moment)
   double f[3];
   rn_couple_model model = RN_COUPLE_CONSERVATIVE;
   rn_status st = rn_json_check_keys(&p->w, v, moment ? moment_keys : keys);
-  if (!st && moment) st = read_couple_model(&p->w, v, 1, &model);
+  if (!st && moment) st = read_couple_model(&p->w, v, &model);
   if (!st) st = rn_scene_joint_ref(p, v, &j);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, f, NULL);
   if (st) return st;
   rn_network *net = p->scene->net;
-  return lib(&p->w, moment ? rn_network_add_joint_moment(net, j, f)
+  return lib(&p->w, moment ? rn_network_add_joint_moment_model(net, j, f, model)
                            : rn_network_add_joint_force(net, j, f));
 }
 
@@ -458,7 +453,7 @@ static rn_status read_point_load(rn_scene_parser *p, const cJSON *v, int moment)
   rn_status st = read_target(&p->w, v, &is_joint);
   if (st || is_joint) return st ? st : read_joint_load(p, v, moment);
   st = rn_json_check_keys(&p->w, v, moment ? moment_keys : keys);
-  if (!st && moment) st = read_couple_model(&p->w, v, 0, &model);
+  if (!st && moment) st = read_couple_model(&p->w, v, &model);
   if (!st) st = rn_scene_rod_ref(p, v, &rod);
   if (!st) st = rn_scene_index_ref(p, v, "vertex", rod, 0, &vertex);
   if (!st) st = rn_jm_vec(&p->w, v, "value", 1, 3, RN_J_ANY, f, NULL);

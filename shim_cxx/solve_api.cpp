@@ -58,14 +58,14 @@ rn_status value_of_name(const char *name, const Enum (&kinds)[N],
 // has one: `what` (an energy minimiser, path following, a stability check) needs a
 // conservative problem.  RN_OK otherwise.
 rn_status refuse_nonconservative(rn_network *net, const char *where, const char *what) {
-  int rod = -1, vertex = -1;
-  if (rn_network_fixed_couples(net, &rod, &vertex) == 0) return RN_OK;
+  char which[160];
+  if (rn_network_fixed_couples(net, nullptr, nullptr) == 0) return RN_OK;
   return rn_context_set_error(
       rn_network_context(net), RN_ERR_ARG,
-      "%s: the moment on rod %d vertex %d is a couple fixed in space (\"model\": "
-      "\"fixed\"), a nonconservative load with no energy: %s does not apply; solve it "
-      "with the nox solver (--solver nox), Newton on the residual",
-      where, rod, vertex, what);
+      "%s: the moment on %s is a couple fixed in space (\"model\": \"fixed\"), a "
+      "nonconservative load with no energy: %s does not apply; solve it with the nox "
+      "solver (--solver nox), Newton on the residual",
+      where, rn_network_fixed_couple_where(net, which, sizeof which), what);
 }
 
 rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {

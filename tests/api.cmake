@@ -42,3 +42,9 @@ rn_add_test(api_contact SOURCES unit/api_contact.c LIBS rodnet m LABELS unit)
 rn_add_test(api_rings SOURCES unit/api_rings.c LIBS rodnet ${LAPACK_LIBRARIES} m
             LABELS unit validation)
 rn_add_test(api_couple_fixed SOURCES unit/api_couple_fixed.c LIBS rodnet LABELS unit)
+# The Hessian pattern of a periodic supercell: work linear in its size, counted
+# (docs/homogenization.md, "Reading large supercells").
+rn_add_test(api_pattern_linear SOURCES unit/api_pattern_linear.c
+            LIBS rodnet_internal m LABELS unit)
+target_include_directories(api_pattern_linear PRIVATE
+                           ${CMAKE_CURRENT_SOURCE_DIR}/../kernels)

@@ -724,25 +724,35 @@ if(RN_WITH_TRILINOS)
     set_tests_properties(problems_example_${stem}_nox_vs_exact PROPERTIES LABELS unit
       FIXTURES_REQUIRED "problems_example_${stem}_exact;problems_example_${stem}_nox")
   endforeach()
-  # A couple fixed in space (docs/model.md, "Loads"): NOX solves it on the residual
-  # (GMRES) and RESULT.json claims no minimum; the energy minimisers refuse it.
-  set(RN_COUPLE_SCENE ${CMAKE_CURRENT_SOURCE_DIR}/data/couple/helix_fixed.json)
-  rn_cli_test(problems_couple_fixed_nox 0 "status +converged.*solver +nox"
-              ARGS solve ${RN_COUPLE_SCENE} -o ${RN_CLI_OUT}/couple_fixed_nox.json
-                   --solver nox --quiet)
-  set_tests_properties(problems_couple_fixed_nox PROPERTIES
-                       FIXTURES_SETUP problems_couple_fixed_nox)
-  add_test(NAME problems_couple_fixed_result
-           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_couple_result.py
-                   ${RN_CLI_OUT}/couple_fixed_nox.json)
-  set_tests_properties(problems_couple_fixed_result PROPERTIES LABELS unit
-                       FIXTURES_REQUIRED problems_couple_fixed_nox)
-  foreach(solver tr-minres tr-krylov)
-    rn_cli_test(problems_couple_fixed_refused_${solver} 2
-                "rod 'beam' vertex 40 is a couple fixed in space.*'${solver}'.*--solver nox"
-                ARGS solve ${RN_COUPLE_SCENE} -o ${RN_CLI_OUT}/couple_fixed_refused.json
-                     --solver ${solver} --quiet
-                ABSENT ${RN_CLI_OUT}/couple_fixed_refused.json)
+  # A couple fixed in space (docs/model.md, "Loads"), on the rod's last vertex and on a
+  # rigid joint at the tip ("model": "fixed" on a joint load): NOX solves it on the
+  # residual (GMRES) and RESULT.json claims no minimum; the energy minimisers refuse it,
+  # naming the load.
+  foreach(case couple_fixed couple_joint_fixed)
+    if(case STREQUAL "couple_fixed")
+      set(RN_COUPLE_SCENE ${CMAKE_CURRENT_SOURCE_DIR}/data/couple/helix_fixed.json)
+      set(RN_COUPLE_WHERE "rod 'beam' vertex 40")
+    else()
+      set(RN_COUPLE_SCENE ${CMAKE_CURRENT_SOURCE_DIR}/data/couple/joint_fixed.json)
+      set(RN_COUPLE_WHERE "joint 'tip'")
+    endif()
+    rn_cli_test(problems_${case}_nox 0 "status +converged.*solver +nox"
+                ARGS solve ${RN_COUPLE_SCENE} -o ${RN_CLI_OUT}/${case}_nox.json
+                     --solver nox --quiet)
+    set_tests_properties(problems_${case}_nox PROPERTIES
+                         FIXTURES_SETUP problems_${case}_nox)
+    add_test(NAME problems_${case}_result
+             COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_couple_result.py
+                     ${RN_CLI_OUT}/${case}_nox.json)
+    set_tests_properties(problems_${case}_result PROPERTIES LABELS unit
+                         FIXTURES_REQUIRED problems_${case}_nox)
+    foreach(solver tr-minres tr-krylov)
+      rn_cli_test(problems_${case}_refused_${solver} 2
+                  "${RN_COUPLE_WHERE} is a couple fixed in space.*'${solver}'.*--solver nox"
+                  ARGS solve ${RN_COUPLE_SCENE} -o ${RN_CLI_OUT}/${case}_refused.json
+                       --solver ${solver} --quiet
+                  ABSENT ${RN_CLI_OUT}/${case}_refused.json)
+    endforeach()
   endforeach()
   # The pinned column: NOX finds the straight saddle, tr-minres the buckled minimum.
   rn_cli_test(problems_example_pinned_column_nox 0 "status +converged.*solver +nox"

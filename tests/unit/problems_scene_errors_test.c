@@ -347,12 +347,14 @@ static const bad_case cases[] = {
      SCENE(", 'loads': [{'type': 'force', 'rod': 'beam', 'vertex': -1, 'value': [0, 0, "
            "1], 'model': 'fixed'}]"),
      ": $.loads[0].model: ", "unknown key \"model\""},
-    {"fixed couple on a joint",
+    {"unknown couple model on a joint",
      "{" MS ", 'rods': [" ROD ", {'name': 'b2', 'material': 'steel', 'section': 'wire', "
      "'line': {'from': [1, 0, 0], 'to': [1, 1, 0], 'vertices': 5}}], 'joints': [{'name': "
      "'j', 'ends': [{'rod': 'beam', 'end': 'end'}, {'rod': 'b2', 'end': 'start'}]}], "
-     "'loads': [{'type': 'moment', 'joint': 'j', 'value': [0, 0, 1], 'model': 'fixed'}]}",
-     ": $.loads[0].model: ", "a couple fixed in space on a joint is not supported yet"},
+     "'loads': [{'type': 'moment', 'joint': 'j', 'value': [0, 0, 1], 'model': "
+     "'follower'}]}",
+     ": $.loads[0].model: ",
+     "unknown moment model \"follower\" (known: conservative, fixed)"},
     {"line load with vertex",
      SCENE(", 'loads': [{'type': 'line_load', 'rod': 'beam', 'vertex': 1, 'value': "
            "[0,0,1]}]"),

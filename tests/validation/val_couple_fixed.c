@@ -16,7 +16,19 @@
  * scene gives a measurably different tip (it applies f x (M x f) / |n x f|^2,
  * which departs from M as the end turns out of the plane normal to M); the
  * energy minimisers refuse the fixed couple; and in a plane (couple normal to
- * it) both models give the same state. */
+ * it) both models give the same state.
+ *
+ * The same couple on a joint of valence 1 at the tip (rigid: a rotational
+ * spring from the terminal edge to the joint rotation; elastic: the rotation
+ * fit follows the terminal frame), "model": "fixed" on the joint: the joint
+ * is massless, so its spring hands the terminal edge the spatial moment M
+ * (its energy is invariant under a common rotation) and the rod's equilibrium
+ * equations are those of the couple on the rod's last edge.  Asserted: the
+ * rod's state equals the rod-vertex solution to 1e-8 L at every n (so the
+ * helix at second order), the clamp reaction is -M, the applied resultant
+ * counts M, and the energy minimisers refuse it naming the joint.  The
+ * conservative couple on the rigid joint: the reactions balance the applied
+ * resultant, which counts the spatial moment m (not M) it applies there. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,6 +43,20 @@ static rn_network *rod_with_couple(rn_context *ctx, int n, double L, const rn_ma
                                    rn_couple_model model) {
   rn_network *net = val_clamped_rod(ctx, n, L, m, s, NULL, NULL, 0);
   CHECK_STATUS(rn_network_add_moment_model(net, 0, -1, M, model), RN_OK);
+  CHECK_STATUS(rn_network_finalize(net), RN_OK);
+  return net;
+}
+
+/* The clamped rod ending at joint "tip" of valence 1 and model jm, the couple
+ * M on the joint. */
+static rn_network *rod_with_joint_couple(rn_context *ctx, int n, double L,
+                                         const rn_material *m, const rn_section *s,
+                                         const double M[3], rn_joint_model jm,
+                                         rn_couple_model model) {
+  rn_network *net = val_clamped_rod(ctx, n, L, m, s, NULL, NULL, 0);
+  int rods[1] = {0}, ends[1] = {RN_END}, j = -1;
+  CHECK_STATUS(rn_network_add_joint(net, "tip", jm, 1, rods, ends, &j), RN_OK);
+  CHECK_STATUS(rn_network_add_joint_moment_model(net, j, M, model), RN_OK);
   CHECK_STATUS(rn_network_finalize(net), RN_OK);
   return net;
 }
@@ -125,6 +151,56 @@ int main(void) {
     free(mi);
     free(x);
 
+    /* the couple on a joint at the tip: the same rod state */
+    for (int jm = 0; jm < 2; ++jm) {
+      rn_joint_model model = jm ? RN_JOINT_RIGID : RN_JOINT_ELASTIC;
+      rn_network *nj =
+          rod_with_joint_couple(ctx, ns[i], L, &mat, &sec, M, model, RN_COUPLE_FIXED);
+      rn_solve_report rj = solve_nox(nj);
+      double tj[3], F[3], Ma[3], dmax = 0.0;
+      val_vertex(nj, -1, tj);
+      size_t nd = rn_network_num_dofs(nj);
+      double *xj = malloc(sizeof(double) * nd);
+      rn_reaction Rj[1];
+      CHECK(rn_network_num_supports(nj) == 1);
+      CHECK_STATUS(rn_network_get_dofs(nj, xj), RN_OK);
+      CHECK_STATUS(rn_network_reactions(nj, xj, Rj, 1), RN_OK);
+      CHECK_STATUS(rn_network_applied_resultant(nj, F, Ma), RN_OK);
+      for (int v = 0; v < ns[i] + 1; ++v) { /* every vertex of the rod */
+        double a[3], b[3];
+        val_vertex(nj, v, a);
+        val_vertex(net, v, b);
+        dmax = fmax(dmax, dist3(a, b));
+      }
+      printf("  fixed couple on the %s joint at the tip: tip (%.9f, %.9f, %.9f), max "
+             "|x - x_rod| / L = %.2e, %d Newton; reaction moment + M = %.1e |M|\n",
+             jm ? "rigid" : "elastic", tj[0], tj[1], tj[2], dmax / L, rj.iterations,
+             sqrt(pow(Rj[0].moment[0] + M[0], 2) + pow(Rj[0].moment[1] + M[1], 2) +
+                  pow(Rj[0].moment[2] + M[2], 2)) /
+                 mm);
+      CHECK(dmax < 1e-8 * L);
+      for (int k = 0; k < 3; ++k) {
+        CHECK_NEAR(Rj[0].moment[k], -M[k], 1e-9 * mm);
+        CHECK_NEAR(Rj[0].force[k], 0.0, 1e-9 * mm / L);
+        CHECK(F[k] == 0.0);
+      }
+      CHECK_NEAR(Ma[0], M[0], 1e-12 * mm);
+      CHECK_NEAR(Ma[1], M[1], 1e-12 * mm);
+      CHECK_NEAR(Ma[2], M[2], 1e-12 * mm);
+      if (i == 0 && jm == 1) { /* the energy minimisers refuse it, naming the joint */
+        rn_solve_options opt;
+        rn_solve_report r2;
+        rn_solve_options_default(&opt);
+        CHECK_STATUS(rn_solve(nj, &opt, &r2), RN_ERR_ARG);
+        const char *msg = rn_context_last_error(ctx);
+        CHECK(strstr(msg, "joint 'tip' is a couple fixed in space") &&
+              strstr(msg, "--solver nox"));
+        printf("  refused: %s\n", msg);
+      }
+      free(xj);
+      rn_network_destroy(&nj);
+    }
+
     if (i == 1) {
       /* the conservative couple on the same scene: a different answer */
       /* (NOX: the trust region winds the end through the couple's axis, where the
@@ -145,13 +221,38 @@ int main(void) {
              tc[0], tc[1], tc[2], dist3(tc, tip) / L);
       CHECK(dist3(tc, tip) > 0.03 * L);
       rn_network_destroy(&nc);
+      /* the conservative couple on a rigid joint at the tip: the applied
+       * resultant counts the moment m it applies, which the reactions balance */
+      nc = rod_with_joint_couple(ctx, ns[i], L, &mat, &sec, M, RN_JOINT_RIGID,
+                                 RN_COUPLE_CONSERVATIVE);
+      CHECK_STATUS(rn_solve(nc, &oc, &rc), RN_OK);
+      CHECK(rc.converged);
+      {
+        double F[3], Ma[3], *xc = malloc(sizeof(double) * rn_network_num_dofs(nc));
+        rn_reaction Rc[1];
+        CHECK_STATUS(rn_network_get_dofs(nc, xc), RN_OK);
+        CHECK_STATUS(rn_network_reactions(nc, xc, Rc, 1), RN_OK);
+        CHECK_STATUS(rn_network_applied_resultant(nc, F, Ma), RN_OK);
+        double bal = 0.0, dev = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          bal = fmax(bal, fabs(Rc[0].moment[k] + Ma[k]));
+          dev = fmax(dev, fabs(Ma[k] - M[k]));
+        }
+        printf("  conservative couple on a rigid joint: applied moment (%.6g, %.6g, "
+               "%.6g), |m - M| = %.3f |M|; reaction + applied = %.1e |M|\n",
+               Ma[0], Ma[1], Ma[2], dev / mm, bal / mm);
+        CHECK(bal < 1e-8 * mm);
+        CHECK(dev > 1e-2 * mm);
+        free(xc);
+      }
+      rn_network_destroy(&nc);
       /* the energy minimisers refuse the fixed couple, naming it */
       rn_solve_options opt;
       rn_solve_report r2;
       rn_solve_options_default(&opt);
       CHECK_STATUS(rn_solve(net, &opt, &r2), RN_ERR_ARG);
       const char *msg = rn_context_last_error(ctx);
-      CHECK(strstr(msg, "rod 0 vertex") && strstr(msg, "fixed in space") &&
+      CHECK(strstr(msg, "rod 'rod' vertex 20") && strstr(msg, "fixed in space") &&
             strstr(msg, "--solver nox"));
       printf("  refused: %s\n", msg);
     }
