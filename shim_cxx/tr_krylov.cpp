@@ -555,44 +555,52 @@ std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
   }
 }
 
-rn_preconditioner run_tr_krylov(System &sys, Monitor &mon, const rn_solve_options &opt) {
-  rn_preconditioner used = RN_PRECOND_AUTO;
-  const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
+KrylovWorkspace::KrylovWorkspace(Problem &p, System *system, const rn_solve_options &opt)
+    : sys_(system) {
+  if (!sys_) {
+    own_ = std::make_unique<SerialSystem>(p);
+    sys_ = own_.get();
+  }
+  prec_ = make_preconditioner(*sys_, opt, &kind_);
+}
+
+KrylovWorkspace::~KrylovWorkspace() = default;
+
+void KrylovWorkspace::account() {
+  const PreconditionerStats &st = prec_->stats();
+  sys_->add_preconditioner_time(st.setup_seconds - setup_seen_,
+                                st.apply_seconds - apply_seen_);
+  setup_seen_ = st.setup_seconds;
+  apply_seen_ = st.apply_seconds;
+}
+
+rn_preconditioner run_tr_krylov(KrylovWorkspace &ws, Monitor &mon,
+                                const rn_solve_options &opt) {
   struct Account { // the preconditioner's time, also when the run throws
-    System &s;
-    const Preconditioner &p;
-    ~Account() {
-      s.add_preconditioner_time(p.stats().setup_seconds, p.stats().apply_seconds);
-    }
-  } account{sys, *prec};
-  TrustRegionKrylov(sys, *prec, mon, opt).run();
-  return used;
+    KrylovWorkspace &w;
+    ~Account() { w.account(); }
+  } account{ws};
+  TrustRegionKrylov(ws.system(), ws.preconditioner(), mon, opt).run();
+  return ws.kind();
 }
 
-rn_preconditioner run_tr_krylov(Problem &p, Monitor &mon, const rn_solve_options &opt) {
-  SerialSystem sys(p);
-  return run_tr_krylov(sys, mon, opt);
-}
-
-bool predict_step_krylov(Problem &p, const rn_solve_options &opt, double t_prev,
-                         double t) {
+bool predict_step_krylov(Problem &p, KrylovWorkspace &ws, const rn_solve_options &opt,
+                         double t_prev, double t) {
   return predict_load_step(
       p,
-      [&opt](Problem &q, const std::vector<double> &x, std::vector<double> &s) {
-        SerialSystem sys(q);
+      [&opt, &ws](Problem &q, const std::vector<double> &x, std::vector<double> &s) {
+        System &sys = ws.system();
+        Preconditioner &prec = ws.preconditioner();
         TMV xv(sys.map(), 1), b(sys.map(), 1), sv(sys.map(), 1);
         std::copy(x.begin(), x.end(), host_data(xv));
         std::copy(s.begin(), s.end(), host_data(b));
         sys.assemble_hessian(xv);
-        rn_preconditioner kind = RN_PRECOND_AUTO;
-        std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &kind);
-        prec->setup(sys);
+        prec.setup(sys);
         MinresSolver minres(sys.map(), opt.krylov_tol, opt.krylov_max_iterations);
         const MinresResult r = minres.solve(OperatorAdapter(*sys.hessian()),
-                                            OperatorAdapter(*prec->inverse()), b, sv);
+                                            OperatorAdapter(*prec.inverse()), b, sv);
         q.counters.krylov += r.iterations;
-        sys.add_preconditioner_time(prec->stats().setup_seconds,
-                                    prec->stats().apply_seconds);
+        ws.account();
         std::copy(host_data(sv), host_data(sv) + s.size(), s.begin());
         return true;
       },
