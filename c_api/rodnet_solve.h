@@ -620,6 +620,14 @@ typedef struct rn_bloch_result {
   double amplitude[3];   /* the eigenvector there */
   size_t bloch_dofs;
   int evaluations; /* Bloch eigenvalue problems solved */
+  /* symmetry-equivalent minima (e.g. the three M points of a hexagonal cell
+   * under equibiaxial load): the grid wave vectors whose lowest eigenvalue equals
+   * local_min to 1e-8 of the grid's eigenvalue range, xi first and the others in
+   * grid order (at most 12; nequiv >= 1).  Where they tie, xi is the first in
+   * grid order, so the choice does not depend on round-off; a supercell that
+   * holds every one of them holds their combinations. */
+  int nequiv;
+  double xi_equiv[12][3];
 } rn_bloch_result;
 /* Bloch-Floquet stability of a periodic network at its current state (an
  * equilibrium of the fluctuations, e.g. after rn_cell_relax): the lowest

@@ -351,13 +351,12 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
                              : "the path stays stable: no pattern");
     return RN_EXIT_OK;
   }
-  for (int i = 0; i < path->dim; ++i)
-    if (!(pat->rep[i] = hp_period_of(path->inst.xi[i]))) {
-      fprintf(stderr,
-              "rodnet homogenize: --pattern: the wave vector is not commensurate with a "
-              "supercell of at most 12 cells per direction\n");
-      return RN_EXIT_INTERNAL;
-    }
+  if (!hp_instability_supercell(&path->inst, path->dim, pat->rep)) {
+    fprintf(stderr,
+            "rodnet homogenize: --pattern: the wave vector is not commensurate with a "
+            "supercell of at most 12 cells per direction\n");
+    return RN_EXIT_INTERNAL;
+  }
   if (rn_text_file_read(ctx, a->scene, 1 << 28, &text, &len)) goto fail;
   root = cJSON_Parse(text);
   cJSON *per = cJSON_GetObjectItemCaseSensitive(root, "periodic");
@@ -563,16 +562,16 @@ int rn_cli_homogenize(int argc, char **argv) {
   st = rn_file_write_atomic(ctx, a.output, write_result, &o);
   if (!st && a.path && !a.quiet) {
     if (path.inst.found)
-      printf(
-          "rodnet homogenize: first instability at load factor %.6g of the path: "
-          "strain [%.6g %.6g %.6g%s], %s, wave vector [%.4g %.4g%s], multiplicity %d\n",
-          path.inst.t, path.inst.strain[0], path.inst.strain[1],
-          path.inst.strain[path.ns - 1], path.ns == 6 ? " ..." : "",
-          path.inst.stress_limit       ? "macroscopic (limit point of the stress)"
-          : path.inst.kind_macroscopic ? "macroscopic"
-                                       : "local",
-          path.inst.xi[0], path.inst.xi[1], path.dim == 3 ? " ..." : "",
-          path.inst.multiplicity);
+      printf("rodnet homogenize: first instability at load factor %.6g of the path: "
+             "strain [%.6g %.6g %.6g%s], %s, wave vector [%.4g %.4g%s], multiplicity %d, "
+             "%d equivalent wave vector(s)\n",
+             path.inst.t, path.inst.strain[0], path.inst.strain[1],
+             path.inst.strain[path.ns - 1], path.ns == 6 ? " ..." : "",
+             path.inst.stress_limit       ? "macroscopic (limit point of the stress)"
+             : path.inst.kind_macroscopic ? "macroscopic"
+                                          : "local",
+             path.inst.xi[0], path.inst.xi[1], path.dim == 3 ? " ..." : "",
+             path.inst.multiplicity, path.inst.kind_macroscopic ? 1 : path.inst.nequiv);
     else
       printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
     if (path.pattern.written)

@@ -387,6 +387,8 @@ static rn_status locate(rn_network *net, hp_path *p, const scales *sc, rn_state 
       memcpy(in->amplitude, rhi.amplitude, sizeof(in->amplitude));
     } else {
       memcpy(in->xi, rhi.xi, sizeof(in->xi));
+      in->nequiv = rhi.nequiv;
+      memcpy(in->xi_equiv, rhi.xi_equiv, sizeof(in->xi_equiv));
       in->multiplicity = multiplicity(&rhi);
     }
     in->neig = rhi.neig;
@@ -457,6 +459,8 @@ rn_status hp_run(rn_network *net, hp_path *p) {
     p->inst.found = 1;
     p->inst.kind_macroscopic = macro_unstable(&r, &sc);
     memcpy(p->inst.xi, r.xi, sizeof(r.xi));
+    p->inst.nequiv = r.nequiv;
+    memcpy(p->inst.xi_equiv, r.xi_equiv, sizeof(r.xi_equiv));
     p->inst.multiplicity = multiplicity(&r);
     memcpy(p->inst.stress, p->step[0].stress, sizeof(p->inst.stress));
   }
@@ -618,6 +622,14 @@ void hp_write_json(FILE *f, const hp_path *p) {
   hp_put_vec(f, p->ns, in->stress);
   fputs(", \"wave_vector\": ", f);
   hp_put_vec(f, p->dim, in->xi);
+  if (!in->kind_macroscopic && in->nequiv > 0) {
+    fputs(", \"equivalent_wave_vectors\": [", f);
+    for (int e = 0; e < in->nequiv; ++e) {
+      if (e) fputs(", ", f);
+      hp_put_vec(f, p->dim, in->xi_equiv[e]);
+    }
+    fputc(']', f);
+  }
   fprintf(f,
           ", \"kind\": \"%s\", \"criterion\": \"%s\", \"multiplicity\": %d, "
           "\"load_factor\": %.17g",

@@ -45,6 +45,8 @@ typedef struct hp_instability {
   int found;
   double t, strain[6], stress[6];
   double xi[3];
+  int nequiv;             /* symmetry-equivalent wave vectors (rn_bloch_result) */
+  double xi_equiv[12][3]; /* xi first */
   int kind_macroscopic, multiplicity;
   double eig[8];
   int neig;
@@ -113,6 +115,11 @@ typedef struct hp_post {
 
 /* The smallest m <= 12 with m xi an integer (to 1e-3); 0 if none. */
 int hp_period_of(double xi);
+/* The supercell (cells per direction, rep[dim]) of a local instability: the least
+ * common multiple of the periods of its wave vector and of the wave vectors
+ * equivalent to it, so that it holds every critical mode and their combinations.
+ * 0 if one is not commensurate with at most 12 cells per direction. */
+int hp_instability_supercell(const hp_instability *in, int dim, int rep[3]);
 /* The supercell rep[dim] of the periodic scene file (without "repeat"), every
  * strain component a DOF, no applied stress; pin_out_of_plane: z of every joint
  * and interior vertex and every material angle pinned, the first joint fully. */

@@ -26,6 +26,21 @@ int hp_period_of(double xi) {
   return 0;
 }
 
+static int gcd_int(int a, int b) { return b ? gcd_int(b, a % b) : a; }
+
+int hp_instability_supercell(const hp_instability *in, int dim, int rep[3]) {
+  for (int i = 0; i < dim; ++i) {
+    if (!(rep[i] = hp_period_of(in->xi[i]))) return 0;
+    for (int e = 0; e < in->nequiv; ++e) {
+      int m = hp_period_of(in->xi_equiv[e][i]);
+      if (!m) return 0;
+      rep[i] = rep[i] / gcd_int(rep[i], m) * m;
+      if (rep[i] > 12) return 0;
+    }
+  }
+  return 1;
+}
+
 /* Out-of-plane pins for an in-plane study of a 2D supercell: z of every joint
  * and interior rod vertex, every material angle, the first joint fully (the
  * anchor the periodic cell would otherwise add). */
@@ -220,14 +235,12 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
                            : "the path stays stable: no post-buckling";
     return RN_OK;
   }
-  for (int i = 0; i < p->dim; ++i) {
-    if (!(po->rep[i] = hp_period_of(in->xi[i]))) {
-      po->failed = "the wave vector is not commensurate with a supercell of at most 12 "
-                   "cells per direction";
-      return RN_OK;
-    }
-    copies *= po->rep[i];
+  if (!hp_instability_supercell(in, p->dim, po->rep)) {
+    po->failed = "the wave vector is not commensurate with a supercell of at most 12 "
+                 "cells per direction";
+    return RN_OK;
   }
+  for (int i = 0; i < p->dim; ++i) copies *= po->rep[i];
   po->pinned = p->dim == 2 && p->modes == RN_BLOCH_IN_PLANE;
   if ((st = hp_supercell(ctx, scene, po->rep, p->dim, po->pinned, &sc))) return st;
   rn_network *net = rn_scene_network(sc);

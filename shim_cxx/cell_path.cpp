@@ -729,6 +729,7 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
     p.lam = b.lowest1(p.xi);
     pts.push_back(p);
   }
+  const std::vector<Pt> grid_pts = pts; // in grid order
   std::sort(pts.begin(), pts.end(),
             [](const Pt &a, const Pt &c) { return a.lam < c.lam; });
   std::vector<Pt> starts(pts.begin(), pts.begin() + std::min<size_t>(3, pts.size()));
@@ -769,6 +770,25 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
       }
       if (cur.lam < best.lam) best = cur;
     }
+  }
+  // Ties (symmetry-equivalent minima, equal up to round-off): the first in grid
+  // order, and all of them reported.
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Pt &q : grid_pts) {
+    lo = std::min(lo, q.lam);
+    hi = std::max(hi, q.lam);
+  }
+  const double tie =
+      grid_pts.empty() ? 0.0 : 1e-8 * std::max(hi - lo, std::fabs(best.lam));
+  res->nequiv = 0;
+  for (const Pt &q : grid_pts)
+    if (std::fabs(q.lam - best.lam) <= tie && res->nequiv < 12) {
+      if (res->nequiv == 0) best = q;
+      std::copy(q.xi, q.xi + 3, res->xi_equiv[res->nequiv++]);
+    }
+  if (res->nequiv == 0) {
+    std::copy(best.xi, best.xi + 3, res->xi_equiv[0]);
+    res->nequiv = 1;
   }
   res->local_min = best.lam;
   std::copy(best.xi, best.xi + 3, res->xi);

@@ -35,8 +35,8 @@ private:
 
 } // namespace
 
-bool predict_load_step(DistSystem &sys, const rn_solve_options &opt, double t_prev,
-                       double t) {
+bool predict_load_step(DistSystem &sys, Preconditioner &prec, const rn_solve_options &opt,
+                       double t_prev, double t) {
   rn_network *net = sys.network();
   const auto map = sys.map();
   TMV x(map, 1), r(map, 1), dg(map, 1), s(map, 1), xs(map, 1);
@@ -53,17 +53,14 @@ bool predict_load_step(DistSystem &sys, const rn_solve_options &opt, double t_pr
   if (!have) return false;
   // s = -M^{-1} r if M had to be shifted (H not positive definite: as the serial
   // predictor's shifted factor), else H s = -r by preconditioned MINRES
-  rn_preconditioner kind = RN_PRECOND_AUTO;
-  const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &kind);
-  prec->setup(sys);
+  prec.setup(sys);
   r.scale(-1.0);
-  if (prec->stats().shifted) {
-    prec->inverse()->apply(r, s);
+  if (prec.stats().shifted) {
+    prec.inverse()->apply(r, s);
   } else {
     MinresSolver minres(map, opt.krylov_tol, opt.krylov_max_iterations);
-    minres.solve(HessianOp(sys), InverseOp(*prec), r, s);
+    minres.solve(HessianOp(sys), InverseOp(prec), r, s);
   }
-  sys.add_preconditioner_time(prec->stats().setup_seconds, prec->stats().apply_seconds);
   double E0 = 0.0, E1 = 0.0;
   xs.update(1.0, x, 1.0, s, 0.0);
   // (the jumped state x may be degenerate: then the evaluable prediction is better)

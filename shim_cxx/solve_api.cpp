@@ -125,6 +125,14 @@ struct SolveTotals {
   double force_tol = 0.0, moment_tol = 0.0;
   rn_preconditioner preconditioner = RN_PRECOND_AUTO;
   DistSystem *dist = nullptr; // the System of a part (nullptr: a whole network)
+  // tr-krylov's System and preconditioner for the load step in progress: made by its
+  // predictor or its trust region, whichever comes first, and dropped when the load
+  // step ends (the next one starts from a set-up at its own state).
+  std::unique_ptr<KrylovWorkspace> krylov_ws;
+  KrylovWorkspace &krylov_workspace(Problem &p, const rn_solve_options &opt) {
+    if (!krylov_ws) krylov_ws = std::make_unique<KrylovWorkspace>(p, dist, opt);
+    return *krylov_ws;
+  }
 };
 
 // Whether a load step starts with the predictor (opt.predictor; rol-lbfgs uses
@@ -138,10 +146,16 @@ bool uses_predictor(const rn_solve_options &opt) {
 // and MINRES, distributed on a part; the other kinds factor the whole Hessian.
 bool run_predictor(Problem &p, const rn_solve_options &opt, double t_prev, double t,
                    SolveTotals &tot) {
-  const bool accepted = tot.dist ? predict_load_step(*tot.dist, opt, t_prev, t)
-                        : opt.solver == RN_SOLVER_TR_KRYLOV
-                            ? predict_step_krylov(p, opt, t_prev, t)
-                            : predict_load_step(p, tot.factorization, t_prev, t);
+  bool accepted = false;
+  if (tot.dist) {
+    KrylovWorkspace &ws = tot.krylov_workspace(p, opt);
+    accepted = predict_load_step(*tot.dist, ws.preconditioner(), opt, t_prev, t);
+    ws.account();
+  } else if (opt.solver == RN_SOLVER_TR_KRYLOV) {
+    accepted = predict_step_krylov(p, tot.krylov_workspace(p, opt), opt, t_prev, t);
+  } else {
+    accepted = predict_load_step(p, tot.factorization, t_prev, t);
+  }
   if (accepted) ++tot.predictor_steps;
   return accepted;
 }
@@ -169,13 +183,13 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
     run_rol_lbfgs(p, mon, opt);
     break;
   case RN_SOLVER_TR_KRYLOV:
-    tot.preconditioner =
-        tot.dist ? run_tr_krylov(*tot.dist, mon, opt) : run_tr_krylov(p, mon, opt);
+    tot.preconditioner = run_tr_krylov(tot.krylov_workspace(p, opt), mon, opt);
     break;
   case RN_SOLVER_NOX:
     tot.preconditioner = tot.dist ? run_nox(*tot.dist, mon, opt) : run_nox(p, mon, opt);
     break;
   }
+  tot.krylov_ws.reset();
   tot.iterations += mon.iterations();
   tot.krylov += mon.krylov_total();
   tot.load_steps += 1;
