@@ -208,8 +208,8 @@ static int cell_rows_build(const rn_network *net, const unsigned char *touch,
 
 /* Candidate columns of row r appended to b (unsorted, with duplicates). */
 static int row_candidates(const rn_network *net, const row_lists *L, const size_t *lo,
-                          const size_t *hi, const cell_rows *T,
-                          const contact_rows *C, size_t r, col_buf *b) {
+                          const size_t *hi, const cell_rows *T, const contact_rows *C,
+                          size_t r, col_buf *b) {
   for (size_t p = L->fptr[r]; p < L->fptr[r + 1]; ++p) {
     size_t a = L->full[p];
     b->examined += hi[a] - lo[a] + 1;
@@ -238,8 +238,8 @@ static int row_candidates(const rn_network *net, const row_lists *L, const size_
 /* Rows in order: candidates sorted and made unique in place at the end of
  * the column buffer (for plain rods they are already sorted and unique). */
 static rn_status fill_rows(rn_network *net, const row_lists *L, const size_t *lo,
-                           const size_t *hi, const cell_rows *T,
-                           const contact_rows *C, col_buf *b) {
+                           const size_t *hi, const cell_rows *T, const contact_rows *C,
+                           col_buf *b) {
   for (size_t row = 0; row < net->nred; ++row) {
     size_t start = b->n, u = start;
     net->rowptr[row] = (int64_t)start;
