@@ -187,6 +187,7 @@ void DistSystem::build_maps() {
   exporter_ = Teuchos::rcp(new Tpetra::Export<>(overlap_, owned_));
   xov_ = Teuchos::rcp(new TMV(overlap_, 1));
   gov_ = Teuchos::rcp(new TMV(overlap_, 1));
+  sov_ = Teuchos::rcp(new TMV(overlap_, 1));
 }
 
 // The overlap graph is the part's CSR pattern (rows and columns in the overlap map's
@@ -302,6 +303,28 @@ rn_status DistSystem::gradient(const TMV &x, double *E, TMV &g) {
   if (st != RN_OK) return st;
   g.putScalar(0.0);
   g.doExport(*gov_, *exporter_, Tpetra::ADD);
+  ++stats_.exports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+  return st;
+}
+
+rn_status DistSystem::stretch_correction(const TMV &x, const TMV &s, TMV &f) {
+  import_state(x);
+  sov_->doImport(s, *importer_, Tpetra::INSERT);
+  ++stats_.imports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(importer_->getNumExportIDs());
+  rn_status st = RN_OK;
+  try {
+    st = check_status(
+        rn_network_stretch_correction(net_, col0(*xov_), col0(*sov_), col0(*gov_)),
+        "rn_network_stretch_correction");
+  } catch (const Error &e) {
+    st = e.status();
+  }
+  st = agree(st);
+  if (st != RN_OK) return st;
+  f.putScalar(0.0);
+  f.doExport(*gov_, *exporter_, Tpetra::ADD);
   ++stats_.exports;
   stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
   return st;

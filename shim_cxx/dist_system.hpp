@@ -59,6 +59,9 @@ public:
   // Snapshots of every part (rn_network_state_save), in lockstep on all ranks.
   bool save_state() override;
   void restore_state() override;
+  // f = rn_network_stretch_correction summed over the parts (owned entries).
+  bool has_stretch_correction() const override { return true; }
+  rn_status stretch_correction(const TMV &x, const TMV &s, TMV &f) override;
   // The residual of equilibrium on the physical scale (equilibrium.hpp) over all
   // ranks: residuals and floors are maxima over the owned DOFs, the reactions of the
   // supports are summed over the parts (each sees the stencils it owns).
@@ -89,7 +92,7 @@ private:
   Teuchos::RCP<const TMap> owned_, overlap_;
   Teuchos::RCP<const Tpetra::Import<>> importer_;
   Teuchos::RCP<const Tpetra::Export<>> exporter_;
-  Teuchos::RCP<TMV> xov_, gov_;
+  Teuchos::RCP<TMV> xov_, gov_, sov_; // sov_: a step on the overlap map
   // The Hessian: the owned rows of the part's CSR are summed into h_ directly (their
   // columns in h_'s column map, hcols_), the ghost rows go through hgh_, a matrix on
   // the ghost rows exported (ADD) to their owners.

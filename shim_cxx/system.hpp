@@ -109,6 +109,15 @@ public:
   // back to it exactly (state and reference frames); x must be set by the caller.
   virtual bool save_state() { return false; }
   virtual void restore_state() {}
+  // The second-order stretching error f of a step s from x (rn_network_stretch_
+  // correction, summed over the parts), for the trust region's second-order
+  // correction; false if not provided.  Any other status is the network's (e.g.
+  // RN_DEGENERATE where an edge has zero length at x + s).
+  virtual bool has_stretch_correction() const { return false; }
+  virtual rn_status stretch_correction(const TMV & /*x*/, const TMV & /*s*/,
+                                       TMV & /*f*/) {
+    return RN_ERR_STATE;
+  }
 
   // Evaluation counts of this rank (energy, gradient, Hessian, HVP, Krylov).
   Counters counters;

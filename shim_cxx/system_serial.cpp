@@ -58,6 +58,11 @@ rn_status SerialSystem::gradient(const TMV &x, double *E, TMV &g) {
   return p_.gradient(host_data(x), E, host_data(g));
 }
 
+rn_status SerialSystem::stretch_correction(const TMV &x, const TMV &s, TMV &f) {
+  return rn_network_stretch_correction(p_.network(), host_data(x), host_data(s),
+                                       host_data(f));
+}
+
 Counters &SerialSystem::report_counters() { return p_.counters; }
 
 void SerialSystem::assemble_hessian(const TMV &x) {

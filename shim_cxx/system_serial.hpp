@@ -37,6 +37,8 @@ public:
   EquilibriumView equilibrium(const TMV &x, const TMV &g) override;
   bool save_state() override;
   void restore_state() override;
+  bool has_stretch_correction() const override { return true; }
+  rn_status stretch_correction(const TMV &x, const TMV &s, TMV &f) override;
 
 private:
   void build_blocks();

@@ -42,6 +42,12 @@
 //     lowers the model: the iteration leaves saddles.
 //  3. Ratio test, radius update and watchdog as in tr_minres.cpp (steps 4-5a there;
 //     the watchdog needs System::save_state()).
+//  3a. Second-order correction of a step the ratio test rejects, as tr_minres.cpp's
+//     step 5 (where the System provides System::stretch_correction): the Newton step
+//     linearises rotations and so stretches the stiff edges to second order in the
+//     step; x + s + c, c from the fixed point c = -M^{-1} f(s + c) (f the stretching
+//     force the quadratic model misses), replaces x + s if its energy is lower.  M^{-1}
+//     is the preconditioner, exact where it is an unshifted factorisation of H.
 //
 // Why not Belos::MinresIter: its iterate() keeps the Lanczos coefficients alpha_k,
 // beta_k and the Givens rotations (cs, sn, gamma) in local variables and its state
@@ -86,6 +92,10 @@ constexpr int kLanczosSteps = 30;
 constexpr double kNoiseCurv = 1e-8;
 constexpr int kWatchdogSteps = 2;      // as in tr_minres.cpp
 constexpr double kForcingFirst = 1e-4; // forcing term of the first step (see the top)
+// The second-order correction (step 3a at the top), as in tr_minres.cpp.
+constexpr double kCorrectionTol = 1e-4;
+constexpr int kCorrectionIts = 50;
+constexpr double kCorrectionGrowth = 1e3;
 
 using Vec = TMV; // one column
 
@@ -311,7 +321,7 @@ public:
                     const rn_solve_options &opt)
       : sys_(sys), prec_(prec), mon_(mon), opt_(opt), map_(sys.map()), x_(map_, 1),
         g_(map_, 1), gt_(map_, 1), xt_(map_, 1), xa_(map_, 1), hs_(map_, 1), v_(map_, 1),
-        Mv_(map_, 1) {}
+        Mv_(map_, 1), sig_(map_, 1), f_(map_, 1), q_(map_, 1), xc_(map_, 1) {}
 
   void run();
 
@@ -322,6 +332,7 @@ private:
     return dot(g_, s) + 0.5 * dot(s, hs_);
   }
   void add_curvature_direction(double radius, KrylovStep &st);
+  bool correct_step(const KrylovStep &st, Vec &xc);
   double gradient_radius() { // ||M^{-1} g||_M = sqrt(g' M^{-1} g)
     prec_.inverse()->apply(g_, hs_);
     return std::sqrt(std::max(dot(g_, hs_), 0.0));
@@ -338,7 +349,7 @@ private:
   Monitor &mon_;
   const rn_solve_options &opt_;
   Teuchos::RCP<const TMap> map_;
-  Vec x_, g_, gt_, xt_, xa_, hs_, v_, Mv_;
+  Vec x_, g_, gt_, xt_, xa_, hs_, v_, Mv_, sig_, f_, q_, xc_;
   double energy_ = 0.0, mu_ = 0.0;
   bool negcurv_ = false, have_v_ = false;
 };
@@ -378,6 +389,38 @@ void TrustRegionKrylov::add_curvature_direction(double radius, KrylovStep &st) {
   st.s.update(tau_best, v_, 1.0);
   st.Ms.update(tau_best, Mv_, 1.0);
   st.boundary = true;
+}
+
+// The second-order correction of the step st from x_ (step 3a at the top): xc = x +
+// sigma, sigma the fixed point of sigma = s - M^{-1} f(x, sigma), f the stretching
+// force of the lengths the step gives beyond their linearisation (System::
+// stretch_correction), from sigma = s until the change is below kCorrectionTol of
+// ||M^{-1} f||, at most kCorrectionIts passes (then the last iterate: the energy
+// decides).  M^{-1} is the preconditioner: H^{-1} where it is exact, a positive
+// definite stand-in for (H + lambda M)^{-1} where H was shifted.  False without the
+// System's support, where the preconditioner was shifted without significant
+// negative curvature (a singular H: rigid motions, where the solve amplifies
+// round-off, tr_minres.cpp), at a degenerate state or when the iteration diverges.
+bool TrustRegionKrylov::correct_step(const KrylovStep &st, Vec &xc) {
+  if (!sys_.has_stretch_correction() || (prec_.stats().shifted && !negcurv_))
+    return false;
+  sig_.assign(st.s);
+  double first = 0.0;
+  for (int k = 0; k < kCorrectionIts; ++k) {
+    if (sys_.stretch_correction(x_, sig_, f_) != RN_OK) return false;
+    prec_.inverse()->apply(f_, hs_); // w = M^{-1} f
+    q_.update(1.0, st.s, -1.0, hs_, 0.0);
+    q_.update(-1.0, sig_, 1.0); // q = s - w - sigma
+    const double change = q_.getVector(0)->norm2();
+    if (!std::isfinite(change)) return false;
+    if (k == 0) first = change;
+    if (!(change <= kCorrectionGrowth * first)) return false;
+    sig_.update(1.0, q_, 1.0);
+    if (change <= kCorrectionTol * hs_.getVector(0)->norm2()) break;
+  }
+  xc.assign(x_);
+  xc.update(1.0, sig_, 1.0);
+  return true;
 }
 
 void TrustRegionKrylov::run() {
@@ -442,8 +485,22 @@ void TrustRegionKrylov::run() {
     if (sys_.energy(xt_, &ftrial) != RN_OK)
       ftrial = std::numeric_limits<double>::infinity();
     const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(energy_));
-    const double rho = std::isfinite(ftrial) ? (energy_ - ftrial + safe) / (pred + safe)
-                                             : -std::numeric_limits<double>::infinity();
+    const auto ratio = [&](double f) {
+      return std::isfinite(f) ? (energy_ - f + safe) / (pred + safe)
+                              : -std::numeric_limits<double>::infinity();
+    };
+    double rho = ratio(ftrial);
+    // Second-order correction of a rejected step (step 3a at the top): x + s + c
+    // replaces x + s if its energy is lower.  Not at the round-off level (below).
+    if (!(rho > kAccept) && std::isfinite(ftrial) && !(pred < safe) &&
+        correct_step(st, xc_)) {
+      double fc = std::numeric_limits<double>::infinity();
+      if (sys_.energy(xc_, &fc) == RN_OK && std::isfinite(fc) && fc < ftrial) {
+        xt_.assign(xc_);
+        ftrial = fc;
+        rho = ratio(fc);
+      }
+    }
     ++iteration;
     enum class Move { Reject, Accept, Tentative, Back } move = Move::Reject;
     // At the energy's round-off level (the model's decrease below safe) rho is noise

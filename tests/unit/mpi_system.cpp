@@ -7,6 +7,8 @@
 //   - energy, gradient (owned entries) and Hessian (applied to random vectors) agree
 //     with the whole network to round-off at perturbed states, also after reference
 //     updates (accept) at accepted states;
+//   - the second-order stretching correction of a step sums over the parts to the
+//     whole network's;
 //   - the Hessian's graph is built once (same object after reassembly);
 //   - an error on one rank (a non-finite state there) reaches every rank.
 // Run by ctest on 1 and 2 ranks (label mpi) and on 3 ranks (more ranks than rods for
@@ -283,6 +285,26 @@ void check_network(rn_context *ctx, const Builder &b, const char *label,
              sg);
       EXPECT(eh <= 1e-12 * sh, "%s step %d: Hessian error %.3g of %.3g", label, step, eh,
              sh);
+      { // the second-order stretching correction of the step v / 10 (the trust
+        // region's, System::stretch_correction) sums over the parts to the whole's
+        std::vector<double> sw(n), fw(n);
+        for (size_t i = 0; i < n; ++i) sw[i] = 0.1 * vw[i];
+        TMV s(sys.map(), 1), f(sys.map(), 1);
+        s.update(0.1, v, 0.0);
+        EXPECT(sys.has_stretch_correction(), "%s: no stretch correction", label);
+        EXPECT(rn_network_stretch_correction(whole, xw.data(), sw.data(), fw.data()) ==
+                       RN_OK &&
+                   sys.stretch_correction(x, s, f) == RN_OK,
+               "%s: stretch correction", label);
+        double ef = 0.0, sf = 0.0;
+        auto fd = f.getData(0);
+        for (size_t i = 0; i < n_owned; ++i)
+          ef = std::max(ef, std::fabs(fd[static_cast<LO>(i)] - fw[widx[i]]));
+        for (size_t i = 0; i < n; ++i) sf = std::max(sf, std::fabs(fw[i]));
+        ef = max_all(ef);
+        EXPECT(sf > 0.0 && ef <= 1e-12 * sf,
+               "%s step %d: stretch correction error %.3g of %.3g", label, step, ef, sf);
+      }
       // accept the state everywhere: the updated owned values agree
       sys.accept(x);
       rn_network_update_reference(whole, xw.data());
