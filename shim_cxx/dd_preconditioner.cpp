@@ -7,6 +7,7 @@
 #include <chrono>
 #include <map>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,10 @@ struct Rod {
   std::vector<double> b_val;
   std::vector<size_t> s_pos; // Sov value index of (a, b), a * m + b
   double shift = 0.0;
+  // D_r of the uniform shift: |diag H_rr| (floored) at the first set-up that shifts
+  // uniformly, then the entrywise largest of the set-ups since, for the
+  // preconditioner's life (DdPreconditioner::setup)
+  std::vector<double> d_uniform;
   int n() const { return static_cast<int>(rows.size()); }
   int m() const { return static_cast<int>(coarse.size()); }
 };
@@ -109,6 +114,14 @@ bool factor_rod(Rod &r, const double *vals, std::vector<double> &ab,
   std::vector<double> d(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) d[static_cast<size_t>(i)] = ab[static_cast<size_t>(i * ld)];
   floored_abs(d);
+  if (shift >= 0.0) { // the uniform shift's D_r: the largest since the first set-up
+    if (r.d_uniform.empty())
+      r.d_uniform = d;
+    else
+      for (size_t i = 0; i < d.size(); ++i)
+        r.d_uniform[i] = std::max(r.d_uniform[i], d[i]);
+    d = r.d_uniform;
+  }
   auto try_factor = [&](double s) {
     r.fac = ab;
     for (int i = 0; i < n; ++i)
@@ -835,7 +848,8 @@ struct DdPreconditioner::Impl {
   // shift; returns false on every rank if a rod block or the coarse matrix is then
   // not positive definite (only with the direct coarse solve).
   bool numeric(const TCrs &H, double uniform = -1.0);
-  double uniform_shift = 0.0; // of the last setup (0: none)
+  double uniform_shift = 0.0;     // of the last setup (0: none)
+  std::vector<double> dg_uniform; // D_G of the uniform shift (per gg_diag entry)
   void apply(const TMV &X, TMV &Y, double alpha, double beta) const;
   double bytes() const;
 };
@@ -1018,6 +1032,7 @@ void DdPreconditioner::Impl::build(const System &sys, const TCrs &H) {
                                 scol->getLocalElement(gg[e].second)));
   }
   gg_diag.clear();
+  dg_uniform.clear();
   for (size_t e = 0; e < gg.size(); ++e)
     if (cov->getGlobalElement(static_cast<LO>(gg_row[e])) == gg[e].second)
       gg_diag.push_back(e);
@@ -1060,14 +1075,23 @@ bool DdPreconditioner::Impl::numeric(const TCrs &H, double uniform) {
   for (size_t e = 0; e < gg_src.size(); ++e) sv(gg_dst[e]) += vals[gg_src[e]];
   if (uniform > 0.0) {
     // + uniform D_G on the interface diagonal, D_G = |diag H_GG| floored at 1e-8 of
-    // its largest entry over the ranks
-    double mx = 0.0, gmx = 0.0;
-    for (size_t e : gg_diag) mx = std::max(mx, std::fabs(vals[gg_src[e]]));
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, mx, Teuchos::outArg(gmx));
-    for (size_t e : gg_diag) {
-      const double d = std::fabs(vals[gg_src[e]]);
-      sv(gg_dst[e]) += uniform * (gmx > 0.0 ? std::max(d, 1e-8 * gmx) : 1.0);
+    // its largest entry over the ranks at the first set-up that shifts uniformly,
+    // then the entrywise largest |diag H_GG| of the set-ups since (as the rods' D_r)
+    if (dg_uniform.empty()) {
+      double mx = 0.0, gmx = 0.0;
+      for (size_t e : gg_diag) mx = std::max(mx, std::fabs(vals[gg_src[e]]));
+      Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, mx, Teuchos::outArg(gmx));
+      dg_uniform.reserve(gg_diag.size());
+      for (size_t e : gg_diag) {
+        const double d = std::fabs(vals[gg_src[e]]);
+        dg_uniform.push_back(gmx > 0.0 ? std::max(d, 1e-8 * gmx) : 1.0);
+      }
+    } else {
+      for (size_t q = 0; q < gg_diag.size(); ++q)
+        dg_uniform[q] = std::max(dg_uniform[q], std::fabs(vals[gg_src[gg_diag[q]]]));
     }
+    for (size_t q = 0; q < gg_diag.size(); ++q)
+      sv(gg_dst[gg_diag[q]]) += uniform * dg_uniform[q];
   }
   uniform_shift = uniform > 0.0 ? uniform : 0.0;
   bool coupled = false;
@@ -1295,15 +1319,19 @@ void DdPreconditioner::setup(System &sys) {
     }
   }
   impl_->numeric(*H);
-  if (opt_.uniform_shift && impl_->rods_shifted > 0) {
-    // Rod blocks indefinite (buckled rods): each shifted by its own decade, M would
-    // be the inverse of no single modification of H, and the trust region in its
-    // norm cycles (docs/solvers.md).  Instead the DD of H + sigma D for the smallest
-    // decade sigma that makes every rod block and (with the direct coarse solve) the
-    // coarse matrix positive definite: M = (H + sigma D)^-1 exactly, the factor
-    // preconditioner's norm.  (Only the coarse matrix shifted is already one
-    // modification of H, on the interface: kept.)  The multigrid coarse solve, which
-    // cannot certify, shifts S further itself if it must.
+  if (opt_.uniform_shift && (impl_->rods_shifted > 0 || coarse_shift() > 0.0)) {
+    // H indefinite (rod blocks or the coarse matrix): each piece shifted by its own
+    // decade, M would be the inverse of no single modification of H, and the trust
+    // region in its norm cycles; the coarse matrix alone shifted, S + t D_S, makes M
+    // nearly singular along the buckling mode (docs/solvers.md).  Instead the DD of
+    // H + sigma D for the smallest decade sigma that makes every rod block and (with
+    // the direct coarse solve) the coarse matrix positive definite: M = (H + sigma
+    // D)^-1 exactly, the factor preconditioner's norm.  D (D_r, D_G) is |diag H| of
+    // the first such set-up, raised entrywise to |diag H| of each later one, for the
+    // preconditioner's life (a load step): a metric that changes little from step to
+    // step, as the factor preconditioner's fixed one, but follows a structure that
+    // stiffens (a folded rod straightening; docs/solvers.md).  The multigrid coarse
+    // solve, which cannot certify, shifts S further itself if it must.
     Impl &im = *impl_;
     const double sigma =
         smallest_shift([&](double t) { return im.numeric(*H, t); }, true);

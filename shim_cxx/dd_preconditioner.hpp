@@ -97,11 +97,12 @@ struct DdOptions {
   // then the AMG one (only with an MPI runtime, mpi_backed(); otherwise the
   // direct one whatever it costs).
   double direct_max_flops = 5e10;
-  // Indefinite rod blocks: true, the DD of H + sigma D with one shift sigma for every
-  // piece (the smallest decade that makes them all positive definite; with the direct
-  // coarse solve M is then exactly (H + sigma D)^-1); false, each rod block shifted
-  // by its own smallest decade.  The coarse matrix alone indefinite: shifted by its
-  // own decade either way (docs/solvers.md).
+  // H indefinite (rod blocks or the coarse matrix): true, the DD of H + sigma D with
+  // one shift sigma for every piece (the smallest decade that makes them all
+  // positive definite; with the direct coarse solve M is then exactly (H + sigma
+  // D)^-1), D = |diag H| of the first such set-up raised entrywise to that of each
+  // later one; false, each rod block and the coarse matrix shifted by its own
+  // smallest decade (docs/solvers.md).
   bool uniform_shift = true;
   // MueLu parameter file overriding the AMG coarse solve's defaults (empty: none).
   std::string amg_xml;
