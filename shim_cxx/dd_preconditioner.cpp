@@ -57,20 +57,29 @@ void throw_if_any(const Comm &comm, bool failed, rn_status status,
 // Smallest shift s in {0} u {1e-10, 1e-9, ..., 1e10} for which try_factor(s)
 // succeeds (bisection on the exponent; the factorisation of the returned shift is
 // the last one made).  Returns -1 if none does.  zero_failed: 0 is known to fail.
+// hint (an exponent in [-10, 10], e.g. the last set-up's shift): 10^(hint-1) and
+// 10^hint are tried first, two factorisations where the shift has not changed by a
+// decade (the bisection takes six).
 template <class F>
-double smallest_shift(F &&try_factor, bool zero_failed = false) {
+double smallest_shift(F &&try_factor, bool zero_failed = false, int hint = 99) {
   if (!zero_failed && try_factor(0.0)) return 0.0;
-  if (!try_factor(1e10)) return -1.0;
-  int lo = -11, hi = 10; // lo fails (-11 stands for 0), hi succeeds
-  while (hi - lo > 1) {
-    const int mid = (lo + hi) / 2;
-    if (try_factor(std::pow(10.0, mid)))
-      hi = mid;
-    else
-      lo = mid;
+  int lo = -11, hi = 11; // 10^lo fails (-11 stands for 0), 10^hi works (11: unknown)
+  bool last_hi = false;  // the last factorisation made is that of 10^hi
+  const auto test = [&](int e) {
+    last_hi = try_factor(std::pow(10.0, e));
+    (last_hi ? hi : lo) = e;
+  };
+  if (hint >= -10 && hint <= 10) {
+    if (hint > -10) test(hint - 1);
+    if (hi == 11) test(hint);
   }
+  if (hi == 11) {
+    test(10);
+    if (hi == 11) return -1.0;
+  }
+  while (hi - lo > 1) test((lo + hi) / 2);
   const double s = std::pow(10.0, hi);
-  try_factor(s); // leave the factorisation of the returned shift
+  if (!last_hi) try_factor(s); // leave the factorisation of the returned shift
   return s;
 }
 
@@ -1318,6 +1327,7 @@ void DdPreconditioner::setup(System &sys) {
       break;
     }
   }
+  const double prev_uniform = impl_->uniform_shift; // the last set-up's (0: none)
   impl_->numeric(*H);
   if (opt_.uniform_shift && (impl_->rods_shifted > 0 || coarse_shift() > 0.0)) {
     // H indefinite (rod blocks or the coarse matrix): each piece shifted by its own
@@ -1333,8 +1343,10 @@ void DdPreconditioner::setup(System &sys) {
     // stiffens (a folded rod straightening; docs/solvers.md).  The multigrid coarse
     // solve, which cannot certify, shifts S further itself if it must.
     Impl &im = *impl_;
+    const int hint =
+        prev_uniform > 0.0 ? static_cast<int>(std::lround(std::log10(prev_uniform))) : 99;
     const double sigma =
-        smallest_shift([&](double t) { return im.numeric(*H, t); }, true);
+        smallest_shift([&](double t) { return im.numeric(*H, t); }, true, hint);
     if (sigma < 0.0)
       throw Error(RN_ERR_LAPACK, "dd preconditioner: no shift up to 1e10 |diag| makes "
                                  "the Hessian positive definite (non-finite entries?)");
