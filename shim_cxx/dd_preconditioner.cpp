@@ -7,7 +7,6 @@
 #include <chrono>
 #include <map>
 #include <cmath>
-#include <cstdlib>
 #include <string>
 #include <vector>
 

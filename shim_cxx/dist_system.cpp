@@ -245,10 +245,17 @@ void DistSystem::build_hessian_graph() {
   vals_.assign(nnz, 0.0);
 }
 
-void DistSystem::import_state(const TMV &x) {
-  xov_->doImport(x, *importer_, Tpetra::INSERT);
+void DistSystem::import_to(const TMV &x, TMV &ov) {
+  ov.doImport(x, *importer_, Tpetra::INSERT);
   ++stats_.imports;
   stats_.bytes_sent += 8.0 * static_cast<double>(importer_->getNumExportIDs());
+}
+
+void DistSystem::export_gov(TMV &out) {
+  out.putScalar(0.0);
+  out.doExport(*gov_, *exporter_, Tpetra::ADD);
+  ++stats_.exports;
+  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
 }
 
 void DistSystem::get_state(TMV &x) const {
@@ -266,13 +273,8 @@ rn_status DistSystem::energy(const TMV &x, double *E) {
   ++counters.energy;
   import_state(x);
   double local = 0.0;
-  rn_status st = RN_OK;
-  try {
-    st = check_status(rn_network_energy(net_, col0(*xov_), &local), "rn_network_energy");
-  } catch (const Error &e) {
-    st = e.status();
-  }
-  st = agree(st);
+  const rn_status st = evaluate(
+      [&] { return rn_network_energy(net_, col0(*xov_), &local); }, "rn_network_energy");
   double sum = 0.0;
   allreduce(&local, &sum, 1, MPI_DOUBLE, MPI_SUM, raw_comm(comm_));
   ++stats_.reductions;
@@ -285,14 +287,9 @@ rn_status DistSystem::gradient(const TMV &x, double *E, TMV &g) {
   ++counters.gradient;
   import_state(x);
   double local = 0.0;
-  rn_status st = RN_OK;
-  try {
-    st = check_status(rn_network_gradient(net_, col0(*xov_), &local, col0(*gov_)),
-                      "rn_network_gradient");
-  } catch (const Error &e) {
-    st = e.status();
-  }
-  st = agree(st);
+  const rn_status st = evaluate(
+      [&] { return rn_network_gradient(net_, col0(*xov_), &local, col0(*gov_)); },
+      "rn_network_gradient");
   if (E) {
     double sum = 0.0;
     allreduce(&local, &sum, 1, MPI_DOUBLE, MPI_SUM, raw_comm(comm_));
@@ -300,33 +297,19 @@ rn_status DistSystem::gradient(const TMV &x, double *E, TMV &g) {
     stats_.bytes_sent += 8.0;
     *E = sum;
   }
-  if (st != RN_OK) return st;
-  g.putScalar(0.0);
-  g.doExport(*gov_, *exporter_, Tpetra::ADD);
-  ++stats_.exports;
-  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+  if (st == RN_OK) export_gov(g);
   return st;
 }
 
 rn_status DistSystem::stretch_correction(const TMV &x, const TMV &s, TMV &f) {
   import_state(x);
-  sov_->doImport(s, *importer_, Tpetra::INSERT);
-  ++stats_.imports;
-  stats_.bytes_sent += 8.0 * static_cast<double>(importer_->getNumExportIDs());
-  rn_status st = RN_OK;
-  try {
-    st = check_status(
-        rn_network_stretch_correction(net_, col0(*xov_), col0(*sov_), col0(*gov_)),
-        "rn_network_stretch_correction");
-  } catch (const Error &e) {
-    st = e.status();
-  }
-  st = agree(st);
-  if (st != RN_OK) return st;
-  f.putScalar(0.0);
-  f.doExport(*gov_, *exporter_, Tpetra::ADD);
-  ++stats_.exports;
-  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+  import_to(s, *sov_);
+  const rn_status st = evaluate(
+      [&] {
+        return rn_network_stretch_correction(net_, col0(*xov_), col0(*sov_), col0(*gov_));
+      },
+      "rn_network_stretch_correction");
+  if (st == RN_OK) export_gov(f);
   return st;
 }
 
@@ -339,14 +322,8 @@ void DistSystem::assemble_hessian(const TMV &x) {
     ~Timer() { c.hessian_seconds += seconds_since_steady(t0); }
   } timer{counters, t0};
   import_state(x);
-  rn_status st = RN_OK;
-  try {
-    st = check_status(rn_network_hessian_values(net_, col0(*xov_), vals_.data()),
-                      "rn_network_hessian_values");
-  } catch (const Error &e) {
-    st = e.status();
-  }
-  if (agree(st) != RN_OK)
+  if (evaluate([&] { return rn_network_hessian_values(net_, col0(*xov_), vals_.data()); },
+               "rn_network_hessian_values") != RN_OK)
     throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
   size_t nnz = 0;
   const int64_t *rowptr = nullptr;
@@ -383,10 +360,7 @@ void DistSystem::assemble_hessian(const TMV &x) {
 void DistSystem::load_increment(const TMV &x, double t_prev, double t, TMV &dg) {
   import_state(x);
   agree(rn_network_load_increment(net_, col0(*xov_), t_prev, t, col0(*gov_)));
-  dg.putScalar(0.0);
-  dg.doExport(*gov_, *exporter_, Tpetra::ADD);
-  ++stats_.exports;
-  stats_.bytes_sent += 8.0 * static_cast<double>(exporter_->getNumExportIDs());
+  export_gov(dg);
 }
 
 void DistSystem::accept(TMV &x) {

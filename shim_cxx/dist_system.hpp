@@ -28,6 +28,7 @@
 #include <Tpetra_Import.hpp>
 
 #include "equilibrium.hpp"
+#include "shim_error.hpp"
 #include "system.hpp"
 
 namespace rodnet {
@@ -82,7 +83,20 @@ public:
   rn_status agree(rn_status local, const std::string &msg = std::string()) const;
 
 private:
-  void import_state(const TMV &x); // x (owned) -> xov_ (overlap)
+  void import_state(const TMV &x) { import_to(x, *xov_); } // x (owned) -> xov_
+  void import_to(const TMV &x, TMV &ov);                   // owned -> overlap (INSERT)
+  void export_gov(TMV &out); // gov_ summed into out (owned, ADD)
+  // A part's evaluation (a rodnet status), its errors caught and agreed over ranks.
+  template <class F>
+  rn_status evaluate(F &&call, const char *where) {
+    rn_status st = RN_OK;
+    try {
+      st = check_status(call(), where);
+    } catch (const Error &e) {
+      st = e.status();
+    }
+    return agree(st);
+  }
   void build_maps();
   void build_hessian_graph();
 
