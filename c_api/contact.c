@@ -378,6 +378,14 @@ void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]) {
                       idx);
 }
 
+int rn_contact_pattern_far(const rn_network *net, size_t i) {
+  const rn_contact *c = net->contact;
+  const uint64_t k = c->pat[i];
+  const rn_contact_edge *a = &c->e[k / (uint64_t)c->nedges],
+                        *b = &c->e[k % (uint64_t)c->nedges];
+  return a->rod != b->rod || abs(a->j - b->j) >= 3;
+}
+
 rn_status rn_contact_pattern_update(rn_network *net, int force, const char *where) {
   rn_contact *c = net->contact;
   rn_contact_list L = {NULL, 0, 0};

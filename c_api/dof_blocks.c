@@ -10,7 +10,11 @@
  * the terminal edge's angle.  With the rigid kernel the joint energy is a sum of
  * end terms, each coupling one end only with the joint's own DOFs, so the ends
  * stay rod-interior; the elastic joint's rotation fit couples every end with
- * every other, so there the ends' DOFs are interface DOFs too. */
+ * every other, so there the ends' DOFs are interface DOFs too.  Contact: the
+ * vertices of both edges of every pair in the Hessian pattern that joins two
+ * rods, or two edges of one rod at least 3 apart, are interface DOFs (edges j
+ * and j + 2 of a rod, within reach on every straight rod, couple DOFs inside
+ * the rod's band). */
 #include <math.h>
 #include <string.h>
 
@@ -87,6 +91,13 @@ rn_status rn_network_dof_blocks(const rn_network *net, int32_t *block, double *p
         if (net->map[a] >= 0) block[net->map[a]] = RN_DOF_INTERFACE;
       if (net->map[th] >= 0) block[net->map[th]] = RN_DOF_INTERFACE;
     }
+  }
+  for (size_t i = 0; i < rn_contact_pattern_count(net); ++i) {
+    size_t idx[12];
+    if (!rn_contact_pattern_far(net, i)) continue;
+    rn_contact_pattern_idx(net, i, idx);
+    for (int k = 0; k < 12; ++k)
+      if (net->map[idx[k]] >= 0) block[net->map[idx[k]]] = RN_DOF_INTERFACE;
   }
   return RN_OK;
 }

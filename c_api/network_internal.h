@@ -521,6 +521,9 @@ int rn_contact_in_pattern(const rn_network *net, int a, int b);
 size_t rn_contact_pattern_count(const rn_network *net);
 /* The 12 full indices of pattern pair i. */
 void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]);
+/* 1 if pattern pair i joins two rods or two edges of one rod at least 3 apart
+ * (edges j and j + 2, close on every straight rod, stay inside its band). */
+int rn_contact_pattern_far(const rn_network *net, size_t i);
 /* RN_ERR_GEOMETRY if the initial state interpenetrates. */
 rn_status rn_contact_check_initial(const rn_network *net, const char *where);
 /* The pairs within the barrier's reach at x (x NULL: the accepted state); with

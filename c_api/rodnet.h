@@ -314,7 +314,10 @@ size_t rn_network_hessian_bandwidth(const rn_network *net);
  * stencil couples with another rod (with elastic joints the vertex next to the
  * joint and the terminal edge's angle of every end, which the joint's rotation
  * fit couples; with rigid joints, whose energy is a sum of one term per end,
- * those stay rod-interior).  No Hessian entry couples the interiors of two
+ * those stay rod-interior; with contact, the vertices of both edges of every
+ * pair in the Hessian pattern that joins two rods or two edges of one rod at
+ * least 3 apart, so the classification changes with
+ * rn_network_pattern_version).  No Hessian entry couples the interiors of two
  * different rods (the pattern of a rigid joint's stencil is dense, its values
  * between two ends are zero).  point[3 i]: the point DOF i moves at the
  * current state (vertex or joint position; for a material angle the midpoint

@@ -610,7 +610,13 @@ static rn_status read_scene_tree(rn_scene_parser *p, const cJSON *root) {
   if (desc && !(p->scene->description = dup_string(desc)))
     return rn_jwalk_fail(w, RN_ERR_ALLOC, "out of memory");
   if ((st = read_model(p, root))) return st;
-  p->constraints = rn_jm_get(root, "constraints");
+  /* Only a scene with a midpoint clamp needs its constraints while the rods are
+   * read: the others would cost a scan of every constraint per rod (quadratic
+   * on large lattices with many pins). */
+  p->constraints = NULL;
+  const cJSON *cons = rn_jm_get(root, "constraints");
+  for (const cJSON *c = cons ? cons->child : NULL; c && !p->constraints; c = c->next)
+    if (rn_jm_get(c, "at")) p->constraints = cons;
   if (rn_jm_get(root, "periodic")) { /* first: the cell precedes the rods */
     size_t mark = rn_jwalk_key(w, "periodic");
     st = rn_scene_read_periodic(p, rn_jm_get(root, "periodic"));

@@ -61,8 +61,9 @@ typedef struct rn_scene_parser {
   const char **sec_names;
   rn_section *secs;
   const char *where; /* if set, library errors read "PATH: where: message" */
-  /* the scene's "constraints" (NULL if none): a rod given by "line" whose end
-   * has a clamp with "at": "midpoint" is laid out for it (scene_rods.c) */
+  /* the scene's "constraints" if one of them has an "at" key (NULL otherwise):
+   * a rod given by "line" whose end has a clamp with "at": "midpoint" is laid
+   * out for it (scene_rods.c) */
   const cJSON *constraints;
   /* rest strains of a closed rod's vertex 0 being read (scene_rods.c) */
   int closed_rest; /* 1: curvature, 2: twist given */

@@ -25,6 +25,9 @@
 extern "C" {
 void dpbtrf_(const char *uplo, const int *n, const int *kd, double *ab, const int *ldab,
              int *info, size_t uplo_len);
+void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k,
+            const double *alpha, const double *a, const int *lda, const double *beta,
+            double *c, const int *ldc, size_t uplo_len, size_t trans_len);
 }
 
 namespace rodnet {
@@ -32,6 +35,9 @@ namespace rodnet {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// A rod coupled to at least this many interface DOFs forms its Schur block by BLAS
+// (dsyrk) instead of sparse-aware loops (the usual 6 to 24 at joints).
+constexpr int kSyrkMin = 48;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -835,8 +841,9 @@ struct DdPreconditioner::Impl {
   std::vector<Rod> rods;
   std::vector<size_t> gg_src, gg_dst; // H_GG: H value index -> Sov value index
   std::vector<size_t> gg_diag;        // the gg entries on H's diagonal
-  std::vector<size_t> cross; // H entries between two rods' interiors: must be zero
-  std::vector<size_t> sdiag; // S value index of each owned coarse row's diagonal
+  std::vector<size_t> cross;  // H entries between two rods' interiors: must be zero
+  std::vector<size_t> sdiag;  // S value index of each owned coarse row's diagonal
+  std::vector<size_t> s_copy; // S value index of each Sov value (no ghosts: no export)
   Teuchos::RCP<TCrs> Sov, S;
   Teuchos::RCP<const Tpetra::Export<>> exporter; // cov -> cmap
   Teuchos::RCP<const Tpetra::Import<>> importer; // cmap -> cov
@@ -1137,7 +1144,14 @@ bool DdPreconditioner::Impl::numeric(const TCrs &H, double uniform) {
       forward_rod(r, Z.data() + static_cast<size_t>(a) * static_cast<size_t>(n),
                   static_cast<size_t>(first[static_cast<size_t>(a)]));
     C.assign(static_cast<size_t>(m) * static_cast<size_t>(m), 0.0);
-    for (int a = 0; a < m; ++a)
+    if (m >= kSyrkMin) { // many coupled DOFs (a rod in self contact): BLAS
+      const double one = 1.0, zero = 0.0;
+      dsyrk_("U", "T", &m, &n, &one, Z.data(), &n, &zero, C.data(), &m, 1, 1);
+      for (int a = 0; a < m; ++a) // column-major upper -> both triangles
+        for (int b2 = 0; b2 < a; ++b2)
+          C[static_cast<size_t>(b2 * m + a)] = C[static_cast<size_t>(a * m + b2)];
+    }
+    for (int a = 0; a < m && m < kSyrkMin; ++a)
       for (int b2 = a; b2 < m; ++b2) {
         const double *za = Z.data() + static_cast<size_t>(a) * static_cast<size_t>(n);
         const double *zb = Z.data() + static_cast<size_t>(b2) * static_cast<size_t>(n);
@@ -1176,10 +1190,34 @@ bool DdPreconditioner::Impl::numeric(const TCrs &H, double uniform) {
       sdiag[c] = find_entry(
           l, static_cast<LO>(c),
           S->getColMap()->getLocalElement(cmap->getGlobalElement(static_cast<LO>(c))));
+    // Without ghost rows on any rank (one rank) the export is a copy: each Sov value's
+    // S position once, instead of Tpetra's search by global index per value and
+    // set-up (cubic in the row length: a rod in self contact has long coarse rows).
+    int ghosted = cov->getNodeNumElements() > cmap->getNodeNumElements() ? 1 : 0, any = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, ghosted, Teuchos::outArg(any));
+    s_copy.clear();
+    if (!any) {
+      auto ol = Sov->getLocalMatrixHost();
+      auto ocol = Sov->getColMap(), scol = S->getColMap();
+      s_copy.resize(ol.values.extent(0));
+      for (LO row = 0; row < static_cast<LO>(ol.numRows()); ++row) {
+        const LO srow = cmap->getLocalElement(cov->getGlobalElement(row));
+        for (size_t q = ol.graph.row_map(row); q < ol.graph.row_map(row + 1); ++q)
+          s_copy[q] = find_entry(
+              l, srow,
+              scol->getLocalElement(ocol->getGlobalElement(ol.graph.entries(q))));
+      }
+    }
   }
   S->resumeFill();
   S->setAllToScalar(0.0);
-  S->doExport(*Sov, *exporter, Tpetra::ADD);
+  if (!s_copy.empty()) {
+    auto ov = Sov->getLocalMatrixHost().values;
+    auto sv2 = S->getLocalMatrixHost().values;
+    for (size_t q = 0; q < s_copy.size(); ++q) sv2(s_copy[q]) += ov(q);
+  } else {
+    S->doExport(*Sov, *exporter, Tpetra::ADD);
+  }
   {
     // Dummy rows: 1e-6 of the mean |diagonal| of their node's real rows.  Decoupled,
     // they change nothing in the solution; small, they add almost no energy to the

@@ -68,8 +68,12 @@ Counters &SerialSystem::report_counters() { return p_.counters; }
 void SerialSystem::assemble_hessian(const TMV &x) {
   p_.assemble_hessian(host_data(x));
   // Contact: a new accepted state may have changed the pattern; then a new matrix
-  // (users that cache its structure compare its graph, dd_preconditioner.cpp).
-  if (p_.pattern_version() != version_) build_graph();
+  // (users that cache its structure compare its graph, dd_preconditioner.cpp) and
+  // new blocks (the pairs' vertices are interface DOFs).
+  if (p_.pattern_version() != version_) {
+    build_graph();
+    build_blocks();
+  }
   auto vals = H_->getLocalMatrixDevice().values; // Serial node: host memory
   const size_t nnz = vals.extent(0);
   if (nnz) std::memcpy(vals.data(), p_.values(), nnz * sizeof(double));

@@ -95,7 +95,7 @@ endif()
 # Contact (docs/contact.md): hard_contact.c, one ctest per case.
 add_executable(hard_contact unit/hard_contact.c)
 target_link_libraries(hard_contact PRIVATE rn_testutil rodnet rodnet_scene m)
-foreach(c crossed plectoneme lattice)
+foreach(c crossed plectoneme lattice knot plectoneme_dd lattice_dd)
   add_test(NAME hard_contact_${c} COMMAND hard_contact ${c}
            ${CMAKE_CURRENT_SOURCE_DIR}/data/contact/honeycomb_dense.json)
   set_tests_properties(hard_contact_${c} PROPERTIES LABELS "hard" TIMEOUT 900)

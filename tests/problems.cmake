@@ -794,6 +794,12 @@ set(RN_CONTACT ${CMAKE_CURRENT_SOURCE_DIR}/data/contact)
 rn_cli_test(problems_contact_crossed 0 "converged.*verified local minimum"
             REMOVE ${RN_CLI_OUT}/contact_crossed.json
             ARGS solve ${RN_CONTACT}/crossed.json -o ${RN_CLI_OUT}/contact_crossed.json -q)
+# nox takes full Newton steps, with no line search to shorten one that would cross:
+# a clear error and no output file (docs/contact.md "Limits").
+rn_cli_test(problems_contact_nox 4
+            "crossed.json: solver failed .*full Newton steps do not stay in the admissible set; try a trust-region solver"
+            REMOVE ${RN_CLI_OUT}/contact_nox.json ABSENT ${RN_CLI_OUT}/contact_nox.json
+            ARGS solve ${RN_CONTACT}/crossed.json --solver nox -o ${RN_CLI_OUT}/contact_nox.json -q)
 rn_cli_test(problems_contact_bad_distance 3
             "contact_distance.json: .\\.contact\\.distance: expected a number > 0"
             STDERR_LINES 1 ARGS check ${RN_BAD}/contact_distance.json)

@@ -230,6 +230,31 @@ static void test_hairpin(rn_context *ctx) {
  * of a is degenerate (a pair outside the pattern comes within reach); once
  * accepted (rn_network_set_dofs) the pattern holds the pair (a new version,
  * more entries), and the CSR Hessian equals the HVP there. */
+/* Interface DOFs of rn_network_dof_blocks (no joints here: contact makes them):
+ * each a vertex position; hit[] counts the components of a's vertices 4, 5 and
+ * b's vertices 3, 4 among them. */
+static int count_contact_interface(const rn_network *net, int hit[4]) {
+  int32_t blk[MAXN];
+  rn_dof_info info[MAXN];
+  const size_t n = rn_network_num_dofs(net);
+  int count = 0;
+  CHECK_STATUS(rn_network_dof_blocks(net, blk, NULL, NULL), RN_OK);
+  CHECK_STATUS(rn_network_dof_info(net, info), RN_OK);
+  for (size_t i = 0; i < n; ++i) {
+    if (blk[i] != RN_DOF_INTERFACE) {
+      CHECK(blk[i] == info[i].rod);
+      continue;
+    }
+    ++count;
+    CHECK(info[i].kind == RN_DOF_POSITION);
+    if (!hit) continue;
+    const int a = info[i].rod == 0, v = info[i].index;
+    if (a && (v == 4 || v == 5)) hit[v - 4]++;
+    if (!a && (v == 3 || v == 4)) hit[2 + v - 3]++;
+  }
+  return count;
+}
+
 static void test_pattern_change(rn_context *ctx) {
   const double r = 0.02, dhat = 0.05, kappa = 3.0, far = 2 * r + 0.5;
   const double near = 2 * r + 0.6 * dhat;
@@ -241,6 +266,7 @@ static void test_pattern_change(rn_context *ctx) {
   rn_contact_stats cs;
   CHECK_STATUS(rn_network_hessian_pattern(net, &nnz0, &rp, &cl), RN_OK);
   const unsigned long v0 = rn_network_pattern_version(net);
+  CHECK(count_contact_interface(net, NULL) == 0); /* no pair: two rod interiors */
   CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
   for (size_t i = 0; i < n; ++i) y[i] = fabs(x[i] - far) < 1e-15 ? near : x[i];
   CHECK_STATUS(rn_network_contact_stats(net, y, &cs), RN_OK);
@@ -250,6 +276,12 @@ static void test_pattern_change(rn_context *ctx) {
   CHECK(strstr(rn_context_last_error(ctx), "outside the Hessian pattern") != NULL);
   CHECK_STATUS(rn_network_set_dofs(net, y), RN_OK); /* accepted: the pattern follows */
   CHECK(rn_network_pattern_version(net) != v0);
+  {
+    /* the pair's vertices (a's 4 and 5, b's 3 and 4) join the interface */
+    int hit[4] = {0, 0, 0, 0};
+    CHECK(count_contact_interface(net, hit) > 0);
+    CHECK(hit[0] == 3 && hit[1] == 3 && hit[2] == 3 && hit[3] == 3);
+  }
   CHECK_STATUS(rn_network_hessian_pattern(net, &nnz1, &rp, &cl), RN_OK);
   CHECK(nnz1 > nnz0);
   CHECK_STATUS(rn_network_energy(net, y, &E), RN_OK);
