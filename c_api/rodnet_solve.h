@@ -185,7 +185,9 @@ typedef struct rn_solve_options {
   int load_steps;            /* > 0: fixed number of continuation steps;
                                 0 (default): one step, split automatically
                                 when a full step fails */
-  int max_load_cuts;         /* automatic halvings allowed (default 8) */
+  int max_load_cuts;         /* automatic halvings allowed (default 8; none where
+                                nothing depends on the load factor: no loads, no
+                                prescribed motions, not a periodic cell) */
   void (*progress)(void *user, const rn_iteration_info *info);
   void *progress_user;
   rn_factorization factorization; /* default RN_FACTOR_AUTO */

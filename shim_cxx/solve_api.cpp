@@ -354,7 +354,8 @@ void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
 // half the increment (at most max_load_cuts times), doubling it again after each
 // success.
 void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
-                        double force_scale, Clock::time_point start, SolveTotals &tot) {
+                        double force_scale, Clock::time_point start, SolveTotals &tot,
+                        bool load_free) {
   Snapshot done;
   done.save(p.network());
   double t_done = 0.0, inc = target;
@@ -367,7 +368,7 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
       done.save(p.network());
       inc *= 2.0;
     } else {
-      if (cuts >= opt.max_load_cuts || target <= 0.0) return;
+      if (cuts >= opt.max_load_cuts || target <= 0.0 || load_free) return;
       ++cuts;
       inc *= 0.5;
       done.restore(p.network());
@@ -438,7 +439,8 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
     *scale = norm2(p.size(), g.data());
     return true;
   };
-  if (!start_gradient(&force_scale)) {
+  const bool start_at_target = start_gradient(&force_scale);
+  if (!start_at_target) {
     bool ok = target > 0.0;
     if (ok) {
       check_status(rn_network_set_load_factor(net, 0.0), "rn_network_set_load_factor");
@@ -468,7 +470,42 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   } else if (opt.load_steps > 0) {
     fixed_stepping(p, opt, target, force_scale, start, tot);
   } else {
-    automatic_stepping(p, opt, target, force_scale, start, tot);
+    // Nothing depends on the load factor (no loads, no prescribed motions, not a
+    // periodic cell: a knot, a ring with rest curvature, a free relaxation): a
+    // smaller load step would solve the same problem again, so a failed attempt is
+    // not cut back.  Decided at a start that is not degenerate at the target.
+    bool load_free = target > 0.0 && start_at_target;
+    if (load_free) {
+      double stretch = 0.0, angle = 0.0, fload = 0.0, mload = 0.0, dgmax = 0.0;
+      int dim = 0;
+      rn_status st = rn_network_load_step_size(net, 0.0, target, &stretch, &angle);
+      if (st == RN_OK) st = rn_network_applied_load_max(net, &fload, &mload);
+      if (st == RN_OK) st = rn_network_cell_info(net, &dim, nullptr, nullptr, nullptr);
+      if (st == RN_OK && !dist) {
+        std::vector<double> dg(p.size());
+        st = rn_network_load_increment(net, x.data(), 0.0, target, dg.data());
+        for (double v : dg) dgmax = std::max(dgmax, std::fabs(v));
+      }
+      int moving = st != RN_OK || stretch != 0.0 || angle != 0.0 || fload != 0.0 ||
+                           mload != 0.0 || dim != 0 ||
+                           rn_network_fixed_couples(net, nullptr, nullptr) > 0
+                       ? 1
+                       : 0;
+      if (dist) { // (collective)
+        TMV xd(dist->map(), 1), dg(dist->map(), 1);
+        dist->get_state(xd);
+        dist->load_increment(xd, 0.0, target, dg);
+        Teuchos::Array<double> nrm(1);
+        dg.normInf(nrm());
+        dgmax = nrm[0];
+        int any = 0;
+        Teuchos::reduceAll(*world_comm(), Teuchos::REDUCE_MAX, moving,
+                           Teuchos::outArg(any));
+        moving = any;
+      }
+      load_free = !moving && dgmax == 0.0;
+    }
+    automatic_stepping(p, opt, target, force_scale, start, tot, load_free);
   }
   if (rep) {
     fill_report(p, tot, force_scale,
