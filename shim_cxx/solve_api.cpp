@@ -108,7 +108,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
            o.stability_method > RN_STABILITY_LOBPCG)
     bad = "unknown stability_method";
   else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
-           enum_value(o.preconditioner) > RN_PRECOND_FROSCH)
+           enum_value(o.preconditioner) > RN_PRECOND_DD_AMG)
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -655,14 +655,17 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "ifpack2";
   case RN_PRECOND_FROSCH:
     return "frosch";
+  case RN_PRECOND_DD_AMG:
+    return "dd-amg";
   }
   return "unknown";
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
   const rn_preconditioner kinds[] = {
-      RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,   RN_PRECOND_GATHERED,
-      RN_PRECOND_DD,   RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2, RN_PRECOND_FROSCH};
+      RN_PRECOND_AUTO,     RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,
+      RN_PRECOND_GATHERED, RN_PRECOND_DD,     RN_PRECOND_MUELU,
+      RN_PRECOND_IFPACK2,  RN_PRECOND_FROSCH, RN_PRECOND_DD_AMG};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 
