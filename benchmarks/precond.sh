@@ -16,14 +16,7 @@
 # in Trilinos 13.2.  The large cases need ~10 GB and minutes each on a 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build}
-res=benchmarks/results
-py=/usr/bin/python3
-[ -x "$py" ] || py=python3
-mkdir -p "$res"
-export RODNET_MPI=1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. benchmarks/solve_env.sh "${1:-build}"
 
 hc_small=(10 20 40) hc_large=(80 120 190)
 oc_small=(3 4 6) oc_large=(8 11 14 16)

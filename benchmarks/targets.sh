@@ -15,14 +15,7 @@
 # Writes results/targets_solve.csv (bench_lattice's columns) and prints the tables.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build}
-res=benchmarks/results
-py=/usr/bin/python3
-[ -x "$py" ] || py=python3
-mkdir -p "$res"
-export RODNET_MPI=1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. benchmarks/solve_env.sh "${1:-build}"
 
 n=0
 solve() {

@@ -371,19 +371,24 @@ size_t rn_contact_pattern_count(const rn_network *net) {
   return net->contact ? net->contact->npat : 0;
 }
 
-void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]) {
+void rn_contact_pattern_pair(const rn_network *net, size_t i, int *a, int *b) {
   const rn_contact *c = net->contact;
   const uint64_t k = c->pat[i];
-  rn_contact_pair_idx(net, (int)(k / (uint64_t)c->nedges), (int)(k % (uint64_t)c->nedges),
-                      idx);
+  *a = (int)(k / (uint64_t)c->nedges);
+  *b = (int)(k % (uint64_t)c->nedges);
+}
+
+void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]) {
+  int a = 0, b = 0;
+  rn_contact_pattern_pair(net, i, &a, &b);
+  rn_contact_pair_idx(net, a, b, idx);
 }
 
 int rn_contact_pattern_far(const rn_network *net, size_t i) {
-  const rn_contact *c = net->contact;
-  const uint64_t k = c->pat[i];
-  const rn_contact_edge *a = &c->e[k / (uint64_t)c->nedges],
-                        *b = &c->e[k % (uint64_t)c->nedges];
-  return a->rod != b->rod || abs(a->j - b->j) >= 3;
+  int a = 0, b = 0;
+  rn_contact_pattern_pair(net, i, &a, &b);
+  const rn_contact_edge *ea = &net->contact->e[a], *eb = &net->contact->e[b];
+  return ea->rod != eb->rod || abs(ea->j - eb->j) >= 3;
 }
 
 rn_status rn_contact_pattern_update(rn_network *net, int force, const char *where) {

@@ -519,6 +519,9 @@ void rn_contact_free(rn_network *net);
 rn_status rn_contact_pattern_update(rn_network *net, int force, const char *where);
 int rn_contact_in_pattern(const rn_network *net, int a, int b);
 size_t rn_contact_pattern_count(const rn_network *net);
+/* The two contact edges (a < b, indices into the contact's edge list) of pattern
+ * pair i: the one decoding of the pattern's keys. */
+void rn_contact_pattern_pair(const rn_network *net, size_t i, int *a, int *b);
 /* The 12 full indices of pattern pair i. */
 void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]);
 /* 1 if pattern pair i joins two rods or two edges of one rod at least 3 apart

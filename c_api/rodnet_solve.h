@@ -74,11 +74,16 @@ typedef enum rn_preconditioner {
   RN_PRECOND_IFPACK2 = 6,  /* Ifpack2 additive Schwarz, one subdomain per rank with
                               overlap 1, local sparse LU (exact on one rank); MPI
                               runtime */
-  RN_PRECOND_FROSCH = 7    /* FROSch two-level overlapping Schwarz: one subdomain per
+  RN_PRECOND_FROSCH = 7,   /* FROSch two-level overlapping Schwarz: one subdomain per
                               rank (overlap 1, local sparse LU) plus a coarse space of
                               the rigid-body modes on the subdomain interfaces (one
                               rank: the whole network; rigid-body modes of the whole
                               network only); MPI runtime */
+  RN_PRECOND_DD_AMG = 8    /* "dd-amg": the rod-level domain decomposition with the
+                              algebraic-multigrid coarse solve whatever its size (dd
+                              chooses it only past 5e10 flops): to measure and test
+                              the large-lattice configuration on small ones; MPI
+                              runtime */
 } rn_preconditioner;
 
 /* Factorisation of the shifted Hessian H + sigma D used by TR-MINRES (multiplier

@@ -55,8 +55,9 @@ static const char solve_help[] =
     "                      gathered (factor's matrix on rank 0: exact, not\n"
     "                      scalable; docs/parallel.md), muelu (algebraic\n"
     "                      multigrid on the whole Hessian), ifpack2 (additive\n"
-    "                      Schwarz, local LU), frosch (two-level Schwarz);\n"
-    "                      muelu, ifpack2, frosch need MPI\n"
+    "                      Schwarz, local LU), frosch (two-level Schwarz),\n"
+    "                      dd-amg (dd with the multigrid coarse solve at any\n"
+    "                      size); muelu, ifpack2, frosch, dd-amg need MPI\n"
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian\n"
     "                      (also spelt --factorisation):\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
@@ -278,7 +279,7 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
       rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
     return rn_cli_usage_error("solve",
                               "unknown preconditioner '%s' (known: auto, factor, "
-                              "local, gathered, dd, muelu, ifpack2, frosch)",
+                              "local, gathered, dd, dd-amg, muelu, ifpack2, frosch)",
                               a->preconditioner);
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)

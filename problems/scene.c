@@ -367,15 +367,12 @@ static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
                                            {"nox", RN_SOLVER_NOX},
                                            {"rol-lbfgs", RN_SOLVER_ROL_LBFGS},
                                            {NULL, 0}};
-static const named_value preconditioner_names[] = {{"auto", RN_PRECOND_AUTO},
-                                                   {"factor", RN_PRECOND_FACTOR},
-                                                   {"local", RN_PRECOND_LOCAL},
-                                                   {"gathered", RN_PRECOND_GATHERED},
-                                                   {"dd", RN_PRECOND_DD},
-                                                   {"muelu", RN_PRECOND_MUELU},
-                                                   {"ifpack2", RN_PRECOND_IFPACK2},
-                                                   {"frosch", RN_PRECOND_FROSCH},
-                                                   {NULL, 0}};
+static const named_value preconditioner_names[] = {
+    {"auto", RN_PRECOND_AUTO},       {"factor", RN_PRECOND_FACTOR},
+    {"local", RN_PRECOND_LOCAL},     {"gathered", RN_PRECOND_GATHERED},
+    {"dd", RN_PRECOND_DD},           {"muelu", RN_PRECOND_MUELU},
+    {"ifpack2", RN_PRECOND_IFPACK2}, {"frosch", RN_PRECOND_FROSCH},
+    {"dd-amg", RN_PRECOND_DD_AMG},   {NULL, 0}};
 static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
                                                   {"banded", RN_FACTOR_BANDED},
                                                   {"sparse", RN_FACTOR_SPARSE},

@@ -1339,6 +1339,29 @@ private:
   PreconditionerStats *stats_;
 };
 
+// A = the coarse solver's SPD approximation of S: y = alpha A^{-1} x + beta y.
+class CoarseInverse : public Tpetra::Operator<> {
+public:
+  explicit CoarseInverse(const Teuchos::RCP<const DdPreconditioner::Impl> &impl)
+      : impl_(impl) {}
+  Teuchos::RCP<const TMap> getDomainMap() const override { return impl_->cmap; }
+  Teuchos::RCP<const TMap> getRangeMap() const override { return impl_->cmap; }
+  void apply(const TMV &X, TMV &Y, Teuchos::ETransp, double alpha,
+             double beta) const override {
+    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
+      throw Error(RN_ERR_INTERNAL,
+                  "dd preconditioner: coarse inverse applied to a block");
+    if (tmp_.is_null() || tmp_->getMap().get() != impl_->cmap.get())
+      tmp_ = Teuchos::rcp(new TMV(impl_->cmap, 1));
+    impl_->coarse->solve(X, *tmp_);
+    Y.update(alpha, *tmp_, beta);
+  }
+
+private:
+  Teuchos::RCP<const DdPreconditioner::Impl> impl_;
+  mutable Teuchos::RCP<TMV> tmp_;
+};
+
 } // namespace
 
 DdPreconditioner::DdPreconditioner(const DdOptions &opt) : opt_(opt), impl_(new Impl) {}
@@ -1417,6 +1440,16 @@ bool DdPreconditioner::exact() const {
   return impl_->rods_shifted == 0 && coarse_shift() == 0.0 &&
          impl_->uniform_shift == 0.0 &&
          (impl_->coarse_rows == 0 || coarse_solver() == "direct");
+}
+
+bool DdPreconditioner::coarse_pencil(Teuchos::RCP<const Tpetra::Operator<>> &S,
+                                     Teuchos::RCP<const Tpetra::Operator<>> &Ainv) const {
+  if (impl_->rods_shifted != 0 || coarse_shift() != 0.0 || impl_->uniform_shift != 0.0 ||
+      impl_->coarse_rows == 0 || !impl_->coarse || impl_->S.is_null())
+    return false;
+  S = impl_->S;
+  Ainv = Teuchos::rcp(new CoarseInverse(impl_));
+  return true;
 }
 
 double DdPreconditioner::coarse_flops() const {

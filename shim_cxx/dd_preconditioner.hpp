@@ -133,6 +133,17 @@ public:
   // matrix shifted, the coarse solve direct): M = H, which proves H positive definite
   // (the inertia of H is that of the rod blocks plus that of the Schur complement).
   bool exact() const;
+  // The pencil (S, A) of the last setup's coarse matrix S (the Schur complement of
+  // the rod interiors, its decoupled padding rows positive) and the coarse solver's
+  // SPD approximation A (an operator applying A^-1), on the coarse map; false where
+  // a rod block or the coarse matrix was shifted or there is no coarse matrix.
+  // With unshifted rod blocks, H's inertia is that of the rod blocks (positive
+  // definite) plus that of S (Haynsworth): H is positive definite iff S is, which a
+  // Lanczos process on this pencil checks at a fraction of the cost of one on
+  // (H, M) (tr_krylov.cpp).  The operators share the preconditioner's state: valid
+  // until its next setup.
+  bool coarse_pencil(Teuchos::RCP<const Tpetra::Operator<>> &S,
+                     Teuchos::RCP<const Tpetra::Operator<>> &Ainv) const;
 
   struct Impl;
 

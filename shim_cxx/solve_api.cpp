@@ -108,7 +108,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
            o.stability_method > RN_STABILITY_LOBPCG)
     bad = "unknown stability_method";
   else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
-           enum_value(o.preconditioner) > RN_PRECOND_FROSCH)
+           enum_value(o.preconditioner) > RN_PRECOND_DD_AMG)
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -349,6 +349,42 @@ void fixed_stepping(Problem &p, const rn_solve_options &opt, double target,
   }
 }
 
+// Nothing depends on the load factor: no applied loads, no prescribed motions, not a
+// periodic cell, no couple fixed in space, and a zero load increment (a knot, a ring
+// with rest curvature, a free relaxation).  A smaller load step would then solve the
+// same problem again, so automatic_stepping does not cut a failed attempt back.  x:
+// work space of the network's size.  Collective over the ranks of a part.
+bool nothing_depends_on_load(rn_network *net, Problem &p, DistSystem *dist,
+                             std::vector<double> &x, double target) {
+  double stretch = 0.0, angle = 0.0, fload = 0.0, mload = 0.0, dgmax = 0.0;
+  int dim = 0;
+  rn_status st = rn_network_load_step_size(net, 0.0, target, &stretch, &angle);
+  if (st == RN_OK) st = rn_network_applied_load_max(net, &fload, &mload);
+  if (st == RN_OK) st = rn_network_cell_info(net, &dim, nullptr, nullptr, nullptr);
+  if (st == RN_OK && !dist) {
+    std::vector<double> dg(p.size());
+    st = rn_network_load_increment(net, x.data(), 0.0, target, dg.data());
+    for (double v : dg) dgmax = std::max(dgmax, std::fabs(v));
+  }
+  int moving = st != RN_OK || stretch != 0.0 || angle != 0.0 || fload != 0.0 ||
+                       mload != 0.0 || dim != 0 ||
+                       rn_network_fixed_couples(net, nullptr, nullptr) > 0
+                   ? 1
+                   : 0;
+  if (dist) { // (collective)
+    TMV xd(dist->map(), 1), dg(dist->map(), 1);
+    dist->get_state(xd);
+    dist->load_increment(xd, 0.0, target, dg);
+    Teuchos::Array<double> nrm(1);
+    dg.normInf(nrm());
+    dgmax = nrm[0];
+    int any = 0;
+    Teuchos::reduceAll(*world_comm(), Teuchos::REDUCE_MAX, moving, Teuchos::outArg(any));
+    moving = any;
+  }
+  return !moving && dgmax == 0.0;
+}
+
 // Automatic continuation: the full step first; on failure back to the last converged
 // state (its snapshot: exact, reference frames and joint rotations included) with
 // half the increment (at most max_load_cuts times), doubling it again after each
@@ -470,41 +506,9 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   } else if (opt.load_steps > 0) {
     fixed_stepping(p, opt, target, force_scale, start, tot);
   } else {
-    // Nothing depends on the load factor (no loads, no prescribed motions, not a
-    // periodic cell: a knot, a ring with rest curvature, a free relaxation): a
-    // smaller load step would solve the same problem again, so a failed attempt is
-    // not cut back.  Decided at a start that is not degenerate at the target.
-    bool load_free = target > 0.0 && start_at_target;
-    if (load_free) {
-      double stretch = 0.0, angle = 0.0, fload = 0.0, mload = 0.0, dgmax = 0.0;
-      int dim = 0;
-      rn_status st = rn_network_load_step_size(net, 0.0, target, &stretch, &angle);
-      if (st == RN_OK) st = rn_network_applied_load_max(net, &fload, &mload);
-      if (st == RN_OK) st = rn_network_cell_info(net, &dim, nullptr, nullptr, nullptr);
-      if (st == RN_OK && !dist) {
-        std::vector<double> dg(p.size());
-        st = rn_network_load_increment(net, x.data(), 0.0, target, dg.data());
-        for (double v : dg) dgmax = std::max(dgmax, std::fabs(v));
-      }
-      int moving = st != RN_OK || stretch != 0.0 || angle != 0.0 || fload != 0.0 ||
-                           mload != 0.0 || dim != 0 ||
-                           rn_network_fixed_couples(net, nullptr, nullptr) > 0
-                       ? 1
-                       : 0;
-      if (dist) { // (collective)
-        TMV xd(dist->map(), 1), dg(dist->map(), 1);
-        dist->get_state(xd);
-        dist->load_increment(xd, 0.0, target, dg);
-        Teuchos::Array<double> nrm(1);
-        dg.normInf(nrm());
-        dgmax = nrm[0];
-        int any = 0;
-        Teuchos::reduceAll(*world_comm(), Teuchos::REDUCE_MAX, moving,
-                           Teuchos::outArg(any));
-        moving = any;
-      }
-      load_free = !moving && dgmax == 0.0;
-    }
+    // Decided at a start that is not degenerate at the target.
+    const bool load_free = target > 0.0 && start_at_target &&
+                           nothing_depends_on_load(net, p, dist.get(), x, target);
     automatic_stepping(p, opt, target, force_scale, start, tot, load_free);
   }
   if (rep) {
@@ -655,14 +659,17 @@ const char *rn_preconditioner_name(rn_preconditioner p) {
     return "ifpack2";
   case RN_PRECOND_FROSCH:
     return "frosch";
+  case RN_PRECOND_DD_AMG:
+    return "dd-amg";
   }
   return "unknown";
 }
 
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
   const rn_preconditioner kinds[] = {
-      RN_PRECOND_AUTO, RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,   RN_PRECOND_GATHERED,
-      RN_PRECOND_DD,   RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2, RN_PRECOND_FROSCH};
+      RN_PRECOND_AUTO,     RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,
+      RN_PRECOND_GATHERED, RN_PRECOND_DD,     RN_PRECOND_MUELU,
+      RN_PRECOND_IFPACK2,  RN_PRECOND_FROSCH, RN_PRECOND_DD_AMG};
   return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 

@@ -70,6 +70,7 @@
 #include "gathered_preconditioner.hpp"
 #include "local_preconditioner.hpp"
 #include "monitor.hpp"
+#include "pencil_lanczos.hpp"
 #include "predictor.hpp"
 #include "preconditioner.hpp"
 #include "shim_error.hpp"
@@ -121,13 +122,19 @@ struct KrylovStep {
 class TrustMinres {
 public:
   TrustMinres(System &sys, const Tpetra::Operator<> &Minv, int max_iterations)
-      : sys_(sys), Minv_(Minv), maxit_(max_iterations), map_(sys.map()), r1_(map_, 1),
+      : sys_(sys), Minv_(&Minv), maxit_(max_iterations), map_(sys.map()), r1_(map_, 1),
         r2_(map_, 1), y_(map_, 1), v_(map_, 1), w_(map_, 1), w1_(map_, 1), w2_(map_, 1),
         Mw_(map_, 1), Mw1_(map_, 1), Mw2_(map_, 1), p_(map_, 1), Mp_(map_, 1),
         tmp_(map_, 1) {}
 
   // ||g||_{M^{-1}} of the last solve (beta_1).
   double beta1() const { return beta1_; }
+  // The preconditioner of the next solves (after a setup; the work vectors stay);
+  // beta1() is 0 again until the next solve, as for a new solver.
+  void rebind(const Tpetra::Operator<> &Minv) {
+    Minv_ = &Minv;
+    beta1_ = 0.0;
+  }
 
   void solve(const Vec &g, double radius, double eta, KrylovStep &st) {
     st.s.putScalar(0.0);
@@ -136,7 +143,7 @@ public:
     st.boundary = st.negative = false;
     r1_.update(-1.0, g, 0.0); // b = -g
     r2_.assign(r1_);
-    Minv_.apply(r1_, y_);
+    Minv_->apply(r1_, y_);
     double beta = dot(r1_, y_);
     if (beta < 0.0 || !std::isfinite(beta))
       throw Error(RN_ERR_SOLVER, "rn_solve: the preconditioner is not positive definite");
@@ -173,7 +180,7 @@ public:
       Mw_.update(s, r2_, 0.0);
       r1_.assign(r2_);
       r2_.assign(y_);
-      Minv_.apply(r2_, y_);
+      Minv_->apply(r2_, y_);
       oldb = beta;
       beta = dot(r2_, y_);
       if (beta < 0.0 || !std::isfinite(beta))
@@ -241,7 +248,7 @@ private:
   }
 
   System &sys_;
-  const Tpetra::Operator<> &Minv_;
+  const Tpetra::Operator<> *Minv_;
   int maxit_;
   Teuchos::RCP<const TMap> map_;
   Vec r1_, r2_, y_, v_, w_, w1_, w2_, Mw_, Mw1_, Mw2_, p_, Mp_, tmp_;
@@ -250,11 +257,13 @@ private:
 
 // Lowest eigenpair of the pencil (H, M) by preconditioned Lanczos (M-orthonormal
 // basis, full reorthogonalisation) from a fixed pseudo-random start; v is returned
-// M-normalised with M v in Mv, mu = v' H v.
+// M-normalised with M v in Mv, mu = v' H v.  H and M^{-1} are operators on map (the
+// System's Hessian and the preconditioner, or the DD's coarse pencil).
 class PencilLanczos {
 public:
-  PencilLanczos(System &sys, const Tpetra::Operator<> &Minv)
-      : sys_(sys), Minv_(Minv), map_(sys.map()), z_(map_, 1), y_(map_, 1) {}
+  PencilLanczos(const Tpetra::Operator<> &H, const Tpetra::Operator<> &Minv,
+                const Teuchos::RCP<const TMap> &map)
+      : H_(H), Minv_(Minv), map_(map), z_(map_, 1), y_(map_, 1) {}
 
   double lowest(Vec &v, Vec &Mv, int *steps) {
     std::vector<Vec> V, Z; // Lanczos vectors and M times them
@@ -277,7 +286,7 @@ public:
       V.back().update(1.0 / b, y_, 0.0);
       Z.back().update(1.0 / b, z_, 0.0);
       if (k > 0) beta.push_back(b);
-      apply_h(sys_, V.back(), z_); // z = H v_k (unpreconditioned)
+      H_.apply(V.back(), z_); // z = H v_k (unpreconditioned)
       const double a = dot(V.back(), z_);
       alpha.push_back(a);
       // z -= a M v_k + b M v_{k-1}; then full reorthogonalisation in the M-inner
@@ -303,13 +312,13 @@ public:
       v.update(zz[static_cast<size_t>(j)], V[static_cast<size_t>(j)], 1.0);
       Mv.update(zz[static_cast<size_t>(j)], Z[static_cast<size_t>(j)], 1.0);
     }
-    apply_h(sys_, v, y_);
+    H_.apply(v, y_);
     const double vv = dot(v, Mv);
     return vv > 0.0 ? dot(v, y_) / vv : d[0];
   }
 
 private:
-  System &sys_;
+  const Tpetra::Operator<> &H_;
   const Tpetra::Operator<> &Minv_;
   Teuchos::RCP<const TMap> map_;
   Vec z_, y_;
@@ -359,6 +368,10 @@ private:
 // preconditioner cannot certify positive definiteness ("factor" can: it is the
 // Cholesky factorisation of H itself when unshifted; so can "dd" with unshifted rod
 // blocks and an unshifted direct coarse solve, an exact block factorisation of H).
+// "dd" with unshifted rod blocks and the multigrid coarse solve certifies by Lanczos
+// on its coarse pencil (S, A) instead (DdPreconditioner::coarse_pencil: H is
+// positive definite iff its Schur complement S is), the whole pencil only if that
+// finds S's lowest Ritz value below kCurvTol.
 void TrustRegionKrylov::analyse(const IterationView &it) {
   negcurv_ = have_v_ = false;
   mu_ = 0.0;
@@ -367,7 +380,14 @@ void TrustRegionKrylov::analyse(const IterationView &it) {
       !prec_.stats().shifted && (prec_.name() == "factor" || (dd && dd->exact()));
   if (!prec_.stats().shifted && (certified || !mon_.equilibrium_passes(it))) return;
   int steps = 0;
-  mu_ = PencilLanczos(sys_, *prec_.inverse()).lowest(v_, Mv_, &steps);
+  Teuchos::RCP<const Tpetra::Operator<>> S, Ainv;
+  if (!prec_.stats().shifted && dd && dd->coarse_pencil(S, Ainv)) {
+    Vec sv(S->getDomainMap(), 1), Msv(S->getDomainMap(), 1);
+    const double mu_s = pencil_lowest(*S, *Ainv, sv, Msv, &steps);
+    sys_.counters.krylov += steps;
+    if (mu_s > kCurvTol) return; // S, hence H, positive definite
+  }
+  mu_ = PencilLanczos(*sys_.hessian(), *prec_.inverse(), map_).lowest(v_, Mv_, &steps);
   sys_.counters.krylov += steps;
   have_v_ = true;
   negcurv_ = mu_ < -kCurvTol;
@@ -438,7 +458,10 @@ void TrustRegionKrylov::run() {
     if (fresh) {
       sys_.assemble_hessian(x_);
       prec_.setup(sys_);
-      minres.reset(new TrustMinres(sys_, *prec_.inverse(), opt_.krylov_max_iterations));
+      if (minres) // its work vectors for the whole run (page faults of large ones)
+        minres->rebind(*prec_.inverse());
+      else
+        minres.reset(new TrustMinres(sys_, *prec_.inverse(), opt_.krylov_max_iterations));
     }
     it.iteration = iteration;
     it.energy = energy_;
@@ -598,6 +621,11 @@ private:
 
 } // namespace
 
+double pencil_lowest(const Tpetra::Operator<> &H, const Tpetra::Operator<> &Minv, TMV &v,
+                     TMV &Mv, int *steps) {
+  return PencilLanczos(H, Minv, H.getDomainMap()).lowest(v, Mv, steps);
+}
+
 std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
                                                     const rn_solve_options &opt,
                                                     rn_preconditioner *used) {
@@ -616,6 +644,7 @@ std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
   case RN_PRECOND_LOCAL:
     return std::make_unique<LocalPreconditioner>();
   case RN_PRECOND_DD:
+  case RN_PRECOND_DD_AMG:
   case RN_PRECOND_MUELU:
   case RN_PRECOND_IFPACK2:
   case RN_PRECOND_FROSCH: {

@@ -372,7 +372,7 @@ static const bad_case cases[] = {
     {"unknown preconditioner", SCENE(", 'solver': {'preconditioner': 'ilu'}"),
      ": $.solver.preconditioner: ",
      "unknown preconditioner \"ilu\" (known: auto, factor, local, gathered, dd, muelu, "
-     "ifpack2, frosch)"},
+     "ifpack2, frosch, dd-amg)"},
     {"predictor not a boolean", SCENE(", 'solver': {'predictor': 1}"),
      ": $.solver.predictor: ", "expected true or false"},
     {"zero iterations", SCENE(", 'solver': {'max_iterations': 0}"),

@@ -18,9 +18,16 @@
 //    36x36 cells stay bounded (the largest at most 1.5x the smallest); the automatic
 //    coarse solve is the direct one unless its factorisation costs too much.
 //  - MueLu on the whole Hessian and Ifpack2 additive Schwarz: SPD, MINRES converges
-//    with the true residual to match.
+//    with the true residual to match;
+//  - the coarse pencil (S, A) of the AMG coarse solve (DdPreconditioner::
+//    coarse_pencil), by which tr-krylov certifies that H is positive definite: H and
+//    S have the same negative inertia (unshifted rod blocks), so its lowest Ritz
+//    value is positive for H - c D with c = 0 and 0.5 mu (mu the lowest eigenvalue
+//    of the pencil (H, D)) and, where the pencil is offered at all, negative for
+//    c = 1.05 mu and 1.5 mu (an indefinite H).
 // The results do not depend on the number of ranks (random vectors are functions of
 // the global DOF index); every rank checks its own part and all must pass.
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -34,7 +41,9 @@
 
 #include "alt_preconditioners.hpp"
 #include "dd_preconditioner.hpp"
+#include "dof_blocks.hpp"
 #include "minres.hpp"
+#include "pencil_lanczos.hpp"
 #include "replicated_system.hpp"
 #include "sparse_cholesky.hpp"
 #include "spd_factor.hpp"
@@ -115,7 +124,9 @@ private:
 };
 
 // Replace H's values by H - c D (D = |diag H|) or, identity = true, by H - c I.
-void shift_hessian(ReplicatedSystem &sys, double c, bool identity = false) {
+// mask (global DOF flags, may be null): on the flagged rows only.
+void shift_hessian(ReplicatedSystem &sys, double c, bool identity = false,
+                   const std::vector<bool> *mask = nullptr) {
   auto H = sys.hessian_nonconst();
   TMV d(H->getRowMap(), 1);
   H->getLocalDiagCopy(*d.getVectorNonConst(0));
@@ -123,6 +134,7 @@ void shift_hessian(ReplicatedSystem &sys, double c, bool identity = false) {
   auto dv = d.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (size_t i = 0; i < dv.extent(0); ++i) {
     const GO g = H->getRowMap()->getGlobalElement(static_cast<LO>(i));
+    if (mask && !(*mask)[static_cast<size_t>(g)]) continue;
     const double add = -c * (identity ? 1.0 : std::fabs(dv(i, 0)));
     H->sumIntoGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
                            Teuchos::ArrayView<const double>(&add, 1));
@@ -132,17 +144,25 @@ void shift_hessian(ReplicatedSystem &sys, double c, bool identity = false) {
 
 // Lowest eigenvalue mu of the pencil (H, D), D = |diag H|, of the assembled Hessian
 // (positive definite), by bisection on the inertia: H - s D factors iff s < mu.
-double pencil_min_eigenvalue(ReplicatedSystem &sys) {
+// mask (global DOF flags, may be null): D only on the flagged rows (mu may then be
+// infinite if H - s D stays positive definite: returns 1e300).
+double pencil_min_eigenvalue(ReplicatedSystem &sys,
+                             const std::vector<bool> *mask = nullptr) {
   Problem &p = sys.problem();
   const size_t n = p.size();
   std::vector<double> d(p.rowptr()[n], 0.0);
   for (size_t i = 0; i < n; ++i)
     for (int64_t q = p.rowptr()[i]; q < p.rowptr()[i + 1]; ++q)
-      if (static_cast<size_t>(p.col()[q]) == i) d[q] = -std::fabs(p.values()[q]);
+      if (static_cast<size_t>(p.col()[q]) == i && (!mask || (*mask)[i]))
+        d[q] = -std::fabs(p.values()[q]);
   auto an = std::make_shared<SparseAnalysis>(n, p.rowptr(), p.col());
   SparseCholesky chol(an);
   double lo = 0.0, hi = 1.0;
-  CHECK(!chol.factor(p.values(), hi, d.data()));
+  while (chol.factor(p.values(), hi, d.data())) {
+    lo = hi;
+    hi *= 2.0;
+    if (hi > 1e10) return 1e300;
+  }
   for (int k = 0; k < 50; ++k) {
     const double mid = 0.5 * (lo + hi);
     if (chol.factor(p.values(), mid, d.data()))
@@ -372,6 +392,52 @@ void check_amg(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
   CHECK(its.back() <= 1.5 * its.front());
 }
 
+// The coarse pencil's verdict against H's inertia (the top).  H - c D_G, D_G =
+// |diag H| on the interface DOFs only: the rod blocks stay positive definite and
+// unshifted, and c* (bisection on the sparse Cholesky of the whole matrix) is where
+// H, hence S, stops being positive definite.
+void check_coarse_pencil(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
+  rn_scene *scene = lattice(ctx, RN_LATTICE_HONEYCOMB, 12, RN_JOINT_RIGID);
+  ReplicatedSystem sys(rn_scene_network(scene), comm);
+  const NetworkDofs nd = network_dofs(rn_scene_network(scene));
+  std::vector<bool> iface(nd.block.size());
+  for (size_t i = 0; i < iface.size(); ++i) iface[i] = nd.block[i] < 0;
+  TMV x(sys.map(), 1);
+  sys.get_state(x);
+  sys.assemble_hessian(x);
+  const double cstar = pencil_min_eigenvalue(sys, &iface);
+  CHECK(cstar < 1e300);
+  for (double c : {0.0, 0.5, 0.99, 1.001, 1.01, 1.2}) {
+    sys.assemble_hessian(x);
+    if (c > 0.0) shift_hessian(sys, c * cstar, false, &iface);
+    DdOptions opt;
+    opt.coarse = DdOptions::Coarse::Amg;
+    DdPreconditioner dd(opt);
+    dd.setup(sys);
+    Teuchos::RCP<const Tpetra::Operator<>> S, Ainv;
+    const bool offered = dd.coarse_pencil(S, Ainv);
+    double mu_s = 0.0;
+    int steps = 0;
+    if (offered) {
+      TMV v(S->getDomainMap(), 1), Mv(S->getDomainMap(), 1);
+      mu_s = pencil_lowest(*S, *Ainv, v, Mv, &steps);
+    }
+    if (g_rank == 0)
+      std::printf("coarse pencil, H - %.2f c* D_G (c* = %.4e): rods shifted %lld, "
+                  "coarse shift %g, offered %d, lowest Ritz value %.3e (%d steps)\n",
+                  c, cstar, dd.rods_shifted(), dd.coarse_shift(), offered ? 1 : 0, mu_s,
+                  steps);
+    if (c < 1.0) { // H positive definite: offered, and certified
+      CHECK(dd.rods_shifted() == 0);
+      CHECK(offered);
+      CHECK(mu_s > 1e-4);
+    } else { // H indefinite: never certified (kCurvTol of tr_krylov.cpp)
+      CHECK(!offered || !(mu_s > 1e3 * DBL_EPSILON));
+    }
+  }
+  rn_scene_destroy(&scene);
+}
+
 // The alternatives measured against the DD (alt_preconditioners.hpp): SPD, and
 // MINRES reaches the tolerance with a true residual to match, on 1 and 2 ranks
 // (Ifpack2's subdomain solves are rank-local Amesos2 KLU2 factorisations).
@@ -425,6 +491,7 @@ int main(int argc, char **argv) {
       rn_network_destroy(&net);
     }
     check_amg(ctx, comm);
+    check_coarse_pencil(ctx, comm);
     check_alternatives(ctx, comm);
     rn_context_destroy(&ctx);
     int failed = rn_test_failures > 0 ? 1 : 0, any = 0;

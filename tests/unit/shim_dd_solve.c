@@ -1,11 +1,13 @@
 /* shim_dd_solve.c - rn_solve's Newton-Krylov trust region (tr-krylov) with every
- * preconditioner (auto = dd, dd, muelu, ifpack2, frosch, factor) on lattices of `rodnet
- * generate` (honeycomb 4x4 with rigid and with elastic joints, octet 2x2x2 rigid,
+ * preconditioner (auto = dd, dd, muelu, ifpack2, frosch, dd-amg, factor) on lattices of
+ * `rodnet generate` (honeycomb 4x4 with rigid and with elastic joints, octet 2x2x2 rigid,
  * uniaxial stretch 1e-3): converged, the preconditioner reported, and the same
  * equilibrium as the exact trust region (tr-minres): every vertex within 1e-7 of
  * the largest displacement, energies within 1e-9 relative.  In the serial runtime
- * muelu, ifpack2 and frosch fail with a clear error (they need MPI in Trilinos 13.2); run
- * with the argument "mpi" and RODNET_MPI=1 they must work. */
+ * muelu, ifpack2, frosch and dd-amg fail with a clear error (they need MPI in Trilinos
+ * 13.2); run with the argument "mpi" and RODNET_MPI=1 they must work.  dd-amg (the DD
+ * with the multigrid coarse solve, which cannot prove H positive definite) certifies
+ * the minimum by Lanczos on its coarse pencil (tr_krylov.cpp). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,10 +40,10 @@ static double *vertices(const rn_network *net, size_t *count) {
 
 static void check_case(rn_context *ctx, rn_lattice_kind kind, int cells, int model,
                        const char *name) {
-  enum { NPREC = 6 };
-  const rn_preconditioner precs[NPREC] = {RN_PRECOND_AUTO,   RN_PRECOND_DD,
-                                          RN_PRECOND_MUELU,  RN_PRECOND_IFPACK2,
-                                          RN_PRECOND_FROSCH, RN_PRECOND_FACTOR};
+  enum { NPREC = 7 };
+  const rn_preconditioner precs[NPREC] = {
+      RN_PRECOND_AUTO,   RN_PRECOND_DD,     RN_PRECOND_MUELU, RN_PRECOND_IFPACK2,
+      RN_PRECOND_FROSCH, RN_PRECOND_DD_AMG, RN_PRECOND_FACTOR};
   rn_scene *scene = lattice(ctx, kind, cells, model);
   rn_network *net = rn_scene_network(scene);
   rn_state *initial = NULL;
@@ -65,7 +67,7 @@ static void check_case(rn_context *ctx, rn_lattice_kind kind, int cells, int mod
     opt.preconditioner = precs[k];
     const rn_status st = rn_solve(net, &opt, &rep);
     if ((precs[k] == RN_PRECOND_MUELU || precs[k] == RN_PRECOND_IFPACK2 ||
-         precs[k] == RN_PRECOND_FROSCH) &&
+         precs[k] == RN_PRECOND_FROSCH || precs[k] == RN_PRECOND_DD_AMG) &&
         !g_require_mpi && st == RN_ERR_TRILINOS) {
       /* the serial runtime: MueLu, Ifpack2 and FROSch 13.2 cannot run there, a clear
        * error */

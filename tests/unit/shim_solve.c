@@ -66,7 +66,8 @@ static void test_names_and_options(rn_context *ctx) {
     CHECK(strcmp(rn_preconditioner_name(RN_PRECOND_AUTO), "auto") == 0);
     CHECK(strcmp(rn_preconditioner_name(RN_PRECOND_FACTOR), "factor") == 0);
     CHECK(strcmp(rn_preconditioner_name(RN_PRECOND_FROSCH), "frosch") == 0);
-    CHECK(strcmp(rn_preconditioner_name((rn_preconditioner)8), "unknown") == 0);
+    CHECK(strcmp(rn_preconditioner_name(RN_PRECOND_DD_AMG), "dd-amg") == 0);
+    CHECK(strcmp(rn_preconditioner_name((rn_preconditioner)9), "unknown") == 0);
     CHECK_STATUS(rn_preconditioner_from_name("auto", &pk), RN_OK);
     CHECK(pk == RN_PRECOND_AUTO);
     CHECK_STATUS(rn_preconditioner_from_name("factor", &pk), RN_OK);
