@@ -673,7 +673,24 @@ static int write_references(const bench_args *a, const bench_suite *s) {
 /* python3 SCRIPT DIR/runs.csv -o DIR; 0 on success. */
 static int run_plot(const char *csv, const char *dir) {
   const char *const args[] = {csv, "-o", dir, NULL};
-  return rn_cli_run_script("RODNET_PLOT_BENCH", RN_PLOT_BENCH_SCRIPT, args);
+  /* the script's temporary files (benchmarks/bench_profiles.py), removed if a
+   * signal ends the command while it runs (cli_signals.c) */
+  static const char *const temps[] = {
+      "/profile_time.png.tmp.png", "/profile_hvp.png.tmp.png",
+      "/data_profile.png.tmp.png", "/profile_summary.csv.tmp"};
+  enum { NTEMPS = (int)(sizeof temps / sizeof temps[0]) };
+  char *names[NTEMPS];
+  for (int k = 0; k < NTEMPS; k++)
+    if ((names[k] = malloc(strlen(dir) + strlen(temps[k]) + 1))) {
+      sprintf(names[k], "%s%s", dir, temps[k]);
+      rn_cli_temp_file(names[k], 1);
+    }
+  int rc = rn_cli_run_script("RODNET_PLOT_BENCH", RN_PLOT_BENCH_SCRIPT, args);
+  for (int k = 0; k < NTEMPS; k++) {
+    if (names[k]) rn_cli_temp_file(names[k], 0);
+    free(names[k]);
+  }
+  return rc;
 }
 
 static int make_dir(const char *dir) {
