@@ -996,6 +996,14 @@ if(RN_WITH_TRILINOS)
   rn_cli_test(problems_cli_i22_path_arclength_order 2
               "--max-arclength 0.01 is below --arclength 0.02: the largest step must be at least the first"
               ARGS path ${truss} -o ${i22}/p.csv --max-arclength 0.01 --arclength 0.02)
+  rn_cli_test(problems_cli_i22_path_arclength_too_small 2
+              "--arclength 1e-09 is below the smallest step 1e-08"
+              ARGS path ${truss} -o ${i22}/p.csv --arclength 1e-9)
+  # --max-arclength alone below the default first step: the first step follows it
+  # (it used to stop with the library's "ds_max must be >= ds", exit status 3)
+  rn_cli_test(problems_cli_i22_path_max_arclength_alone 0
+              "stop range, 1 limit point.*first limit point: load factor 0.4663517"
+              ARGS path ${truss} -o ${i22}/p_small.csv --max-arclength 0.005)
   rn_cli_test(problems_cli_i22_path_to_twice 2 "--to ${i22_twice}"
               ARGS path ${truss} -o ${i22}/p.csv --to 0.5 --to 0.7)
   rn_cli_test(problems_cli_i22_bench_solvers_empty 2 "--solvers '': an empty name"
