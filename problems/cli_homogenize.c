@@ -512,6 +512,14 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = RN_EXIT_INPUT;
     goto done;
   }
+  if (a.path && a.modes != RN_BLOCH_ALL && dim == 3) { /* found before computing */
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes %s: a 3D cell has no in-plane / "
+            "out-of-plane split of its modes (use --modes all)\n",
+            a.scene, a.modes == RN_BLOCH_IN_PLANE ? "in-plane" : "out-of-plane");
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
   if (a.path) {
     int count = 0, ns = 0, stress[6] = {0};
     double target[6] = {0};

@@ -980,6 +980,15 @@ rn_cli_test(problems_cli_i22_sweep_plot_twice 2 "--plot ${i22_twice}"
             ARGS sweep ${i22}/sweep.json -o ${i22}/sw --plot a.png --plot b.png)
 if(RN_WITH_TRILINOS)
   set(truss ${i22}/truss.json)
+  # --modes in-plane of a 3D cell: said before the stiffness is computed (it used
+  # to fail after it, from the Bloch analysis, with the library's message)
+  rn_cli_test(problems_cli_i22_homog_modes_3d 3
+              "--modes in-plane: a 3D cell has no in-plane / out-of-plane split"
+              STDERR_LINES 1 ABSENT ${i22}/hom_modes3d.json
+              ARGS homogenize ${gen}/periodic_cubic.json --path 0,0,0,0,0,0 --steps 1
+                   --modes in-plane -o ${i22}/hom_modes3d.json)
+  set_tests_properties(problems_cli_i22_homog_modes_3d PROPERTIES
+                       FIXTURES_REQUIRED problems_periodic_cubic)
   rn_cli_test(problems_cli_i22_path_load_factor_under_load 2
               "--load-factor applies to displacement control"
               ARGS path ${truss} -o ${i22}/p.csv --load-factor 0.5)
