@@ -65,14 +65,15 @@ static long env_long(const char *const *names) {
 }
 
 /* This process's rank and the number of ranks of its MPI job, from the
- * launcher's environment (Open MPI, MPICH/Intel MPI hydra, PMIx, Slurm);
+ * launcher's environment (Open MPI, MPICH/Intel MPI hydra, PMIx: the
+ * variables runtime.cpp reads; Slurm's own variables are set in batch
+ * scripts too, outside any MPI job);
  * 0 of 1 without a launcher or with RODNET_MPI=0 (docs/cli.md); size -1 if
  * a launcher says the rank only. */
 static void env_ranks(long *rank, long *size) {
   static const char *const ranks[] = {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK",
-                                      "SLURM_PROCID", NULL};
-  static const char *const sizes[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE",
-                                      "SLURM_STEP_NUM_TASKS", NULL};
+                                      NULL};
+  static const char *const sizes[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", NULL};
   const char *force = getenv("RODNET_MPI");
   *rank = 0;
   *size = 1;
