@@ -74,6 +74,14 @@ def rho(rat, s, tau):
     return sum(1 for p in rat if rat[p][s] <= tau * (1 + 1e-12)) / n if n else 0.0
 
 
+def save(fig, path):
+    """Write the figure completely or not at all: PATH.tmp.png, then renamed
+    (`rodnet bench` removes PATH.tmp.png when a signal ends it)."""
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, path)
+
+
 def plot_profile(plt, rat, solvers, title, path):
     finite = [v for p in rat for v in rat[p].values() if math.isfinite(v)]
     tmax = max(2.0, max(finite) * 1.5 if finite else 2.0)
@@ -90,7 +98,7 @@ def plot_profile(plt, rat, solvers, title, path):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save(fig, path)
     plt.close(fig)
 
 
@@ -112,7 +120,7 @@ def plot_data_profile(plt, table, solvers, path):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save(fig, path)
     plt.close(fig)
 
 

@@ -16,6 +16,15 @@ static char *temp_name(const char *path) {
   return t;
 }
 
+static rn_file_temp_hook temp_hook = NULL;
+
+void rn_file_set_temp_hook(rn_file_temp_hook hook) { temp_hook = hook; }
+
+/* Announce the temporary file before it exists, forget it once it is gone. */
+static void temp_active(const char *tmp, int active) {
+  if (temp_hook) temp_hook(tmp, active);
+}
+
 static rn_status io_error(rn_context *ctx, const char *path, const char *what, int err) {
   return rn_context_set_error(ctx, RN_ERR_IO, "%s: %s: %s", path, what, strerror(err));
 }
@@ -62,9 +71,11 @@ rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer
   if (is_special(path)) return write_in_place(ctx, path, write, user);
   char *tmp = temp_name(path);
   if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
+  temp_active(tmp, 1);
   FILE *f = fopen(tmp, "wb");
   if (!f) {
     rn_status st = io_error(ctx, path, "cannot create the file", errno);
+    temp_active(tmp, 0);
     free(tmp);
     return st;
   }
@@ -77,6 +88,7 @@ rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer
     st = io_error(ctx, path, "write failed", err);
   }
   if (st) remove(tmp);
+  temp_active(tmp, 0);
   free(tmp);
   return st;
 }
@@ -91,6 +103,7 @@ rn_status rn_file_probe_writable(rn_context *ctx, const char *path) {
                : io_error(ctx, path, "cannot open for writing", errno);
   char *tmp = temp_name(path);
   if (!tmp) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", path);
+  temp_active(tmp, 1);
   FILE *f = fopen(tmp, "wb");
   rn_status st = RN_OK;
   if (!f)
@@ -99,6 +112,7 @@ rn_status rn_file_probe_writable(rn_context *ctx, const char *path) {
     fclose(f);
     remove(tmp);
   }
+  temp_active(tmp, 0);
   free(tmp);
   return st;
 }

@@ -27,4 +27,12 @@ rn_status rn_file_write_atomic(rn_context *ctx, const char *path, rn_file_writer
  * file); RN_ERR_IO with a message otherwise. */
 rn_status rn_file_probe_writable(rn_context *ctx, const char *path);
 
+/* Temporary files: the hook (NULL by default) is called with active = 1 just
+ * before a temporary file is created and with active = 0 once it has been
+ * renamed or removed; the name stays valid in between.  The rodnet command
+ * sets it to remove the temporary files when a signal ends the process
+ * (cli_signals.c); the library itself installs no signal handler. */
+typedef void (*rn_file_temp_hook)(const char *tmp, int active);
+void rn_file_set_temp_hook(rn_file_temp_hook hook);
+
 #endif

@@ -44,6 +44,11 @@ int rn_cli_parse_double(const char *cmd, const char *opt, const char *s,
  * missing.  short_name may be NULL. */
 int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i, const char *name,
                         const char *short_name, const char **value);
+/* A usage error if one of the value options names (NULL-terminated; "--output|-o"
+ * lists the spellings of one option) is given more than once: the last would
+ * silently replace the others.  0 otherwise.  Flags may repeat. */
+int rn_cli_check_repeats(const char *cmd, int argc, char **argv,
+                         const char *const *names);
 /* Exit status for a failed scene load. */
 int rn_cli_load_exit_code(rn_status st);
 /* Run a plotting script with Python and wait for it: the interpreter is
@@ -53,5 +58,59 @@ int rn_cli_load_exit_code(rn_status st);
  * -1 otherwise (fork, exec or the script failed). */
 int rn_cli_run_script(const char *script_env, const char *default_script,
                       const char *const *args);
+/* The same for a script that writes the file output (one of args): the script
+ * writes "OUTPUT.tmp.PID.EXT" (the same extension, which names the format),
+ * renamed to output when it succeeds, removed otherwise and on a signal; so
+ * the plot, too, is written completely or not at all. */
+int rn_cli_run_script_to(const char *script_env, const char *default_script,
+                         const char *const *args, const char *output);
+
+/* ---- input and output files (cli_paths.c) ----------------------------------
+ * Every command lists the files it reads and writes; before any computation
+ * no output may be one of the inputs or another output (the same file:
+ * device and inode when both exist, else the resolved path; so "./a.json",
+ * symbolic and hard links count), and every output must be writable. */
+typedef enum rn_cli_role {
+  RN_CLI_IN,     /* a file read */
+  RN_CLI_OUT,    /* a file written */
+  RN_CLI_OUT_DIR /* a folder written into (created if missing) */
+} rn_cli_role;
+typedef struct rn_cli_file {
+  const char *what;   /* the option ("-o", "--plot") or, for an input, what it
+                         is ("the scene file") */
+  const char *path;   /* as given; NULL: not given, skipped */
+  const char *suffix; /* NULL, or the file is path + suffix (--pattern P:
+                         ".vtu"); a '*' in it makes a family of files
+                         ("/point_*.json": the files of a folder); one
+                         starting with '/' names a file in a folder output
+                         (probed with the folder) */
+  rn_cli_role role;
+} rn_cli_file;
+/* A usage error (RN_EXIT_USAGE, message printed) if an output is an input
+ * ("-o X is the scene file itself") or another output ("--plot and -o name
+ * the same file"); 0 otherwise. */
+int rn_cli_check_files(const char *cmd, const rn_cli_file *files, int n);
+/* RN_EXIT_INPUT (message printed) if an output cannot be written: its folder
+ * is missing or not writable, it is a folder (a file output) or a file (a
+ * folder output); 0 otherwise.  Writes nothing (atomic_file.h). */
+int rn_cli_probe_outputs(const char *cmd, const rn_cli_file *files, int n);
+
+/* ---- signals (cli_signals.c) -----------------------------------------------
+ * On SIGINT, SIGTERM and SIGHUP the running script is killed and the
+ * registered temporary files are removed; then the signal ends the process
+ * as it would have.  rn_cli_main installs the handlers (and the temporary-file
+ * hook of atomic_file.h) once. */
+void rn_cli_signals_install(void);
+/* Register (active 1) or forget (0) a temporary file; the name must stay valid
+ * while registered. */
+void rn_cli_temp_file(const char *tmp, int active);
+/* The script running (0: none). */
+void rn_cli_child(long pid);
+
+/* ---- MPI (cli.c) -------------------------------------------------------------
+ * 1 if this process is a rank other than 0 of an MPI job with several ranks
+ * (from the launcher's environment, without starting MPI): it prints no
+ * usage error. */
+int rn_cli_quiet_rank(void);
 
 #endif

@@ -138,7 +138,30 @@ static int parse_bench_args(int argc, char **argv, bench_args *a) {
       return rn_cli_usage_error("bench", "unexpected argument '%s'", s);
     if (m < 0) return RN_EXIT_USAGE;
   }
+  static const char *const valued[] = {"--output|-o", "--suite",    "--solvers",
+                                       "--problems",  "--manifest", "--repeats",
+                                       NULL};
+  int rc = rn_cli_check_repeats("bench", argc, argv, valued);
+  if (rc) return rc;
+  if (a->write_refs && (a->output || a->solvers || a->repeats != 1 || a->no_plot))
+    return rn_cli_usage_error("bench",
+                              "--write-references solves with tr-minres once and writes "
+                              "the references only: %s does not apply",
+                              a->output    ? "-o"
+                              : a->solvers ? "--solvers"
+                              : a->no_plot ? "--no-plot"
+                                           : "--repeats");
   if (!a->output && !a->write_refs) return rn_cli_usage_error("bench", "missing -o DIR");
+  /* an empty list (or item) would select nothing and run nothing */
+  const char *lists[2] = {a->solvers, a->problems},
+             *opts[2] = {"--solvers", "--problems"};
+  for (int k = 0; k < 2; k++)
+    if (lists[k] && (!*lists[k] || strstr(lists[k], ",,") || *lists[k] == ',' ||
+                     lists[k][strlen(lists[k]) - 1] == ','))
+      return rn_cli_usage_error("bench",
+                                "%s '%s': an empty name; give a comma-separated "
+                                "list of names",
+                                opts[k], lists[k]);
   if (strcmp(a->suite, "smoke") && strcmp(a->suite, "quick") && strcmp(a->suite, "full"))
     return rn_cli_usage_error("bench", "--suite expects smoke, quick or full, got '%s'",
                               a->suite);
@@ -650,7 +673,24 @@ static int write_references(const bench_args *a, const bench_suite *s) {
 /* python3 SCRIPT DIR/runs.csv -o DIR; 0 on success. */
 static int run_plot(const char *csv, const char *dir) {
   const char *const args[] = {csv, "-o", dir, NULL};
-  return rn_cli_run_script("RODNET_PLOT_BENCH", RN_PLOT_BENCH_SCRIPT, args);
+  /* the script's temporary files (benchmarks/bench_profiles.py), removed if a
+   * signal ends the command while it runs (cli_signals.c) */
+  static const char *const temps[] = {
+      "/profile_time.png.tmp.png", "/profile_hvp.png.tmp.png",
+      "/data_profile.png.tmp.png", "/profile_summary.csv.tmp"};
+  enum { NTEMPS = (int)(sizeof temps / sizeof temps[0]) };
+  char *names[NTEMPS];
+  for (int k = 0; k < NTEMPS; k++)
+    if ((names[k] = malloc(strlen(dir) + strlen(temps[k]) + 1))) {
+      sprintf(names[k], "%s%s", dir, temps[k]);
+      rn_cli_temp_file(names[k], 1);
+    }
+  int rc = rn_cli_run_script("RODNET_PLOT_BENCH", RN_PLOT_BENCH_SCRIPT, args);
+  for (int k = 0; k < NTEMPS; k++) {
+    if (names[k]) rn_cli_temp_file(names[k], 0);
+    free(names[k]);
+  }
+  return rc;
 }
 
 static int make_dir(const char *dir) {
@@ -734,6 +774,39 @@ static int run_suite(const bench_args *a, const bench_suite *s) {
 
 #endif /* RN_HAVE_SOLVER */
 
+#ifdef RN_HAVE_SOLVER
+/* The files read and written (cli.h): the manifest and the selected problems'
+ * scenes; their references, read, or written by --write-references; the
+ * folder's CSV files and profiles.  Before anything is solved: no output is
+ * an input or another output, every output is writable.  0 or an exit status. */
+static int check_bench_files(const bench_args *a, const bench_suite *s) {
+  static const char *const outs[] = {"/runs.csv", "/profile_time.png", "/profile_hvp.png",
+                                     "/data_profile.png", "/profile_summary.csv"};
+  enum { NOUTS = (int)(sizeof outs / sizeof outs[0]) };
+  rn_cli_file *f = calloc(2 * (size_t)s->n + NOUTS + 2, sizeof *f);
+  int n = 0, rc;
+  if (!f) return RN_EXIT_INTERNAL;
+  f[n++] = (rn_cli_file){"the manifest", a->manifest, NULL, RN_CLI_IN};
+  for (int i = 0; i < s->n; i++) {
+    if (!s->p[i].selected) continue;
+    f[n++] = (rn_cli_file){"a problem's scene", s->p[i].scene, NULL, RN_CLI_IN};
+    if (s->p[i].reference)
+      f[n++] =
+          (rn_cli_file){a->write_refs ? "a problem's reference" : "a reference",
+                        s->p[i].reference, NULL, a->write_refs ? RN_CLI_OUT : RN_CLI_IN};
+  }
+  if (!a->write_refs) {
+    f[n++] = (rn_cli_file){"-o", a->output, NULL, RN_CLI_OUT_DIR};
+    for (int k = 0; k < NOUTS; k++)
+      f[n++] = (rn_cli_file){"-o", a->output, outs[k], RN_CLI_OUT};
+  }
+  rc = rn_cli_check_files("bench", f, n);
+  if (!rc) rc = rn_cli_probe_outputs("bench", f, n);
+  free(f);
+  return rc;
+}
+#endif
+
 int rn_cli_bench(int argc, char **argv) {
   bench_args a;
   int rc = parse_bench_args(argc, argv, &a);
@@ -741,6 +814,10 @@ int rn_cli_bench(int argc, char **argv) {
 #ifdef RN_HAVE_SOLVER
   bench_suite s;
   if ((rc = suite_load(&a, &s))) return rc;
+  if ((rc = check_bench_files(&a, &s))) {
+    suite_free(&s);
+    return rc;
+  }
   if (rn_runtime_initialize(NULL, NULL) != RN_OK) {
     fprintf(stderr, "rodnet bench: cannot start the solver runtime\n");
     rc = RN_EXIT_INTERNAL;

@@ -36,6 +36,7 @@ typedef struct check_args {
   const char *scene;
   int random, seed;
   double perturb, tol;
+  int has_seed, has_perturb; /* given */
 } check_args;
 
 /* 1 if argv[*i] was a value option (rc: 0 or an exit status). */
@@ -46,12 +47,15 @@ static int parse_value_option(int argc, char **argv, int *i, check_args *a, int 
   if ((m = rn_cli_option_value("check", argc, argv, i, "--random", NULL, &v)) > 0)
     *rc = rn_cli_parse_int("check", "--random", v, 0, 1000000L, &a->random);
   else if (!m &&
-           (m = rn_cli_option_value("check", argc, argv, i, "--seed", NULL, &v)) > 0)
+           (m = rn_cli_option_value("check", argc, argv, i, "--seed", NULL, &v)) > 0) {
     *rc = rn_cli_parse_int("check", "--seed", v, 0, 2147483647L, &a->seed);
-  else if (!m &&
-           (m = rn_cli_option_value("check", argc, argv, i, "--perturb", NULL, &v)) > 0)
+    a->has_seed = 1;
+  } else if (!m && (m = rn_cli_option_value("check", argc, argv, i, "--perturb", NULL,
+                                            &v)) > 0) {
     *rc = rn_cli_parse_double("check", "--perturb", v, 0.0, &a->perturb);
-  else if (!m && (m = rn_cli_option_value("check", argc, argv, i, "--tol", NULL, &v)) > 0)
+    a->has_perturb = 1;
+  } else if (!m &&
+             (m = rn_cli_option_value("check", argc, argv, i, "--tol", NULL, &v)) > 0)
     *rc = rn_cli_parse_double("check", "--tol", v, 0.0, &a->tol);
   if (m < 0) *rc = RN_EXIT_USAGE;
   return m != 0;
@@ -81,7 +85,16 @@ static int parse_check_args(int argc, char **argv, check_args *a) {
     else
       a->scene = s;
   }
+  static const char *const valued[] = {"--random", "--seed", "--perturb", "--tol", NULL};
+  int rc = rn_cli_check_repeats("check", argc, argv, valued);
+  if (rc) return rc;
   if (!a->scene) return rn_cli_usage_error("check", "missing the scene file");
+  /* check writes no file; the random states' options need random states */
+  if (a->random == 0 && (a->has_seed || a->has_perturb))
+    return rn_cli_usage_error("check",
+                              "%s applies to the random states: with --random 0 "
+                              "only the initial state is tested",
+                              a->has_seed ? "--seed" : "--perturb");
   return 0;
 }
 

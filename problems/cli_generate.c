@@ -90,7 +90,7 @@ typedef struct gen_args {
   rn_lattice_kind kind;
   int cells[3], ncells, quiet, periodic, reentrant;
   double a, slenderness, density, perturb, scatter;
-  int seed, repeat[3], nrepeat;
+  int seed, repeat[3], nrepeat, has_seed;
   rn_lattice_scene sc;
 } gen_args;
 
@@ -317,6 +317,7 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
     break;
   case 11:
     *rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
+    a->has_seed = 1;
     break;
   case 12: {
     double r[3];
@@ -407,6 +408,10 @@ static int check_args(gen_args *a) {
                               "--load: the %s lattice lies in the xy plane, load it "
                               "along x or y",
                               a->kind_name);
+  /* the seed draws --perturb and --section-scatter only */
+  if (a->has_seed && !(a->perturb > 0.0) && !(a->scatter > 0.0))
+    return rn_cli_usage_error("generate", "--seed applies to --perturb and "
+                                          "--section-scatter only");
   if (!a->section) a->sc.section[0] = a->a / 50;
   return 0;
 }
@@ -436,7 +441,19 @@ static int parse_generate_args(int argc, char **argv, gen_args *a) {
     else
       a->kind_name = s;
   }
-  return check_args(a);
+  static const char *const valued[] = {"--output|-o",       "--cells",
+                                       "--cell-size",       "--edges-per-rod",
+                                       "--section",         "--material",
+                                       "--joint-model",     "--load",
+                                       "--slenderness",     "--relative-density",
+                                       "--perturb",         "--seed",
+                                       "--repeat",          "--model",
+                                       "--section-scatter", NULL};
+  int rc = rn_cli_check_repeats("generate", argc, argv, valued);
+  if (rc) return rc;
+  if ((rc = check_args(a))) return rc;
+  const rn_cli_file files[] = {{"-o", a->output, NULL, RN_CLI_OUT}};
+  return rn_cli_check_files("generate", files, 1);
 }
 
 /* "rodnet generate ..." as the scene's description. */
@@ -533,6 +550,9 @@ int rn_cli_generate(int argc, char **argv) {
   char desc[1024];
   describe(&a, desc, sizeof desc);
   a.sc.description = desc;
+  /* the output writable before the lattice is built (exit 3) */
+  const rn_cli_file files[] = {{"-o", a.output, NULL, RN_CLI_OUT}};
+  if ((rc = rn_cli_probe_outputs("generate", files, 1))) return rc;
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) {
     fprintf(stderr, "rodnet generate: out of memory\n");

@@ -91,8 +91,23 @@ typedef struct hom_args {
   const char *scene, *output, *plot, *path, *pattern, *post;
   const char *path_stress, *path_file; /* --path-stress, --path-file */
   int quiet, steps, grid, post_steps;
+  int has_steps, has_grid, has_modes, has_post_steps; /* given on the command line */
   rn_bloch_modes modes;
 } hom_args;
+
+/* The files the command reads and writes (cli.h); returns their count. */
+static int hom_files(const hom_args *a, rn_cli_file *f) {
+  const rn_cli_file files[] = {{"the scene file", a->scene, NULL, RN_CLI_IN},
+                               {"the --path-file", a->path_file, NULL, RN_CLI_IN},
+                               {"-o", a->output, NULL, RN_CLI_OUT},
+                               {"--plot", a->plot, NULL, RN_CLI_OUT},
+                               {"--pattern", a->pattern, ".vtu", RN_CLI_OUT},
+                               {"--pattern", a->pattern, ".png", RN_CLI_OUT},
+                               {"--post-buckling", a->post, ".vtu", RN_CLI_OUT},
+                               {"--post-buckling", a->post, ".png", RN_CLI_OUT}};
+  memcpy(f, files, sizeof files);
+  return (int)(sizeof files / sizeof files[0]);
+}
 
 static int parse_args(int argc, char **argv, hom_args *a) {
   memset(a, 0, sizeof *a);
@@ -153,21 +168,25 @@ static int parse_args(int argc, char **argv, hom_args *a) {
       if (m < 0 ||
           rn_cli_parse_int("homogenize", "--post-steps", v, 1, 10000, &a->post_steps))
         return RN_EXIT_USAGE;
+      a->has_post_steps = 1;
       continue;
     }
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--steps", NULL, &v))) {
       if (m < 0 || rn_cli_parse_int("homogenize", "--steps", v, 1, 100000, &a->steps))
         return RN_EXIT_USAGE;
+      a->has_steps = 1;
       continue;
     }
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--bloch-grid", NULL,
                                  &v))) {
       if (m < 0 || rn_cli_parse_int("homogenize", "--bloch-grid", v, 1, 1000, &a->grid))
         return RN_EXIT_USAGE;
+      a->has_grid = 1;
       continue;
     }
     if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--modes", NULL, &v))) {
       if (m < 0) return RN_EXIT_USAGE;
+      a->has_modes = 1;
       if (strcmp(v, "all") == 0)
         a->modes = RN_BLOCH_ALL;
       else if (strcmp(v, "in-plane") == 0)
@@ -186,6 +205,12 @@ static int parse_args(int argc, char **argv, hom_args *a) {
                                 a->scene, s);
     a->scene = s;
   }
+  static const char *const valued[] = {"--output|-o",     "--plot",       "--path-stress",
+                                       "--path-file",     "--path",       "--pattern",
+                                       "--post-buckling", "--post-steps", "--steps",
+                                       "--bloch-grid",    "--modes",      NULL};
+  int rc = rn_cli_check_repeats("homogenize", argc, argv, valued);
+  if (rc) return rc;
   if (!a->scene) return rn_cli_usage_error("homogenize", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
   if ((a->path != NULL) + (a->path_stress != NULL) + (a->path_file != NULL) > 1)
@@ -197,7 +222,19 @@ static int parse_args(int argc, char **argv, hom_args *a) {
     return rn_cli_usage_error("homogenize", "--pattern needs --path");
   if (a->post && !a->path)
     return rn_cli_usage_error("homogenize", "--post-buckling needs --path");
-  return 0;
+  /* options of the path only: without one they would be ignored */
+  if (!a->path && (a->has_steps || a->has_grid || a->has_modes))
+    return rn_cli_usage_error("homogenize",
+                              "%s applies to a path only: give --path, --path-stress or "
+                              "--path-file",
+                              a->has_steps  ? "--steps"
+                              : a->has_grid ? "--bloch-grid"
+                                            : "--modes");
+  if (a->has_post_steps && !a->post)
+    return rn_cli_usage_error("homogenize",
+                              "--post-steps applies to --post-buckling only");
+  rn_cli_file files[8];
+  return rn_cli_check_files("homogenize", files, hom_files(a, files));
 }
 
 /* S = C^-1 (n x n, Gauss-Jordan with partial pivoting); 0 if singular. */
@@ -322,7 +359,8 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
 /* python3 SCRIPT RESULT.json PNG; 0 on success. */
 static int run_plot(const char *result, const char *png) {
   const char *const args[] = {result, png, NULL};
-  return rn_cli_run_script("RODNET_PLOT_STIFFNESS", RN_PLOT_STIFFNESS_SCRIPT, args);
+  return rn_cli_run_script_to("RODNET_PLOT_STIFFNESS", RN_PLOT_STIFFNESS_SCRIPT, args,
+                              png);
 }
 
 static double now(void) {
@@ -409,7 +447,8 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
   {
     const char *const args[] = {vtu, png, "--view", "xy", "--field", "bending_moment",
                                 NULL};
-    pat->png = rn_cli_run_script("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args) == 0;
+    pat->png =
+        rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;
   }
   rc = RN_EXIT_OK;
   goto done;
@@ -444,8 +483,11 @@ int rn_cli_homogenize(int argc, char **argv) {
   hp_post post;
   memset(&path, 0, sizeof(path));
   memset(&post, 0, sizeof(post));
-  rn_status st = rn_file_probe_writable(ctx, a.output);
-  if (!st) st = rn_scene_load(ctx, a.scene, &scene);
+  rn_cli_file files[8];
+  rn_status st = RN_OK;
+  /* every output writable before anything is computed */
+  if ((rc = rn_cli_probe_outputs("homogenize", files, hom_files(&a, files)))) goto done;
+  st = rn_scene_load(ctx, a.scene, &scene);
   if (st) {
     fprintf(stderr, "%s\n", rn_context_last_error(ctx));
     rc = rn_cli_load_exit_code(st);
@@ -467,6 +509,14 @@ int rn_cli_homogenize(int argc, char **argv) {
             "rodnet homogenize: %s: --modes out-of-plane: the scene uses the planar "
             "model, which has no out-of-plane modes (use \"model\": \"3d\")\n",
             a.scene);
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (a.path && a.modes != RN_BLOCH_ALL && dim == 3) { /* found before computing */
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes %s: a 3D cell has no in-plane / "
+            "out-of-plane split of its modes (use --modes all)\n",
+            a.scene, a.modes == RN_BLOCH_IN_PLANE ? "in-plane" : "out-of-plane");
     rc = RN_EXIT_INPUT;
     goto done;
   }

@@ -83,7 +83,17 @@ typedef struct path_args {
   rn_path_options opt;
   double start, load_factor;
   int quiet;
+  int has_start, has_load_factor, has_ds, has_ds_max, has_branch_sign; /* given */
 } path_args;
+
+/* The files the command reads and writes (cli.h). */
+static int path_files(const path_args *a, rn_cli_file *f) {
+  const rn_cli_file files[] = {{"the scene file", a->scene, NULL, RN_CLI_IN},
+                               {"-o", a->output, NULL, RN_CLI_OUT},
+                               {"--plot", a->plot, NULL, RN_CLI_OUT}};
+  memcpy(f, files, sizeof files);
+  return (int)(sizeof files / sizeof files[0]);
+}
 
 static int parse_sign(const char *opt, const char *v, double *out) {
   if (strcmp(v, "1") == 0 || strcmp(v, "+1") == 0) {
@@ -127,11 +137,11 @@ static int parse_valued(int argc, char **argv, int *i, path_args *a) {
     return rn_cli_parse_int("path", "--steps", v, 1, 1000000, &o->max_steps);
   }
   VALUED("--arclength", NULL) {
-    if (rn_cli_parse_double("path", "--arclength", v, 0.0, &o->ds)) return RN_EXIT_USAGE;
-    if (o->ds_max < o->ds) o->ds_max = o->ds;
-    return 0;
+    a->has_ds = 1;
+    return rn_cli_parse_double("path", "--arclength", v, 0.0, &o->ds) ? RN_EXIT_USAGE : 0;
   }
   VALUED("--max-arclength", NULL) {
+    a->has_ds_max = 1;
     return rn_cli_parse_double("path", "--max-arclength", v, 0.0, &o->ds_max)
                ? RN_EXIT_USAGE
                : 0;
@@ -142,13 +152,16 @@ static int parse_valued(int argc, char **argv, int *i, path_args *a) {
   }
   VALUED("--direction", NULL) { return parse_sign("--direction", v, &o->direction); }
   VALUED("--branch-sign", NULL) {
+    a->has_branch_sign = 1;
     return parse_sign("--branch-sign", v, &o->branch_sign);
   }
   VALUED("--start", NULL) {
+    a->has_start = 1;
     return rn_cli_parse_double("path", "--start", v, -HUGE_VAL, &a->start) ? RN_EXIT_USAGE
                                                                            : 0;
   }
   VALUED("--load-factor", NULL) {
+    a->has_load_factor = 1;
     return rn_cli_parse_double("path", "--load-factor", v, -HUGE_VAL, &a->load_factor)
                ? RN_EXIT_USAGE
                : 0;
@@ -204,15 +217,65 @@ static int parse_args(int argc, char **argv, path_args *a) {
                                 a->scene, s);
     a->scene = s;
   }
+  static const char *const valued[] = {"--output|-o",
+                                       "--control",
+                                       "--monitor",
+                                       "--plot",
+                                       "--steps",
+                                       "--arclength",
+                                       "--max-arclength",
+                                       "--to",
+                                       "--direction",
+                                       "--branch-sign",
+                                       "--start",
+                                       "--load-factor",
+                                       "--factorization|--factorisation",
+                                       NULL};
+  int rc = rn_cli_check_repeats("path", argc, argv, valued);
+  if (rc) return rc;
   if (!a->scene) return rn_cli_usage_error("path", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("path", "missing -o PATH.csv");
+  /* options of the other control mode would be ignored */
+  const int load_control = !a->control || strcmp(a->control, "load") == 0;
+  if (load_control && a->has_load_factor)
+    return rn_cli_usage_error("path",
+                              "--load-factor applies to displacement control "
+                              "(--control vertex:... or joint:...); under load control "
+                              "the path starts at --start");
+  if (!load_control && a->has_start)
+    return rn_cli_usage_error("path",
+                              "--start applies to load control; under displacement "
+                              "control the load factor is fixed by --load-factor");
+  if (!load_control && a->monitor)
+    return rn_cli_usage_error("path", "--monitor applies to --control load only");
+  if (load_control && !isnan(a->opt.target) &&
+      !(a->opt.target >= 0.0 && a->opt.target <= 1.0))
+    return rn_cli_usage_error("path", "--to: the target load factor must be in [0, 1]");
+  if (a->has_branch_sign && !a->opt.branch_switch)
+    return rn_cli_usage_error("path", "--branch-sign applies to --branch-switch only");
+  /* the steps: the first (--arclength) at most the largest (--max-arclength);
+   * the one given alone moves the other's default */
+  rn_path_options *o = &a->opt;
+  if (a->has_ds && a->has_ds_max && o->ds_max < o->ds)
+    return rn_cli_usage_error("path",
+                              "--max-arclength %g is below --arclength %g: the largest "
+                              "step must be at least the first",
+                              o->ds_max, o->ds);
+  if (a->has_ds && o->ds_max < o->ds) o->ds_max = o->ds;
+  if (a->has_ds_max && o->ds > o->ds_max) o->ds = o->ds_max;
+  if (o->ds < o->ds_min)
+    return rn_cli_usage_error("path",
+                              "--%sarclength %g is below the smallest step %g (steps "
+                              "shorter than that stop the path)",
+                              a->has_ds ? "" : "max-", o->ds, o->ds_min);
   if (!(a->start >= 0.0 && a->start <= 1.0))
     return rn_cli_usage_error("path", "--start: the load factor must be in [0, 1]");
   if (!(a->load_factor >= 0.0 && a->load_factor <= 1.0))
     return rn_cli_usage_error("path", "--load-factor: must be in [0, 1]");
   if (a->opt.branch_switch && !a->opt.eigenvalues)
     return rn_cli_usage_error("path", "--branch-switch needs the eigenvalues");
-  return 0;
+  rn_cli_file files[3];
+  return rn_cli_check_files("path", files, path_files(a, files));
 }
 
 /* Index (possibly negative, from the end) or name of a rod or joint. */
@@ -369,7 +432,7 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
 /* python3 SCRIPT PATH.csv PNG; 0 on success. */
 static int run_plot(const char *csv, const char *png) {
   const char *const args[] = {csv, png, NULL};
-  return rn_cli_run_script("RODNET_PLOT_PATH", RN_PLOT_PATH_SCRIPT, args);
+  return rn_cli_run_script_to("RODNET_PLOT_PATH", RN_PLOT_PATH_SCRIPT, args, png);
 }
 
 static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *rows) {
@@ -464,9 +527,12 @@ int rn_cli_path(int argc, char **argv) {
   }
   rn_scene *scene = NULL;
   path_rows rows = {NULL, 0, 0, a.quiet, 0};
-  rn_status st = rn_file_probe_writable(ctx, a.output);
-  if (!st) st = rn_scene_load(ctx, a.scene, &scene);
-  if (st) {
+  rn_cli_file files[3];
+  rn_status st = RN_OK;
+  /* every output writable before anything is computed */
+  if ((rc = rn_cli_probe_outputs("path", files, path_files(&a, files)))) {
+    /* message printed */
+  } else if ((st = rn_scene_load(ctx, a.scene, &scene))) {
     fprintf(stderr, "%s\n", rn_context_last_error(ctx));
     rc = rn_cli_load_exit_code(st);
   } else {

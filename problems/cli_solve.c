@@ -137,45 +137,6 @@ static int parse_value_option(int argc, char **argv, int *i, solve_args *a, int 
   return m != 0;
 }
 
-/* "realpath(dirname(p))/basename(p)" for a path whose file need not exist;
- * NULL if the directory cannot be resolved or out of memory.  Caller frees. */
-static char *canonical_path(const char *p) {
-  const char *slash = strrchr(p, '/');
-  size_t dlen = slash ? (size_t)(slash - p) : 0;
-  char *dir = malloc(dlen + 2), *real = NULL, *out = NULL;
-  if (!dir) return NULL;
-  if (slash && dlen == 0)
-    strcpy(dir, "/");
-  else if (slash) {
-    memcpy(dir, p, dlen);
-    dir[dlen] = '\0';
-  } else
-    strcpy(dir, ".");
-  real = realpath(dir, NULL);
-  const char *base = slash ? slash + 1 : p;
-  if (real && (out = malloc(strlen(real) + strlen(base) + 2)))
-    sprintf(out, "%s/%s", real, base);
-  free(real);
-  free(dir);
-  return out;
-}
-
-/* 1 if the paths a and b name the same file: the same inode when both exist
- * (hard or symbolic links, "./x" and "x"), the same resolved path when
- * neither exists yet. */
-static int same_file(const char *a, const char *b) {
-  if (strcmp(a, b) == 0) return 1;
-  struct stat sa, sb;
-  int ea = stat(a, &sa) == 0, eb = stat(b, &sb) == 0;
-  if (ea && eb) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-  if (ea != eb) return 0;
-  char *ca = canonical_path(a), *cb = canonical_path(b);
-  int same = ca && cb && strcmp(ca, cb) == 0;
-  free(ca);
-  free(cb);
-  return same;
-}
-
 /* 1 if path ends in ".vtu" (any case). */
 static int has_vtu_extension(const char *path) {
   size_t n = strlen(path);
@@ -188,19 +149,11 @@ static int has_vtu_extension(const char *path) {
 /* The output paths: never the scene itself, never each other, and the VTK
  * file named for the format written (XML unstructured grid, .vtu). */
 static int check_output_paths(const solve_args *a) {
-  if (same_file(a->output, a->scene))
-    return rn_cli_usage_error("solve",
-                              "-o %s is the scene file itself: the result would "
-                              "overwrite its input; choose another name",
-                              a->output);
-  if (!a->vtk) return 0;
-  if (same_file(a->vtk, a->scene))
-    return rn_cli_usage_error("solve",
-                              "--vtk %s is the scene file itself: the result would "
-                              "overwrite its input; choose another name",
-                              a->vtk);
-  if (same_file(a->vtk, a->output))
-    return rn_cli_usage_error("solve", "--vtk and -o name the same file");
+  const rn_cli_file files[] = {{"the scene file", a->scene, NULL, RN_CLI_IN},
+                               {"-o", a->output, NULL, RN_CLI_OUT},
+                               {"--vtk", a->vtk, NULL, RN_CLI_OUT}};
+  int rc = rn_cli_check_files("solve", files, 3);
+  if (rc || !a->vtk) return rc;
   if (!has_vtu_extension(a->vtk))
     return rn_cli_usage_error("solve",
                               "--vtk %s: rodnet writes VTK XML unstructured grids, "
@@ -210,6 +163,12 @@ static int check_output_paths(const solve_args *a) {
 }
 
 static int parse_solve_args(int argc, char **argv, solve_args *a) {
+  static const char *const valued[] = {
+      "--output|-o",      "--vtk",
+      "--solver",         "--factorization|--factorisation",
+      "--preconditioner", "--stability-method",
+      "--max-iter",       "--gtol",
+      "--load-steps",     NULL};
   memset(a, 0, sizeof *a);
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
@@ -235,8 +194,13 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
     else
       a->scene = s;
   }
+  int rc = rn_cli_check_repeats("solve", argc, argv, valued);
+  if (rc) return rc;
   if (!a->scene) return rn_cli_usage_error("solve", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("solve", "missing -o RESULT.json");
+  if (a->stability_method && a->no_stability)
+    return rn_cli_usage_error("solve", "--stability-method has no effect with "
+                                       "--no-stability (no stability check is run)");
   return check_output_paths(a);
 }
 
@@ -404,6 +368,18 @@ static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *s
   return RN_EXIT_OK;
 }
 
+/* --preconditioner applies to tr-krylov and nox only (the solver chosen by the
+ * command line, the scene or the default).  RN_EXIT_USAGE with a message. */
+static int check_preconditioner(const solve_args *a, const rn_solve_options *opt) {
+  if (!a->preconditioner || opt->solver == RN_SOLVER_TR_KRYLOV ||
+      opt->solver == RN_SOLVER_NOX)
+    return 0;
+  return rn_cli_usage_error("solve",
+                            "--preconditioner %s: only the solvers tr-krylov and nox "
+                            "use a preconditioner choice, not '%s'",
+                            a->preconditioner, rn_solver_name(opt->solver));
+}
+
 /* A couple fixed in space (rodnet_couple.h) has no energy: only NOX solves it.
  * RN_EXIT_USAGE with a message naming the load (printed if loud), else 0. */
 static int refuse_fixed_couples(const solve_args *a, const rn_network *net,
@@ -426,6 +402,7 @@ static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
   rn_solve_options opt;
   int rc = make_options(a, scene, &opt, 1);
   if (rc) return rc;
+  if ((rc = check_preconditioner(a, &opt))) return rc;
   if ((rc = refuse_fixed_couples(a, rn_scene_network(scene), &opt, 1))) return rc;
   progress_state ps = {0};
   if (!a->quiet) {
@@ -587,6 +564,7 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   /* no solver asked for (command line or scene): the distributed default */
   if (!a->solver && !rn_scene_sets_solver_kind(d->graph))
     opt.solver = RN_SOLVER_TR_KRYLOV;
+  if ((rc = check_preconditioner(a, &opt))) return rc; /* printed by rank 0 */
   if (!rn_solver_is_distributed(opt.solver)) {
     if (d->rank == 0)
       fprintf(stderr,

@@ -131,6 +131,12 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
       rc = sweep_error(file, "unknown key '%s'", e->string);
       goto done;
     }
+    /* a repeated key: the reader would take the first and ignore the others */
+    for (const cJSON *b = root->child; b != e; b = b->next)
+      if (strcmp(b->string, e->string) == 0) {
+        rc = sweep_error(file, "\"%s\" given more than once: give it once", e->string);
+        goto done;
+      }
   }
   if (string_list(cJSON_GetObjectItemCaseSensitive(root, "lattice"), s->lat, 16,
                   &s->nlat)) {
@@ -168,7 +174,10 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
     cJSON_ArrayForEach(e, v) {
       if (!cJSON_IsNumber(e) || s->nrho >= MAX_LIST || !(e->valuedouble > 0.0) ||
           !(e->valuedouble < 1.0)) {
-        rc = sweep_error(file, "\"relative_density\" entries must be in (0, 1)");
+        rc = sweep_error(file,
+                         "\"relative_density\"[%d]: the entries must be numbers in "
+                         "(0, 1), at most %d of them",
+                         s->nrho, MAX_LIST);
         goto done;
       }
       s->rho[s->nrho++] = e->valuedouble;
@@ -205,7 +214,7 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
     cJSON_ArrayForEach(e, v) {
       if (!cJSON_IsNumber(e) || s->nseed >= MAX_LIST || e->valuedouble < 0 ||
           e->valuedouble != floor(e->valuedouble)) {
-        rc = sweep_error(file, "\"seed\" must be a list of integers >= 0");
+        rc = sweep_error(file, "\"seed\"[%d]: the seeds must be integers >= 0", s->nseed);
         goto done;
       }
       s->seed[s->nseed++] = (long)e->valuedouble;
@@ -242,6 +251,23 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
       rc = sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
       goto done;
     }
+    /* one count per lattice vector: a third count of a planar lattice (or a
+     * missing one of a 3D lattice) would be ignored (or taken as 1) */
+    for (int j = 0; j < s->nlat; ++j) {
+      rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
+      if (strcmp(s->lat[j], "reentrant")) rn_lattice_kind_from_name(s->lat[j], &kind);
+      int dim = rn_lattice_kind_dimension(kind);
+      if (k != dim) {
+        rc = sweep_error(file,
+                         "\"cells\" has %d counts but the lattice '%s' is %dD: give one "
+                         "count per lattice vector (%d)%s",
+                         k, s->lat[j], dim, dim,
+                         s->nlat > 1 ? "; sweep planar and 3D lattices in separate "
+                                       "files"
+                                     : "");
+        goto done;
+      }
+    }
   }
   for (int k = 0; k < 2; ++k) {
     const char *name = k ? "nu" : "E";
@@ -249,12 +275,20 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
       if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) ||
           (k == 0 && !(v->valuedouble > 0.0)) ||
           (k == 1 && !(v->valuedouble > -1.0 && v->valuedouble < 0.5))) {
-        rc = sweep_error(file, "bad \"%s\"", name);
+        rc = sweep_error(file, "\"%s\" must be %s", name,
+                         k ? "Poisson's ratio, a number in (-1, 0.5)"
+                           : "Young's modulus, a finite number > 0");
         goto done;
       }
       *(k ? &s->nu : &s->E) = v->valuedouble;
     }
   }
+  /* the seeds draw the random perturbation only: without one every seed
+   * would give the same cell (and the same answer) */
+  if (!rc && cJSON_GetObjectItemCaseSensitive(root, "seed") && !(s->perturb > 0.0))
+    rc = sweep_error(file, "\"seed\" draws the random joint perturbation only: give "
+                           "\"perturb\" > 0 (with \"perturb\" 0 every seed gives the "
+                           "same cell)");
 done:
   cJSON_Delete(root);
   return rc;
@@ -413,7 +447,7 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
 
 static int run_plot(const char *csv, const char *png) {
   const char *const args[] = {csv, png, NULL};
-  return rn_cli_run_script("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, args);
+  return rn_cli_run_script_to("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, args, png);
 }
 
 static void progress(int done, int total, const point *p, int skipped) {
@@ -457,8 +491,17 @@ int rn_cli_sweep(int argc, char **argv) {
     if (file) return rn_cli_usage_error("sweep", "more than one sweep file given");
     file = s;
   }
+  static const char *const valued[] = {"--output|-o", "--plot", NULL};
+  if ((rc = rn_cli_check_repeats("sweep", argc, argv, valued))) return rc;
   if (!file) return rn_cli_usage_error("sweep", "missing the sweep file");
   if (!dir) return rn_cli_usage_error("sweep", "missing -o DIR");
+  /* the files read and written: the folder's point files and CSV, the plot */
+  const rn_cli_file files[] = {{"the sweep file", file, NULL, RN_CLI_IN},
+                               {"-o", dir, NULL, RN_CLI_OUT_DIR},
+                               {"-o", dir, "/point_*.json", RN_CLI_OUT},
+                               {"-o", dir, "/sweep.csv", RN_CLI_OUT},
+                               {"--plot", plot, NULL, RN_CLI_OUT}};
+  if ((rc = rn_cli_check_files("sweep", files, 5))) return rc;
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) return RN_EXIT_INTERNAL;
   char *text = NULL;
@@ -474,6 +517,7 @@ int rn_cli_sweep(int argc, char **argv) {
     goto done;
   }
   if ((rc = parse_spec(file, text, s))) goto done;
+  if ((rc = rn_cli_probe_outputs("sweep", files, 5))) goto done;
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "rodnet sweep: %s: cannot create the folder: %s\n", dir,
             strerror(errno));

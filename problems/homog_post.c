@@ -345,7 +345,8 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
     po->written = 1;
     const char *const args[] = {vtu, png, "--view", "xy", "--field", "bending_moment",
                                 NULL};
-    po->png = rn_cli_run_script("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args) == 0;
+    po->png =
+        rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;
   }
 done:
   rn_state_destroy(&prin);

@@ -2,10 +2,10 @@
 """Polar plot of the directional Young's modulus from a `rodnet homogenize` RESULT.json.
 
 Usage: plot_stiffness.py RESULT.json OUT.png   (docs/homogenization.md)
-The PNG is written to a temporary file and renamed (completely or not at all)."""
+rodnet runs it on a temporary name and renames the PNG when it is complete
+(rn_cli_run_script_to), and removes it on a signal; run by hand it writes OUT.png."""
 import json
 import math
-import os
 import sys
 
 import matplotlib
@@ -34,9 +34,7 @@ def main():
                  "rel. density %.4g" % (r["units"].split(" (")[0], c["E1"], c["E2"],
                                         c["nu12"], r["relative_density"]), fontsize=9)
     ax.legend(loc="lower right", fontsize=8)
-    tmp = sys.argv[2] + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, sys.argv[2])
+    fig.savefig(sys.argv[2], dpi=120)
     return 0
 
 

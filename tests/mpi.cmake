@@ -39,6 +39,33 @@ rn_mpi_cli(mpi_cli_unwritable 2 3 "cannot"
 rn_mpi_cli(mpi_cli_serial_solver 2 2 "solver 'tr-minres' .*cannot run on 2 MPI ranks"
            solve ${RN_MPI_DATA}/chain.json --solver tr-minres
            -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
+# ---- issue 22 item 5: the one-process commands under mpirun ------------------------
+# homogenize, path, sweep, generate, check and bench on 2 ranks used to run the whole
+# job on every rank (every message twice, both ranks writing the same files); they
+# refuse: one line from rank 0, exit status 2 on every rank, nothing written, no hang.
+set(RN_MPI_REFUSE "runs on one process, not on 2 MPI ranks.*run it without mpirun")
+rn_mpi_cli(mpi_cli_one_process_homogenize 2 2 "rodnet homogenize: ${RN_MPI_REFUSE}"
+           homogenize ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_one_process_homogenize.json)
+rn_mpi_cli(mpi_cli_one_process_path 2 2 "rodnet path: ${RN_MPI_REFUSE}"
+           path ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_one_process_path.json)
+rn_mpi_cli(mpi_cli_one_process_sweep 2 2 "rodnet sweep: ${RN_MPI_REFUSE}"
+           sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
+           -o ${RN_MPI_OUT}/mpi_cli_one_process_sweep.json)
+rn_mpi_cli(mpi_cli_one_process_generate 2 2 "rodnet generate: ${RN_MPI_REFUSE}"
+           generate square --cells 2 -o ${RN_MPI_OUT}/mpi_cli_one_process_generate.json)
+rn_mpi_cli(mpi_cli_one_process_check 2 2 "rodnet check: ${RN_MPI_REFUSE}"
+           check ${RN_MPI_DATA}/chain.json --random 0)
+rn_mpi_cli(mpi_cli_one_process_bench 2 2 "rodnet bench: ${RN_MPI_REFUSE}"
+           bench --suite smoke --no-plot -o ${RN_MPI_OUT}/mpi_cli_one_process_bench.json)
+# A usage error of solve is printed once (by rank 0): its two lines, not four.
+add_test(NAME mpi_cli_usage_once
+         COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
+                 "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@2@@${CMAKE_BINARY_DIR}/rodnet@@solve@@${RN_MPI_DATA}/chain.json"
+                 -DEXPECT_RC=2 "-DEXPECT_REGEX=missing -o RESULT.json" -DSTDERR_LINES=2
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+set_tests_properties(mpi_cli_usage_once PROPERTIES LABELS mpi TIMEOUT 120
+                     PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}")
+
 # No solver asked for: under mpirun the default is the distributed tr-krylov (dd).
 add_test(NAME mpi_cli_default_solver
          COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}

@@ -829,3 +829,213 @@ rn_cli_test(problems_cli_check_twisted_ring 0 "gradient vs central differences.*
             ARGS check ${CMAKE_CURRENT_SOURCE_DIR}/data/rings/twisted_ring.json --random 2)
 rn_cli_test(problems_cli_check_loop_joint 0 "gradient vs central differences.*PASS"
             ARGS check ${RN_SCENES}/loop_joint.json --random 2)
+
+# ---- issue 22 item 1: no output overwrites an input or another output ---------------
+# One shared check (problems/cli_paths.c) in every command: an output that is one of
+# the inputs (the same path, "./", a symbolic or a hard link, a name derived from a
+# prefix, a file of an output folder) or another output is a usage error, before
+# anything is read or written.  The inputs are copies made at configure time.
+set(i22 ${RN_CLI_OUT}/issue22)
+file(MAKE_DIRECTORY ${i22} ${i22}/swin ${i22}/bdir)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json ${i22}/cell.json COPYONLY)
+file(CREATE_LINK ${i22}/cell.json ${i22}/cell_link.json SYMBOLIC)
+file(CREATE_LINK ${i22}/cell.json ${i22}/cell_hard.json)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/paths/hc_mixed.json ${i22}/pf.json COPYONLY)
+configure_file(${PROJECT_SOURCE_DIR}/problems/scenes/path/von_mises_truss.json ${i22}/truss.json COPYONLY)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json ${i22}/sweep.json COPYONLY)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json ${i22}/swin/point_0000.json COPYONLY)
+configure_file(${cant} ${i22}/cant.json COPYONLY)
+file(WRITE ${i22}/bdir/runs.csv "{\"problems\": []}\n")
+file(WRITE ${i22}/refs_self.json "{\"problems\": [{\"name\": \"c\", \"scene\": \"cant.json\", \"reference\": \"cant.json\", \"suites\": [\"smoke\"]}]}\n")
+set(i22_self "is the scene file itself: the result would overwrite its input")
+rn_cli_test(problems_cli_i22_homog_self 2 "-o .*cell.json ${i22_self}"
+            ARGS homogenize ${i22}/cell.json -o ${i22}/cell.json)
+rn_cli_test(problems_cli_i22_homog_self_dot 2 "-o .*/./cell.json ${i22_self}"
+            ARGS homogenize ${i22}/cell.json -o ${i22}/./cell.json)
+rn_cli_test(problems_cli_i22_homog_self_symlink 2 "-o .*cell_link.json ${i22_self}"
+            ARGS homogenize ${i22}/cell.json -o ${i22}/cell_link.json)
+rn_cli_test(problems_cli_i22_homog_self_hardlink 2 "-o .*cell_hard.json ${i22_self}"
+            ARGS homogenize ${i22}/cell.json -o ${i22}/cell_hard.json)
+rn_cli_test(problems_cli_i22_homog_plot_self 2 "--plot .*cell_link.json ${i22_self}"
+            ARGS homogenize ${i22}/cell.json -o ${i22}/r.json --plot ${i22}/cell_link.json)
+rn_cli_test(problems_cli_i22_homog_plot_output 2 "--plot and -o name the same file"
+            ARGS homogenize ${i22}/cell.json -o ${i22}/r.json --plot ${i22}/./r.json)
+rn_cli_test(problems_cli_i22_homog_path_file 2
+            "-o .*pf.json is the --path-file itself: the result would overwrite its input"
+            ARGS homogenize ${i22}/cell.json --path-file ${i22}/pf.json -o ${i22}/pf.json)
+rn_cli_test(problems_cli_i22_homog_pattern_output 2
+            "--pattern and -o name the same file \\(.*pat.vtu\\)"
+            ARGS homogenize ${i22}/cell.json --path 0,0,0 --pattern ${i22}/pat
+                 -o ${i22}/pat.vtu)
+rn_cli_test(problems_cli_i22_homog_post_pattern 2
+            "--post-buckling and --pattern name the same file \\(.*pp.vtu\\)"
+            ARGS homogenize ${i22}/cell.json --path 0,0,0 --pattern ${i22}/pp
+                 --post-buckling ${i22}/./pp -o ${i22}/r.json)
+rn_cli_test(problems_cli_i22_sweep_self 2
+            "-o .*sweep.json is the sweep file itself: the result would overwrite its input"
+            ARGS sweep ${i22}/sweep.json -o ${i22}/sweep.json)
+rn_cli_test(problems_cli_i22_sweep_plot_csv 2 "--plot and -o name the same file \\(.*sweep.csv\\)"
+            ABSENT ${i22}/sw
+            ARGS sweep ${i22}/sweep.json -o ${i22}/sw --plot ${i22}/sw/sweep.csv)
+rn_cli_test(problems_cli_i22_sweep_plot_point 2
+            "--plot and -o name the same file \\(.*point_0003.json\\)" ABSENT ${i22}/sw
+            ARGS sweep ${i22}/sweep.json -o ${i22}/sw --plot ${i22}/sw/point_0003.json)
+rn_cli_test(problems_cli_i22_sweep_input_in_folder 2
+            "-o .*swin/\\. \\(its files .*point_\\*\\.json\\) is the sweep file itself"
+            ARGS sweep ${i22}/swin/point_0000.json -o ${i22}/swin/.)
+if(RN_WITH_TRILINOS)
+  rn_cli_test(problems_cli_i22_path_self 2 "-o .*truss.json ${i22_self}"
+              ARGS path ${i22}/truss.json -o ${i22}/truss.json)
+  rn_cli_test(problems_cli_i22_path_plot_self 2 "--plot .*truss.json ${i22_self}"
+              ARGS path ${i22}/truss.json -o ${i22}/truss.csv --plot ${i22}/./truss.json)
+  rn_cli_test(problems_cli_i22_path_plot_output 2 "--plot and -o name the same file"
+              ARGS path ${i22}/truss.json -o ${i22}/t.csv --plot ${i22}/t.csv)
+  rn_cli_test(problems_cli_i22_bench_manifest_in_folder 2
+              "-o .*bdir \\(its file .*runs.csv\\) is the manifest itself"
+              ARGS bench --manifest ${i22}/bdir/runs.csv --no-plot -o ${i22}/bdir)
+  rn_cli_test(problems_cli_i22_bench_reference_is_scene 2
+              "a problem's reference .*cant.json is a problem's scene itself"
+              ARGS bench --write-references --suite smoke --manifest ${i22}/refs_self.json)
+endif()
+
+# ---- issue 22 item 3: outputs checked before the computation (exit status 3) -------
+# An unwritable --plot or --pattern used to be found after the whole computation (a
+# Python traceback, exit status 4, the result written); now nothing is computed.
+if(RN_WITH_TRILINOS)
+  rn_cli_test(problems_cli_i22_homog_plot_unwritable 3
+              "--plot /nonexistent-dir/hc.png: cannot create the file" STDERR_LINES 1
+              REMOVE ${i22}/hom_unw.json ABSENT ${i22}/hom_unw.json
+              ARGS homogenize ${gen}/hom_hc.json -o ${i22}/hom_unw.json
+                   --plot /nonexistent-dir/hc.png)
+  rn_cli_test(problems_cli_i22_homog_pattern_unwritable 3
+              "--pattern /nonexistent-dir/p.vtu: cannot create the file" STDERR_LINES 1
+              REMOVE ${i22}/hom_unw2.json ABSENT ${i22}/hom_unw2.json
+              ARGS homogenize ${gen}/hom_hc.json --path -0.004,-0.004,0 --steps 2
+                   --pattern /nonexistent-dir/p -o ${i22}/hom_unw2.json)
+  set_tests_properties(problems_cli_i22_homog_plot_unwritable
+                       problems_cli_i22_homog_pattern_unwritable PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc)
+  rn_cli_test(problems_cli_i22_path_plot_unwritable 3
+              "--plot /nonexistent-dir/t.png: cannot create the file" STDERR_LINES 1
+              REMOVE ${i22}/path_unw.csv ABSENT ${i22}/path_unw.csv
+              ARGS path ${i22}/truss.json -o ${i22}/path_unw.csv --plot /nonexistent-dir/t.png)
+  rn_cli_test(problems_cli_i22_sweep_plot_unwritable 3
+              "--plot /nonexistent-dir/s.png: cannot create the file" STDERR_LINES 1
+              ABSENT ${i22}/sw_unw
+              ARGS sweep ${i22}/sweep.json -o ${i22}/sw_unw --plot /nonexistent-dir/s.png)
+  rn_cli_test(problems_cli_i22_sweep_folder_is_file 3
+              "-o .*truss.json: exists and is not a folder" STDERR_LINES 1
+              ARGS sweep ${i22}/sweep.json -o ${i22}/truss.json)
+endif()
+
+# ---- issue 22 item 4: no silently ignored or repeated option ---------------------------
+set(i22_twice "given more than once: give it once")
+rn_cli_test(problems_cli_i22_homog_path_twice 2 "--path ${i22_twice}"
+            ARGS homogenize ${i22}/cell.json --path 0,0,0 --path 1,1,1 -o ${i22}/r.json)
+rn_cli_test(problems_cli_i22_homog_steps_no_path 2 "--steps applies to a path only"
+            ARGS homogenize ${i22}/cell.json --steps 5 -o ${i22}/r.json)
+rn_cli_test(problems_cli_i22_homog_modes_no_path 2 "--modes applies to a path only"
+            ARGS homogenize ${i22}/cell.json --modes in-plane -o ${i22}/r.json)
+rn_cli_test(problems_cli_i22_homog_post_steps_alone 2
+            "--post-steps applies to --post-buckling only"
+            ARGS homogenize ${i22}/cell.json --path 0,0,0 --post-steps 3 -o ${i22}/r.json)
+rn_cli_test(problems_cli_i22_solve_output_twice 2 "-o ${i22_twice}"
+            ARGS solve ${cant} -o ${i22}/a.json -o ${i22}/b.json)
+rn_cli_test(problems_cli_i22_solve_factorisation_twice 2 "--factorisation ${i22_twice}"
+            ARGS solve ${cant} --factorization banded --factorisation=sparse -o ${i22}/a.json)
+rn_cli_test(problems_cli_i22_solve_stability_method 2
+            "--stability-method has no effect with --no-stability"
+            ARGS solve ${cant} --no-stability --stability-method lobpcg -o ${i22}/a.json)
+rn_cli_test(problems_cli_i22_generate_seed_alone 2
+            "--seed applies to --perturb and --section-scatter only"
+            ABSENT ${i22}/g.json ARGS generate honeycomb --periodic --seed 4 -o ${i22}/g.json)
+rn_cli_test(problems_cli_i22_generate_cells_twice 2 "--cells ${i22_twice}"
+            ABSENT ${i22}/g.json ARGS generate square --cells 2 --cells=3 -o ${i22}/g.json)
+rn_cli_test(problems_cli_i22_check_seed_no_random 2 "--seed applies to the random states"
+            ARGS check ${cant} --random 0 --seed 3)
+rn_cli_test(problems_cli_i22_check_tol_twice 2 "--tol ${i22_twice}"
+            ARGS check ${cant} --tol 1e-3 --tol 1e-9)
+# sweep files: the key and the reason
+file(WRITE ${i22}/sweep_cells.json
+     "{\"lattice\": \"honeycomb\", \"relative_density\": [0.1], \"cells\": [1, 1, 1]}\n")
+file(WRITE ${i22}/sweep_E.json
+     "{\"lattice\": \"honeycomb\", \"relative_density\": [0.1], \"E\": -1}\n")
+file(WRITE ${i22}/sweep_dup.json
+     "{\"lattice\": \"honeycomb\", \"relative_density\": [0.1], \"nu\": 0.3, \"nu\": 0.2}\n")
+file(WRITE ${i22}/sweep_seed.json
+     "{\"lattice\": \"honeycomb\", \"relative_density\": [0.1], \"seed\": [1, 2, 3]}\n")
+rn_cli_test(problems_cli_i22_sweep_cells_2d 3
+            "sweep_cells.json: \"cells\" has 3 counts but the lattice 'honeycomb' is 2D"
+            STDERR_LINES 1 ABSENT ${i22}/sw_bad ARGS sweep ${i22}/sweep_cells.json -o ${i22}/sw_bad)
+rn_cli_test(problems_cli_i22_sweep_bad_E 3
+            "sweep_E.json: \"E\" must be Young's modulus, a finite number > 0"
+            STDERR_LINES 1 ABSENT ${i22}/sw_bad ARGS sweep ${i22}/sweep_E.json -o ${i22}/sw_bad)
+rn_cli_test(problems_cli_i22_sweep_duplicate_key 3
+            "sweep_dup.json: \"nu\" given more than once"
+            STDERR_LINES 1 ABSENT ${i22}/sw_bad ARGS sweep ${i22}/sweep_dup.json -o ${i22}/sw_bad)
+rn_cli_test(problems_cli_i22_sweep_seed_no_perturb 3
+            "sweep_seed.json: \"seed\" draws the random joint perturbation only"
+            STDERR_LINES 1 ABSENT ${i22}/sw_bad ARGS sweep ${i22}/sweep_seed.json -o ${i22}/sw_bad)
+rn_cli_test(problems_cli_i22_sweep_plot_twice 2 "--plot ${i22_twice}"
+            ARGS sweep ${i22}/sweep.json -o ${i22}/sw --plot a.png --plot b.png)
+if(RN_WITH_TRILINOS)
+  set(truss ${i22}/truss.json)
+  # --modes in-plane of a 3D cell: said before the stiffness is computed (it used
+  # to fail after it, from the Bloch analysis, with the library's message)
+  rn_cli_test(problems_cli_i22_homog_modes_3d 3
+              "--modes in-plane: a 3D cell has no in-plane / out-of-plane split"
+              STDERR_LINES 1 ABSENT ${i22}/hom_modes3d.json
+              ARGS homogenize ${gen}/periodic_cubic.json --path 0,0,0,0,0,0 --steps 1
+                   --modes in-plane -o ${i22}/hom_modes3d.json)
+  set_tests_properties(problems_cli_i22_homog_modes_3d PROPERTIES
+                       FIXTURES_REQUIRED problems_periodic_cubic)
+  rn_cli_test(problems_cli_i22_path_load_factor_under_load 2
+              "--load-factor applies to displacement control"
+              ARGS path ${truss} -o ${i22}/p.csv --load-factor 0.5)
+  rn_cli_test(problems_cli_i22_path_start_under_displacement 2
+              "--start applies to load control"
+              ARGS path ${truss} -o ${i22}/p.csv --control vertex:truss:1:z --start 0.5)
+  rn_cli_test(problems_cli_i22_path_monitor_under_displacement 2
+              "--monitor applies to --control load only"
+              ARGS path ${truss} -o ${i22}/p.csv --control vertex:truss:1:z
+                   --monitor vertex:truss:1:z)
+  rn_cli_test(problems_cli_i22_path_branch_sign_alone 2
+              "--branch-sign applies to --branch-switch only"
+              ARGS path ${truss} -o ${i22}/p.csv --branch-sign -1)
+  rn_cli_test(problems_cli_i22_path_arclength_order 2
+              "--max-arclength 0.01 is below --arclength 0.02: the largest step must be at least the first"
+              ARGS path ${truss} -o ${i22}/p.csv --max-arclength 0.01 --arclength 0.02)
+  rn_cli_test(problems_cli_i22_path_arclength_too_small 2
+              "--arclength 1e-09 is below the smallest step 1e-08"
+              ARGS path ${truss} -o ${i22}/p.csv --arclength 1e-9)
+  # --max-arclength alone below the default first step: the first step follows it
+  # (it used to stop with the library's "ds_max must be >= ds", exit status 3)
+  rn_cli_test(problems_cli_i22_path_max_arclength_alone 0
+              "stop range, 1 limit point.*first limit point: load factor 0.4663517"
+              ARGS path ${truss} -o ${i22}/p_small.csv --max-arclength 0.005)
+  rn_cli_test(problems_cli_i22_path_to_twice 2 "--to ${i22_twice}"
+              ARGS path ${truss} -o ${i22}/p.csv --to 0.5 --to 0.7)
+  rn_cli_test(problems_cli_i22_bench_solvers_empty 2 "--solvers '': an empty name"
+              ARGS bench --suite smoke --solvers= -o ${i22}/bench_empty)
+  rn_cli_test(problems_cli_i22_bench_problems_empty 2 "--problems 'cantilever,': an empty name"
+              ARGS bench --suite smoke --problems=cantilever, -o ${i22}/bench_empty)
+  rn_cli_test(problems_cli_i22_bench_write_refs_solvers 2
+              "--write-references solves with tr-minres once .*--solvers does not apply"
+              ARGS bench --write-references --solvers tr-minres
+                   --manifest ${i22}/refs_self.json)
+  rn_cli_test(problems_cli_i22_solve_preconditioner_unused 2
+              "--preconditioner dd: only the solvers tr-krylov and nox use a preconditioner choice, not 'tr-minres'"
+              ARGS solve ${cant} --solver tr-minres --preconditioner dd -o ${i22}/a.json)
+endif()
+
+# ---- issue 22 item 2: temporary files removed on SIGINT, SIGTERM ------------------------
+# rodnet generate of a large lattice interrupted while it writes FILE.tmp.PID (SIGINT,
+# then SIGTERM): the status reports the signal, no *.tmp.* remains; homogenize --plot
+# interrupted while its plotting script runs: the script dies with it, no PNG, no
+# temporary file (tests/unit/check_signal_cleanup.py).
+if(RN_WITH_TRILINOS)
+  add_test(NAME problems_cli_i22_signal_cleanup
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_signal_cleanup.py
+                   ${RN_CLI} ${i22}/signals)
+  set_tests_properties(problems_cli_i22_signal_cleanup PROPERTIES LABELS unit TIMEOUT 600)
+endif()
