@@ -683,8 +683,34 @@ static int check_struts(const gen_args *a, rn_context *ctx, int dim, int nn, int
                             a->output, src, kind, b.joint_bar + 1, why, bound);
 }
 
+/* What the scene reader takes (problems/scene_rods.c, scene_periodic.c): at
+ * most 1e8 rod vertices; "repeat" at most 100000 copies and 2e6 rods and joints
+ * once tiled.  0 or an exit status (message printed). */
+#define GEN_MAX_VERTICES 100000000.0
+static int check_readable(const gen_args *a, int nn, int nb) {
+  double copies = 1.0;
+  for (int k = 0; a->nrepeat && k < a->nrepeat; k++) copies *= a->repeat[k];
+  const double vertices = copies * nb * (a->sc.edges_per_rod + 1.0);
+  if (vertices > GEN_MAX_VERTICES)
+    return rn_cli_usage_error("generate",
+                              "%s: %d rods of %d edges%s make %.0f vertices: the scene "
+                              "reader takes at most %.0f",
+                              a->output, nb, a->sc.edges_per_rod,
+                              a->nrepeat ? " (times --repeat)" : "", vertices,
+                              GEN_MAX_VERTICES);
+  if (a->nrepeat && (copies > 100000.0 || copies * (nn + nb) > 2000000.0))
+    return rn_cli_usage_error("generate",
+                              "%s: --repeat makes %.0f copies of %d rods and joints: the "
+                              "scene reader tiles at most 100000 copies and 2000000 rods "
+                              "and joints",
+                              a->output, copies, nn + nb);
+  return 0;
+}
+
 /* check_struts on a periodic cell (bar vectors to the image ends). */
 static int check_pcell(const gen_args *a, rn_context *ctx, const rn_pcell *c) {
+  int rc = check_readable(a, c->nnodes, c->nbars);
+  if (rc) return rc;
   size_t nb1 = (size_t)(c->nbars ? c->nbars : 1);
   int *uv = malloc(2 * nb1 * sizeof(int));
   double *d = malloc(3 * nb1 * sizeof(double)), L, V, extent = 0.0, span = 0.0;
@@ -706,8 +732,8 @@ static int check_pcell(const gen_args *a, rn_context *ctx, const rn_pcell *c) {
   for (int k = 0; k < 3 * c->nnodes; k++) extent = fmax(extent, fabs(c->xyz[k]));
   for (int k = 0; k < 9; k++) span += fabs(c->vec[k]); /* image ends reach x + a_m */
   rn_pcell_measures(c, &L, &V);
-  int rc = check_struts(a, ctx, c->dim, c->nnodes, c->nbars, uv, d, c->section_scale, V,
-                        extent + span);
+  rc = check_struts(a, ctx, c->dim, c->nnodes, c->nbars, uv, d, c->section_scale, V,
+                    extent + span);
   free(uv);
   free(d);
   return rc;
@@ -716,6 +742,8 @@ static int check_pcell(const gen_args *a, rn_context *ctx, const rn_pcell *c) {
 /* check_struts on a finite block (the measure: its bounding box). */
 static int check_lattice(const gen_args *a, rn_context *ctx, const rn_lattice *lat) {
   const int nn = rn_lattice_num_nodes(lat), nb = rn_lattice_num_bars(lat);
+  int rc0 = check_readable(a, nn, nb);
+  if (rc0) return rc0;
   const int dim = rn_lattice_kind_dimension(rn_lattice_get_kind(lat));
   int *uv = malloc(2 * (size_t)(nb ? nb : 1) * sizeof(int));
   double *d = malloc(3 * (size_t)(nb ? nb : 1) * sizeof(double)), V = 1.0, extent = 0.0;

@@ -305,16 +305,16 @@ rn_cli_test(problems_cli_periodic_no_load 2 "--load does not apply to a periodic
 foreach(kind square triangular honeycomb kagome reentrant cubic bcc octet)
   rn_cli_test(problems_cli_generate_bound_slenderness_${kind} 2
               "relative density of [0-9.e+]+ \\(>= 1\\): not a lattice of rods; use --slenderness below 0\\.[0-9]+"
-              STDERR_LINES 2 ABSENT ${gen}/bound_${kind}.json
+              STDERR_LINES 2 ABSENT ${gen}/bound_${kind}.json REMOVE ${gen}/bound_${kind}.json
               ARGS generate ${kind} --periodic --slenderness 1e6 -o ${gen}/bound_${kind}.json)
   rn_cli_test(problems_cli_generate_bound_section_periodic_${kind} 2
               "--section circle:1000 gives the ${kind} lattice a relative density of .*not a lattice of rods; use section dimensions below"
-              ABSENT ${gen}/bound_${kind}.json
+              ABSENT ${gen}/bound_${kind}.json REMOVE ${gen}/bound_${kind}.json
               ARGS generate ${kind} --periodic --section circle:1000 -o ${gen}/bound_${kind}.json)
   if(NOT kind STREQUAL "reentrant")
     rn_cli_test(problems_cli_generate_bound_section_${kind} 2
                 "--section rectangle:0.5,0.5 gives the ${kind} lattice a relative density of .*not a lattice of rods"
-                ABSENT ${gen}/bound_${kind}.json
+                ABSENT ${gen}/bound_${kind}.json REMOVE ${gen}/bound_${kind}.json
                 ARGS generate ${kind} --section rectangle:0.5,0.5 -o ${gen}/bound_${kind}.json)
   endif()
 endforeach()
@@ -322,11 +322,11 @@ endforeach()
 # joint zones at a density below 1, from --slenderness and from --relative-density
 rn_cli_test(problems_cli_generate_bound_joints_reentrant 2
             "with --slenderness 0.45 the struts of the reentrant lattice overlap at the joints .*use --slenderness below 0\\.433"
-            ABSENT ${gen}/bound_re.json
+            ABSENT ${gen}/bound_re.json REMOVE ${gen}/bound_re.json
             ARGS generate reentrant --periodic --slenderness 0.45 -o ${gen}/bound_re.json)
 rn_cli_test(problems_cli_generate_bound_joints_density 2
             "with --relative-density 0.95 the struts of the reentrant lattice overlap at the joints .*use --relative-density below 0\\.88"
-            ABSENT ${gen}/bound_re.json
+            ABSENT ${gen}/bound_re.json REMOVE ${gen}/bound_re.json
             ARGS generate reentrant --periodic --relative-density 0.95 -o ${gen}/bound_re.json)
 rn_cli_test(problems_cli_generate_bound_joints_ok 0 "periodic reentrant cell"
             ARGS generate reentrant --periodic --slenderness 0.43 -o ${gen}/bound_re_ok.json)
@@ -335,21 +335,31 @@ rn_cli_test(problems_cli_generate_bound_joints_ok 0 "periodic reentrant cell"
 foreach(size 1e300 1e160 1e100)
   rn_cli_test(problems_cli_generate_range_cell_${size} 2
               "--cell-size 1e\\+[0-9]+: the cell size must be at least .* at most 1e\\+30"
-              ABSENT ${gen}/range.json
+              ABSENT ${gen}/range.json REMOVE ${gen}/range.json
               ARGS generate honeycomb --periodic --cell-size ${size} -o ${gen}/range.json)
 endforeach()
 rn_cli_test(problems_cli_generate_range_cell_finite 2 "the cell size must be at least"
-            ABSENT ${gen}/range.json
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
             ARGS generate octet --cell-size 1e-40 -o ${gen}/range.json)
 rn_cli_test(problems_cli_generate_range_section 2
             "range.json: a section dimension of 5.7735e-301: section dimensions must lie in \\[1e-30, 1e\\+30\\]"
-            ABSENT ${gen}/range.json
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
             ARGS generate honeycomb --periodic --slenderness 1e-300 -o ${gen}/range.json)
 rn_cli_test(problems_cli_generate_range_stiffness 2
             "range.json: the section's stiffnesses E A, E I, G J .* are not representable"
-            ABSENT ${gen}/range.json
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
             ARGS generate cubic --cells 1 --cell-size 1e20 --section circle:1e18
                  --material 1e300,0.3 -o ${gen}/range.json)
+# ... and within what the scene reader takes (a --repeat of 10^6 copies, more than
+# 1e8 rod vertices were written and then refused by the reader)
+rn_cli_test(problems_cli_generate_range_repeat 2
+            "--repeat makes 1000000 copies .* the scene reader tiles at most 100000 copies"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate honeycomb --periodic --repeat 1000,1000 -o ${gen}/range.json)
+rn_cli_test(problems_cli_generate_range_vertices 2
+            "2002000 rods of 100 edges make 202202000 vertices: the scene reader takes at most 100000000"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate square --cells 1000,1000 --edges-per-rod 100 -o ${gen}/range.json)
 # Item 3: the description is the command that writes the same bytes again.
 add_test(NAME problems_cli_generate_replay
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_generate_replay.py
