@@ -84,6 +84,10 @@ static const char generate_help2[] =
     "  -q, --quiet              no summary\n"
     "  -h, --help               show this help\n"
     "\n"
+    "A section that does not make a lattice of rods (relative density 1 or\n"
+    "more, struts that overlap along a whole bar at its joints) and numbers the\n"
+    "scene reader cannot take back are refused (docs/lattices.md).  The scene's\n"
+    "description is the command that writes the same file again.\n"
     "The file is written completely or not at all.\n"
     "Exit status: 0 written, 2 usage error, 3 the file cannot be written.\n";
 
