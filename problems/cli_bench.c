@@ -17,6 +17,7 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "num_format.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 #include "text_file.h"
@@ -559,6 +560,9 @@ static void csv_text(FILE *f, const char *s) {
   fputc('"', f);
 }
 
+/* A number, or an empty field for one not available: a run that failed or a
+ * quantity not computed (NaN) or a solver that diverged (infinite); documented
+ * in docs/benchmarking.md ("empty"). */
 static void csv_number(FILE *f, double v) {
   if (isfinite(v)) fprintf(f, "%.6e", v);
 }
@@ -607,15 +611,25 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
 
 /* The reference answer of one solved network. */
 typedef struct ref_writer {
-  const char *problem;
+  const char *problem, *path;
   const double *x;
   long nv;
   double gtol;
 } ref_writer;
 
 static rn_status write_ref(FILE *f, void *user, rn_context *ctx) {
-  (void)ctx;
   const ref_writer *w = user;
+  rn_num_check chk = {0, 0.0, ""};
+  for (long i = 0; i < 3 * w->nv && !chk.bad; i++) {
+    char field[64];
+    snprintf(field, sizeof field, "vertices[%ld]", i / 3);
+    rn_num_checked(&chk, field, w->x[i]);
+  }
+  if (chk.bad) { /* a reference is never "nan" (issue 22) */
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "%s",
+                                rn_num_check_message(&chk, w->path, msg, sizeof msg));
+  }
   fprintf(f,
           "{\n  \"problem\": \"%s\",\n  \"solver\": \"tr-minres\",\n  \"gtol\": %g,\n"
           "  \"commit\": \"%s\",\n  \"vertices\": [\n",
@@ -652,7 +666,7 @@ static int write_references(const bench_args *a, const bench_suite *s) {
               st ? rn_context_last_error(ctx) : rn_solve_stop_name(rep.stop));
       rc = st ? rn_cli_load_exit_code(st) : RN_EXIT_INTERNAL;
     } else {
-      ref_writer w = {p->name, NULL, 0, 1e-11};
+      ref_writer w = {p->name, p->reference, NULL, 0, 1e-11};
       double *x = all_vertices(rn_scene_network(scene), &w.nv);
       w.x = x;
       st = x ? rn_file_write_atomic(ctx, p->reference, write_ref, &w) : RN_ERR_ALLOC;

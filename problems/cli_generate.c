@@ -1,6 +1,7 @@
 /* cli_generate.c - `rodnet generate KIND [options] -o SCENE.json`: lattice
  * scenes (lattice.h, lattice_scene.h; docs/lattices.md). */
 #include <errno.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,6 +9,7 @@
 
 #include "cli.h"
 #include "lattice.h"
+#include "lattice_check.h"
 #include "lattice_scene.h"
 #include "periodic_cell.h"
 
@@ -82,6 +84,10 @@ static const char generate_help2[] =
     "  -q, --quiet              no summary\n"
     "  -h, --help               show this help\n"
     "\n"
+    "A section that does not make a lattice of rods (relative density 1 or\n"
+    "more, struts that overlap along a whole bar at its joints) and numbers the\n"
+    "scene reader cannot take back are refused (docs/lattices.md).  The scene's\n"
+    "description is the command that writes the same file again.\n"
     "The file is written completely or not at all.\n"
     "Exit status: 0 written, 2 usage error, 3 the file cannot be written.\n";
 
@@ -92,6 +98,10 @@ typedef struct gen_args {
   double a, slenderness, density, perturb, scatter;
   int seed, repeat[3], nrepeat, has_seed;
   rn_lattice_scene sc;
+  /* --section as given (sc.shape and sc.section may be replaced by the
+   * --slenderness and --relative-density sections of a periodic cell) */
+  rn_lattice_section_shape user_shape;
+  double user_section[2];
 } gen_args;
 
 /* "x,y[,z]" into up to max numbers (doubles); count in *n; 0 if ok. */
@@ -148,6 +158,8 @@ static int parse_section(gen_args *a, const char *v) {
       a->sc.shape = shapes[i].shape;
       a->sc.section[0] = p[0];
       a->sc.section[1] = n == 2 ? p[1] : 0;
+      a->user_shape = a->sc.shape;
+      memcpy(a->user_section, a->sc.section, sizeof a->user_section);
       a->section = v;
       return 0;
     }
@@ -353,9 +365,40 @@ static void set_defaults(gen_args *a) {
   a->seed = 1;
 }
 
+/* The generator's kinds: those of lattice.h, then "reentrant" (a periodic cell
+ * of its own, rn_pcell_reentrant).  The parser and the unknown-kind message
+ * both walk this list, so the message cannot omit a kind. */
+#define GEN_KIND_COUNT (RN_LATTICE_KIND_COUNT + 1)
+static const char *gen_kind_name(int k) {
+  return k < RN_LATTICE_KIND_COUNT ? rn_lattice_kind_name((rn_lattice_kind)k)
+                                   : "reentrant";
+}
+
+/* a->kind and a->reentrant from a->kind_name; -1 if unknown. */
+static int gen_kind_from_name(gen_args *a) {
+  for (int k = 0; k < GEN_KIND_COUNT; k++)
+    if (strcmp(a->kind_name, gen_kind_name(k)) == 0) {
+      a->reentrant = k == RN_LATTICE_KIND_COUNT;
+      /* planar; the re-entrant cell is built by rn_pcell_reentrant */
+      a->kind = a->reentrant ? RN_LATTICE_HONEYCOMB : (rn_lattice_kind)k;
+      return 0;
+    }
+  return -1;
+}
+
+static int unknown_kind(const char *name) {
+  char list[256];
+  size_t n = 0;
+  list[0] = '\0';
+  for (int k = 0; k < GEN_KIND_COUNT && n < sizeof list; k++)
+    n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", k ? ", " : "",
+                          gen_kind_name(k));
+  return rn_cli_usage_error("generate", "unknown lattice '%s' (known: %s)", name, list);
+}
+
 static int check_args(gen_args *a) {
   if (!a->kind_name) return rn_cli_usage_error("generate", "missing the lattice KIND");
-  a->reentrant = strcmp(a->kind_name, "reentrant") == 0;
+  if (gen_kind_from_name(a) != 0) return unknown_kind(a->kind_name);
   if (a->reentrant && !a->periodic)
     return rn_cli_usage_error("generate", "the reentrant lattice needs --periodic");
   if (!a->periodic && (a->slenderness > 0.0 || a->density > 0.0 || a->perturb > 0.0))
@@ -377,13 +420,6 @@ static int check_args(gen_args *a) {
                                           "and --relative-density");
   if (a->periodic && a->ncells == 0) /* one cell unless --cells asks for a supercell */
     a->cells[0] = a->cells[1] = a->cells[2] = 1;
-  if (a->reentrant) {
-    a->kind = RN_LATTICE_HONEYCOMB; /* planar; the cell is built by rn_pcell_reentrant */
-  } else if (rn_lattice_kind_from_name(a->kind_name, &a->kind) != 0)
-    return rn_cli_usage_error("generate",
-                              "unknown lattice '%s' (known: square, triangular, "
-                              "honeycomb, kagome, cubic, bcc, octet)",
-                              a->kind_name);
   if (!a->output) return rn_cli_usage_error("generate", "missing -o SCENE.json");
   int dim = rn_lattice_kind_dimension(a->kind);
   if (a->nrepeat && a->nrepeat != dim)
@@ -412,7 +448,18 @@ static int check_args(gen_args *a) {
   if (a->has_seed && !(a->perturb > 0.0) && !(a->scatter > 0.0))
     return rn_cli_usage_error("generate", "--seed applies to --perturb and "
                                           "--section-scatter only");
-  if (!a->section) a->sc.section[0] = a->a / 50;
+  /* lengths the scene reader can take back (docs/lattices.md): checked in full
+   * on the lattice (check_struts); this first bound keeps the construction
+   * itself finite */
+  int cmax = a->cells[0] > a->cells[1] ? a->cells[0] : a->cells[1];
+  if (dim == 3 && a->cells[2] > cmax) cmax = a->cells[2];
+  if (!(a->a >= 4 * RN_GEN_MIN_LENGTH) || !(2.0 * a->a * cmax <= RN_GEN_MAX_LENGTH))
+    return rn_cli_usage_error("generate",
+                              "--cell-size %g: the cell size must be at least %g and "
+                              "the lattice (cell size times %d cells, doubled) at most "
+                              "%g",
+                              a->a, 4 * RN_GEN_MIN_LENGTH, cmax, RN_GEN_MAX_LENGTH);
+  if (!a->section) a->sc.section[0] = a->user_section[0] = a->a / 50;
   return 0;
 }
 
@@ -456,30 +503,92 @@ static int parse_generate_args(int argc, char **argv, gen_args *a) {
   return rn_cli_check_files("generate", files, 1);
 }
 
-/* "rodnet generate ..." as the scene's description. */
+/* x with the fewest significant digits that read back as x (strtod). */
+static const char *num(double x, char buf[32]) {
+  for (int p = 1; p <= 17; p++) {
+    snprintf(buf, 32, "%.*g", p, x);
+    if (strtod(buf, NULL) == x) break;
+  }
+  return buf;
+}
+
+/* Appends printf(fmt, ...) to buf[n] at *len (truncation leaves *len >= n). */
+static void append(char *buf, size_t n, size_t *len, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void append(char *buf, size_t n, size_t *len, const char *fmt, ...) {
+  if (*len >= n) return;
+  va_list ap;
+  va_start(ap, fmt);
+  int k = vsnprintf(buf + *len, n - *len, fmt, ap);
+  va_end(ap);
+  *len += k > 0 ? (size_t)k : 0;
+}
+
+/* " --load ..." from the parsed load (the canonical spelling, numbers that
+ * read back exactly). */
+static void describe_load(const gen_args *a, char *buf, size_t n, size_t *len) {
+  char x[32], y[32];
+  const char axis = (char)('x' + a->sc.load_axis);
+  switch (a->sc.load) {
+  case RN_LLOAD_STRETCH:
+    append(buf, n, len, " --load stretch-%c:%s", axis, num(a->sc.load_value, x));
+    break;
+  case RN_LLOAD_GRIP:
+    append(buf, n, len, " --load grip-%c:%s", axis, num(a->sc.load_value, x));
+    break;
+  case RN_LLOAD_PULL:
+    append(buf, n, len, " --load pull-%c:%s", axis, num(a->sc.load_value, x));
+    break;
+  case RN_LLOAD_BIAXIAL:
+    append(buf, n, len, " --load biaxial:%s,%s", num(a->sc.load_value, x),
+           num(a->sc.load_value2, y));
+    break;
+  case RN_LLOAD_SHEAR:
+    append(buf, n, len, " --load shear:%s", num(a->sc.load_value, x));
+    break;
+  default:
+    break;
+  }
+}
+
+/* The command that writes this very file (but -o) as the scene's description:
+ * every option that shapes the file, in one canonical spelling, so that
+ * running the description again writes the same bytes (docs/lattices.md).
+ * The section is recorded the way it was given: --section, --slenderness or
+ * --relative-density (the default of a periodic cell is --slenderness 0.05,
+ * that of a finite block --section circle:A/50). */
 static void describe(const gen_args *a, char *buf, size_t n) {
   int dim = rn_lattice_kind_dimension(a->kind);
-  int len = snprintf(buf, n, "rodnet generate %s --cells %d,%d", a->kind_name,
-                     a->cells[0], a->cells[1]);
-  if (dim == 3 && len > 0 && (size_t)len < n)
-    len += snprintf(buf + len, n - (size_t)len, ",%d", a->cells[2]);
-  char section[64];
-  if (a->section)
-    snprintf(section, sizeof section, "%s", a->section);
+  size_t len = 0;
+  char x[32], y[32];
+  append(buf, n, &len, "rodnet generate %s --cells %d,%d", a->kind_name, a->cells[0],
+         a->cells[1]);
+  if (dim == 3) append(buf, n, &len, ",%d", a->cells[2]);
+  append(buf, n, &len, " --cell-size %s --edges-per-rod %d", num(a->a, x),
+         a->sc.edges_per_rod);
+  if (a->density > 0.0)
+    append(buf, n, &len, " --relative-density %s", num(a->density, x));
+  else if (a->slenderness > 0.0 || (a->periodic && !a->section))
+    append(buf, n, &len, " --slenderness %s",
+           num(a->slenderness > 0.0 ? a->slenderness : 0.05, x));
+  else if (a->user_shape == RN_LSEC_CIRCLE)
+    append(buf, n, &len, " --section circle:%s", num(a->user_section[0], x));
   else
-    snprintf(section, sizeof section, "circle:%.15g", a->sc.section[0]);
-  if (len > 0 && (size_t)len < n)
-    len += snprintf(buf + len, n - (size_t)len,
-                    " --cell-size %.15g --edges-per-rod %d --section %s --material "
-                    "%.15g,%.15g --joint-model %s",
-                    a->a, a->sc.edges_per_rod, section, a->sc.E, a->sc.nu,
-                    a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
-  if (a->load && len > 0 && (size_t)len < n)
-    len += snprintf(buf + len, n - (size_t)len, " --load %s", a->load);
-  if (a->sc.model && len > 0 && (size_t)len < n)
-    len += snprintf(buf + len, n - (size_t)len, " --model %s", a->sc.model);
-  if (a->periodic && len > 0 && (size_t)len < n)
-    snprintf(buf + len, n - (size_t)len, " --periodic");
+    append(buf, n, &len, " --section %s:%s,%s",
+           a->user_shape == RN_LSEC_RECTANGLE ? "rectangle" : "ellipse",
+           num(a->user_section[0], x), num(a->user_section[1], y));
+  append(buf, n, &len, " --material %s,%s --joint-model %s", num(a->sc.E, x),
+         num(a->sc.nu, y), a->sc.joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
+  describe_load(a, buf, n, &len);
+  if (a->sc.model) append(buf, n, &len, " --model %s", a->sc.model);
+  if (a->periodic) append(buf, n, &len, " --periodic");
+  if (a->perturb > 0.0) append(buf, n, &len, " --perturb %s", num(a->perturb, x));
+  if (a->scatter > 0.0) append(buf, n, &len, " --section-scatter %s", num(a->scatter, x));
+  if (a->perturb > 0.0 || a->scatter > 0.0) append(buf, n, &len, " --seed %d", a->seed);
+  if (a->nrepeat) {
+    append(buf, n, &len, " --repeat %d,%d", a->repeat[0], a->repeat[1]);
+    if (a->nrepeat == 3) append(buf, n, &len, ",%d", a->repeat[2]);
+  }
 }
 
 static void print_summary(const gen_args *a, const rn_lattice *lat) {
@@ -515,6 +624,173 @@ static void pcell_section(gen_args *a, const rn_pcell *c) {
   a->sc.section[1] = t;
 }
 
+/* The option that set the section, for the messages of check_struts. */
+static void section_source(const gen_args *a, char *buf, size_t n) {
+  char x[32];
+  if (a->density > 0.0)
+    snprintf(buf, n, "--relative-density %s", num(a->density, x));
+  else if (a->slenderness > 0.0)
+    snprintf(buf, n, "--slenderness %s", num(a->slenderness, x));
+  else if (a->section)
+    snprintf(buf, n, "--section %s", a->section);
+  else
+    snprintf(buf, n, "the default section (%s)",
+             a->periodic ? "--slenderness 0.05" : "circle of radius A/50");
+}
+
+/* A lattice of rods (docs/lattices.md, "Admissible sections"): the range of
+ * what is written (readable back), then relative density below 1 and joint
+ * zones that leave every bar a free length.  0 or an exit status (message
+ * printed). */
+static int check_struts(const gen_args *a, rn_context *ctx, int dim, int nn, int nb,
+                        const int *uv, const double *d, const double *scale,
+                        double measure, double extent) {
+  double lmin = HUGE_VAL, lmax = 0.0, smin = 1.0, smax = 1.0;
+  for (int e = 0; e < nb; e++) {
+    const double *v = d + 3 * e, l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    lmin = fmin(lmin, l);
+    lmax = isnan(l) ? l : fmax(lmax, l);
+    if (scale) {
+      smin = fmin(smin, scale[e]);
+      smax = fmax(smax, scale[e]);
+    }
+  }
+  if (!nb) lmin = lmax = 1.0;
+  if (!isfinite(measure)) extent = HUGE_VAL;
+  rn_status st = rn_generate_check_range(ctx, &a->sc, lmin, lmax, extent, smin, smax);
+  if (st) {
+    fprintf(stderr, "rodnet generate: %s: %s\n", a->output, rn_context_last_error(ctx));
+    return RN_EXIT_USAGE;
+  }
+  rn_strut_bounds b;
+  if (rn_strut_bounds_compute(dim, nn, nb, uv, d, scale, &a->sc, measure, &b)) {
+    fprintf(stderr, "rodnet generate: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  char src[160], x[32];
+  section_source(a, src, sizeof src);
+  const char *kind = a->kind_name, *why = a->perturb > 0.0 ? " (--perturb)" : "";
+  if (b.zero_bar >= 0)
+    return rn_cli_usage_error("generate",
+                              "%s: the %s cell has a bar of zero length (e%d)%s",
+                              a->output, kind, b.zero_bar + 1, why);
+  if (b.coincident_node >= 0)
+    return rn_cli_usage_error("generate",
+                              "%s: two bars of the %s cell leave joint v%d in one "
+                              "direction%s",
+                              a->output, kind, b.coincident_node + 1, why);
+  if (b.factor > 1.0) return 0;
+  /* the largest admissible value of the option that set the section */
+  const double f = b.factor;
+  const int p = dim == 2 ? 1 : 2;
+  char bound[96];
+  if (a->density > 0.0)
+    snprintf(bound, sizeof bound, "--relative-density below %s",
+             num(a->density * pow(f, p), x));
+  else if (a->slenderness > 0.0)
+    snprintf(bound, sizeof bound, "--slenderness below %s", num(a->slenderness * f, x));
+  else
+    snprintf(bound, sizeof bound, "section dimensions below %s times these", num(f, x));
+  if (b.density >= 1.0)
+    return rn_cli_usage_error(
+        "generate",
+        "%s: %s gives the %s lattice a relative density of %.6g (>= "
+        "1): not a lattice of rods; use %s (docs/lattices.md)",
+        a->output, src, kind, b.density, bound);
+  return rn_cli_usage_error("generate",
+                            "%s: with %s the struts of the %s lattice overlap at the "
+                            "joints (the joint zones cover all of bar e%d)%s: not a "
+                            "lattice of rods; use %s (docs/lattices.md)",
+                            a->output, src, kind, b.joint_bar + 1, why, bound);
+}
+
+/* What the scene reader takes (problems/scene_rods.c, scene_periodic.c): at
+ * most 1e8 rod vertices; "repeat" at most 100000 copies and 2e6 rods and joints
+ * once tiled.  0 or an exit status (message printed). */
+#define GEN_MAX_VERTICES 100000000.0
+static int check_readable(const gen_args *a, int nn, int nb) {
+  double copies = 1.0;
+  for (int k = 0; a->nrepeat && k < a->nrepeat; k++) copies *= a->repeat[k];
+  const double vertices = copies * nb * (a->sc.edges_per_rod + 1.0);
+  if (vertices > GEN_MAX_VERTICES)
+    return rn_cli_usage_error("generate",
+                              "%s: %d rods of %d edges%s make %.0f vertices: the scene "
+                              "reader takes at most %.0f",
+                              a->output, nb, a->sc.edges_per_rod,
+                              a->nrepeat ? " (times --repeat)" : "", vertices,
+                              GEN_MAX_VERTICES);
+  if (a->nrepeat && (copies > 100000.0 || copies * (nn + nb) > 2000000.0))
+    return rn_cli_usage_error("generate",
+                              "%s: --repeat makes %.0f copies of %d rods and joints: the "
+                              "scene reader tiles at most 100000 copies and 2000000 rods "
+                              "and joints",
+                              a->output, copies, nn + nb);
+  return 0;
+}
+
+/* check_struts on a periodic cell (bar vectors to the image ends). */
+static int check_pcell(const gen_args *a, rn_context *ctx, const rn_pcell *c) {
+  int rc = check_readable(a, c->nnodes, c->nbars);
+  if (rc) return rc;
+  size_t nb1 = (size_t)(c->nbars ? c->nbars : 1);
+  int *uv = malloc(2 * nb1 * sizeof(int));
+  double *d = malloc(3 * nb1 * sizeof(double)), L, V, extent = 0.0, span = 0.0;
+  if (!uv || !d) {
+    free(uv);
+    free(d);
+    fprintf(stderr, "rodnet generate: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  for (int e = 0; e < c->nbars; e++) {
+    const int *o = c->bar + 5 * e;
+    uv[2 * e] = o[0];
+    uv[2 * e + 1] = o[1];
+    for (int k = 0; k < 3; k++) {
+      d[3 * e + k] = c->xyz[3 * o[1] + k] - c->xyz[3 * o[0] + k];
+      for (int m = 0; m < c->dim; m++) d[3 * e + k] += o[2 + m] * c->vec[3 * m + k];
+    }
+  }
+  for (int k = 0; k < 3 * c->nnodes; k++) extent = fmax(extent, fabs(c->xyz[k]));
+  for (int k = 0; k < 9; k++) span += fabs(c->vec[k]); /* image ends reach x + a_m */
+  rn_pcell_measures(c, &L, &V);
+  rc = check_struts(a, ctx, c->dim, c->nnodes, c->nbars, uv, d, c->section_scale, V,
+                    extent + span);
+  free(uv);
+  free(d);
+  return rc;
+}
+
+/* check_struts on a finite block (the measure: its bounding box). */
+static int check_lattice(const gen_args *a, rn_context *ctx, const rn_lattice *lat) {
+  const int nn = rn_lattice_num_nodes(lat), nb = rn_lattice_num_bars(lat);
+  int rc0 = check_readable(a, nn, nb);
+  if (rc0) return rc0;
+  const int dim = rn_lattice_kind_dimension(rn_lattice_get_kind(lat));
+  int *uv = malloc(2 * (size_t)(nb ? nb : 1) * sizeof(int));
+  double *d = malloc(3 * (size_t)(nb ? nb : 1) * sizeof(double)), V = 1.0, extent = 0.0;
+  if (!uv || !d) {
+    free(uv);
+    free(d);
+    fprintf(stderr, "rodnet generate: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  for (int e = 0; e < nb; e++) {
+    double p[3], q[3];
+    rn_lattice_bar(lat, e, uv + 2 * e);
+    rn_lattice_node(lat, uv[2 * e], p);
+    rn_lattice_node(lat, uv[2 * e + 1], q);
+    for (int k = 0; k < 3; k++) d[3 * e + k] = q[k] - p[k];
+  }
+  for (int k = 0; k < dim; k++) {
+    V *= rn_lattice_extent(lat, k);
+    extent = fmax(extent, rn_lattice_extent(lat, k));
+  }
+  int rc = check_struts(a, ctx, dim, nn, nb, uv, d, NULL, V, extent);
+  free(uv);
+  free(d);
+  return rc;
+}
+
 static int generate_periodic(gen_args *a, rn_context *ctx) {
   rn_pcell c;
   rn_status st = a->reentrant ? rn_pcell_reentrant(ctx, a->cells, a->a, &c)
@@ -527,6 +803,11 @@ static int generate_periodic(gen_args *a, rn_context *ctx) {
       st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
   }
   if (!st) {
+    int rc = check_pcell(a, ctx, &c);
+    if (rc) {
+      rn_pcell_free(&c);
+      return rc;
+    }
     st = rn_pcell_write_scene(ctx, a->output, &c, &a->sc, a->nrepeat ? a->repeat : NULL);
   }
   if (st) {
@@ -565,6 +846,11 @@ int rn_cli_generate(int argc, char **argv) {
   }
   rn_lattice *lat = NULL;
   rn_status st = rn_lattice_build(ctx, a.kind, a.cells, a.a, &lat);
+  if (!st && (rc = check_lattice(&a, ctx, lat)) != 0) {
+    rn_lattice_destroy(&lat);
+    rn_context_destroy(&ctx);
+    return rc;
+  }
   if (!st) st = rn_lattice_write_scene(ctx, a.output, lat, &a.sc);
   if (st) {
     fprintf(stderr, "rodnet generate: %s\n", rn_context_last_error(ctx));

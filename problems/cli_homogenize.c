@@ -567,6 +567,12 @@ int rn_cli_homogenize(int argc, char **argv) {
     rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
     goto done;
   }
+  if (h.relative_density >= 1.0) /* issue 22 item 1 (docs/lattices.md) */
+    fprintf(stderr,
+            "rodnet homogenize: warning: %s: relative density %.6g >= 1: the struts "
+            "overlap, the rod model does not hold for this cell (docs/lattices.md, "
+            "\"Admissible sections\")\n",
+            a.scene, h.relative_density);
   if (!rn_homog_invert(h.nstrain, h.C, S)) {
     fprintf(stderr,
             "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "

@@ -11,6 +11,7 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "num_format.h"
 #include "rodnet_solve.h"
 #include "scene.h"
 
@@ -375,6 +376,7 @@ typedef struct path_rows {
   rn_path_point *p;
   size_t n, cap;
   int quiet, oom;
+  const char *path; /* the CSV being written (messages) */
 } path_rows;
 
 static const char *stability_name(int s) {
@@ -415,7 +417,26 @@ static int on_point(void *user, const rn_path_point *pt) {
 
 static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
   const path_rows *r = user;
-  (void)ctx;
+  /* every number finite, but the eigenvalue columns: "nan" there is documented
+   * (--no-eigenvalues; docs/path-following.md) */
+  rn_num_check chk = {0, 0.0, ""};
+  for (size_t i = 0; i < r->n && !chk.bad; i++) {
+    const rn_path_point *p = &r->p[i];
+    static const char *const col[] = {"load_factor", "control", "displacement",
+                                      "force",       "energy",  "arclength"};
+    const double v[] = {p->load_factor, p->control, p->displacement,
+                        p->force,       p->energy,  p->arclength};
+    for (int k = 0; k < 6 && !chk.bad; k++) {
+      char field[96];
+      snprintf(field, sizeof field, "column %s of step %d", col[k], p->step);
+      if (!isfinite(v[k])) rn_num_checked(&chk, field, v[k]);
+    }
+  }
+  if (chk.bad) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "%s",
+                                rn_num_check_message(&chk, r->path, msg, sizeof msg));
+  }
   fputs("step,event,load_factor,control,displacement,force,energy,lowest_eigenvalue,"
         "eigenvalue_scale,stability,arclength,corrector_iterations\n",
         f);
@@ -487,6 +508,7 @@ static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *
             rn_status_name(st), rn_context_last_error(ctx));
     return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
   }
+  rows->path = a->output;
   if ((st = rn_file_write_atomic(ctx, a->output, write_csv, rows))) {
     fprintf(stderr, "rodnet path: %s\n", rn_context_last_error(ctx));
     return RN_EXIT_INPUT;
@@ -526,7 +548,7 @@ int rn_cli_path(int argc, char **argv) {
     return RN_EXIT_INTERNAL;
   }
   rn_scene *scene = NULL;
-  path_rows rows = {NULL, 0, 0, a.quiet, 0};
+  path_rows rows = {NULL, 0, 0, a.quiet, 0, NULL};
   rn_cli_file files[3];
   rn_status st = RN_OK;
   /* every output writable before anything is computed */

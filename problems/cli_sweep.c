@@ -19,6 +19,7 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "num_format.h"
 #include "homog_path.h"
 #include "periodic_cell.h"
 #include "rodnet_solve.h"
@@ -333,12 +334,39 @@ typedef struct point_out {
   const rn_homogenization *h;
   const double *S;
   double seconds;
+  const char *path; /* the file being written (messages) */
 } point_out;
+
+/* The numbers of a point file are finite (issue 22: no "nan" in JSON): C,
+ * the relative density and the engineering constants 1/S_ii, -S_ij/S_ii that
+ * rn_homog_put_constants writes. */
+static int point_finite(const point_out *o, rn_num_check *chk) {
+  const int n = o->h->nstrain;
+  char field[64];
+  rn_num_checked(chk, "relative_density", o->h->relative_density);
+  for (int i = 0; i < n * n; ++i) {
+    snprintf(field, sizeof field, "C[%d]", i);
+    rn_num_checked(chk, field, o->h->C[i]);
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      snprintf(field, sizeof field, "constants (compliance S[%d][%d])", i, j);
+      rn_num_checked(chk, field,
+                     i == j ? 1.0 / o->S[i * n + i] : -o->S[i * n + j] / o->S[i * n + i]);
+    }
+  rn_num_checked(chk, "time_s", o->seconds);
+  return !chk->bad;
+}
 
 static rn_status write_point(FILE *f, void *user, rn_context *ctx) {
   const point_out *o = user;
   int n = o->h->nstrain;
-  (void)ctx;
+  rn_num_check chk = {0, 0.0, ""};
+  if (!point_finite(o, &chk)) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "%s",
+                                rn_num_check_message(&chk, o->path, msg, sizeof msg));
+  }
   fprintf(f,
           "{\n  \"index\": %d,\n  \"lattice\": \"%s\",\n  \"joint_model\": \"%s\",\n"
           "  \"relative_density_target\": %.17g,\n  \"seed\": %ld,\n",
@@ -406,7 +434,7 @@ static rn_status run_point(rn_context *ctx, const sweep_spec *s, const point *p,
   if (!st && !rn_homog_invert(h.nstrain, h.C, S))
     st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the effective stiffness is singular");
   if (!st) {
-    point_out o = {p, &h, S, seconds};
+    point_out o = {p, &h, S, seconds, out};
     st = rn_file_write_atomic(ctx, out, write_point, &o);
   }
   rn_scene_destroy(&sc);
@@ -433,14 +461,43 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
     const cJSON *c = cJSON_GetObjectItemCaseSensitive(r, "constants");
 #define NUM(o, k) cJSON_GetNumberValue(cJSON_GetObjectItemCaseSensitive(o, k))
 #define STR(o, k) cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(o, k))
-    fprintf(f, "%d,%s,%s,%.17g,%.0f,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g,%.6g\n", k,
-            STR(r, "lattice"), STR(r, "joint_model"), NUM(r, "relative_density_target"),
-            NUM(r, "seed"), NUM(r, "relative_density"), NUM(r, "dimension"), NUM(c, "E1"),
-            NUM(c, "E2"), NUM(c, "nu12"), NUM(c, "G12"), NUM(r, "time_s"));
+    /* a number missing from the point file reads as NaN: refused, not "nan" */
+    static const char *const col[] = {"relative_density_target",
+                                      "seed",
+                                      "relative_density",
+                                      "dimension",
+                                      "constants.E1",
+                                      "constants.E2",
+                                      "constants.nu12",
+                                      "constants.G12",
+                                      "time_s"};
+    const double v[] = {NUM(r, "relative_density_target"),
+                        NUM(r, "seed"),
+                        NUM(r, "relative_density"),
+                        NUM(r, "dimension"),
+                        NUM(c, "E1"),
+                        NUM(c, "E2"),
+                        NUM(c, "nu12"),
+                        NUM(c, "G12"),
+                        NUM(r, "time_s")};
+    const char *lattice = STR(r, "lattice"), *joint = STR(r, "joint_model");
+    rn_num_check chk = {0, 0.0, ""};
+    for (int i = 0; i < 9; ++i) rn_num_checked(&chk, col[i], v[i]);
+    if (!lattice || !joint)
+      rn_num_checked(&chk, lattice ? "joint_model" : "lattice", NAN);
+    if (!chk.bad)
+      fprintf(f, "%d,%s,%s,%.17g,%.0f,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g,%.6g\n", k,
+              lattice, joint, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
 #undef NUM
 #undef STR
     cJSON_Delete(r);
     free(text);
+    if (chk.bad) {
+      char msg[512], what[4200];
+      snprintf(what, sizeof what, "%s/sweep.csv (from %s)", in->dir, path);
+      return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "%s",
+                                  rn_num_check_message(&chk, what, msg, sizeof msg));
+    }
   }
   return RN_OK;
 }

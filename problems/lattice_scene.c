@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "atomic_file.h"
+#include "lattice_check.h"
 
 typedef struct scene_out {
   FILE *f;
@@ -394,6 +395,20 @@ rn_status rn_lattice_write_scene(rn_context *ctx, const char *path, const rn_lat
         "be loaded along that axis",
         rn_lattice_kind_name(rn_lattice_get_kind(lat)),
         "xyz"[opt->load_axis < 0 || opt->load_axis > 2 ? 0 : opt->load_axis]);
+  /* a scene with "nan" or "inf" is not JSON (issue 22): refuse it */
+  rn_num_check chk = {0, 0.0, ""};
+  rn_lattice_scene_finite(opt, &chk);
+  for (int k = 0; k < 3; k++) {
+    const double ext = rn_lattice_extent(lat, k);
+    rn_num_checked(&chk, "the lattice's extent (joint positions)", ext);
+    rn_num_checked(&chk, "the load (value times extent)", opt->load_value * ext);
+    rn_num_checked(&chk, "the load (value times extent)", opt->load_value2 * ext);
+  }
+  if (chk.bad) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "generate: %s",
+                                rn_num_check_message(&chk, path, msg, sizeof msg));
+  }
   scene_out o = {NULL, lat, opt, NULL, NULL};
   rn_status st = rn_file_write_atomic(ctx, path, write_scene, &o);
   free(o.first);

@@ -233,3 +233,23 @@ size_t rn_format_long(long v, char *buf) {
   *s = '\0';
   return (size_t)(s - buf);
 }
+
+int rn_num_checked(rn_num_check *chk, const char *field, double x) {
+  if (isfinite(x)) return 1;
+  if (!chk->bad) {
+    chk->bad = 1;
+    chk->value = x;
+    snprintf(chk->field, sizeof chk->field, "%s", field ? field : "a number");
+  }
+  return 0;
+}
+
+const char *rn_num_check_message(const rn_num_check *chk, const char *path, char *buf,
+                                 size_t n) {
+  snprintf(buf, n, "%s: %s is %s (not a finite number); no file written",
+           path ? path : "output", chk->field,
+           isnan(chk->value) ? "nan"
+           : chk->value > 0  ? "inf"
+                             : "-inf");
+  return buf;
+}

@@ -22,4 +22,25 @@ size_t rn_format_g17(double x, char *buf);
 /* Writes v as "%ld" into buf (at least RN_NUM_BUF bytes); returns the length. */
 size_t rn_format_long(long v, char *buf);
 
+/* The writers refuse non-finite numbers (issue 22): rn_format_g17 writes "nan"
+ * or "inf" like printf, which is not JSON and not a number any reader of
+ * rodnet's files takes.  A writer keeps an rn_num_check, passes every number
+ * through rn_num_checked with the name of its field, and after the write
+ * turns a recorded non-finite value into an error naming the file and the
+ * first such field (rn_num_check_message); the file is then discarded
+ * (atomic_file.h). */
+typedef struct rn_num_check {
+  int bad;         /* a non-finite number was met */
+  double value;    /* the first one */
+  char field[128]; /* its field */
+} rn_num_check;
+
+/* 1 if x is finite; otherwise records x and field (the first time) in *chk
+ * and returns 0. */
+int rn_num_checked(rn_num_check *chk, const char *field, double x);
+
+/* "PATH: FIELD is nan (not a finite number); no file written" into buf[n]. */
+const char *rn_num_check_message(const rn_num_check *chk, const char *path, char *buf,
+                                 size_t n);
+
 #endif

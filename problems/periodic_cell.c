@@ -2,11 +2,13 @@
 #include "periodic_cell.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "atomic_file.h"
+#include "lattice_check.h"
 
 void rn_pcell_free(rn_pcell *c) {
   if (!c) return;
@@ -40,20 +42,11 @@ static void fractional(const rn_pcell *c, const double p[3], double f[3]) {
   }
 }
 
-/* Sort keys: nodes by canonical x; bars by their canonical (u, v, image). */
-typedef struct node_key {
-  double x;
-  int n;
-} node_key;
+/* Sort keys of the bars: their canonical (u, v, image). */
 typedef struct bar_key {
   int k[5];
   int e;
 } bar_key;
-
-static int node_cmp(const void *a, const void *b) {
-  const node_key *p = a, *q = b;
-  return (p->x > q->x) - (p->x < q->x);
-}
 
 static int bar_cmp(const void *a, const void *b) {
   const bar_key *p = a, *q = b;
@@ -62,42 +55,102 @@ static int bar_cmp(const void *a, const void *b) {
   return (p->e > q->e) - (p->e < q->e);
 }
 
-/* Canonical copy of every node in the cell: rep[n] = the node's cluster (nodes
- * within 1e-9 of the cell size after the shift; sweep over x), q[3 n] its
- * position in the cell, img[3 n] its lattice shift. */
+/* A hash grid of boxes of side h: node n in box floor(q / h) (per axis), the
+ * boxes' nodes chained through next[]; open addressing on the packed box
+ * index, Fibonacci hashing (the top bits). */
+typedef struct box_grid {
+  int64_t *key; /* packed box index, INT64_MIN: empty */
+  int *head;    /* first node of the box; next[n] the following one, -1 ends */
+  size_t mask;
+  int bits;
+} box_grid;
+
+static int64_t box_key(const long long g[3]) {
+  /* 21 bits per axis, offset: boxes within +-2^20 of the origin (the caller's
+   * h keeps the cell within +-1e5 boxes) */
+  return ((int64_t)(g[0] + (1 << 20)) << 42) | ((int64_t)(g[1] + (1 << 20)) << 21) |
+         (int64_t)(g[2] + (1 << 20));
+}
+
+static size_t box_slot(const box_grid *g, int64_t k) {
+  return (size_t)(((uint64_t)k * 0x9E3779B97F4A7C15ull) >> (64 - g->bits));
+}
+
+/* The first node of box k, -1 if none. */
+static int box_find(const box_grid *g, int64_t k) {
+  for (size_t i = box_slot(g, k);; i = (i + 1) & g->mask) {
+    if (g->key[i] == k) return g->head[i];
+    if (g->key[i] == INT64_MIN) return -1;
+  }
+}
+
+/* The head slot of box k, created (empty) if new. */
+static int *box_insert(box_grid *g, int64_t k) {
+  size_t i = box_slot(g, k);
+  while (g->key[i] != k && g->key[i] != INT64_MIN) i = (i + 1) & g->mask;
+  if (g->key[i] == INT64_MIN) {
+    g->key[i] = k;
+    g->head[i] = -1;
+  }
+  return &g->head[i];
+}
+
+/* Canonical copy of every node in the cell: rep[n] = the node's cluster (the
+ * first node, in index order, within 1e-9 of the cell size after the shift),
+ * q[3 n] its position in the cell, img[3 n] its lattice shift.  A hash grid of
+ * boxes of 1e-5 of the cell size finds the neighbours in the 27 boxes around a
+ * node: O(nn).  (A sweep over x with a 1e-9 window, as before, compared every
+ * node with the whole column of nodes sharing its x: O(nn sqrt(nn)) in 2D;
+ * issue 22 item 4.) */
 static rn_status canonical_nodes(const rn_pcell *c, int nn, const double *p, double *q,
                                  int *img, int *rep) {
   double scale = 0.0;
-  node_key *key = malloc((size_t)(nn ? nn : 1) * sizeof(*key));
-  if (!key) return RN_ERR_ALLOC;
   for (int k = 0; k < 9; k++) scale = fmax(scale, fabs(c->vec[k]));
-  const double tol = 1e-9 * scale;
+  const double tol = 1e-9 * scale, h = 1e-5 * scale;
+  box_grid g;
+  g.bits = 4;
+  while (((size_t)1 << g.bits) < 2 * (size_t)(nn ? nn : 1)) g.bits++;
+  g.mask = ((size_t)1 << g.bits) - 1;
+  g.key = malloc((g.mask + 1) * sizeof(*g.key));
+  g.head = malloc((g.mask + 1) * sizeof(*g.head));
+  int *next = malloc((size_t)(nn ? nn : 1) * sizeof(int));
+  if (!g.key || !g.head || !next) {
+    free(g.key);
+    free(g.head);
+    free(next);
+    return RN_ERR_ALLOC;
+  }
+  for (size_t i = 0; i <= g.mask; i++) g.key[i] = INT64_MIN;
   for (int n = 0; n < nn; n++) {
     double f[3];
+    long long box[3];
     fractional(c, p + 3 * n, f);
     for (int m = 0; m < 3; m++) img[3 * n + m] = m < c->dim ? (int)floor(f[m] + 1e-9) : 0;
     for (int k = 0; k < 3; k++) {
       q[3 * n + k] = p[3 * n + k];
       for (int m = 0; m < c->dim; m++) q[3 * n + k] -= img[3 * n + m] * c->vec[3 * m + k];
+      box[k] = h > 0.0 ? (long long)floor(q[3 * n + k] / h) : 0;
     }
-    key[n].x = q[3 * n];
-    key[n].n = n;
-  }
-  qsort(key, (size_t)nn, sizeof(*key), node_cmp);
-  for (int i = 0; i < nn; i++) {
-    const int a = key[i].n;
-    rep[a] = a;
-    for (int j = i - 1; j >= 0 && key[j].x >= key[i].x - tol; j--) {
-      const int b = key[j].n;
-      double d = fabs(q[3 * a] - q[3 * b]) + fabs(q[3 * a + 1] - q[3 * b + 1]) +
-                 fabs(q[3 * a + 2] - q[3 * b + 2]);
-      if (d <= tol) {
-        rep[a] = rep[b];
-        break;
+    rep[n] = n;
+    for (int s = 0; s < 27 && rep[n] == n; s++) { /* the boxes around: earlier nodes */
+      long long nb[3] = {box[0] + s % 3 - 1, box[1] + (s / 3) % 3 - 1,
+                         box[2] + s / 9 - 1};
+      for (int b = box_find(&g, box_key(nb)); b >= 0; b = next[b]) {
+        double d = fabs(q[3 * n] - q[3 * b]) + fabs(q[3 * n + 1] - q[3 * b + 1]) +
+                   fabs(q[3 * n + 2] - q[3 * b + 2]);
+        if (d <= tol) {
+          rep[n] = rep[b];
+          break;
+        }
       }
     }
+    int *head = box_insert(&g, box_key(box));
+    next[n] = *head;
+    *head = n;
   }
-  free(key);
+  free(g.key);
+  free(g.head);
+  free(next);
   return RN_OK;
 }
 
@@ -235,10 +288,10 @@ rn_status rn_pcell_reentrant(rn_context *ctx, const int cells[2], double a,
   double xyz[6] = {0.0, 0.0, 0.0, 0.0, h, 0.0};
   int bar[15] = {0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, -1, 1, 0};
   rn_pcell prim = {
-      2,   {2.0 * l * cos(th), 0, 0, l * cos(th), h + l * sin(th), 0, 0, 0, 0},
-      2,   3,
-      xyz, bar,
-      NULL};
+      2,    {2.0 * l * cos(th), 0, 0, l * cos(th), h + l * sin(th), 0, 0, 0, 0},
+      2,    3,
+      xyz,  bar,
+      NULL, NULL};
   int rep[3] = {cells[0], cells[1], 1};
   return rn_pcell_tile(ctx, &prim, rep, out);
 }
@@ -299,7 +352,33 @@ typedef struct pcell_out {
   const rn_pcell *c;
   const rn_lattice_scene *opt;
   const int *repeat;
+  /* the rod ends at each node, 2 e + end in order of e then end: node n's are
+   * end_list[end_start[n] .. end_start[n + 1]) (one pass over the bars, so the
+   * joints are written in O(nodes + bars), not O(nodes x bars)) */
+  int *end_start, *end_list;
 } pcell_out;
+
+/* Fills o->end_start and o->end_list (counting sort of the bar ends by node);
+ * -1 if out of memory. */
+static int index_ends(pcell_out *o) {
+  const rn_pcell *c = o->c;
+  o->end_start = calloc((size_t)c->nnodes + 1, sizeof(int));
+  o->end_list = malloc(2 * (size_t)(c->nbars ? c->nbars : 1) * sizeof(int));
+  int *fill = malloc(((size_t)c->nnodes + 1) * sizeof(int));
+  if (!o->end_start || !o->end_list || !fill) {
+    free(fill);
+    return -1;
+  }
+  for (int e = 0; e < c->nbars; e++)
+    for (int end = 0; end < 2; end++) o->end_start[c->bar[5 * e + end] + 1]++;
+  for (int n = 0; n < c->nnodes; n++) o->end_start[n + 1] += o->end_start[n];
+  memcpy(fill, o->end_start, ((size_t)c->nnodes + 1) * sizeof(int));
+  for (int e = 0; e < c->nbars; e++) /* ascending e, then end: the written order */
+    for (int end = 0; end < 2; end++)
+      o->end_list[fill[c->bar[5 * e + end]]++] = 2 * e + end;
+  free(fill);
+  return 0;
+}
 
 static void put_vec3(FILE *f, const double *v) {
   fprintf(f, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
@@ -310,8 +389,19 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
   const rn_pcell *c = o->c;
   const rn_lattice_scene *opt = o->opt;
   (void)ctx;
-  fputs("{\n  \"description\": ", f);
-  fprintf(f, "\"%s\",\n", opt->description ? opt->description : "rodnet periodic cell");
+  fputs("{\n  \"description\": \"", f);
+  for (const unsigned char *p =
+           (const unsigned char *)(opt->description ? opt->description
+                                                    : "rodnet periodic cell");
+       *p; p++) { /* a JSON string */
+    if (*p == '"' || *p == '\\')
+      fprintf(f, "\\%c", *p);
+    else if (*p < 0x20)
+      fprintf(f, "\\u%04x", *p);
+    else
+      fputc(*p, f);
+  }
+  fputs("\",\n", f);
   fputs("  \"periodic\": {\"vectors\": [", f);
   for (int m = 0; m < c->dim; m++) {
     if (m) fputs(", ", f);
@@ -385,21 +475,22 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
     fprintf(f, "    {\"name\": \"v%d\", \"model\": \"%s\", \"ends\": [", n + 1,
             opt->joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
     for (int pass = 0; pass < 2; pass++) /* ends without an image first */
-      for (int e = 0; e < c->nbars; e++)
-        for (int end = 0; end < 2; end++) {
-          const int *b = c->bar + 5 * e;
-          int shifted = end && (b[2] || b[3] || b[4]);
-          if (b[end] != n || shifted != pass) continue;
-          fprintf(f, "%s\n      {\"rod\": \"e%d\", \"end\": \"%s\"", first ? "" : ",",
-                  e + 1, end ? "end" : "start");
-          if (end && (b[2] || b[3] || b[4])) {
-            fprintf(f, ", \"image\": [%d, %d", b[2], b[3]);
-            if (c->dim == 3) fprintf(f, ", %d", b[4]);
-            fputc(']', f);
-          }
-          fputc('}', f);
-          first = 0;
+      for (int i = o->end_start[n]; i < o->end_start[n + 1]; i++) {
+        const int e = o->end_list[i] >> 1, end = o->end_list[i] & 1;
+        if (c->work) ++*c->work;
+        const int *b = c->bar + 5 * e;
+        int shifted = end && (b[2] || b[3] || b[4]);
+        if (shifted != pass) continue;
+        fprintf(f, "%s\n      {\"rod\": \"e%d\", \"end\": \"%s\"", first ? "" : ",",
+                e + 1, end ? "end" : "start");
+        if (shifted) {
+          fprintf(f, ", \"image\": [%d, %d", b[2], b[3]);
+          if (c->dim == 3) fprintf(f, ", %d", b[4]);
+          fputc(']', f);
         }
+        fputc('}', f);
+        first = 0;
+      }
     fprintf(f, "]}%s\n", n + 1 < c->nnodes ? "," : "");
   }
   fputs("  ]\n}\n", f);
@@ -408,8 +499,29 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
 
 rn_status rn_pcell_write_scene(rn_context *ctx, const char *path, const rn_pcell *c,
                                const rn_lattice_scene *opt, const int *repeat) {
-  pcell_out o = {c, opt, repeat};
-  return rn_file_write_atomic(ctx, path, write_pcell, &o);
+  /* a scene with "nan" or "inf" is not JSON (issue 22): refuse it */
+  rn_num_check chk = {0, 0.0, ""};
+  rn_lattice_scene_finite(opt, &chk);
+  for (int k = 0; k < 9; k++) rn_num_checked(&chk, "periodic.vectors", c->vec[k]);
+  for (int k = 0; k < 3 * c->nnodes && !chk.bad; k++) {
+    char field[64];
+    snprintf(field, sizeof field, "the position of joint v%d", k / 3 + 1);
+    rn_num_checked(&chk, field, c->xyz[k]);
+  }
+  for (int e = 0; c->section_scale && e < c->nbars; e++)
+    rn_num_checked(&chk, "a section scale", c->section_scale[e]);
+  if (chk.bad) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "generate: %s",
+                                rn_num_check_message(&chk, path, msg, sizeof msg));
+  }
+  pcell_out o = {c, opt, repeat, NULL, NULL};
+  rn_status st = index_ends(&o)
+                     ? rn_context_set_error(ctx, RN_ERR_ALLOC, "generate: out of memory")
+                     : rn_file_write_atomic(ctx, path, write_pcell, &o);
+  free(o.end_start);
+  free(o.end_list);
+  return st;
 }
 
 void rn_pcell_section_for_density(const rn_pcell *c, double rho, rn_lattice_scene *opt) {

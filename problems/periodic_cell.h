@@ -15,6 +15,10 @@ typedef struct rn_pcell {
   double *xyz;           /* node positions [3 nnodes], inside the cell */
   int *bar;              /* [5 nbars]: from node, to node, image of the "to" node (3) */
   double *section_scale; /* NULL, or [nbars]: each bar's section dimensions scaled */
+  /* NULL, or a counter that rn_pcell_write_scene increases by the rod ends it
+   * visits while listing the joints' ends (4 per bar: a test of its linear
+   * cost, tests/unit/problems_generate_test.c) */
+  long *work;
 } rn_pcell;
 
 /* The periodic cell of cells[0] x cells[1] (x cells[2]) cells of a lattice kind

@@ -17,12 +17,25 @@ typedef struct json_out {
   int not_finite; /* a NaN/Inf was met: the file is discarded */
   const rn_scene *scene;
   const rn_result_info *info;
+  const char *path;
+  /* the field being written, for the message of a non-finite value: where,
+   * or `KIND "NAME": where` (a rod's or joint's) */
+  const char *where, *kind, *name;
+  rn_num_check chk;
 } json_out;
 
-/* Appends x to buf ("null" if it is not finite); returns the characters written
- * (at most RN_NUM_BUF - 1). */
+/* Appends x to buf ("null" if it is not finite: the field is recorded and the
+ * file discarded); returns the characters written (at most RN_NUM_BUF - 1). */
 static size_t num_text(json_out *o, double x, char *buf) {
   if (isfinite(x)) return rn_format_g17(x, buf);
+  if (!o->not_finite) {
+    char field[128];
+    if (o->name)
+      snprintf(field, sizeof field, "%s \"%s\": %s", o->kind, o->name, o->where);
+    else
+      snprintf(field, sizeof field, "%s", o->where ? o->where : "a number");
+    rn_num_checked(&o->chk, field, x);
+  }
   o->not_finite = 1;
   memcpy(buf, "null", 5);
   return 4;
@@ -63,6 +76,7 @@ static void put_str(FILE *f, const char *s) {
 
 static void put_key_num(json_out *o, const char *key, double x) {
   fprintf(o->f, "  \"%s\": ", key);
+  o->where = key;
   put_num(o, x);
   fputs(",\n", o->f);
 }
@@ -77,6 +91,7 @@ static rn_status put_terms(json_out *o, rn_network *net) {
   free(x);
   if (st) return st;
   fputs("  \"energy_terms\": {", o->f);
+  o->where = "energy_terms";
   for (int t = 0; t < RN_TERM_COUNT; t++) {
     fprintf(o->f, "%s\"%s\": ", t ? ", " : "", names[t]);
     put_num(o, E[t]);
@@ -102,6 +117,7 @@ static rn_status put_cell(json_out *o, rn_network *net) {
   if (st) return st;
   fprintf(o->f, "  \"cell\": {\"dimension\": %d, \"%s\": ", dim,
           dim == 2 ? "area" : "volume");
+  o->where = "cell";
   put_num(o, measure);
   for (int q = 0; q < 2; q++) {
     fprintf(o->f, ", \"%s\": [", q ? "stress" : "strain");
@@ -132,6 +148,7 @@ static rn_status put_contact(json_out *o, rn_network *net) {
   const double vals[6] = {dhat,       kappa,     r,
                           cs.min_gap, cs.energy, cs.force}; /* min_gap: null if inf */
   fputs("  \"contact\": {", o->f);
+  o->where = "contact";
   for (int k = 0; k < 6; k++) {
     fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
     if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
@@ -151,6 +168,7 @@ static void put_equilibrium(json_out *o) {
   const double vals[6] = {in->force_residual,  in->force_scale,  in->force_tolerance,
                           in->moment_residual, in->moment_scale, in->moment_tolerance};
   fputs("  \"equilibrium\": {", o->f);
+  o->where = "equilibrium";
   for (int k = 0; k < 6; k++) {
     fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
     if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
@@ -180,6 +198,7 @@ static void put_stability(json_out *o) {
     return;
   }
   fputs("  \"stability\": {\"checked\": true, \"lowest_eigenvalue\": ", o->f);
+  o->where = "stability";
   put_num(o, st->lowest_eigenvalue);
   fputs(", \"scale\": ", o->f);
   put_num(o, st->scale);
@@ -254,6 +273,7 @@ static void put_summary(json_out *o, rn_network *net) {
   put_key_num(o, "load_factor", rn_network_load_factor(net));
   put_key_num(o, "time_s", in->time_s);
   fputs("  \"timing\": {\"hessian_s\": ", f);
+  o->where = "timing";
   put_num(o, in->hessian_s);
   fputs(", \"preconditioner_setup_s\": ", f);
   put_num(o, in->preconditioner_setup_s);
@@ -278,6 +298,7 @@ static void put_summary(json_out *o, rn_network *net) {
     for (int q = 0; q < in->part_ranks; q++)
       fprintf(f, "%s%ld", q ? ", " : "", in->part_stencils[q]);
     fprintf(f, "], \"edge_cut\": %ld, \"imbalance\": ", in->edge_cut);
+    o->where = "partition.imbalance";
     put_num(o, in->imbalance);
     fputs("},\n", f);
   }
@@ -290,6 +311,9 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   if (st) return st;
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_rod_name(net, rod));
+  o->kind = "rod";
+  o->name = rn_network_rod_name(net, rod);
+  o->where = "vertices";
   fprintf(f, ", \"num_vertices\": %d,\n     \"vertices\": [", nv);
   /* rows go through a 16 KiB chunk: one fwrite per chunk, not per row */
   enum { ROW = 3 * RN_NUM_BUF + 16, CHUNK = 1 << 14 };
@@ -313,6 +337,7 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   memcpy(chunk + n, theta_key, sizeof theta_key - 1);
   n += sizeof theta_key - 1;
   if ((st = rn_network_rod_theta(net, rod, buf))) return st;
+  o->where = "theta";
   for (int i = 0; i + 1 < nv; i++) {
     if (n + ROW > CHUNK) {
       fwrite(chunk, 1, n, f);
@@ -326,6 +351,7 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   }
   fwrite(chunk, 1, n, f);
   fputs("]}", f);
+  o->name = NULL;
   return RN_OK;
 }
 
@@ -343,6 +369,9 @@ static rn_status put_joint(json_out *o, rn_network *net, int j) {
   FILE *f = o->f;
   fputs("    {\"name\": ", f);
   put_str(f, rn_network_joint_name(net, j));
+  o->kind = "joint";
+  o->name = rn_network_joint_name(net, j);
+  o->where = "position";
   fprintf(
       f, ", \"model\": \"%s\", \"valence\": %d,\n     \"position\": ",
       rn_network_joint_model(net, j) == RN_JOINT_RIGID
@@ -351,11 +380,13 @@ static rn_status put_joint(json_out *o, rn_network *net, int j) {
       rn_network_joint_valence(net, j));
   put_vec(o, x);
   fputs(",\n     \"rotation\": [", f);
+  o->where = "rotation";
   for (int r = 0; r < 3; r++) {
     fputs(r ? ", " : "", f);
     put_vec(o, &R[3 * r]);
   }
   fputs("]}", f);
+  o->name = NULL;
   return RN_OK;
 }
 
@@ -428,6 +459,7 @@ static rn_status put_reactions(json_out *o, rn_network *net) {
     return st;
   }
   fputs(",\n  \"reactions\": {\n    \"supports\": [", o->f);
+  o->where = "reactions";
   for (int i = 0; i < ns; i++) {
     fputs(i ? ",\n" : "\n", o->f);
     put_support(o, net, &r[i]);
@@ -477,15 +509,21 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     return rn_context_set_error(ctx, st, "result JSON: %s",
                                 *msg ? msg : rn_status_message(st));
   }
-  if (o->not_finite)
-    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
-                                "result JSON: the result contains NaN or infinite "
-                                "values; no file written");
+  if (o->not_finite) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "result JSON %s",
+                                rn_num_check_message(&o->chk, o->path, msg, sizeof msg));
+  }
   return RN_OK;
 }
 
 rn_status rn_result_write_json(rn_context *ctx, const char *path, const rn_scene *scene,
                                const rn_result_info *info) {
-  json_out o = {NULL, 0, scene, info};
+  json_out o;
+  memset(&o, 0, sizeof o);
+  o.scene = scene;
+  o.info = info;
+  o.path = path;
+  o.where = "summary";
   return rn_file_write_atomic(ctx, path, write_result, &o);
 }

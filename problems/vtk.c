@@ -34,6 +34,12 @@ typedef struct vtk_out {
                            moment, rn_network_internal_forces */
   char *buf;            /* output not yet handed to f: len bytes of OUT_CAP */
   size_t len;
+  const char *path;
+  /* the array and rod (or joint) being written, for the message of a
+   * non-finite value (the first is recorded, the file discarded) */
+  const char *array;
+  int rod, joint;
+  rn_num_check chk;
 } vtk_out;
 
 /* Cached stencil fields of rod (vtk_out.vf): moment[2 n], twist_moment[n],
@@ -352,6 +358,16 @@ static void put_rows(vtk_out *o, const double *v, int rows, int ncomp) {
     for (int k = 0; k < ncomp; k++) {
       double x = v[ncomp * r + k];
       if (!isfinite(x)) {
+        if (!o->not_finite) {
+          char field[128];
+          if (o->rod >= 0)
+            snprintf(field, sizeof field, "array \"%s\" of rod \"%s\"", o->array,
+                     rn_network_rod_name(o->net, o->rod));
+          else
+            snprintf(field, sizeof field, "array \"%s\" of joint \"%s\"", o->array,
+                     rn_network_joint_name(o->net, o->joint));
+          rn_num_checked(&o->chk, field, x);
+        }
         o->not_finite = 1;
         x = 0;
       }
@@ -402,6 +418,8 @@ static rn_status joint_rows(vtk_out *o, const vtk_field *fld) {
   rn_status st = RN_OK;
   for (int j = 0; j < nj && !st; j++) {
     st = joint_row(o, fld, j, o->val);
+    o->rod = -1;
+    o->joint = j;
     if (!st) put_rows(o, o->val, 1, fld->ncomp);
   }
   return st;
@@ -419,6 +437,8 @@ static rn_status data_array(vtk_out *o, const vtk_field *fld) {
   for (int r = 0; r < nrods && !st; r++) {
     int rows = rn_network_rod_num_vertices(o->net, r) - fld->on_edges;
     st = fld->fill(o, r, o->val);
+    o->array = fld->name;
+    o->rod = r;
     if (!st) put_rows(o, o->val, rows, fld->ncomp);
   }
   if (!st) st = joint_rows(o, fld);
@@ -517,10 +537,11 @@ static rn_status write_vtu(FILE *f, void *user, rn_context *ctx) {
     return rn_context_set_error(ctx, st, "VTK output: %s",
                                 *msg ? msg : rn_status_message(st));
   }
-  if (o->not_finite)
-    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
-                                "VTK output: the result contains "
-                                "NaN or infinite values; no file written");
+  if (o->not_finite) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "VTK output %s",
+                                rn_num_check_message(&o->chk, o->path, msg, sizeof msg));
+  }
   return RN_OK;
 }
 
@@ -529,5 +550,8 @@ rn_status rn_vtk_write(rn_context *ctx, const char *path, const rn_scene *scene)
   memset(&o, 0, sizeof o);
   o.scene = scene;
   o.net = rn_scene_network(scene);
+  o.path = path;
+  o.array = "Points";
+  o.rod = -1;
   return rn_file_write_atomic(ctx, path, write_vtu, &o);
 }

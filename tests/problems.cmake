@@ -298,6 +298,79 @@ rn_cli_test(problems_cli_periodic_slenderness_needs_periodic 2
             ARGS generate square --slenderness 0.1 -o ${gen}/x.json)
 rn_cli_test(problems_cli_periodic_no_load 2 "--load does not apply to a periodic cell"
             ARGS generate square --periodic --load stretch-x:0.1 -o ${gen}/x.json)
+# ---- issue 22 "Data safety and wrong answers": rodnet generate ------------------------
+# Item 1: only a lattice of rods: relative density below 1 and struts that do not
+# overlap at the joints, for every kind and every way of giving the section
+# (docs/lattices.md, "Admissible sections"); nothing written.
+foreach(kind square triangular honeycomb kagome reentrant cubic bcc octet)
+  rn_cli_test(problems_cli_generate_bound_slenderness_${kind} 2
+              "relative density of [0-9.e+]+ \\(>= 1\\): not a lattice of rods; use --slenderness below 0\\.[0-9]+"
+              STDERR_LINES 2 ABSENT ${gen}/bound_${kind}.json REMOVE ${gen}/bound_${kind}.json
+              ARGS generate ${kind} --periodic --slenderness 1e6 -o ${gen}/bound_${kind}.json)
+  rn_cli_test(problems_cli_generate_bound_section_periodic_${kind} 2
+              "--section circle:1000 gives the ${kind} lattice a relative density of .*not a lattice of rods; use section dimensions below"
+              ABSENT ${gen}/bound_${kind}.json REMOVE ${gen}/bound_${kind}.json
+              ARGS generate ${kind} --periodic --section circle:1000 -o ${gen}/bound_${kind}.json)
+  if(NOT kind STREQUAL "reentrant")
+    rn_cli_test(problems_cli_generate_bound_section_${kind} 2
+                "--section rectangle:0.5,0.5 gives the ${kind} lattice a relative density of .*not a lattice of rods"
+                ABSENT ${gen}/bound_${kind}.json REMOVE ${gen}/bound_${kind}.json
+                ARGS generate ${kind} --section rectangle:0.5,0.5 -o ${gen}/bound_${kind}.json)
+  endif()
+endforeach()
+# the re-entrant honeycomb's 60-degree joints bind before its density: overlapping
+# joint zones at a density below 1, from --slenderness and from --relative-density
+rn_cli_test(problems_cli_generate_bound_joints_reentrant 2
+            "with --slenderness 0.45 the struts of the reentrant lattice overlap at the joints .*use --slenderness below 0\\.433"
+            ABSENT ${gen}/bound_re.json REMOVE ${gen}/bound_re.json
+            ARGS generate reentrant --periodic --slenderness 0.45 -o ${gen}/bound_re.json)
+rn_cli_test(problems_cli_generate_bound_joints_density 2
+            "with --relative-density 0.95 the struts of the reentrant lattice overlap at the joints .*use --relative-density below 0\\.88"
+            ABSENT ${gen}/bound_re.json REMOVE ${gen}/bound_re.json
+            ARGS generate reentrant --periodic --relative-density 0.95 -o ${gen}/bound_re.json)
+rn_cli_test(problems_cli_generate_bound_joints_ok 0 "periodic reentrant cell"
+            ARGS generate reentrant --periodic --slenderness 0.43 -o ${gen}/bound_re_ok.json)
+# Item 2: what generate writes is finite and readable back (was: -nan and inf in
+# the JSON at 1e300 and 1e160, an unreadable scene at 1e100); nothing written.
+foreach(size 1e300 1e160 1e100)
+  rn_cli_test(problems_cli_generate_range_cell_${size} 2
+              "--cell-size 1e\\+[0-9]+: the cell size must be at least .* at most 1e\\+30"
+              ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+              ARGS generate honeycomb --periodic --cell-size ${size} -o ${gen}/range.json)
+endforeach()
+rn_cli_test(problems_cli_generate_range_cell_finite 2 "the cell size must be at least"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate octet --cell-size 1e-40 -o ${gen}/range.json)
+rn_cli_test(problems_cli_generate_range_section 2
+            "range.json: a section dimension of 5.7735e-301: section dimensions must lie in \\[1e-30, 1e\\+30\\]"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate honeycomb --periodic --slenderness 1e-300 -o ${gen}/range.json)
+rn_cli_test(problems_cli_generate_range_stiffness 2
+            "range.json: the section's stiffnesses E A, E I, G J .* are not representable"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate cubic --cells 1 --cell-size 1e20 --section circle:1e18
+                 --material 1e300,0.3 -o ${gen}/range.json)
+# ... and within what the scene reader takes (a --repeat of 10^6 copies, more than
+# 1e8 rod vertices were written and then refused by the reader)
+rn_cli_test(problems_cli_generate_range_repeat 2
+            "--repeat makes 1000000 copies .* the scene reader tiles at most 100000 copies"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate honeycomb --periodic --repeat 1000,1000 -o ${gen}/range.json)
+rn_cli_test(problems_cli_generate_range_vertices 2
+            "2002000 rods of 100 edges make 202202000 vertices: the scene reader takes at most 100000000"
+            ABSENT ${gen}/range.json REMOVE ${gen}/range.json
+            ARGS generate square --cells 1000,1000 --edges-per-rod 100 -o ${gen}/range.json)
+# Item 3: the description is the command that writes the same bytes again.
+add_test(NAME problems_cli_generate_replay
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_generate_replay.py
+                 ${RN_CLI} ${gen})
+set_tests_properties(problems_cli_generate_replay PROPERTIES LABELS unit)
+# Item 4: the linear writer and wrapper are checked by problems_generate (counts
+# of visited rod ends; tests/unit/problems_generate_test.c).
+# Item 5: the unknown-kind message lists every kind, reentrant included.
+rn_cli_test(problems_cli_generate_unknown_kind_list 2
+            "unknown lattice 'hexagonal' \\(known: square, triangular, honeycomb, kagome, cubic, bcc, octet, reentrant\\)"
+            ARGS generate hexagonal -o ${gen}/x.json)
 rn_cli_test(problems_cli_homogenize_help 0 "Usage: rodnet homogenize SCENE.json -o RESULT.json.*--plot PNG"
             ARGS homogenize --help)
 rn_cli_test(problems_cli_homogenize_missing_output 2 "missing -o RESULT.json"
@@ -306,6 +379,12 @@ if(RN_WITH_TRILINOS)
   rn_cli_test(problems_cli_homogenize_not_periodic 3 "the scene is not periodic"
               STDERR_LINES 1 ABSENT ${gen}/hom_x.json
               ARGS homogenize ${cant} -o ${gen}/hom_x.json)
+  # Issue 22 item 1: a cell written by hand with overlapping struts (square cell,
+  # 0.8 x 0.8 struts: relative density 1.6) homogenises with a warning.
+  add_test(NAME problems_cli_homogenize_dense_warning
+           COMMAND sh -c "${RN_CLI} generate square --periodic --edges-per-rod 2 -q -o ${gen}/dense.json && sed -i 's/\"width\": [0-9.e-]*, \"height\": [0-9.e-]*/\"width\": 0.8, \"height\": 0.8/' ${gen}/dense.json && ${RN_CLI} homogenize ${gen}/dense.json -q -o ${gen}/dense_result.json")
+  set_tests_properties(problems_cli_homogenize_dense_warning PROPERTIES LABELS unit
+                       PASS_REGULAR_EXPRESSION "warning: .*dense.json: relative density 1.6 >= 1: the struts overlap")
   # End to end: the regular honeycomb at t/l = 0.05 against the frame closed forms.
   rn_cli_test(problems_cli_homogenize_hc_generate 0 "wrote"
               REMOVE ${gen}/hom_hc.json FIXTURE_SETUP problems_hom_hc

@@ -11,7 +11,9 @@
 #include <string.h>
 
 #include "lattice.h"
+#include "lattice_check.h"
 #include "lattice_scene.h"
+#include "periodic_cell.h"
 #include "scene.h"
 #include "testutil.h"
 
@@ -321,6 +323,79 @@ static void check_errors(rn_context *ctx) {
   CHECK(rn_lattice_kind_from_name("hexagonal", &k) != 0);
 }
 
+/* Issue 22 item 4: writing a periodic supercell lists each joint's rod ends
+ * from an index of the bar ends (4 visits per bar), not by a scan of every bar
+ * for every joint (4 nodes x bars visits: 100^2 honeycomb cells took 5.5 s,
+ * 400^2 more than 9 minutes).  The count of visited ends is linear. */
+static void check_pcell_write_linear(rn_context *ctx) {
+  long per_bar[2] = {0, 0};
+  for (int k = 0; k < 2; k++) {
+    int cells[3] = {10 << k, 10 << k, 1};
+    rn_pcell c;
+    CHECK_STATUS(rn_pcell_from_lattice(ctx, RN_LATTICE_HONEYCOMB, cells, 1.0, &c), RN_OK);
+    CHECK(c.nbars == 3 * cells[0] * cells[1] && c.nnodes == 2 * cells[0] * cells[1]);
+    long work = 0;
+    c.work = &work;
+    rn_lattice_scene opt = default_options();
+    char path[1024];
+    snprintf(path, sizeof path, "%s/pcell_linear_%d.json", scratch, k);
+    CHECK_STATUS(rn_pcell_write_scene(ctx, path, &c, &opt, NULL), RN_OK);
+    CHECK(work == 4L * c.nbars); /* two passes over each joint's own ends */
+    per_bar[k] = work / c.nbars;
+    rn_pcell_free(&c);
+  }
+  CHECK(per_bar[0] == per_bar[1]);
+}
+
+/* Issue 22 item 1: the bounds of lattice_check.h on cells with closed forms
+ * (docs/lattices.md, "Admissible sections"), square struts t x t (half width
+ * r = t/2), density L t / V.  Square cell a x a: density 2t/a, joints of 90
+ * degrees, zones r cot 45 = r, joint factor a/t.  Honeycomb (bars a/sqrt3,
+ * 120 degrees): density 2t/a, zones r cot 60 = r/sqrt3, joint factor a/t.
+ * Re-entrant (60 degrees at every joint, inclined bars l = a/sqrt3): zones
+ * r cot 30 = r sqrt3, joint factor l / (sqrt3 t) on an inclined bar. */
+static void check_strut_bounds(rn_context *ctx) {
+  const double t = 0.1;
+  for (int kind = 0; kind < 3; kind++) {
+    int cells[3] = {2, 2, 1};
+    rn_pcell c;
+    if (kind == 2)
+      CHECK_STATUS(rn_pcell_reentrant(ctx, cells, a, &c), RN_OK);
+    else
+      CHECK_STATUS(rn_pcell_from_lattice(ctx,
+                                         kind ? RN_LATTICE_HONEYCOMB : RN_LATTICE_SQUARE,
+                                         cells, a, &c),
+                   RN_OK);
+    int *uv = malloc(2 * (size_t)c.nbars * sizeof *uv);
+    double *d = malloc(3 * (size_t)c.nbars * sizeof *d), L, V;
+    for (int e = 0; e < c.nbars; e++) {
+      const int *o = c.bar + 5 * e;
+      uv[2 * e] = o[0];
+      uv[2 * e + 1] = o[1];
+      for (int k = 0; k < 3; k++) {
+        d[3 * e + k] = c.xyz[3 * o[1] + k] - c.xyz[3 * o[0] + k];
+        for (int m = 0; m < 2; m++) d[3 * e + k] += o[2 + m] * c.vec[3 * m + k];
+      }
+    }
+    rn_pcell_measures(&c, &L, &V);
+    rn_lattice_scene sec = default_options();
+    sec.shape = RN_LSEC_RECTANGLE;
+    sec.section[0] = sec.section[1] = t;
+    rn_strut_bounds b;
+    CHECK(rn_strut_bounds_compute(2, c.nnodes, c.nbars, uv, d, NULL, &sec, V, &b) == 0);
+    const double l = a / sqrt(3.0);
+    const double joint = kind == 0 ? a / t : kind == 1 ? a / t : l / (sqrt(3.0) * t);
+    CHECK_NEAR(b.density, L * t / V, 1e-12);
+    CHECK_NEAR(b.density, kind < 2 ? 2 * t / a : b.density, 1e-12);
+    CHECK_NEAR(b.joint_factor, joint, 1e-9 * joint);
+    CHECK_NEAR(b.factor, fmin(joint, 1.0 / b.density), 1e-9 * joint);
+    CHECK(b.coincident_node < 0 && b.zero_bar < 0);
+    free(uv);
+    free(d);
+    rn_pcell_free(&c);
+  }
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: problems_generate_test SCRATCH_DIR\n");
@@ -349,6 +424,8 @@ int main(int argc, char **argv) {
   check_stretch(ctx);
   check_3d_loads(ctx);
   check_errors(ctx);
+  check_pcell_write_linear(ctx); /* issue 22 item 4 */
+  check_strut_bounds(ctx);       /* issue 22 item 1 */
   rn_context_destroy(&ctx);
   return rn_test_finish("problems_generate");
 }

@@ -181,7 +181,10 @@ int main(int argc, char **argv) {
   /* A NaN in the result: no file, and the previous one is kept intact. */
   info.energy = NAN;
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_ERR_NOT_FINITE);
-  CHECK(strstr(rn_context_last_error(ctx), "NaN or infinite") != NULL);
+  /* issue 22 item 2: the message names the file and the field */
+  CHECK(strstr(rn_context_last_error(ctx), argv[2]) != NULL);
+  CHECK(strstr(rn_context_last_error(ctx), "energy is nan (not a finite number); no file "
+                                           "written") != NULL);
   root = read_json(argv[2]);
   CHECK(root != NULL && num(root, "energy") == -0.125);
   cJSON_Delete(root);
@@ -190,6 +193,30 @@ int main(int argc, char **argv) {
   remove(fresh);
   CHECK_STATUS(rn_result_write_json(ctx, fresh, s, &info), RN_ERR_NOT_FINITE);
   FILE *f = fopen(fresh, "rb");
+  CHECK(f == NULL);
+  if (f) fclose(f);
+  /* issue 22 item 2: a state far out of range overflows the derived fields; the
+   * VTK writer refuses it, naming the file, the array and the rod */
+  info.energy = -0.125;
+  size_t ndof = rn_network_num_dofs(net);
+  double *x = malloc((ndof ? ndof : 1) * sizeof *x);
+  CHECK(x != NULL && rn_network_get_dofs(net, x) == RN_OK);
+  x[0] = 1e300;
+  CHECK_STATUS(rn_network_set_dofs(net, x), RN_OK);
+  free(x);
+  /* (the JSON writer stops earlier: the energy terms refuse such a state) */
+  CHECK(rn_result_write_json(ctx, fresh, s, &info) != RN_OK);
+  f = fopen(fresh, "rb");
+  CHECK(f == NULL);
+  if (f) fclose(f);
+  char vtu[1024];
+  snprintf(vtu, sizeof vtu, "%s.nan.vtu", argv[3]);
+  remove(vtu);
+  CHECK_STATUS(rn_vtk_write(ctx, vtu, s), RN_ERR_NOT_FINITE);
+  CHECK(strstr(rn_context_last_error(ctx), vtu) != NULL);
+  CHECK(strstr(rn_context_last_error(ctx), "array \"") != NULL);
+  CHECK(strstr(rn_context_last_error(ctx), "of rod \"") != NULL);
+  f = fopen(vtu, "rb");
   CHECK(f == NULL);
   if (f) fclose(f);
   rn_scene_destroy(&s);
