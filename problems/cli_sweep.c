@@ -459,6 +459,9 @@ int rn_cli_sweep(int argc, char **argv) {
   }
   if (!file) return rn_cli_usage_error("sweep", "missing the sweep file");
   if (!dir) return rn_cli_usage_error("sweep", "missing -o DIR");
+#ifndef RN_HAVE_SOLVER
+  return rn_cli_no_solver("sweep"); /* rn_homogenize is the solver's */
+#endif
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) return RN_EXIT_INTERNAL;
   char *text = NULL;
