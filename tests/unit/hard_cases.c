@@ -252,9 +252,19 @@ static void case_folded(rn_context *ctx) {
                                    (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]));
             fold = fmax(fold, acos(fmax(-1.0, fmin(1.0, cs))) * 180.0 / PI);
           }
-          printf("  %-28s %-9s largest turning angle at the stop: %.4f deg\n", label,
-                 rn_solver_name(kind), fold);
+          /* there the curvature has vanished and the twist is pi (a twisted fold) */
+          double kap[2 * (NV - 2)], tau[NV - 2], tw = 0.0, kf = 0.0;
+          CHECK_STATUS(rn_network_rod_strains(net, 0, NULL, kap, tau), RN_OK);
+          for (int i = 0; i < NV - 2; ++i)
+            if (fabs(tau[i]) > fabs(tw)) {
+              tw = tau[i];
+              kf = hypot(kap[2 * i], kap[2 * i + 1]);
+            }
+          printf("  %-28s %-9s at the stop: largest turning angle %.4f deg, twist %.4f "
+                 "and curvature %.3f there\n",
+                 label, rn_solver_name(kind), fold, tw, kf);
           CHECK(fold > angles[c] && fold < 180.0);
+          CHECK(fabs(fabs(tw) - PI) < 0.01 && kf < 0.1);
           rn_network_destroy(&net);
           continue;
         }
