@@ -117,16 +117,16 @@ double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double
   // diagonally dominant with a margin, so a shift exists within the search whenever
   // the entries are finite.  (A fixed end, 10^10, failed where H had outgrown the
   // metric M: tr-minres fixes M = |diag H_0| for a load step, and on a rod started
-  // nearly folded, 179 degrees, H grew 10^4-fold while it unfolded and needed a shift
+  // nearly folded, 179 degrees, H grew 10^4-fold in two iterations and needed a shift
   // of about 10^12: docs/hard-cases.md.)
   const double g = m ? gershgorin_shift(p, shift, m) : std::nan("");
   if (!std::isfinite(g))
     throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes the Hessian positive "
                                "definite (non-finite Hessian or metric)");
-  const int top =
-      std::max(10, static_cast<int>(std::ceil(std::log10(std::max(g, 1.0)))) + 1);
-  int lo = -11,
-      hi = top + 1;      // 10^lo fails (-11 stands for 0), 10^hi works (top + 1: unknown)
+  const int top = std::min(
+      300, std::max(10, static_cast<int>(std::ceil(std::log10(std::max(g, 1.0)))) + 1));
+  // 10^lo fails (-11 stands for 0), 10^hi works (top + 1: not known yet)
+  int lo = -11, hi = top + 1;
   bool holds_hi = false; // f holds the factorisation at 10^hi
   while (hi - lo > 1) {
     const int mid = lo + (hi - lo) / 2;
@@ -134,11 +134,10 @@ double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double
     (holds_hi ? hi : lo) = mid;
   }
   if (hi > top)
-    throw Error(
-        RN_ERR_LAPACK,
-        "rn_solve: no diagonal shift up to " + std::to_string(std::pow(10.0, top)) +
-            " (ten times the Gershgorin bound) makes the Hessian positive definite "
-            "(the factorisation breaks down)");
+    throw Error(RN_ERR_LAPACK,
+                "rn_solve: no diagonal shift up to 1e" + std::to_string(top) +
+                    " (past the Gershgorin bound) makes the Hessian positive "
+                    "definite (the factorisation breaks down)");
   const double sigma = std::pow(10.0, hi);
   if (!holds_hi && !f.factor(p, shift + sigma, m))
     throw Error(RN_ERR_LAPACK, "rn_solve: shifted factorisation failed");
