@@ -302,7 +302,7 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   o->repeats = 11;
   o->min_time = 0.2;
   o->out = NULL;
-  for (int i = 1; i < argc; ++i) {
+  for (int i = 1; i < argc; i += 2) { /* options and their values */
     const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("kernel throughput"), 1;
     if (!val) return usage("missing value after an option"), -1;
@@ -318,7 +318,6 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
       o->out = val;
     else
       return usage("unknown option"), -1;
-    ++i;
   }
   if (o->n_sizes < 0) return usage("bad --sizes"), -1;
   for (int k = 0; k < o->n_sizes; ++k)

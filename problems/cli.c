@@ -42,7 +42,8 @@ static const char main_help[] =
     "\n"
     "Exit status: 0 success, 1 not converged (solve) or test failed (check),\n"
     "2 usage error, 3 bad scene or unusable input/output path, 4 solver or internal\n"
-    "error.  Scene format: docs/scene-format.md.  Commands: docs/cli.md.\n";
+    "error, 5 the command needs the solver and this build has none (-V says).\n"
+    "Scene format: docs/scene-format.md.  Commands: docs/cli.md.\n";
 
 static void print_version(void) {
   printf("rodnet %s\n", rn_version_string());
@@ -50,7 +51,8 @@ static void print_version(void) {
   printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton, tr-krylov, nox, "
          "rol-lbfgs; Trilinos)\n");
 #else
-  printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' works\n");
+  printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' and "
+         "'generate' work, the other commands exit with status 5\n");
 #endif
 }
 
@@ -140,6 +142,15 @@ int rn_cli_main(int argc, char **argv) {
   if (strcmp(cmd, "sweep") == 0) return rn_cli_sweep(argc - 1, argv + 1);
   fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
   return RN_EXIT_USAGE;
+}
+
+int rn_cli_no_solver(const char *cmd) {
+  fprintf(stderr,
+          "rodnet %s: this rodnet was built without the solver (configured with "
+          "-DRN_WITH_TRILINOS=OFF); rebuild with -DRN_WITH_TRILINOS=ON. 'rodnet check' "
+          "and 'rodnet generate' work without it.\n",
+          cmd);
+  return RN_EXIT_NO_SOLVER;
 }
 
 int rn_cli_usage_error(const char *cmd, const char *fmt, ...) {

@@ -11,7 +11,9 @@ enum {
   RN_EXIT_NOT_CONVERGED = 1, /* solve stopped without converging; check failed */
   RN_EXIT_USAGE = 2,         /* bad command line */
   RN_EXIT_INPUT = 3,         /* bad scene, unreadable input, unwritable output path */
-  RN_EXIT_INTERNAL = 4       /* solver or internal error, failed output write */
+  RN_EXIT_INTERNAL = 4,      /* solver or internal error, failed output write */
+  RN_EXIT_NO_SOLVER = 5      /* the command needs the solver, which this build lacks
+                                (configured with -DRN_WITH_TRILINOS=OFF) */
 };
 
 /* Entry point: argv[0] is the program name. */
@@ -49,6 +51,10 @@ int rn_cli_option_value(const char *cmd, int argc, char **argv, int *i, const ch
  * silently replace the others.  0 otherwise.  Flags may repeat. */
 int rn_cli_check_repeats(const char *cmd, int argc, char **argv,
                          const char *const *names);
+/* "rodnet CMD: this rodnet was built without the solver ..." on stderr (one
+ * line); returns RN_EXIT_NO_SOLVER.  For the commands that need the solver
+ * (solve, homogenize, path, sweep, bench) in a build without it. */
+int rn_cli_no_solver(const char *cmd);
 /* Exit status for a failed scene load. */
 int rn_cli_load_exit_code(rn_status st);
 /* Run a plotting script with Python and wait for it: the interpreter is

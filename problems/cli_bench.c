@@ -843,8 +843,6 @@ int rn_cli_bench(int argc, char **argv) {
   rn_runtime_finalize();
   return rc;
 #else
-  fprintf(stderr, "rodnet bench: this rodnet was built without the solver "
-                  "(RN_WITH_TRILINOS=OFF); rebuild with -DRN_WITH_TRILINOS=ON.\n");
-  return RN_EXIT_INTERNAL;
+  return rn_cli_no_solver("bench");
 #endif
 }

@@ -273,6 +273,7 @@ typedef struct hom_out {
   const hp_post *post; /* --post-buckling */
 } hom_out;
 
+#ifdef RN_HAVE_SOLVER
 /* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
  * uniaxial stress along (cos t, sin t) in the plane of axes i, j. */
 static double directional_E(const rn_homogenization *h, const double *S, double t,
@@ -290,6 +291,7 @@ static double directional_E(const rn_homogenization *h, const double *S, double 
     for (int j = 0; j < n; j++) q += s[i] * S[i * n + j] * s[j];
   return 1.0 / q;
 }
+#endif /* RN_HAVE_SOLVER */
 
 void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S) {
   int n = h->nstrain;
@@ -313,6 +315,18 @@ void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S
 #undef SIJ
 }
 
+#ifndef RN_HAVE_SOLVER
+/* rn_homogenize, rn_cell_relax and rn_cell_bloch are the solver's
+ * (shim_cxx/homogenize.cpp, cell_path.cpp): without it the command parses its
+ * options (help, usage errors) and refuses; homog_path.c and homog_post.c are
+ * not built. */
+int rn_cli_homogenize(int argc, char **argv) {
+  hom_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+  return rn_cli_no_solver("homogenize");
+}
+#else
 static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   const hom_out *o = user;
   const rn_homogenization *h = o->h;
@@ -555,12 +569,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     }
   }
   double t0 = now();
-#ifdef RN_HAVE_SOLVER
   st = rn_homogenize(net, &h);
-#else
-  st = rn_context_set_error(ctx, RN_ERR_STATE,
-                            "rodnet was built without the solver (RN_WITH_TRILINOS=OFF)");
-#endif
   double seconds = now() - t0;
   if (st) {
     fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
@@ -586,9 +595,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     path.modes = a.modes;
     path.grid = a.grid;
     path.quiet = a.quiet;
-#ifdef RN_HAVE_SOLVER
     st = hp_run(net, &path);
-#endif
     if (st) {
       fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
       rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
@@ -598,9 +605,7 @@ int rn_cli_homogenize(int argc, char **argv) {
   if (a.post) {
     post.requested = 1;
     post.nsteps = a.post_steps;
-#ifdef RN_HAVE_SOLVER
     st = hp_post_buckling(ctx, a.scene, &path, a.post, &post);
-#endif
     if (st) {
       fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n",
               rn_context_last_error(ctx));
@@ -692,3 +697,4 @@ done:
   rn_context_destroy(&ctx);
   return rc;
 }
+#endif /* RN_HAVE_SOLVER */

@@ -22,15 +22,6 @@
 #define RN_PYTHON3 "python3"
 #endif
 
-#ifndef RN_HAVE_SOLVER
-int rn_cli_path(int argc, char **argv) {
-  (void)argc;
-  (void)argv;
-  fprintf(stderr, "rodnet path: rodnet was built without the solver "
-                  "(RN_WITH_TRILINOS=OFF)\n");
-  return RN_EXIT_INTERNAL;
-}
-#else
 static const char path_help[] =
     "Usage: rodnet path SCENE.json -o PATH.csv [options]\n"
     "\n"
@@ -78,6 +69,18 @@ static const char path_help[] =
     "Exit status: 0 done, 1 the path stopped early (the corrector failed down to\n"
     "the smallest step) or the start did not converge, 2 usage error, 3 bad scene,\n"
     "control or output path, 4 solver error or failed plot.\n";
+
+#ifndef RN_HAVE_SOLVER
+/* Without the solver: the help, else the refusal (status 5). */
+int rn_cli_path(int argc, char **argv) {
+  for (int i = 1; i < argc; i++)
+    if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+      fputs(path_help, stdout);
+      return RN_EXIT_OK;
+    }
+  return rn_cli_no_solver("path");
+}
+#else
 
 typedef struct path_args {
   const char *scene, *output, *plot, *control, *monitor;

@@ -679,9 +679,6 @@ int rn_cli_solve(int argc, char **argv) {
 #ifdef RN_HAVE_SOLVER
   return solve_scene(&a);
 #else
-  fprintf(stderr, "rodnet solve: this rodnet was built without the solver "
-                  "(RN_WITH_TRILINOS=OFF); rebuild with -DRN_WITH_TRILINOS=ON. "
-                  "'rodnet check' works without it.\n");
-  return RN_EXIT_INTERNAL;
+  return rn_cli_no_solver("solve");
 #endif
 }

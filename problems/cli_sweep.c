@@ -559,6 +559,9 @@ int rn_cli_sweep(int argc, char **argv) {
                                {"-o", dir, "/sweep.csv", RN_CLI_OUT},
                                {"--plot", plot, NULL, RN_CLI_OUT}};
   if ((rc = rn_cli_check_files("sweep", files, 5))) return rc;
+#ifndef RN_HAVE_SOLVER
+  return rn_cli_no_solver("sweep"); /* rn_homogenize is the solver's */
+#endif
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) return RN_EXIT_INTERNAL;
   char *text = NULL;

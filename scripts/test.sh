@@ -5,13 +5,17 @@
 #   2. a clang build (build-fuzz: -DRN_FUZZ=ON, no Trilinos, warnings as errors)
 #      of the libFuzzer targets only, running `ctest -L fuzz` (each target for a
 #      fixed number of executions; about 2-3 minutes on 2 busy cores);
-#   3. the main build's ctest: every label but fuzz and bench (bench-smoke is in),
+#   3. a clang build without the solver (build-notri: -DRN_WITH_TRILINOS=OFF, C only,
+#      warnings as errors) running its ctest (unit tests of the kernels, the C API and
+#      the scene reader; `rodnet check` and `generate`; the other commands refusing
+#      with exit status 5; layering, install/consumer);
+#   4. the main build's ctest: every label but fuzz and bench (bench-smoke is in),
 #      which includes the layering, install/consumer and clang-format checks.
 # Exits non-zero if any stage fails; ctest's own summary lines come last.
 #
 #   bash scripts/test.sh
-# Environment: RN_JOBS (2), RN_SKIP_ASAN=1 / RN_SKIP_FUZZ=1 to skip the sanitizer /
-# fuzz stage.
+# Environment: RN_JOBS (2), RN_SKIP_ASAN=1 / RN_SKIP_FUZZ=1 / RN_SKIP_NOTRI=1 to skip
+# the sanitizer / fuzz / no-solver stage.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${RN_JOBS:-2}
@@ -62,6 +66,23 @@ if [ "${RN_SKIP_FUZZ:-0}" != 1 ]; then
     fi
   else
     failed+=("fuzz build")
+  fi
+fi
+
+if [ "${RN_SKIP_NOTRI:-0}" != 1 ]; then
+  stamp "no-solver build (build-notri: clang, RN_WITH_TRILINOS=OFF)"
+  if cmake -S . -B build-notri -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRN_WERROR=ON \
+       -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DRN_WITH_TRILINOS=OFF \
+       -DRN_BUILD_BENCHMARKS=OFF </dev/null &&
+     cmake --build build-notri -j"$jobs" </dev/null; then
+    stamp "no-solver tests (ctest in build-notri)"
+    # (format_check looks at the sources only: the main stage runs it)
+    if ! ctest --test-dir build-notri --output-on-failure --no-tests=error -j"$jobs" \
+         -LE '^(fuzz|bench)$' -E '^format_check$' </dev/null; then
+      failed+=("no-solver tests")
+    fi
+  else
+    failed+=("no-solver build")
   fi
 fi
 

@@ -72,22 +72,72 @@ std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requeste
   return std::make_unique<BandedSpd>(p.size(), p.bandwidth());
 }
 
+namespace {
+
+// Gershgorin bound of the shift: with d the diagonal of M and A = H + shift M,
+// A + sigma M is strictly diagonally dominant in the scaling D^-1/2 (so positive
+// definite) for every sigma > max_i (sum_{j != i} |A_ij| / sqrt(d_i d_j) - A_ii / d_i).
+// NaN if an entry of A is not finite or M has a diagonal entry that is not positive.
+double gershgorin_shift(const Problem &p, double shift, const double *m) {
+  const size_t n = p.size();
+  const int64_t *rp = p.rowptr();
+  const int32_t *col = p.col();
+  const double *v = p.values();
+  std::vector<double> d(n, 0.0);
+  for (size_t i = 0; i < n; ++i)
+    for (int64_t k = rp[i]; k < rp[i + 1]; ++k)
+      if (static_cast<size_t>(col[k]) == i) d[i] = m[k];
+  for (double di : d)
+    if (!(di > 0.0) || !std::isfinite(di)) return std::nan("");
+  double bound = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    double off = 0.0, diag = 0.0;
+    for (int64_t k = rp[i]; k < rp[i + 1]; ++k) {
+      const size_t j = static_cast<size_t>(col[k]);
+      const double a = v[k] + shift * m[k];
+      if (!std::isfinite(a)) return std::nan("");
+      if (j == i)
+        diag = a / d[i];
+      else
+        off += std::fabs(a) / std::sqrt(d[i] * d[j]);
+    }
+    bound = std::max(bound, off - diag);
+  }
+  return bound;
+}
+
+} // namespace
+
 double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m,
                       bool try_zero) {
   if (try_zero && f.factor(p, shift, m)) return 0.0;
-  // Smallest k in [-10, 10] with H + (shift + 10^k) M positive definite: bisection on
-  // k (positive definiteness is monotone in the shift), then factor there.
-  int lo = -11, hi = 11; // 10^lo fails (-11 stands for 0), 10^hi works (11: unknown)
+  // Smallest k >= -10 with H + (shift + 10^k) M positive definite: bisection on k
+  // (positive definiteness is monotone in the shift), then factor there.  The search
+  // ends one decade above the Gershgorin bound, where the shifted matrix is
+  // diagonally dominant with a margin, so a shift exists within the search whenever
+  // the entries are finite.  (A fixed end, 10^10, failed where H had outgrown the
+  // metric M: tr-minres fixes M = |diag H_0| for a load step, and on a rod started
+  // nearly folded, 179 degrees, H grew 10^4-fold in two iterations and needed a shift
+  // of about 10^12: docs/hard-cases.md.)
+  const double g = m ? gershgorin_shift(p, shift, m) : std::nan("");
+  if (!std::isfinite(g))
+    throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes the Hessian positive "
+                               "definite (non-finite Hessian or metric)");
+  const int top = std::min(
+      300, std::max(10, static_cast<int>(std::ceil(std::log10(std::max(g, 1.0)))) + 1));
+  // 10^lo fails (-11 stands for 0), 10^hi works (top + 1: not known yet)
+  int lo = -11, hi = top + 1;
   bool holds_hi = false; // f holds the factorisation at 10^hi
   while (hi - lo > 1) {
     const int mid = lo + (hi - lo) / 2;
     holds_hi = f.factor(p, shift + std::pow(10.0, mid), m);
     (holds_hi ? hi : lo) = mid;
   }
-  if (hi > 10)
+  if (hi > top)
     throw Error(RN_ERR_LAPACK,
-                "rn_solve: no diagonal shift makes the Hessian positive definite "
-                "(non-finite Hessian?)");
+                "rn_solve: no diagonal shift up to 1e" + std::to_string(top) +
+                    " (past the Gershgorin bound) makes the Hessian positive "
+                    "definite (the factorisation breaks down)");
   const double sigma = std::pow(10.0, hi);
   if (!holds_hi && !f.factor(p, shift + sigma, m))
     throw Error(RN_ERR_LAPACK, "rn_solve: shifted factorisation failed");

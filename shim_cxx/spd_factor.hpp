@@ -47,10 +47,10 @@ rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested
 // factorisation whose band would need more than 4 GiB.
 std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested);
 
-// Factor H + (shift + sigma) M with the smallest sigma in {0, 1e-10, 1e-9, ..., 1e10}
-// that gives a positive definite matrix (bisection on the exponent: at most 7
-// factorisations); returns sigma.  Throws Error (RN_ERR_LAPACK) if no shift up to
-// 1e10 works (e.g. non-finite entries).
+// Factor H + (shift + sigma) M with the smallest sigma in {0, 1e-10, ..., 10^K} that
+// gives a positive definite matrix, K = max(10, 1 + log10 of the Gershgorin bound of
+// the shift) (bisection on the exponent: 7 factorisations while K = 10); returns
+// sigma.  Throws Error (RN_ERR_LAPACK) on non-finite entries or a non-positive M_ii.
 // try_zero = false: the caller knows that sigma = 0 fails (skips that factorisation).
 double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m,
                       bool try_zero = true);

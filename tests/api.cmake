@@ -24,7 +24,9 @@ rn_add_test(api_part SOURCES unit/api_part.c LIBS rodnet m LABELS unit)
 rn_add_test(api_dof_blocks SOURCES unit/api_dof_blocks.c LIBS rodnet m LABELS unit)
 # Equilibrium checks: DOF kinds, the full-layout gradient, support reactions
 # (FD h-sweep in the load factor of prescribed motions, balance at equilibrium).
-rn_add_test(api_reactions SOURCES unit/api_reactions.c LIBS rodnet m LABELS unit)
+if(RN_WITH_TRILINOS) # it solves (rn_solve) to check the balance at equilibrium
+  rn_add_test(api_reactions SOURCES unit/api_reactions.c LIBS rodnet m LABELS unit)
+endif()
 # rn_network_stretch_correction against the stretching energy (h-sweep, order 2)
 # on a rod and on networks with both joint models; its closed-form limit.
 rn_add_test(api_stretch_correction SOURCES unit/api_stretch_correction.c LIBS rodnet m

@@ -862,14 +862,44 @@ if(RN_WITH_TRILINOS)
   set_tests_properties(problems_example_end_moment_vtu_fields PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_end_moment_result)
 else()
-  rn_cli_test(problems_cli_solve_without_solver 4 "built without the solver"
-              ARGS solve ${cant} -o ${RN_CLI_OUT}/x.json)
+  # Without the solver (RN_WITH_TRILINOS=OFF; scripts/test.sh stage build-notri):
+  # check and generate work (tests above); every command that needs the solver
+  # parses its options (help, usage errors), then refuses with one line and exit
+  # status 5 (RN_EXIT_NO_SOLVER), writing nothing.
+  set(RN_NOSOLVER_REGEX "^rodnet CMD: this rodnet was built without the solver \\(configured with -DRN_WITH_TRILINOS=OFF\\)")
+  set(hc_stress ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json)
+  function(rn_nosolver_test name cmd out)
+    string(REPLACE "CMD" "${cmd}" re "${RN_NOSOLVER_REGEX}")
+    rn_cli_test(problems_cli_nosolver_${name} 5 "${re}" STDERR_LINES 1 ABSENT ${out}
+                ARGS ${cmd} ${ARGN})
+  endfunction()
+  rn_nosolver_test(solve solve ${RN_CLI_OUT}/ns_solve.json
+                   ${cant} -o ${RN_CLI_OUT}/ns_solve.json)
+  rn_nosolver_test(homogenize homogenize ${RN_CLI_OUT}/ns_hom.json
+                   ${hc_stress} -o ${RN_CLI_OUT}/ns_hom.json)
+  rn_nosolver_test(homogenize_path homogenize ${RN_CLI_OUT}/ns_hom_path.json
+                   ${hc_stress} -o ${RN_CLI_OUT}/ns_hom_path.json --path 0.01,0,0)
+  rn_nosolver_test(path path ${RN_CLI_OUT}/ns_path.csv
+                   ${RN_PATH_SCENES}/von_mises_truss.json -o ${RN_CLI_OUT}/ns_path.csv)
+  rn_nosolver_test(sweep sweep ${RN_CLI_OUT}/ns_sweep
+                   ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
+                   -o ${RN_CLI_OUT}/ns_sweep)
+  rn_nosolver_test(bench bench ${RN_CLI_OUT}/ns_bench
+                   --suite smoke -o ${RN_CLI_OUT}/ns_bench)
+  rn_cli_test(problems_cli_nosolver_version 0
+              "solver: not built .*'check' and 'generate' work" ARGS --version)
+  # the options are still parsed: help and usage errors as with the solver
+  rn_cli_test(problems_cli_nosolver_path_help 0 "Usage: rodnet path SCENE.json -o PATH.csv"
+              ARGS path --help)
+  rn_cli_test(problems_cli_nosolver_homogenize_usage 2 "--pattern needs --path"
+              ARGS homogenize ${hc_stress} -o ${RN_CLI_OUT}/x.json --pattern p)
 endif()
 
 # Contact (docs/contact.md): the "contact" scene key; a rod pressed onto a crossing
 # rod solves to a verified minimum; bad settings and an interpenetrating input are
 # refused with the place named.
 set(RN_CONTACT ${CMAKE_CURRENT_SOURCE_DIR}/data/contact)
+if(RN_WITH_TRILINOS) # the solves; the scene errors below need no solver
 rn_cli_test(problems_contact_crossed 0 "converged.*verified local minimum"
             REMOVE ${RN_CLI_OUT}/contact_crossed.json
             ARGS solve ${RN_CONTACT}/crossed.json -o ${RN_CLI_OUT}/contact_crossed.json -q)
@@ -879,6 +909,7 @@ rn_cli_test(problems_contact_nox 4
             "crossed.json: solver failed .*full Newton steps do not stay in the admissible set; try a trust-region solver"
             REMOVE ${RN_CLI_OUT}/contact_nox.json ABSENT ${RN_CLI_OUT}/contact_nox.json
             ARGS solve ${RN_CONTACT}/crossed.json --solver nox -o ${RN_CLI_OUT}/contact_nox.json -q)
+endif()
 rn_cli_test(problems_contact_bad_distance 3
             "contact_distance.json: .\\.contact\\.distance: expected a number > 0"
             STDERR_LINES 1 ARGS check ${RN_BAD}/contact_distance.json)
@@ -889,6 +920,7 @@ rn_cli_test(problems_contact_interpenetrating 3
 # gap (the force balance is unchanged), so the energy is crossed.json's
 # (-0.0059825379162) plus the load's work F * 0.01 = 0.004; an unknown rod name in
 # "radii" is refused with its place.
+if(RN_WITH_TRILINOS)
 rn_cli_test(problems_contact_radii 0
             "energy +-0\\.001982537916.*verified local minimum"
             REMOVE ${RN_CLI_OUT}/contact_radii.json
@@ -897,6 +929,7 @@ rn_cli_test(problems_contact_radii 0
 rn_cli_test(problems_contact_apart 0 "wrote .*contact_apart.json"
             REMOVE ${RN_CLI_OUT}/contact_apart.json
             ARGS solve ${RN_CONTACT}/apart.json -o ${RN_CLI_OUT}/contact_apart.json)
+endif()
 rn_cli_test(problems_contact_bad_radii 3
             "contact_radii.json: .\\.contact\\.radii\\.c: no rod named \"c\""
             STDERR_LINES 1 ARGS check ${RN_BAD}/contact_radii.json)

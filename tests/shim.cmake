@@ -38,6 +38,12 @@ rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 rn_add_test(shim_sparse_cholesky SOURCES unit/shim_sparse_cholesky.cpp
             LIBS rodnet_internal ${LAPACK_LIBRARIES} LABELS unit)
 target_include_directories(shim_sparse_cholesky PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
+# The shifted factorisation's search where the Hessian has outgrown the metric (a rod
+# folded to 179 degrees; shifts far above 1e10): the smallest decade, a clear error
+# on a non-finite metric (C++: shim internals through the shared library).
+rn_add_test(shim_shift_search SOURCES unit/shim_shift_search.cpp
+            LIBS rodnet_internal LABELS unit)
+target_include_directories(shim_shift_search PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx)
 # The rod-level domain-decomposition preconditioner (C++: internal classes of the shim
 # through the shared library), on one rank and under mpirun on two.
 rn_add_test(shim_dd SOURCES unit/shim_dd.cpp LIBS rodnet_problems_internal rodnet_shim_deps
