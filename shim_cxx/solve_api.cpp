@@ -520,6 +520,9 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
                            nothing_depends_on_load(net, p, dist.get(), x, target);
     automatic_stepping(p, opt, target, force_scale, start, tot, load_free);
   }
+  // The last workspace serves the LOBPCG check only: not held through a Cholesky one
+  if (!rep || !opt.stability || (!dist && opt.stability_method == RN_STABILITY_CHOLESKY))
+    tot.last_ws.reset();
   if (rep) {
     fill_report(p, tot, force_scale,
                 std::chrono::duration<double>(Clock::now() - start).count(), rep);
