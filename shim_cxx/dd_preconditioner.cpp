@@ -865,6 +865,9 @@ struct DdPreconditioner::Impl {
   bool numeric(const TCrs &H, double uniform = -1.0);
   double uniform_shift = 0.0;     // of the last setup (0: none)
   std::vector<double> dg_uniform; // D_G of the uniform shift (per gg_diag entry)
+  // dg_uniform made (on every rank at once: a rank without interface rows has an
+  // empty one, so its emptiness cannot tell, and the first making is collective)
+  bool dg_uniform_made = false;
   void apply(const TMV &X, TMV &Y, double alpha, double beta) const;
   double bytes() const;
 };
@@ -1048,6 +1051,7 @@ void DdPreconditioner::Impl::build(const System &sys, const TCrs &H) {
   }
   gg_diag.clear();
   dg_uniform.clear();
+  dg_uniform_made = false;
   for (size_t e = 0; e < gg.size(); ++e)
     if (cov->getGlobalElement(static_cast<LO>(gg_row[e])) == gg[e].second)
       gg_diag.push_back(e);
@@ -1092,7 +1096,8 @@ bool DdPreconditioner::Impl::numeric(const TCrs &H, double uniform) {
     // + uniform D_G on the interface diagonal, D_G = |diag H_GG| floored at 1e-8 of
     // its largest entry over the ranks at the first set-up that shifts uniformly,
     // then the entrywise largest |diag H_GG| of the set-ups since (as the rods' D_r)
-    if (dg_uniform.empty()) {
+    if (!dg_uniform_made) { // (collective: decided alike on every rank)
+      dg_uniform_made = true;
       double mx = 0.0, gmx = 0.0;
       for (size_t e : gg_diag) mx = std::max(mx, std::fabs(vals[gg_src[e]]));
       Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, mx, Teuchos::outArg(gmx));

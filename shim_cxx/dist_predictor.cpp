@@ -51,16 +51,13 @@ bool predict_load_step(DistSystem &sys, Preconditioner &prec, const rn_solve_opt
   }
   sys.agree(rn_network_set_load_factor(net, t));
   if (!have) return false;
-  // s = -M^{-1} r if M had to be shifted (H not positive definite: as the serial
-  // predictor's shifted factor), else H s = -r by preconditioned MINRES
+  // H s = -r by MINRES preconditioned as the solve is, as tr-krylov's predictor on
+  // one rank (predict_step_krylov), also where M had to be shifted (H not positive
+  // definite): the same step on any number of ranks
   prec.setup(sys);
   r.scale(-1.0);
-  if (prec.stats().shifted) {
-    prec.inverse()->apply(r, s);
-  } else {
-    MinresSolver minres(map, opt.krylov_tol, opt.krylov_max_iterations);
-    minres.solve(HessianOp(sys), InverseOp(prec), r, s);
-  }
+  MinresSolver minres(map, opt.krylov_tol, opt.krylov_max_iterations);
+  sys.counters.krylov += minres.solve(HessianOp(sys), InverseOp(prec), r, s).iterations;
   double E0 = 0.0, E1 = 0.0;
   xs.update(1.0, x, 1.0, s, 0.0);
   // (the jumped state x may be degenerate: then the evaluable prediction is better)

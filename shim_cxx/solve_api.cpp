@@ -129,8 +129,15 @@ struct SolveTotals {
   // predictor or its trust region, whichever comes first, and dropped when the load
   // step ends (the next one starts from a set-up at its own state).
   std::unique_ptr<KrylovWorkspace> krylov_ws;
+  // The last load step's tr-krylov workspace, its preconditioner set up at the state
+  // the load step returned: the stability check's LOBPCG preconditioner (not set up
+  // a second time); dropped when the next workspace is made.
+  std::unique_ptr<KrylovWorkspace> last_ws;
   KrylovWorkspace &krylov_workspace(Problem &p, const rn_solve_options &opt) {
-    if (!krylov_ws) krylov_ws = std::make_unique<KrylovWorkspace>(p, dist, opt);
+    if (!krylov_ws) {
+      last_ws.reset();
+      krylov_ws = std::make_unique<KrylovWorkspace>(p, dist, opt);
+    }
     return *krylov_ws;
   }
 };
@@ -189,6 +196,8 @@ bool solve_load_step(Problem &p, const rn_solve_options &opt, double t_prev, dou
     tot.preconditioner = tot.dist ? run_nox(*tot.dist, mon, opt) : run_nox(p, mon, opt);
     break;
   }
+  if (opt.solver == RN_SOLVER_TR_KRYLOV) // (its trust region set it up last)
+    tot.last_ws = std::move(tot.krylov_ws);
   tot.krylov_ws.reset();
   tot.iterations += mon.iterations();
   tot.krylov += mon.krylov_total();
@@ -511,6 +520,9 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
                            nothing_depends_on_load(net, p, dist.get(), x, target);
     automatic_stepping(p, opt, target, force_scale, start, tot, load_free);
   }
+  // The last workspace serves the LOBPCG check only: not held through a Cholesky one
+  if (!rep || !opt.stability || (!dist && opt.stability_method == RN_STABILITY_CHOLESKY))
+    tot.last_ws.reset();
   if (rep) {
     fill_report(p, tot, force_scale,
                 std::chrono::duration<double>(Clock::now() - start).count(), rep);
@@ -520,7 +532,8 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
         check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
         p.assemble_hessian(x.data());
       }
-      rep->stability = solve_stability(p, dist.get(), opt, tot.factorization);
+      rep->stability =
+          solve_stability(p, dist.get(), opt, tot.factorization, tot.last_ws.get());
       rep->stability.verified_minimum = rep->stability.verified_minimum && rep->converged;
     }
   }

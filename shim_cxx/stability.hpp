@@ -50,8 +50,12 @@ class System;
 // certificate: an eigenvalue LOBPCG misses is not seen.  factorizations counts
 // none (the preconditioner's own are not counted).  Collective over sys's
 // communicator; memory ~ 6 kStabilityBlock vectors per rank plus the
-// preconditioner.  Throws Error.
-rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt);
+// preconditioner.  prec: an SPD preconditioner already set up on sys (the
+// solver's, at or near the state: it only speeds LOBPCG up) instead of a new one
+// made and set up here.  Throws Error.
+class Preconditioner;
+rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
+                              Preconditioner *prec = nullptr);
 
 // The stability check after rn_solve, by opt.stability_method (rn_solve_options):
 // on dist (a distributed System, not null: LOBPCG; checked = 0 if CHOLESKY is
@@ -60,9 +64,13 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt);
 // check when the solver factors the whole Hessian itself (every kind but
 // tr-krylov and nox with a preconditioner other than factor) or when one
 // factorisation costs at most RN_STABILITY_MAX_FLOPS (banded: n (kd+1)^2; sparse:
-// the symbolic analysis's count), LOBPCG otherwise.  Collective.  Throws Error.
+// the symbolic analysis's count), LOBPCG otherwise.  ws: tr-krylov's System and
+// preconditioner of the last load step (set up at the returned state), which
+// LOBPCG then uses instead of setting up a preconditioner of its own; nullptr:
+// none.  Collective.  Throws Error.
+class KrylovWorkspace;
 rn_stability solve_stability(Problem &p, System *dist, const rn_solve_options &opt,
-                             rn_factorization kind);
+                             rn_factorization kind, KrylovWorkspace *ws = nullptr);
 
 } // namespace rodnet
 

@@ -118,7 +118,8 @@ void start_block(TMV &X) {
 
 } // namespace
 
-rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt) {
+rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
+                              Preconditioner *given) {
   const auto start = std::chrono::steady_clock::now();
   rn_stability st{};
   st.checked = 1;
@@ -146,10 +147,17 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt) {
     st.zero_modes = static_cast<int>(std::min<GO>(n, kStabilityBlock));
   } else {
     const double delta = kZeroModeTol * st.scale;
-    // the solver's SPD preconditioner M^{-1} ~ H^{-1}, scaled as W^{-1} M^{-1} W^{-1}
+    // the solver's SPD preconditioner M^{-1} ~ H^{-1}, scaled as W^{-1} M^{-1} W^{-1}:
+    // the one given (the solve's, set up at the state: not a second set-up), else
+    // one made and set up here
     rn_preconditioner used = RN_PRECOND_AUTO;
-    const std::unique_ptr<Preconditioner> prec = make_preconditioner(sys, opt, &used);
-    prec->setup(sys);
+    std::unique_ptr<Preconditioner> own;
+    Preconditioner *prec = given;
+    if (!prec) {
+      own = make_preconditioner(sys, opt, &used);
+      own->setup(sys);
+      prec = own.get();
+    }
     auto A = Teuchos::rcp(new ScaledOperator(H, w, false));
     auto P = Teuchos::rcp(new ScaledOperator(prec->inverse(), winv, true));
     const int block = static_cast<int>(std::min<GO>(n, kStabilityBlock));
@@ -217,14 +225,15 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt) {
 }
 
 rn_stability solve_stability(Problem &p, System *dist, const rn_solve_options &opt,
-                             rn_factorization kind) {
+                             rn_factorization kind, KrylovWorkspace *ws) {
   const int method = opt.stability_method;
   if (dist) {
     if (method == RN_STABILITY_CHOLESKY) return rn_stability{}; // needs the whole H
-    TMV x(dist->map(), 1);
-    dist->get_state(x);
-    dist->assemble_hessian(x);
-    return lobpcg_stability(*dist, opt);
+    System &sys = ws ? ws->system() : *dist; // (the workspace's System is dist)
+    TMV x(sys.map(), 1);
+    sys.get_state(x);
+    sys.assemble_hessian(x);
+    return lobpcg_stability(sys, opt, ws ? &ws->preconditioner() : nullptr);
   }
   double flops = 0.0;
   bool lobpcg = method == RN_STABILITY_LOBPCG;
@@ -241,7 +250,13 @@ rn_stability solve_stability(Problem &p, System *dist, const rn_solve_options &o
     lobpcg = krylov_only && flops > RN_STABILITY_MAX_FLOPS;
   }
   rn_stability st{};
-  if (lobpcg) {
+  if (lobpcg && ws) { // the solve's System (on p) and preconditioner
+    System &sys = ws->system();
+    TMV x(sys.map(), 1);
+    sys.get_state(x);
+    sys.assemble_hessian(x);
+    st = lobpcg_stability(sys, opt, &ws->preconditioner());
+  } else if (lobpcg) {
     SerialSystem sys(p);
     TMV x(sys.map(), 1);
     sys.get_state(x);

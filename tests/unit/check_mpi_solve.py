@@ -6,12 +6,19 @@ compare the two RESULT.json files (issue 7, the `mpi` tests):
                        --solver NAME --out DIR [--max-share 0.55]
                        [--args "common options"] [--args1 "one rank's"]
                        [--argsn "N ranks' options"] [--same-iterations]
+                       [--same-path-above G]
 
 - both runs exit with status 0 (converged);
 - energy and every vertex position agree to 1e-10 relative (positions relative to
   the largest coordinate); with --same-iterations (the same preconditioner on both,
   e.g. gathered) the Newton iterations and load steps are equal, otherwise they are
   printed;
+- with --same-path-above G (a scene whose trust region meets the energy's round-off
+  before it converges, where its decisions are noise and the paths may part): both
+  runs print their progress, and every iteration line of the one-rank run whose
+  gradient norm is at least G (at least two lines) has its twin in the N-rank run:
+  the same iteration number, trust radius and Krylov iterations (as printed), the
+  energy to 1e-10 relative, the gradient norm to 1e-3 (printed to 4 digits);
 - "stability": both checked or neither; verified_minimum and zero_modes equal,
   the lowest eigenvalues within 1e-6 relative (+ 1e-12 scale), scale to 1e-12
   (one rank: the Cholesky check by default; N ranks: LOBPCG on the parts, or the
@@ -29,18 +36,49 @@ import subprocess
 import sys
 
 
-def run(cmd):
+def run(cmd, progress=None):
+    """Runs cmd; returns its exit status.  progress: a list that receives the
+    progress lines of stderr as (iteration, energy, gnorm, radius, krylov) with
+    radius and krylov as printed."""
     print("running:", " ".join(cmd), flush=True)
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                        timeout=1200)
     sys.stdout.write(p.stdout)
-    sys.stdout.write(p.stderr)
+    if progress is None:
+        sys.stdout.write(p.stderr)
     # the library prints nothing: standard output is rodnet's summary only (its lines
     # start with "rodnet " or are indented), no solver library's messages
     for line in p.stdout.splitlines():
         if line and not line.startswith(("rodnet ", " ")):
             fail("a line on standard output that is not rodnet's summary: %r" % line)
+    if progress is not None:
+        for line in p.stderr.splitlines():
+            f = line.split()
+            if len(f) == 7 and f[0].isdigit():
+                progress.append((int(f[0]), float(f[1]), float(f[2]), f[3], f[4]))
+            else:
+                sys.stdout.write(line + "\n")
     return p.returncode
+
+
+def compare_paths(one, many, gmin, np):
+    """The progress lines of one rank with |g| >= gmin against the N-rank run's."""
+    n = 0
+    for k, a in enumerate(one):
+        if a[2] < gmin:
+            break
+        if k >= len(many):
+            fail("the %d-rank run stopped after %d progress lines" % (np, len(many)))
+        b = many[k]
+        print("iteration %d: energy %.17g vs %.17g, |g| %.4g vs %.4g, radius %s vs %s, "
+              "krylov %s vs %s" % (a[0], a[1], b[1], a[2], b[2], a[3], b[3], a[4], b[4]))
+        if (a[0] != b[0] or a[3] != b[3] or a[4] != b[4] or
+                rel(a[1], b[1], a[1]) > 1e-10 or rel(a[2], b[2], a[2]) > 1e-3):
+            fail("the paths part at progress line %d (iteration %d)" % (k, a[0]))
+        n += 1
+    print("same path over %d progress lines (|g| >= %g on one rank)" % (n, gmin))
+    if n < 2:
+        fail("fewer than 2 progress lines compared")
 
 
 def fail(msg):
@@ -65,18 +103,24 @@ def main():
     ap.add_argument("--args1", default="")
     ap.add_argument("--argsn", default="")
     ap.add_argument("--same-iterations", action="store_true")
+    ap.add_argument("--same-path-above", type=float, default=None)
     ap.add_argument("--label", default="")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     base = os.path.splitext(os.path.basename(a.scene))[0] + a.label
     r1 = os.path.join(a.out, base + ".np1.json")
     rn = os.path.join(a.out, base + ".np%d.json" % a.np)
-    args = ["solve", a.scene, "--solver", a.solver, "-q"] + a.args.split()
-    if run([a.rodnet] + args + a.args1.split() + ["-o", r1]) != 0:
+    path = a.same_path_above is not None
+    args = (["solve", a.scene, "--solver", a.solver] + ([] if path else ["-q"]) +
+            a.args.split())
+    prog1, progn = ([], []) if path else (None, None)
+    if run([a.rodnet] + args + a.args1.split() + ["-o", r1], prog1) != 0:
         fail("one rank did not converge")
     if run([a.mpiexec, "-q", "-n", str(a.np), a.rodnet] + args + a.argsn.split() +
-           ["-o", rn]) != 0:
+           ["-o", rn], progn) != 0:
         fail("%d ranks did not converge" % a.np)
+    if path:
+        compare_paths(prog1, progn, a.same_path_above, a.np)
     one, many = json.load(open(r1)), json.load(open(rn))
     e = rel(many["energy"], one["energy"], one["energy"])
     print("energy %.17g vs %.17g (rel %.3g)" % (many["energy"], one["energy"], e))

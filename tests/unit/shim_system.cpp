@@ -13,7 +13,11 @@
 //  - the factor preconditioner inverts H exactly where H is positive definite
 //    (|H M^{-1} r - r| <= 1e-10 |r|), is unshifted there, and shifted (SPD, r' M^{-1} r
 //    > 0) at an indefinite Hessian (the compressed column of shim_buckling);
-//  - save_state / restore_state give back bit-identical energies.
+//  - save_state / restore_state give back bit-identical energies;
+//  - the LOBPCG stability check given tr-krylov's workspace (solve_stability's ws,
+//    issue 22) uses the workspace's preconditioner without setting it up again, and
+//    finds the same verdict, zero modes and lowest eigenvalue (1e-6) as with a
+//    preconditioner of its own.
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -22,6 +26,9 @@
 
 #include "factor_preconditioner.hpp"
 #include "minres.hpp"
+#include "preconditioner.hpp"
+#include "solvers.hpp"
+#include "stability.hpp"
 #include "system_serial.hpp"
 
 #include "rodnet.h"
@@ -143,6 +150,36 @@ static void check_factor(rn_network *net, const char *label, bool definite) {
     CHECK(prec.stats().shifted && prec.shift() > 0.0);
 }
 
+static void check_stability_reuse(rn_network *net, const char *label) {
+  Problem p(net);
+  rn_solve_options opt;
+  rn_solve_options_default(&opt);
+  opt.solver = RN_SOLVER_TR_KRYLOV;
+  opt.preconditioner = RN_PRECOND_DD;
+  opt.stability_method = RN_STABILITY_LOBPCG;
+  KrylovWorkspace ws(p, nullptr, opt);
+  System &sys = ws.system();
+  TMV x(sys.map(), 1);
+  sys.get_state(x);
+  sys.assemble_hessian(x);
+  ws.preconditioner().setup(sys);
+  const long setups = ws.preconditioner().stats().setups;
+  const rn_stability own = solve_stability(p, nullptr, opt, RN_FACTOR_AUTO);
+  const rn_stability reused = solve_stability(p, nullptr, opt, RN_FACTOR_AUTO, &ws);
+  printf("%s, LOBPCG: own preconditioner %.9e (%d iterations), the workspace's %.9e "
+         "(%d iterations), workspace set-ups %ld -> %ld\n",
+         label, own.lowest_eigenvalue, own.iterations, reused.lowest_eigenvalue,
+         reused.iterations, setups, ws.preconditioner().stats().setups);
+  CHECK(setups == 1 && ws.preconditioner().stats().setups == setups);
+  CHECK(ws.preconditioner().stats().applies > 0); // LOBPCG applied it
+  CHECK(own.checked && reused.checked && own.method == RN_STABILITY_LOBPCG &&
+        reused.method == RN_STABILITY_LOBPCG);
+  CHECK(own.verified_minimum == reused.verified_minimum &&
+        own.zero_modes == reused.zero_modes);
+  CHECK(std::fabs(own.lowest_eigenvalue - reused.lowest_eigenvalue) <=
+        1e-6 * std::fabs(own.lowest_eigenvalue) + 1e-12 * own.scale);
+}
+
 int main(int argc, char **argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   rn_context *ctx = NULL;
@@ -151,6 +188,7 @@ int main(int argc, char **argv) {
     rn_network *net = shim_system_portal(ctx, 0);
     check_network(net, "rigid portal", 0); /* rigid joints: the ends stay rod-interior */
     check_factor(net, "rigid portal, factor", true);
+    check_stability_reuse(net, "rigid portal");
     rn_network_destroy(&net);
     net = shim_system_portal(ctx, 1);
     check_network(net, "elastic portal", 16); /* x_n, theta of 2 ends at A and at B */
