@@ -604,17 +604,15 @@ int rn_cli_sweep(int argc, char **argv) {
           cJSON_Delete(rec);
           cJSON_free(rec_text);
           valid[k] = !st;
-          {
-            if (st) {
-              fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
-                      quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
-                      p.seed, rn_context_last_error(ctx));
-              if (st == RN_ERR_IO) { /* the folder: no point in going on */
-                rc = RN_EXIT_INPUT;
-                goto done;
-              }
-              ++failed;
+          if (st) {
+            fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
+                    quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
+                    p.seed, rn_context_last_error(ctx));
+            if (st == RN_ERR_IO) { /* the folder: no point in going on */
+              rc = RN_EXIT_INPUT;
+              goto done;
             }
+            ++failed;
           }
           if (!quiet) progress(k + 1, total, &p, skip);
         }
