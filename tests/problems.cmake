@@ -266,11 +266,11 @@ if(RN_WITH_TRILINOS)
   # (the truss snaps back to 0 before 0.9; --steps 2) is exit status 1.
   rn_cli_test(problems_cli_path_to_behind_strip 3
               "the target -0.0264591 lies behind the start -0.0264591.*direction -1"
-              ABSENT ${RN_CLI_OUT}/path_behind.csv
+              ABSENT ${RN_CLI_OUT}/path_behind.csv REMOVE ${RN_CLI_OUT}/path_behind.csv
               ARGS path ${RN_PATH_SCENES}/strip_snap.json -o ${RN_CLI_OUT}/path_behind.csv
                    --control vertex:strip:20:z --direction -1 --to -0.0264591 -q)
   rn_cli_test(problems_cli_path_to_behind_load 3 "the target 0.2 lies behind the start 0.8"
-              ABSENT ${RN_CLI_OUT}/path_behind.csv
+              ABSENT ${RN_CLI_OUT}/path_behind.csv REMOVE ${RN_CLI_OUT}/path_behind.csv
               ARGS path ${RN_PATH_SCENES}/von_mises_truss.json
                    -o ${RN_CLI_OUT}/path_behind.csv --start 0.8 --to 0.2)
   rn_cli_test(problems_cli_path_to_back 0 "stop target"
@@ -515,6 +515,7 @@ if(RN_WITH_TRILINOS)
   rn_cli_test(problems_cli_periodic_contradictory 3
               "hc_contradictory.json: .*periodic.*stress.*component 1 is 1 but that strain component is prescribed \\(contradictory control"
               STDERR_LINES 1 ABSENT ${gen}/hc_contradictory_result.json
+              REMOVE ${gen}/hc_contradictory_result.json
               ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_contradictory.json
                    -o ${gen}/hc_contradictory_result.json)
   # item 5: a trivial path (zero strain, zero stress) is a valid path
