@@ -101,6 +101,15 @@ static rn_status check_cell(const rn_network *net, const char *where, int buildi
   return RN_OK;
 }
 
+/* Contradictory control: an applied stress on a strain-controlled (prescribed)
+ * component, where it would do nothing (its work is a constant).  The first such
+ * component v (0-based), or -1. */
+static int stress_on_fixed(int ns, const int *fixed, const double *stress) {
+  for (int v = 0; v < ns; ++v)
+    if (fixed[v] && stress[v] != 0.0) return v;
+  return -1;
+}
+
 rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
                                      const double *strain) {
   static const char *where = "rn_network_set_cell_strain";
@@ -110,6 +119,12 @@ rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
   if (!fixed) return rn_fail(net->ctx, RN_ERR_ARG, where, "fixed is NULL");
   if (strain && !rn_all_finite((size_t)net->cell->nstrain, strain))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "strain is not finite");
+  int bad = stress_on_fixed(net->cell->nstrain, fixed, net->cell->stress);
+  if (bad >= 0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "strain component %d is prescribed but carries an applied stress %g "
+                   "(contradictory control: a component is strain- or stress-controlled)",
+                   bad + 1, net->cell->stress[bad]);
   for (int v = 0; v < net->cell->nstrain; ++v) {
     net->cell->fixed[v] = fixed[v] != 0;
     net->cell->strain[v] = (fixed[v] && strain) ? strain[v] : 0.0;
@@ -125,6 +140,12 @@ rn_status rn_network_set_cell_stress(rn_network *net, const double *stress) {
   if (!stress) return rn_fail(net->ctx, RN_ERR_ARG, where, "stress is NULL");
   if (!rn_all_finite((size_t)net->cell->nstrain, stress))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "stress is not finite");
+  int bad = stress_on_fixed(net->cell->nstrain, net->cell->fixed, stress);
+  if (bad >= 0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "stress component %d is %g but that strain component is prescribed "
+                   "(contradictory control: a component is strain- or stress-controlled)",
+                   bad + 1, stress[bad]);
   memcpy(net->cell->stress, stress, (size_t)net->cell->nstrain * sizeof(double));
   return RN_OK;
 }
@@ -140,6 +161,12 @@ rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
   if ((strain && !rn_all_finite((size_t)ns, strain)) ||
       (stress && !rn_all_finite((size_t)ns, stress)))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "strain or stress is not finite");
+  int bad = stress ? stress_on_fixed(ns, net->cell->fixed, stress) : -1;
+  if (bad >= 0)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "stress component %d is %g but that strain component is prescribed "
+                   "(contradictory control: a component is strain- or stress-controlled)",
+                   bad + 1, stress[bad]);
   for (int v = 0; v < ns; ++v)
     if (strain && net->cell->fixed[v]) net->cell->strain[v] = strain[v];
   if (stress) memcpy(net->cell->stress, stress, (size_t)ns * sizeof(double));

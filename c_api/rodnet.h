@@ -524,18 +524,23 @@ rn_status rn_network_add_joint_images(rn_network *net, const char *name,
                                       const int *ends, const int *images, int *joint);
 /* Strain control before finalize: component v is prescribed (fixed[v] != 0,
  * value strain[v] scaled by the load factor; strain may be NULL: 0) or a DOF
- * (default: every component free).  nstrain entries each. */
+ * (default: every component free).  nstrain entries each.  RN_ERR_ARG if a
+ * component to prescribe carries a non-zero applied stress (contradictory
+ * control; rn_network_set_cell_stress). */
 rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
                                      const double *strain);
 /* Applied macroscopic stress (Voigt, work conjugate to the strain DOFs, per unit
  * cell area / volume, scaled by the load factor): the energy gains
- * -lambda measure sigma . eps (mixed control: stress on the free components). */
+ * -lambda measure sigma . eps (mixed control: stress on the free components).
+ * RN_ERR_ARG for a non-zero stress on a prescribed strain component
+ * (contradictory control: its work would be a constant, the stress ignored). */
 rn_status rn_network_set_cell_stress(rn_network *net, const double *stress);
 /* After finalize (or before): new values of the prescribed strain components
  * (strain[nstrain]: the entries of components that are DOFs are ignored; NULL
  * keeps them) and of the applied stress (stress[nstrain]; NULL keeps it), both
  * scaled by the load factor; which components are prescribed does not change.
- * Moves the prescribed strain DOFs accordingly (general strain / stress paths). */
+ * Moves the prescribed strain DOFs accordingly (general strain / stress paths).
+ * RN_ERR_ARG (nothing changed) for a non-zero stress on a prescribed component. */
 rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
                                    const double *stress);
 /* Dimension (0 if not periodic), number of strain components, cell area (2D)

@@ -521,8 +521,10 @@ const char *rn_path_stop_name(rn_path_stop s);
  * be an equilibrium at its load factor (rn_solve first; under RN_PATH_LOAD the
  * path starts at the network's load factor).  The network is left at the last
  * accepted point (state, reference frames, load factor).  Returns RN_OK when
- * the path ran to a stop (rep->stop says which), RN_ERR_ARG for invalid options
- * (a DOF out of range, a part of a distributed network), RN_ERR_GEOMETRY if the
+ * the path ran to a stop (rep->stop says which: a target set but not reached
+ * stops otherwise than RN_PATH_STOP_TARGET), RN_ERR_ARG for invalid options
+ * (a DOF out of range, a part of a distributed network, a target set at or
+ * behind the start in the direction opt.direction), RN_ERR_GEOMETRY if the
  * start is degenerate, RN_ERR_SOLVER if the start is not an equilibrium (the
  * first corrector fails), another error code otherwise; the message in the
  * network's context.  rep may be NULL. */

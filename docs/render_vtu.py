@@ -4,13 +4,16 @@ matplotlib (Agg, no display needed) draws the deformed rods colored by one
 field, over the undeformed shape (points minus displacement) in gray.
 
     /usr/bin/python3 docs/render_vtu.py OUT.vtu PNG [--field bending_moment]
-        [--view xz|xy|yz|3d] [--title TEXT] [--width-px 1400]
+        [--view xz|xy|yz|3d] [--title TEXT] [--width-px 1400] [--quiet]
 
 --field names a point array (each half edge gets the value of its vertex) or a
 cell array of the .vtu; vector fields are shown by their magnitude.  Needs
-python3-vtk9 and matplotlib (Debian's /usr/bin/python3 has both).
+python3-vtk9 and matplotlib (Debian's /usr/bin/python3 has both).  The PNG is
+written to a temporary file and renamed (completely or not at all); --quiet: no
+"wrote" line.
 """
 import argparse
+import os
 
 import matplotlib
 matplotlib.use("Agg")
@@ -104,6 +107,7 @@ def main():
     ap.add_argument("--title", default="")
     ap.add_argument("--label", default="", help="colorbar label (default: the field)")
     ap.add_argument("--width-px", type=int, default=1400)
+    ap.add_argument("--quiet", action="store_true", help="no 'wrote' line")
     a = ap.parse_args()
 
     grid = read(a.vtu)
@@ -125,9 +129,12 @@ def main():
     ax.set_title(a.title or "%s: %s (undeformed dashed)" % (a.vtu.split("/")[-1], a.field),
                  fontsize=9)
     fig.tight_layout()
-    fig.savefig(a.png, dpi=dpi)
-    print("render_vtu: wrote %s (%d segments, %s in [%.4g, %.4g])"
-          % (a.png, len(pairs), a.field, vals.min(), vals.max()))
+    tmp = a.png + ".tmp.png"
+    fig.savefig(tmp, dpi=dpi)
+    os.replace(tmp, a.png)
+    if not a.quiet:
+        print("render_vtu: wrote %s (%d segments, %s in [%.4g, %.4g])"
+              % (a.png, len(pairs), a.field, vals.min(), vals.max()))
 
 
 if __name__ == "__main__":

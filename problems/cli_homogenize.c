@@ -84,8 +84,13 @@ static const char homogenize_help[] =
     "  -h, --help          show this help\n"
     "\n";
 static const char homogenize_help_tail[] =
+    "A path that stops early (the fluctuations or the mixed solve fail) writes its\n"
+    "partial result to RESULT.partial.json (\"partial\": true) and leaves RESULT.json\n"
+    "as it was (a complete earlier result is kept); exit status 4.\n"
+    "\n"
     "Exit status: 0 done, 2 usage error, 3 bad scene (not periodic, prescribed\n"
-    "strain) or unwritable output, 4 the cell is a mechanism or the plot failed.\n";
+    "strain) or unwritable output, 4 the cell is a mechanism, the path stopped\n"
+    "early or the plot failed.\n";
 
 typedef struct hom_args {
   const char *scene, *output, *plot, *path, *pattern, *post;
@@ -332,7 +337,10 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   const rn_homogenization *h = o->h;
   int n = h->nstrain;
   (void)ctx;
-  fputs("{\n  \"command\": \"homogenize\",\n  \"scene\": \"", f);
+  fputs("{\n  \"command\": \"homogenize\",\n", f);
+  if (o->path && o->path->stopped) /* RESULT.partial.json: the path stopped early */
+    fputs("  \"partial\": true,\n", f);
+  fputs("  \"scene\": \"", f);
   for (const char *p = o->a->scene; *p; p++) {
     if (*p == '"' || *p == '\\') fputc('\\', f);
     fputc(*p, f);
@@ -397,23 +405,26 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
   cJSON *root = NULL;
   double *x = NULL, *vec = NULL;
   if (!path->inst.found || path->inst.kind_macroscopic) {
-    fprintf(stderr, "rodnet homogenize: --pattern: %s\n",
-            path->inst.found ? "the instability is macroscopic (long wavelength): no "
-                               "finite supercell"
-                             : "the path stays stable: no pattern");
+    /* nothing to draw: said in RESULT.json and the summary (not an error) */
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             path->inst.found ? "the instability is macroscopic (long wavelength): no "
+                                "finite supercell"
+                              : "the path stays stable: no pattern");
     return RN_EXIT_OK;
   }
   if (!hp_instability_supercell(&path->inst, path->dim, pat->rep)) {
-    fprintf(stderr,
-            "rodnet homogenize: --pattern: the wave vector is not commensurate with a "
-            "supercell of at most 12 cells per direction\n");
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             "the wave vector is not commensurate with a supercell of at most 12 cells "
+             "per direction");
+    fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
     return RN_EXIT_INTERNAL;
   }
   if (rn_text_file_read(ctx, a->scene, 1 << 28, &text, &len)) goto fail;
   root = cJSON_Parse(text);
   cJSON *per = cJSON_GetObjectItemCaseSensitive(root, "periodic");
   if (!cJSON_IsObject(per) || cJSON_GetObjectItemCaseSensitive(per, "repeat")) {
-    fprintf(stderr, "rodnet homogenize: --pattern: needs a scene without \"repeat\"\n");
+    snprintf(pat->why_not, sizeof pat->why_not, "%s", "needs a scene without \"repeat\"");
+    fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
     goto done;
   }
   cJSON_DeleteItemFromObjectCaseSensitive(per, "stress");
@@ -459,7 +470,13 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
   if (rn_vtk_write(ctx, vtu, sc)) goto fail;
   pat->written = 1;
   {
-    const char *const args[] = {vtu, png, "--view", "xy", "--field", "bending_moment",
+    const char *const args[] = {vtu,
+                                png,
+                                "--view",
+                                "xy",
+                                "--field",
+                                "bending_moment",
+                                a->quiet ? "--quiet" : NULL,
                                 NULL};
     pat->png =
         rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;
@@ -469,7 +486,8 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
 fail_alloc:
   rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
 fail:
-  fprintf(stderr, "rodnet homogenize: --pattern: %s\n", rn_context_last_error(ctx));
+  snprintf(pat->why_not, sizeof pat->why_not, "%s", rn_context_last_error(ctx));
+  fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
 done:
   free(x);
   free(vec);
@@ -620,42 +638,70 @@ int rn_cli_homogenize(int argc, char **argv) {
     if (prc) rc = prc;
   }
   hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post};
-  st = rn_file_write_atomic(ctx, a.output, write_result, &o);
+  /* a path that stopped early: its partial result beside RESULT.json, never in
+   * place of it (a complete earlier result there is kept) */
+  char partial[4096];
+  const char *dest = a.output;
+  if (a.path && path.stopped) {
+    size_t n = strlen(a.output);
+    int json = n > 5 && strcmp(a.output + n - 5, ".json") == 0;
+    snprintf(partial, sizeof partial, "%.*s.partial.json", (int)(json ? n - 5 : n),
+             a.output);
+    dest = partial;
+  }
+  st = rn_file_write_atomic(ctx, dest, write_result, &o);
   if (!st && a.path && !a.quiet) {
-    if (path.inst.found)
+    if (path.inst.found) {
       printf("rodnet homogenize: first instability at load factor %.6g of the path: "
-             "strain [%.6g %.6g %.6g%s], %s, wave vector [%.4g %.4g%s], multiplicity %d, "
-             "%d equivalent wave vector(s)\n",
-             path.inst.t, path.inst.strain[0], path.inst.strain[1],
-             path.inst.strain[path.ns - 1], path.ns == 6 ? " ..." : "",
+             "strain ",
+             path.inst.t);
+      hp_print_vec(stdout, path.ns, path.inst.strain, 6, 0);
+      printf(" (Voigt %s), %s, wave vector ",
+             path.ns == 3 ? "11 22 12" : "11 22 33 23 13 12",
              path.inst.stress_limit       ? "macroscopic (limit point of the stress)"
              : path.inst.kind_macroscopic ? "macroscopic"
-                                          : "local",
-             path.inst.xi[0], path.inst.xi[1], path.dim == 3 ? " ..." : "",
-             path.inst.multiplicity, path.inst.kind_macroscopic ? 1 : path.inst.nequiv);
+                                          : "local");
+      hp_print_vec(stdout, path.dim, path.inst.xi, 4, 0);
+      printf(", multiplicity %d, %d equivalent wave vector(s)\n", path.inst.multiplicity,
+             path.inst.kind_macroscopic ? 1 : path.inst.nequiv);
+    } else if (path.stopped)
+      printf("rodnet homogenize: the path is stable as far as it went (%d of %d steps)\n",
+             path.done, path.steps);
     else
       printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
+    char third[16] = "";
+    if (path.dim == 3) snprintf(third, sizeof third, " x %d", path.pattern.rep[2]);
     if (path.pattern.written)
-      printf("rodnet homogenize: pattern: %d x %d supercell at the critical strain, "
+      printf("rodnet homogenize: pattern: %d x %d%s supercell at the critical strain, "
              "critical mode eigenvalue %.3e (scaled to %.3g)%s; wrote %s.vtu%s%s%s\n",
-             path.pattern.rep[0], path.pattern.rep[1], path.pattern.eigenvalue,
+             path.pattern.rep[0], path.pattern.rep[1], third, path.pattern.eigenvalue,
              path.pattern.amplitude, path.pattern.converged ? "" : " (NOT converged)",
              a.pattern, path.pattern.png ? " and " : "",
              path.pattern.png ? a.pattern : "", path.pattern.png ? ".png" : "");
+    else if (path.pattern.requested)
+      printf("rodnet homogenize: pattern: nothing written: %s\n",
+             path.pattern.why_not[0] ? path.pattern.why_not : "not computed");
+    if (post.requested && post.failed)
+      printf("rodnet homogenize: post-buckling: nothing written: %s\n", post.failed);
   }
   if (a.path && path.stopped) {
-    fprintf(stderr, "rodnet homogenize: %s: the path stopped at step %d: %s\n", a.scene,
-            path.done + 1, path.stopped);
+    fprintf(stderr,
+            "rodnet homogenize: %s: the path stopped at step %d: %s; the partial result "
+            "is in %s (%s is not written)\n",
+            a.scene, path.done + 1, path.stopped, dest, a.output);
     if (!rc) rc = RN_EXIT_INTERNAL;
   }
   if (!st && post.done && !a.quiet) {
     const hp_post_step *ls = &post.step[post.done - 1];
-    printf("rodnet homogenize: post-buckling: %d x %d supercell, %d steps past the "
-           "critical strain; at load factor %.4g stress [%.6g %.6g %.6g] (principal "
-           "[%.6g %.6g %.6g]), %s; wrote %s.vtu%s%s%s\n",
-           post.rep[0], post.rep[1], post.done, ls->t, ls->stress[0], ls->stress[1],
-           ls->stress[path.ns - 1], ls->principal_stress[0], ls->principal_stress[1],
-           ls->principal_stress[path.ns - 1],
+    char third[16] = "";
+    if (path.dim == 3) snprintf(third, sizeof third, " x %d", post.rep[2]);
+    printf("rodnet homogenize: post-buckling: %d x %d%s supercell, %d steps past the "
+           "critical strain; at load factor %.4g stress ",
+           post.rep[0], post.rep[1], third, post.done, ls->t);
+    hp_print_vec(stdout, path.ns, ls->stress, 6, 0);
+    fputs(" (principal ", stdout);
+    hp_print_vec(stdout, path.ns, ls->principal_stress, 6, 0);
+    printf("), %s; wrote %s.vtu%s%s%s\n",
            ls->verified ? "a verified minimum" : "NOT a verified minimum", a.post,
            post.png ? " and " : "", post.png ? a.post : "", post.png ? ".png" : "");
   }
@@ -679,9 +725,9 @@ int rn_cli_homogenize(int argc, char **argv) {
     }
     printf("\n  model %s", rn_result_model_line(net, line, sizeof line));
     printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
-           1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], a.output);
+           1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], dest);
   }
-  if (a.plot && run_plot(a.output, a.plot) != 0) {
+  if (a.plot && run_plot(dest, a.plot) != 0) {
     fprintf(stderr,
             "rodnet homogenize: the plot %s failed (%s %s with matplotlib; "
             "RODNET_PYTHON and RODNET_PLOT_STIFFNESS override them); %s is written\n",

@@ -67,8 +67,10 @@ static const char path_help[] =
     "unknown), arclength, corrector_iterations.\n"
     "\n"
     "Exit status: 0 done, 1 the path stopped early (the corrector failed down to\n"
-    "the smallest step) or the start did not converge, 2 usage error, 3 bad scene,\n"
-    "control or output path, 4 solver error or failed plot.\n";
+    "the smallest step, or --to was given and not reached) or the start did not\n"
+    "converge, 2 usage error, 3 bad scene, control or output path (or --to at or\n"
+    "behind the start in the direction of the first step), 4 solver error or failed\n"
+    "plot.\n";
 
 #ifndef RN_HAVE_SOLVER
 /* Without the solver: the help, else the refusal (status 5). */
@@ -537,6 +539,19 @@ static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *
             getenv("RODNET_PLOT_PATH") ? getenv("RODNET_PLOT_PATH") : RN_PLOT_PATH_SCRIPT,
             a->output);
     return RN_EXIT_INTERNAL;
+  }
+  if (!isnan(a->opt.target) && rep.stop != RN_PATH_STOP_TARGET &&
+      rep.stop != RN_PATH_STOP_STEP_MIN) {
+    /* --to given and not reached (the step-min stop has its own status) */
+    const rn_path_point *end = rows->n ? &rows->p[rows->n - 1] : NULL;
+    fprintf(stderr,
+            "rodnet path: %s: the path did not reach --to %.10g: it stopped (%s) at %s "
+            "%.10g after %d steps; %s holds the path so far\n",
+            a->scene, a->opt.target, rn_path_stop_name(rep.stop),
+            opt.control == RN_PATH_DOF ? "control" : "load factor",
+            end ? (opt.control == RN_PATH_DOF ? end->control : end->load_factor) : NAN,
+            rep.steps, a->output);
+    return RN_EXIT_NOT_CONVERGED;
   }
   return rep.stop == RN_PATH_STOP_STEP_MIN ? RN_EXIT_NOT_CONVERGED : RN_EXIT_OK;
 }

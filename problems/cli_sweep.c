@@ -2,14 +2,16 @@
  * periodic cells over a grid of parameters (lattice, joint model, relative
  * density, imperfection seed) from a sweep file (docs/homogenization.md,
  * "Sweeps").  Every point is written atomically as soon as it is done
- * (DIR/point_NNNN.json); a rerun skips the points whose file is there with the
- * same parameters, so a killed sweep loses nothing; then DIR/sweep.csv and the
- * plot. */
+ * (DIR/point_NNNN.json) with its record (every key of the sweep file at that
+ * point, the rodnet version, a hash of the cell scene); a rerun skips the points
+ * whose record is unchanged, so a killed sweep loses nothing, and recomputes the
+ * others; then DIR/sweep.csv (this sweep's points only) and the plot. */
 #define _POSIX_C_SOURCE 200809L
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,8 +42,10 @@ static const char sweep_help[] =
     "   \"scale\": \"log\" or \"linear\"}, \"seed\": [...], \"perturb\": amp,\n"
     "   \"edges_per_rod\": N, \"cells\": [m, n(, k)], \"E\": 1, \"nu\": 0.3}\n"
     "Every point (the product of the lists) is written atomically to\n"
-    "DIR/point_NNNN.json as soon as it is done; a rerun skips the points already\n"
-    "there, so a killed sweep loses nothing.  Then DIR/sweep.csv (atomically) and,\n"
+    "DIR/point_NNNN.json as soon as it is done, with its record (every parameter\n"
+    "of the sweep file at that point, the rodnet version, a hash of its cell\n"
+    "scene); a rerun skips the points whose record is unchanged and recomputes the\n"
+    "others, so a killed sweep loses nothing.  Then DIR/sweep.csv (atomically) and,\n"
     "with --plot, a PNG of E1 and nu12 against relative density (the frame closed\n"
     "forms on the same axes for the rigid-jointed honeycomb).\n"
     "\n"
@@ -106,11 +110,80 @@ static int string_list(const cJSON *v, char (*out)[32], int max, int *n) {
   return *n > 0 ? 0 : -1;
 }
 
+static const char *joint_name(int jm) {
+  return jm == RN_JOINT_RIGID ? "rigid" : "elastic";
+}
+
+/* ---- the keys of a sweep file and a point's record of them ------------------
+ * One table: parse_spec accepts exactly these keys, and the record of a point
+ * (its point file's "parameters", compared on a rerun) holds each of them with
+ * its effective value at that point (a list key: the point's entry; a key left
+ * out: its default), written by the key's own function.  A key added to the
+ * sweep file format is added here, with what defines a point by it. */
+typedef int (*put_key)(cJSON *rec, const char *name, const sweep_spec *s, const point *p);
+static int put_lattice(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddStringToObject(r, k, p->lattice) != NULL;
+}
+static int put_joint(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddStringToObject(r, k, joint_name(p->joint_model)) != NULL;
+}
+static int put_rho(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddNumberToObject(r, k, p->rho) != NULL;
+}
+static int put_seed(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddNumberToObject(r, k, (double)p->seed) != NULL;
+}
+static int put_perturb(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->perturb) != NULL;
+}
+static int put_edges(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->edges) != NULL;
+}
+static int put_cells(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  cJSON *a = cJSON_CreateIntArray(s->cells, 3);
+  return a && cJSON_AddItemToObject(r, k, a);
+}
+static int put_E(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->E) != NULL;
+}
+static int put_nu(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->nu) != NULL;
+}
+static const struct {
+  const char *name;
+  put_key put;
+} spec_keys[] = {{"lattice", put_lattice},
+                 {"joint_model", put_joint},
+                 {"relative_density", put_rho},
+                 {"seed", put_seed},
+                 {"perturb", put_perturb},
+                 {"edges_per_rod", put_edges},
+                 {"cells", put_cells},
+                 {"E", put_E},
+                 {"nu", put_nu}};
+enum { NKEYS = (int)(sizeof spec_keys / sizeof spec_keys[0]) };
+
+/* The record of point p of sweep s: every key of the table (NULL out of memory). */
+static cJSON *point_record(const sweep_spec *s, const point *p) {
+  cJSON *rec = cJSON_CreateObject();
+  for (int k = 0; rec && k < NKEYS; ++k)
+    if (!spec_keys[k].put(rec, spec_keys[k].name, s, p)) {
+      cJSON_Delete(rec);
+      rec = NULL;
+    }
+  return rec;
+}
+
 static int parse_spec(const char *file, const char *text, sweep_spec *s) {
-  static const char *const keys[] = {"lattice", "joint_model", "relative_density",
-                                     "seed",    "perturb",     "edges_per_rod",
-                                     "cells",   "E",           "nu",
-                                     NULL};
   cJSON *root = cJSON_Parse(text);
   const cJSON *v, *e;
   char jm[2][32];
@@ -127,7 +200,7 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
   }
   cJSON_ArrayForEach(e, root) {
     int ok = 0;
-    for (int k = 0; keys[k]; ++k) ok |= strcmp(e->string, keys[k]) == 0;
+    for (int k = 0; k < NKEYS; ++k) ok |= strcmp(e->string, spec_keys[k].name) == 0;
     if (!ok) {
       rc = sweep_error(file, "unknown key '%s'", e->string);
       goto done;
@@ -295,10 +368,6 @@ done:
   return rc;
 }
 
-static const char *joint_name(int jm) {
-  return jm == RN_JOINT_RIGID ? "rigid" : "elastic";
-}
-
 /* The point's cell as a scene file at path. */
 static rn_status write_cell(rn_context *ctx, const sweep_spec *s, const point *p,
                             const char *path) {
@@ -334,7 +403,9 @@ typedef struct point_out {
   const rn_homogenization *h;
   const double *S;
   double seconds;
-  const char *path; /* the file being written (messages) */
+  const char *path;   /* the file being written (messages) */
+  const char *record; /* point_record, unformatted JSON */
+  const char *hash;   /* scene_hash of the cell scene homogenised */
 } point_out;
 
 /* The numbers of a point file are finite (issue 22: no "nan" in JSON): C,
@@ -358,6 +429,21 @@ static int point_finite(const point_out *o, rn_num_check *chk) {
   return !chk->bad;
 }
 
+/* FNV-1a (64 bit) of the file at path as "fnv1a64:HEX" in out[32]; 0 on success. */
+static int scene_hash(rn_context *ctx, const char *path, char out[32]) {
+  char *text = NULL;
+  size_t len = 0;
+  uint64_t h = 14695981039346656037ULL;
+  if (rn_text_file_read(ctx, path, 1 << 30, &text, &len)) return -1;
+  for (size_t i = 0; i < len; ++i) {
+    h ^= (unsigned char)text[i];
+    h *= 1099511628211ULL;
+  }
+  free(text);
+  snprintf(out, 32, "fnv1a64:%016llx", (unsigned long long)h);
+  return 0;
+}
+
 static rn_status write_point(FILE *f, void *user, rn_context *ctx) {
   const point_out *o = user;
   int n = o->h->nstrain;
@@ -372,6 +458,9 @@ static rn_status write_point(FILE *f, void *user, rn_context *ctx) {
           "  \"relative_density_target\": %.17g,\n  \"seed\": %ld,\n",
           o->p->index, o->p->lattice, joint_name(o->p->joint_model), o->p->rho,
           o->p->seed);
+  fprintf(f, "  \"rodnet_version\": \"%s\",\n  \"scene_hash\": \"%s\",\n",
+          rn_version_string(), o->hash);
+  fprintf(f, "  \"parameters\": %s,\n", o->record);
   fprintf(f, "  \"dimension\": %d,\n  \"relative_density\": %.17g,\n  \"C\": [",
           o->h->dim, o->h->relative_density);
   for (int i = 0; i < n * n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", o->h->C[i]);
@@ -387,8 +476,10 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* 1 if path holds a finished point with p's parameters. */
-static int point_done(rn_context *ctx, const char *path, const point *p) {
+/* 1 if path holds a finished point of index p->index with the record rec (every
+ * parameter that defines it), this rodnet version and the cell scene of hash. */
+static int point_done(rn_context *ctx, const char *path, const point *p, const cJSON *rec,
+                      const char *hash) {
   char *text = NULL;
   size_t len = 0;
   int ok = 0;
@@ -400,29 +491,34 @@ static int point_done(rn_context *ctx, const char *path, const point *p) {
               *j = cJSON_GetObjectItemCaseSensitive(root, "joint_model"),
               *r = cJSON_GetObjectItemCaseSensitive(root, "relative_density_target"),
               *s = cJSON_GetObjectItemCaseSensitive(root, "seed"),
-              *c = cJSON_GetObjectItemCaseSensitive(root, "constants");
+              *c = cJSON_GetObjectItemCaseSensitive(root, "constants"),
+              *v = cJSON_GetObjectItemCaseSensitive(root, "rodnet_version"),
+              *h = cJSON_GetObjectItemCaseSensitive(root, "scene_hash"),
+              *pr = cJSON_GetObjectItemCaseSensitive(root, "parameters");
   ok = cJSON_IsNumber(i) && i->valuedouble == p->index && cJSON_IsString(l) &&
        strcmp(l->valuestring, p->lattice) == 0 && cJSON_IsString(j) &&
        strcmp(j->valuestring, joint_name(p->joint_model)) == 0 && cJSON_IsNumber(r) &&
        r->valuedouble == p->rho && cJSON_IsNumber(s) &&
-       s->valuedouble == (double)p->seed && cJSON_IsObject(c);
+       s->valuedouble == (double)p->seed && cJSON_IsObject(c) && cJSON_IsString(v) &&
+       strcmp(v->valuestring, rn_version_string()) == 0 && cJSON_IsString(h) &&
+       strcmp(h->valuestring, hash) == 0 && cJSON_IsObject(pr) &&
+       cJSON_Compare(pr, rec, 1);
   cJSON_Delete(root);
   free(text);
   return ok;
 }
 
-/* Homogenise one point into DIR/point_NNNN.json; RN_OK or the failure. */
-static rn_status run_point(rn_context *ctx, const sweep_spec *s, const point *p,
-                           const char *dir) {
-  char scene[4096], out[4096];
+/* Homogenise one point (its cell already written to scene, of hash; rec its
+ * record) into DIR/point_NNNN.json; RN_OK or the failure. */
+static rn_status run_point(rn_context *ctx, const point *p, const char *dir,
+                           const char *scene, const char *rec, const char *hash) {
+  char out[4096];
   rn_scene *sc = NULL;
   rn_homogenization h;
   double S[36];
   rn_status st;
-  snprintf(scene, sizeof scene, "%s/point_%04d.scene.json", dir, p->index);
   snprintf(out, sizeof out, "%s/point_%04d.json", dir, p->index);
-  if ((st = write_cell(ctx, s, p, scene)) || (st = rn_scene_load(ctx, scene, &sc)))
-    return st;
+  if ((st = rn_scene_load(ctx, scene, &sc))) return st;
   double t0 = now();
 #ifdef RN_HAVE_SOLVER
   st = rn_homogenize(rn_scene_network(sc), &h);
@@ -434,7 +530,7 @@ static rn_status run_point(rn_context *ctx, const sweep_spec *s, const point *p,
   if (!st && !rn_homog_invert(h.nstrain, h.C, S))
     st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the effective stiffness is singular");
   if (!st) {
-    point_out o = {p, &h, S, seconds, out};
+    point_out o = {p, &h, S, seconds, out, rec, hash};
     st = rn_file_write_atomic(ctx, out, write_point, &o);
   }
   rn_scene_destroy(&sc);
@@ -444,6 +540,7 @@ static rn_status run_point(rn_context *ctx, const sweep_spec *s, const point *p,
 typedef struct csv_in {
   const char *dir;
   int npoints;
+  const unsigned char *valid; /* [npoints]: the point file is this sweep's */
 } csv_in;
 
 /* DIR/sweep.csv from the point files. */
@@ -456,6 +553,7 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
     char path[4096], *text = NULL;
     size_t len = 0;
     snprintf(path, sizeof path, "%s/point_%04d.json", in->dir, k);
+    if (!in->valid[k]) continue; /* failed: an older file there is another point's */
     if (rn_text_file_read(ctx, path, 1 << 20, &text, &len)) continue; /* failed point */
     cJSON *r = cJSON_Parse(text);
     const cJSON *c = cJSON_GetObjectItemCaseSensitive(r, "constants");
@@ -522,6 +620,7 @@ static void progress(int done, int total, const point *p, int skipped) {
 int rn_cli_sweep(int argc, char **argv) {
   const char *file = NULL, *dir = NULL, *plot = NULL;
   int quiet = 0, rc = 0, failed = 0;
+  unsigned char *valid = NULL;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = NULL;
     int m;
@@ -585,32 +684,45 @@ int rn_cli_sweep(int argc, char **argv) {
     goto done;
   }
   int total = s->nlat * s->njm * s->nrho * s->nseed, k = 0;
+  if (!(valid = calloc((size_t)total, 1))) {
+    rc = RN_EXIT_INTERNAL;
+    goto done;
+  }
   for (int a = 0; a < s->nlat; ++a)
     for (int b = 0; b < s->njm; ++b)
       for (int c = 0; c < s->nrho; ++c)
         for (int d = 0; d < s->nseed; ++d, ++k) {
           point p = {k, s->lat[a], s->jm[b], s->rho[c], s->seed[d]};
-          char out[4096];
+          char out[4096], scene[4096], hash[32];
           snprintf(out, sizeof out, "%s/point_%04d.json", dir, k);
-          int skip = point_done(ctx, out, &p);
-          if (!skip) {
-            rn_status st = run_point(ctx, s, &p, dir);
-            if (st) {
-              fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
-                      quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
-                      p.seed, rn_context_last_error(ctx));
-              if (st == RN_ERR_IO) { /* the folder: no point in going on */
-                rc = RN_EXIT_INPUT;
-                goto done;
-              }
-              ++failed;
+          snprintf(scene, sizeof scene, "%s/point_%04d.scene.json", dir, k);
+          /* the point's record: its parameters, the version, its cell scene */
+          cJSON *rec = point_record(s, &p);
+          char *rec_text = rec ? cJSON_PrintUnformatted(rec) : NULL;
+          rn_status st =
+              rec_text ? RN_OK : rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+          if (!st) st = write_cell(ctx, s, &p, scene);
+          if (!st && scene_hash(ctx, scene, hash)) st = RN_ERR_IO;
+          int skip = !st && point_done(ctx, out, &p, rec, hash);
+          if (!st && !skip) st = run_point(ctx, &p, dir, scene, rec_text, hash);
+          cJSON_Delete(rec);
+          cJSON_free(rec_text);
+          valid[k] = !st;
+          if (st) {
+            fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
+                    quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
+                    p.seed, rn_context_last_error(ctx));
+            if (st == RN_ERR_IO) { /* the folder: no point in going on */
+              rc = RN_EXIT_INPUT;
+              goto done;
             }
+            ++failed;
           }
           if (!quiet) progress(k + 1, total, &p, skip);
         }
   char csv[4096];
   snprintf(csv, sizeof csv, "%s/sweep.csv", dir);
-  csv_in in = {dir, total};
+  csv_in in = {dir, total, valid};
   if (rn_file_write_atomic(ctx, csv, write_csv, &in)) {
     fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
@@ -624,6 +736,7 @@ int rn_cli_sweep(int argc, char **argv) {
     rc = RN_EXIT_INTERNAL;
   }
 done:
+  free(valid);
   free(text);
   free(s);
   rn_context_destroy(&ctx);

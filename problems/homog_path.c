@@ -523,15 +523,15 @@ rn_status hp_run(rn_network *net, hp_path *p) {
       rn_state_destroy(&prev);
       if ((st = rn_network_state_save(net, &prev))) goto done;
       p->done = ++k;
-      if (!p->quiet)
-        fprintf(stderr,
-                "rodnet homogenize: step %d/%d  t %.4f  stress [%.4e %.4e %.4e%s]  %d "
-                "Newton  %s\n",
-                k, p->steps, s->t, s->stress[0], s->stress[1], s->stress[p->ns - 1],
-                p->ns == 6 ? " ..." : "", s->newton,
+      if (!p->quiet) {
+        fprintf(stderr, "rodnet homogenize: step %d/%d  t %.4f  stress ", k, p->steps,
+                s->t);
+        hp_print_vec(stderr, p->ns, s->stress, 4, 1);
+        fprintf(stderr, "  %d Newton  %s\n", s->newton,
                 s->stable == 1   ? "stable"
                 : s->stable == 0 ? "UNSTABLE"
                                  : "-");
+      }
     }
   }
 done:
@@ -539,6 +539,13 @@ done:
   rn_state_destroy(&cur);
   p->seconds = seconds_now() - t0;
   return st;
+}
+
+void hp_print_vec(FILE *f, int n, const double *v, int prec, int exp) {
+  fputc('[', f);
+  for (int i = 0; i < n; ++i)
+    fprintf(f, exp ? "%s%.*e" : "%s%.*g", i ? " " : "", prec, v[i]);
+  fputc(']', f);
 }
 
 void hp_put_vec(FILE *f, int n, const double *v) {
@@ -559,6 +566,28 @@ static void put_control(FILE *f, int ns, const int *stress) {
   for (int v = 0; v < ns; ++v)
     fprintf(f, "%s\"%s\"", v ? ", " : "", stress[v] ? "stress" : "strain");
   fputc(']', f);
+}
+
+static void put_pattern(FILE *f, const hp_path *p) {
+  const hp_pattern *pt = &p->pattern;
+  if (pt->requested && !pt->written) { /* why nothing was written */
+    fputs("  \"pattern\": {\"written\": false, \"reason\": \"", f);
+    for (const char *c = pt->why_not[0] ? pt->why_not : "not computed"; *c; ++c) {
+      if (*c == '"' || *c == '\\') fputc('\\', f);
+      if ((unsigned char)*c >= 0x20) fputc(*c, f);
+    }
+    fputs("\"},\n", f);
+    return;
+  }
+  if (!pt->written) return;
+  fputs("  \"pattern\": {\"written\": true, \"supercell\": ", f);
+  double rep[3] = {pt->rep[0], pt->rep[1], pt->rep[2]};
+  hp_put_vec(f, p->dim, rep);
+  fprintf(f,
+          ", \"what\": \"principal branch at the critical strain plus the critical "
+          "mode\", \"critical_mode_eigenvalue\": %.17g, \"amplitude\": %.17g, "
+          "\"converged\": %s},\n",
+          pt->eigenvalue, pt->amplitude, pt->converged ? "true" : "false");
 }
 
 void hp_write_json(FILE *f, const hp_path *p) {
@@ -613,6 +642,7 @@ void hp_write_json(FILE *f, const hp_path *p) {
   fputs("  \"instability\": ", f);
   if (!p->inst.found) {
     fputs("null,\n", f);
+    put_pattern(f, p);
     return;
   }
   const hp_instability *in = &p->inst;
@@ -651,16 +681,7 @@ void hp_write_json(FILE *f, const hp_path *p) {
     hp_put_vec(f, 3, in->amplitude);
   }
   fprintf(f, ", \"bisections\": %d},\n", in->bisections);
-  const hp_pattern *pt = &p->pattern;
-  if (!pt->written) return;
-  fputs("  \"pattern\": {\"supercell\": ", f);
-  double rep[3] = {pt->rep[0], pt->rep[1], pt->rep[2]};
-  hp_put_vec(f, p->dim, rep);
-  fprintf(f,
-          ", \"what\": \"principal branch at the critical strain plus the critical "
-          "mode\", \"critical_mode_eigenvalue\": %.17g, \"amplitude\": %.17g, "
-          "\"converged\": %s},\n",
-          pt->eigenvalue, pt->amplitude, pt->converged ? "true" : "false");
+  put_pattern(f, p);
 }
 
 void hp_free(hp_path *p) {

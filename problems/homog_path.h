@@ -62,6 +62,7 @@ typedef struct hp_instability {
 
 typedef struct hp_pattern {
   int requested, written, png, converged;
+  char why_not[320]; /* requested, not written: why (RESULT.json, summary) */
   int rep[3];
   double eigenvalue; /* lowest Bloch eigenvalue (xi = 0) of the supercell there */
   double amplitude;  /* largest displacement of the mode as drawn */
@@ -137,6 +138,9 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
 void hp_post_write_json(FILE *f, const hp_path *p, const hp_post *po);
 void hp_post_free(hp_post *po);
 void hp_put_vec(FILE *f, int n, const double *v);
+/* "[v0 v1 ...]" for the console: every one of the n components (Voigt order of
+ * RESULT.json), %.*e if exp else %.*g with prec digits. */
+void hp_print_vec(FILE *f, int n, const double *v, int prec, int exp);
 
 /* Parse a path's targets: comma-separated entries, each a number (a strain, or
  * a stress if stress_default), "-" (stress-controlled at zero stress),

@@ -324,15 +324,16 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
       s->amplitude = fmax(s->amplitude, fabs(xb[i]));
     }
     po->done = j;
-    if (!p->quiet)
-      fprintf(stderr,
-              "rodnet homogenize: post-buckling %d/%d  t %.4f  stress [%.4e %.4e %.4e] "
-              "(principal [%.4e %.4e %.4e])  amplitude %.3e  %s\n",
-              j, n, s->t, s->stress[0], s->stress[1], s->stress[p->ns - 1],
-              s->principal_stress[0], s->principal_stress[1],
-              s->principal_stress[p->ns - 1], s->amplitude,
+    if (!p->quiet) {
+      fprintf(stderr, "rodnet homogenize: post-buckling %d/%d  t %.4f  stress ", j, n,
+              s->t);
+      hp_print_vec(stderr, p->ns, s->stress, 4, 1);
+      fputs(" (principal ", stderr);
+      hp_print_vec(stderr, p->ns, s->principal_stress, 4, 1);
+      fprintf(stderr, ")  amplitude %.3e  %s\n", s->amplitude,
               s->converged && s->verified ? "verified minimum"
                                           : "NOT a verified minimum");
+    }
     if (!s->converged) break;
   }
   harmonics(net, p, xb, po);
@@ -343,7 +344,13 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
     snprintf(png, sizeof png, "%s.png", out_base);
     if ((st = rn_vtk_write(ctx, vtu, sc))) goto done;
     po->written = 1;
-    const char *const args[] = {vtu, png, "--view", "xy", "--field", "bending_moment",
+    const char *const args[] = {vtu,
+                                png,
+                                "--view",
+                                "xy",
+                                "--field",
+                                "bending_moment",
+                                p->quiet ? "--quiet" : NULL,
                                 NULL};
     po->png =
         rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;

@@ -3,6 +3,7 @@
 // "Strain paths and stability").  Dense LAPACK for the Bloch eigenproblems; no
 // Trilinos here.
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -89,6 +90,14 @@ public:
     x_.resize(cb_.n);
     g_.resize(cb_.n);
     check_status(rn_network_get_dofs(net, x_.data()), "rn_network_get_dofs");
+    std::vector<int> kind(cb_.n);
+    check_status(rn_network_dof_kinds(net, kind.data()), "rn_network_dof_kinds");
+    double xpos = 0.0;
+    for (size_t i = 0; i < cb_.nu; ++i)
+      if (kind[i] == RN_DOF_POSITION) xpos = std::max(xpos, std::fabs(x_[i]));
+    delta_.resize(cb_.nu);
+    for (size_t i = 0; i < cb_.nu; ++i)
+      delta_[i] = DBL_EPSILON * (kind[i] == RN_DOF_POSITION ? xpos : 1.0);
   }
 
   void run(const double *strain, rn_cell_relax_report &rep) {
@@ -151,6 +160,26 @@ private:
     scale = max_abs(nu, gabs.data());
   }
 
+  // Converged: |g_u| at most 1e-9 of the largest balancing force, or at the
+  // round-off floor of the gradient: the largest |K_uu| delta, delta the last bit
+  // of every coordinate (DBL_EPSILON times the largest |position| for positions, 1
+  // for angles: as dist_system.cpp's floor; K_uu of the last factor_at).  The
+  // balancing forces vanish where nothing loads the cell (the rest state, a zero
+  // strain or stress step), and the relative test alone then asked round-off to
+  // beat itself: a trivial path failed at its second step (issue 22).
+  bool converged(double res, double scale) const {
+    if (res <= 1e-9 * scale) return true;
+    double floor = 0.0;
+    for (size_t i = 0; i < cb_.nu; ++i) {
+      double row = 0.0;
+      for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
+        row += std::fabs(cb_.uval[static_cast<size_t>(q)]) *
+               delta_[static_cast<size_t>(cb_.ucol[static_cast<size_t>(q)])];
+      floor = std::max(floor, row);
+    }
+    return res <= floor;
+  }
+
   double unorm(const std::vector<double> &g) const {
     double s = 0.0;
     for (size_t i = 0; i < cb_.nu; ++i) s += g[i] * g[i];
@@ -169,7 +198,7 @@ private:
       rep.residual_scale = scale;
       factor_at(x_);
       rep.indefinite = !pd_;
-      if (res <= 1e-9 * scale) {
+      if (converged(res, scale)) {
         rep.converged = 1;
         return;
       }
@@ -291,7 +320,7 @@ private:
       factor_at(x_);
       rep.indefinite = !pd_;
       diag_pattern(d);
-      const bool small = res <= 1e-9 * scale;
+      const bool small = converged(res, scale);
       if (small && pd_) {
         rep.converged = 1;
         return;
@@ -341,6 +370,7 @@ private:
   Problem p_;
   CellBlocks cb_;
   std::vector<double> x_, g_;
+  std::vector<double> delta_; // last bit of each fluctuation DOF (converged())
   std::vector<int64_t> rp_;
   std::vector<int32_t> col_;
   std::unique_ptr<SparseCholesky> chol_;

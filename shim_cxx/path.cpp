@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -580,6 +581,21 @@ void PathFollower::run(rn_path_report &rep) {
   cur.x.assign(n_, 0.0);
   check_status(rn_network_get_dofs(net_, cur.x.data()), "rn_network_get_dofs");
   cur.mu = dof_ < 0 ? rn_network_load_factor(net_) : cur.x[static_cast<size_t>(dof_)];
+  // a target given at or behind the start (against the direction of the first
+  // step) is never met by a path that sets out away from it
+  if (!std::isnan(o_.target)) {
+    const double dir = o_.direction < 0 ? -1.0 : 1.0;
+    if (!((o_.target - cur.mu) * dir > 0.0)) {
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "rn_path_follow: the target %.10g lies %s the start %.10g (the "
+                    "path sets out with direction %+g)%s",
+                    o_.target, o_.target == cur.mu ? "at" : "behind", cur.mu, dir,
+                    o_.target == cur.mu ? ": nothing to follow"
+                                        : ": give the other direction to head for it");
+      throw Error(RN_ERR_ARG, buf);
+    }
+  }
   {
     std::vector<double> r(n_);
     if (residual(cur.x, cur.mu, r, nullptr, nullptr) != RN_OK)

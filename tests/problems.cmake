@@ -94,17 +94,20 @@ set_tests_properties(problems_render_vtu PROPERTIES LABELS unit
 # rn_cli_test(NAME EXIT_STATUS REGEX [STDERR_LINES n] [ABSENT path] [REMOVE path]
 #             [FIXTURE_SETUP f] ARGS a...)
 function(rn_cli_test name rc regex)
-  cmake_parse_arguments(C "" "STDERR_LINES;ABSENT;REMOVE;FIXTURE_SETUP;TIMEOUT" "ARGS" ${ARGN})
+  cmake_parse_arguments(C "" "STDERR_LINES;ABSENT;REMOVE;FIXTURE_SETUP;TIMEOUT;REJECT" "ARGS"
+                        ${ARGN})
   string(REPLACE ";" "@@" args "${C_ARGS}")
   set(defs -DCMD=${RN_CLI} -DARGS=${args} -DEXPECT_RC=${rc})
   if(NOT regex STREQUAL "")
     list(APPEND defs "-DEXPECT_REGEX=${regex}")
   endif()
-  foreach(opt STDERR_LINES ABSENT REMOVE)
+  foreach(opt STDERR_LINES ABSENT REMOVE REJECT)
     if(DEFINED C_${opt})
       set(key ${opt})
       if(opt STREQUAL "ABSENT")
         set(key EXPECT_ABSENT)
+      elseif(opt STREQUAL "REJECT")
+        set(key REJECT_REGEX)
       endif()
       list(APPEND defs -D${key}=${C_${opt}})
     endif()
@@ -250,13 +253,36 @@ if(RN_WITH_TRILINOS)
   # the truss through its limit point: summary, CSV and plot
   rn_cli_test(problems_cli_path_truss 0
               "stop range, 1 limit point.*first limit point: load factor 0.46635179"
-              REMOVE ${RN_CLI_OUT}/path_truss.csv
+              REMOVE ${RN_CLI_OUT}/path_truss.csv FIXTURE_SETUP problems_path_truss
               ARGS path ${RN_PATH_SCENES}/von_mises_truss.json -o ${RN_CLI_OUT}/path_truss.csv
                    --plot ${RN_CLI_OUT}/path_truss.png)
   rn_cli_test(problems_cli_path_column 0
               "1 bifurcation.*first bifurcation: load factor 0.4919016"
               ARGS path ${RN_PATH_SCENES}/euler_column.json -o ${RN_CLI_OUT}/path_column.csv
                    --branch-switch)
+  # Issue 22 item 3: --to behind the start (in the direction of the first step) is
+  # refused before any step (the docs' strip example pushed the -z twin away from
+  # its target; --start 0.8 --to 0.2 ignored --to); a --to the path does not reach
+  # (the truss snaps back to 0 before 0.9; --steps 2) is exit status 1.
+  rn_cli_test(problems_cli_path_to_behind_strip 3
+              "the target -0.0264591 lies behind the start -0.0264591.*direction -1"
+              ABSENT ${RN_CLI_OUT}/path_behind.csv REMOVE ${RN_CLI_OUT}/path_behind.csv
+              ARGS path ${RN_PATH_SCENES}/strip_snap.json -o ${RN_CLI_OUT}/path_behind.csv
+                   --control vertex:strip:20:z --direction -1 --to -0.0264591 -q)
+  rn_cli_test(problems_cli_path_to_behind_load 3 "the target 0.2 lies behind the start 0.8"
+              ABSENT ${RN_CLI_OUT}/path_behind.csv REMOVE ${RN_CLI_OUT}/path_behind.csv
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json
+                   -o ${RN_CLI_OUT}/path_behind.csv --start 0.8 --to 0.2)
+  rn_cli_test(problems_cli_path_to_back 0 "stop target"
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json
+                   -o ${RN_CLI_OUT}/path_back.csv --start 0.8 --to 0.2 --direction -1)
+  rn_cli_test(problems_cli_path_to_unreached 1
+              "did not reach --to 0.9: it stopped \\(range\\) at load factor 0 "
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json
+                   -o ${RN_CLI_OUT}/path_unreached.csv --to 0.9)
+  rn_cli_test(problems_cli_path_to_steps 1 "did not reach --to 0.3: it stopped \\(max-steps\\)"
+              ARGS path ${RN_PATH_SCENES}/von_mises_truss.json
+                   -o ${RN_CLI_OUT}/path_steps.csv --to 0.3 --steps 2)
 endif()
 
 # ---- periodic cells: rodnet generate --periodic, rodnet homogenize ----------------------
@@ -549,6 +575,82 @@ if(RN_WITH_TRILINOS)
                    ${gen}/sweep.csv ${gen}/sweep.png 3 4)
   set_tests_properties(problems_homog_sweep PROPERTIES LABELS unit
                        PASS_REGULAR_EXPRESSION "wrote .*sweep.csv and .*sweep.png \\(3 points\\)")
+  # ---- issue 22 "Data safety and wrong answers" (homogenisation, sweeps) ----------
+  # item 1: a sweep rerun after a change of E, nu, cells, edges_per_rod or perturb
+  # recomputes its points (E 1000 times: E1 1000 times); each point file records
+  # every sweep key, the rodnet version and the cell scene's hash.
+  add_test(NAME problems_cli_sweep_rerun_changed
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_sweep_rerun.py
+                   ${RN_CLI} ${gen}/sweep_rerun)
+  set_tests_properties(problems_cli_sweep_rerun_changed PROPERTIES LABELS unit TIMEOUT 300)
+  # item 2: a --path that stops early writes RESULT.partial.json and keeps a
+  # complete earlier RESULT.json.
+  add_test(NAME problems_cli_homogenize_path_partial
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_homog_partial.py
+                   ${RN_CLI} ${gen}/hom_hc8.json ${gen}/hom_partial)
+  set_tests_properties(problems_cli_homogenize_path_partial PROPERTIES LABELS unit
+                       TIMEOUT 300 FIXTURES_REQUIRED problems_hom_hc8)
+  # item 4: a stress on a strain-controlled component is contradictory control
+  rn_cli_test(problems_cli_periodic_contradictory 3
+              "hc_contradictory.json: .*periodic.*stress.*component 1 is 1 but that strain component is prescribed \\(contradictory control"
+              STDERR_LINES 1 ABSENT ${gen}/hc_contradictory_result.json
+              REMOVE ${gen}/hc_contradictory_result.json
+              ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_contradictory.json
+                   -o ${gen}/hc_contradictory_result.json)
+  # item 5: a trivial path (zero strain, zero stress) is a valid path
+  foreach(tp "zero:0,0,0" "free:-,-,-")
+    string(REPLACE ":" ";" e "${tp}")
+    list(GET e 0 tag)
+    list(GET e 1 target)
+    rn_cli_test(problems_cli_homogenize_path_trivial_${tag} 0 "the path stays stable \\(3 steps\\)"
+                ARGS homogenize ${gen}/hom_hc8.json --path ${target} --steps 3 --bloch-grid 2
+                     -o ${gen}/hom_path_trivial_${tag}.json)
+    set_tests_properties(problems_cli_homogenize_path_trivial_${tag} PROPERTIES
+                         FIXTURES_REQUIRED problems_hom_hc8)
+  endforeach()
+  # item 6: --pattern and --post-buckling after a macroscopic instability say why
+  # nothing was written (summary; RESULT.json "pattern": {"written": false, ...}); -q
+  # silences render_vtu's "wrote" line too.
+  rn_cli_test(problems_cli_homogenize_pattern_macroscopic 0
+              "pattern: nothing written: the instability is macroscopic.*post-buckling: nothing written: the instability is macroscopic"
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 2
+                   --bloch-grid 2 --pattern ${gen}/hom_macro_pattern
+                   --post-buckling ${gen}/hom_macro_post -o ${gen}/hom_macro.json)
+  set_tests_properties(problems_cli_homogenize_pattern_macroscopic PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc8 FIXTURES_SETUP problems_hom_macro)
+  add_test(NAME problems_cli_homogenize_pattern_macroscopic_json
+           COMMAND /usr/bin/python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['pattern']; print(p); sys.exit(0 if p['written'] is False and 'macroscopic' in p['reason'] else 1)"
+                   ${gen}/hom_macro.json)
+  set_tests_properties(problems_cli_homogenize_pattern_macroscopic_json PROPERTIES
+                       LABELS unit FIXTURES_REQUIRED problems_hom_macro)
+  rn_cli_test(problems_cli_homogenize_pattern_quiet 0 "" REJECT "render_vtu|wrote"
+              ARGS homogenize ${gen}/hom_hc8.json --path -0.004,-0.004,0 --steps 4
+                   --modes in-plane --bloch-grid 4 --pattern ${gen}/hom_pattern_q -q
+                   -o ${gen}/hom_path_pattern_q.json)
+  set_tests_properties(problems_cli_homogenize_pattern_quiet PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc8)
+  # item 7: 3D vectors in full, in RESULT.json's Voigt order (the hydrostatic octet:
+  # E33 equal to E11 and E22, the shears 0), and a 3D wave vector's three components.
+  rn_cli_test(problems_cli_homogenize_octet2_generate 0 "wrote"
+              REMOVE ${gen}/hom_octet2.json FIXTURE_SETUP problems_hom_octet2
+              ARGS generate octet --periodic --edges-per-rod 2 -o ${gen}/hom_octet2.json)
+  rn_cli_test(problems_cli_homogenize_path_octet_print 0
+              "strain \\[(-[0-9.e-]+) (-[0-9.e-]+) (-[0-9.e-]+) 0 0 0\\] \\(Voigt 11 22 33 23 13 12\\), [a-z]+, wave vector \\[[-0-9.e]+ [-0-9.e]+ [-0-9.e]+\\]"
+              TIMEOUT 300
+              ARGS homogenize ${gen}/hom_octet2.json --path -0.01,-0.01,-0.01,0,0,0
+                   --steps 1 --bloch-grid 1 -o ${gen}/hom_octet_path.json)
+  set_tests_properties(problems_cli_homogenize_path_octet_print PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_octet2)
+  # item 8: the plots (problems/plot_*.py) on synthetic data and on rodnet's own
+  # RESULT.json, sweep.csv and path CSV: the polar curve inside its frame, the
+  # sweep's seed mean said and one colour per series, symlog labels apart.
+  add_test(NAME problems_plots_readable
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_plots.py
+                   ${gen}/hom_hc_result.json ${gen}/sweep_hc/sweep.csv
+                   ${RN_CLI_OUT}/path_truss.csv ${gen})
+  set_tests_properties(problems_plots_readable PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED "problems_hom_hc_result;problems_sweep;problems_path_truss")
+
   # A supercell gives the cell's tensor: a 3 x 2 honeycomb and a 2 x 2 x 1 octet
   # against their single cells.
   # "rep" runs use the scene key "periodic": {"repeat": [...]} (--repeat) instead.

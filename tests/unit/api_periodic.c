@@ -323,6 +323,11 @@ static void test_uniform_strain(rn_context *ctx) {
      * by the load factor), the applied stress enters the gradient of free ones */
     double s2[3] = {2e-3, -1e-3, 0.0}, st2[3] = {0.5, 0.25, 0.0}, e[3];
     CHECK_STATUS(rn_network_set_load_factor(net, 0.5), RN_OK);
+    /* issue 22 item 4: a stress on a prescribed (strain-controlled) component is
+     * contradictory control, refused (it did nothing) */
+    CHECK_STATUS(rn_network_set_cell_load(net, s2, st2), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_cell_stress(net, st2), RN_ERR_STATE); /* finalized */
+    st2[0] = st2[1] = 0.0;
     CHECK_STATUS(rn_network_set_cell_load(net, s2, st2), RN_OK);
     CHECK_STATUS(rn_network_cell_strain(net, NULL, e), RN_OK);
     CHECK_NEAR(e[0], 1e-3, 1e-15);
@@ -417,6 +422,19 @@ static void test_errors(rn_context *ctx) {
   CHECK_STATUS(rn_network_add_joint_images(net, NULL, RN_JOINT_RIGID, 2, rods, ends,
                                            img_ok, &joint),
                RN_OK);
+  { /* issue 22 item 4: a non-zero stress on a prescribed strain component is
+     * contradictory control, refused in either order; zero there is fine */
+    int fix1[3] = {1, 0, 0}, none[3] = {0, 0, 0};
+    double e1[3] = {1e-3, 0.0, 0.0}, s1[3] = {1.0, 0.0, 0.0}, s0[3] = {0.0, 2.0, 0.0};
+    CHECK_STATUS(rn_network_set_cell_strain(net, fix1, e1), RN_OK);
+    CHECK_STATUS(rn_network_set_cell_stress(net, s1), RN_ERR_ARG);
+    CHECK(strstr(rn_context_last_error(ctx), "contradictory") != NULL);
+    CHECK_STATUS(rn_network_set_cell_stress(net, s0), RN_OK);
+    CHECK_STATUS(rn_network_set_cell_strain(net, none, NULL), RN_OK);
+    CHECK_STATUS(rn_network_set_cell_stress(net, s1), RN_OK);
+    CHECK_STATUS(rn_network_set_cell_strain(net, fix1, e1), RN_ERR_ARG);
+    CHECK_STATUS(rn_network_set_cell_load(net, NULL, s1), RN_OK); /* nothing fixed */
+  }
   rn_network_destroy(&net);
 }
 
