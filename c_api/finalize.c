@@ -249,6 +249,13 @@ rn_status rn_network_finalize(rn_network *net) {
     if (st) return st;
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
+  rn_planar_assess_built(net);
+  if (net->planar && !net->planar_ok) {
+    undo_finalize(net);
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "the planar model needs a network in one plane z = const: %s",
+                   net->planar_why);
+  }
   if ((st = rn_contact_build(net, where))) {
     undo_finalize(net);
     return st;

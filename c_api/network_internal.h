@@ -142,6 +142,7 @@ struct rn_network {
    * fixed_on_joint, else on rod fixed_rod, vertex fixed_vertex
    * (rodnet_couple.h) */
   int nfixed_couples, fixed_rod, fixed_vertex, fixed_on_joint, fixed_joint;
+  int couple_tilt_off; /* 1: no tilt check of conservative couples (reference.c) */
   rn_joint *joints;
   int njoints, cap_joints;
   double gravity[3];
@@ -339,8 +340,12 @@ int rn_wrap_index(int i, int n);
  * DOF map, on the input data), and, with the planar model, marks the
  * out-of-plane full DOFs fixed (z of every position, material angles, joint
  * rotations about x and y; after the rods' and joints' own marks, before the
- * joint ends alias their joints). */
+ * joint ends alias their joints).  rn_planar_assess_built completes the
+ * assessment once the joints are built (their rest frames, stored twist and
+ * rest strains; the rods' rest twist a ring's total twist lowered); finalize
+ * fails with the planar model if it clears planar_ok. */
 void rn_planar_assess(rn_network *net);
+void rn_planar_assess_built(rn_network *net);
 void rn_planar_mark(rn_network *net);
 
 /* ---- fixed components (boundary.c) ------------------------------------------ */

@@ -11,7 +11,14 @@
  * kb . d2, kappa2 = -kb . d1 with kb along e_z), so the reflection flips the
  * component along n and the twist: the sections must have n as a principal
  * axis, the rest curvature no component along n and the rest twist its value
- * at the (planar) initial state. */
+ * at the (planar) initial state.  The material angles are held, so no twist can
+ * be stored (a ring's "link" or "total" twist, a smooth joint's rest twist), and
+ * the rest frames of a joint's ends must differ from the initial ones by
+ * rotations about the normal (a rigid joint's rotation turns about it only).
+ * rn_planar_assess checks the input data before the DOF map,
+ * rn_planar_assess_built the joints' rest parameters once they are built;
+ * together they are the one predicate behind both the refusal of
+ * RN_MODEL_PLANAR and rn_network_planar (the "qualifies" report). */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -167,6 +174,98 @@ void rn_planar_assess(rn_network *net) {
           net->rods[mo->rod].gid, rod_name(&net->rods[mo->rod]), mo->edge);
       return;
     }
+}
+
+/* Rest frame C (rows t, d1, d2) of a rigid or elastic joint end against the
+ * initial material frame F of its terminal edge: the rotation P = C^T F taking
+ * one to the other turns e_z into p = sum_i (F_i . e_z) C_i.  p = e_z: P is a
+ * rotation about the normal (in-plane). */
+static void end_normal_image(const rn_network *net, const rn_joint *J, int k,
+                             double p[3]) {
+  const rn_rod *r = &net->rods[J->rod[k]];
+  const rnk_frame *f = &r->ref_base[rn_end_edge(r->nv, J->end[k])];
+  const double *C = J->ends[k].cbar;
+  double Fz[3];
+  Fz[0] = f->t[2];
+  Fz[1] = f->a1[2];
+  Fz[2] = f->t[0] * f->a1[1] - f->t[1] * f->a1[0]; /* (t x a1) . e_z */
+  for (int c = 0; c < 3; ++c) p[c] = Fz[0] * C[c] + Fz[1] * C[3 + c] + Fz[2] * C[6 + c];
+}
+
+static const char *rest_form(const rn_joint *J) {
+  return J->rest == RN_REST_STRAIGHT ? "\"straight\"" : "\"frames\"";
+}
+
+/* Rest frames of a rigid joint (its rotation turns about the normal only) or an
+ * elastic one (its fitted rotation is free: the frames relative to the first
+ * end's) that the planar model cannot hold. */
+static int joint_frames(rn_network *net, const rn_joint *J) {
+  double p0[3] = {0.0, 0.0, 1.0};
+  int rigid = rn_joint_has_rotation(J);
+  if (J->rest == RN_REST_INPUT) return 0; /* the input frames: at rest as given */
+  if (!rigid) end_normal_image(net, J, 0, p0);
+  for (int k = rigid ? 0 : 1; k < J->valence; ++k) {
+    double p[3], off = 0.0;
+    end_normal_image(net, J, k, p);
+    for (int c = 0; c < 3; ++c) off += fabs(p[c] - p0[c]);
+    if (off > PLANAR_TOL_STRAIN)
+      return why(
+          net,
+          "joint %d ('%s') end %d: its rest frame (rest shape %s) is turned out of "
+          "the plane against the %s, a rotation the planar model cannot represent",
+          J->gid, joint_name(J), k, rest_form(J),
+          rigid ? "terminal edge's initial frame" : "first end's");
+  }
+  return 0;
+}
+
+/* The stored twist and rest strains of a smooth joint (the twist carried through
+ * it: "link", a ring's "total", rest strains), after build_smooth. */
+static int joint_smooth(rn_network *net, const rn_joint *J) {
+  const rn_rod *r0 = &net->rods[J->rod[0]];
+  const rnk_joint_end *e = &J->ends[0];
+  double n[2], off;
+  edge_normal(r0, rn_end_edge(r0->nv, RN_END), n);
+  off = e->bend.kbar[0] * n[0] + e->bend.kbar[1] * n[1];
+  if (fabs(off) > PLANAR_TOL_STRAIN)
+    return why(net, "joint %d ('%s'): rest curvature out of the plane (%.6g)", J->gid,
+               joint_name(J), off);
+  off = e->twist.ref_twist - e->twist.taubar;
+  if (fabs(off) <= PLANAR_TOL_STRAIN) return 0;
+  if (J->has_total_twist)
+    return why(net,
+               "joint %d ('%s'): the ring stores the twist %.6g of its \"total\" %.6g; "
+               "the planar model holds the material angles and cannot carry twist",
+               J->gid, joint_name(J), off, J->total_twist);
+  if (J->link)
+    return why(net,
+               "joint %d ('%s'): the ring stores %d full turn%s of twist (\"link\"); the "
+               "planar model holds the material angles and cannot carry twist",
+               J->gid, joint_name(J), J->link, J->link == 1 || J->link == -1 ? "" : "s");
+  return why(net, "joint %d ('%s'): rest twist %.6g (a planar rod has %.6g)", J->gid,
+             joint_name(J), e->twist.taubar, e->twist.ref_twist);
+}
+
+void rn_planar_assess_built(rn_network *net) {
+  if (!net->planar_ok) return;
+  for (int ij = 0; ij < net->njoints; ++ij) {
+    const rn_joint *J = &net->joints[ij];
+    if (!J->ends) continue;
+    if (J->model == RN_JOINT_SMOOTH ? (J->valence == 2 && joint_smooth(net, J))
+                                    : joint_frames(net, J))
+      return;
+  }
+  for (int ir = 0; ir < net->nrods; ++ir) { /* a ring's total twist lowers tp */
+    const rn_rod *r = &net->rods[ir];
+    for (int i = 0; i < r->nv - 2; ++i) {
+      double off = r->tp[i].taubar - r->ref_twist[i];
+      if (fabs(off) > PLANAR_TOL_STRAIN) {
+        why(net, "rod %d ('%s') vertex %d: rest twist %.6g (a planar rod has %.6g)",
+            r->gid, rod_name(r), i + 1, r->tp[i].taubar, r->ref_twist[i]);
+        return;
+      }
+    }
+  }
 }
 
 void rn_planar_mark(rn_network *net) {

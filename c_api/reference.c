@@ -5,6 +5,8 @@
  * rigid joint moved into its reference rotation (its rotation DOFs reset to
  * 0).  All new values are computed first, from the old reference state, and
  * committed only if every stencil succeeded. */
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -103,6 +105,45 @@ static rn_status update_rod(const rn_network *net, int ir, const double *full, d
   return RN_OK;
 }
 
+/* The conservative couple (rodnet_couple.h) turns the arm f about the fixed
+ * axis n = M / |M|; its potential -|M| phi is singular where f reaches n (phi
+ * undefined, the applied moment |M| / cos(beta) unbounded, beta the tilt of f
+ * out of the plane normal to n) and not bounded below in 3D: each passage of f
+ * around n adds 2 pi to phi at no elastic cost, which an energy minimiser
+ * follows without end.  An accepted state with the tilt beyond
+ * RN_COUPLE_TILT_MAX degrees is on that road (the couple then applies more
+ * than 5.7 |M|): the update fails with RN_ERR_SOLVER naming the couple.  f
+ * (unit) = sum_k b[k] F_k for a rod edge's frame rows F (t, d1, d2), Q p for a
+ * joint; what names the couple. */
+#define RN_COUPLE_TILT_MAX 80.0
+int rn_network_set_couple_tilt_check(rn_network *net, int on) {
+  int was;
+  if (!net) return -1;
+  was = !net->couple_tilt_off;
+  net->couple_tilt_off = !on;
+  return was;
+}
+
+static rn_status couple_tilt(const rn_network *net, const double M[3], const double f[3],
+                             const char *what) {
+  double mm = sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]), ff, s, beta;
+  ff = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  if (net->couple_tilt_off || !(mm > 0.0) || !(ff > 0.0)) return RN_OK;
+  s = fabs(M[0] * f[0] + M[1] * f[1] + M[2] * f[2]) / (mm * ff);
+  beta = asin(s < 1.0 ? s : 1.0) * 57.29577951308232; /* degrees */
+  if (beta <= RN_COUPLE_TILT_MAX) return RN_OK;
+  return rn_fail(
+      net->ctx, RN_ERR_SOLVER, where,
+      "the conservative couple on %s has turned its arm %.1f degrees out of "
+      "the plane normal to M (it applies |m| = %.3g |M|, more than %g degrees "
+      "is refused): past the couple's axis its potential is unbounded below in "
+      "3D and the energy minimiser is following that; for a couple fixed in "
+      "space give the moment \"model\": \"fixed\" and solve with --solver nox, "
+      "for a couple about the normal of a planar structure use \"model\": "
+      "\"planar\" (docs/model.md, Couples)",
+      what, beta, 1.0 / sqrt(1.0 - s * s > 0.0 ? 1.0 - s * s : 0.0), RN_COUPLE_TILT_MAX);
+}
+
 /* New accumulated angle and frame of every moment (old reference frames). */
 static rn_status update_moments(const rn_network *net, const double *full,
                                 ref_update *u) {
@@ -132,6 +173,16 @@ static rn_status update_moments(const rn_network *net, const double *full,
     if (rnk_material_frame(e, ref, q[RN_EDGE_LOCAL_THETA], f0, f0 + 3, f0 + 6) != RNK_OK)
       return rn_fail(net->ctx, RN_DEGENERATE, where, "rod %d edge %d: degenerate edge",
                      r->gid, mo->edge);
+    if (mo->model == RN_COUPLE_CONSERVATIVE) {
+      double f[3];
+      char what[200];
+      rn_status st;
+      for (int c = 0; c < 3; ++c)
+        f[c] = mo->b[0] * f0[c] + mo->b[1] * f0[3 + c] + mo->b[2] * f0[6 + c];
+      snprintf(what, sizeof what, "rod %d ('%s') vertex %d", r->gid,
+               r->name ? r->name : "", mo->vertex);
+      if ((st = couple_tilt(net, mo->M, f, what))) return st;
+    }
   }
   return RN_OK;
 }
@@ -180,6 +231,16 @@ static rn_status update_joints(const rn_network *net, ref_update *u) {
     const rn_joint *J = &net->joints[ij];
     if ((st = update_joint(net, ij, u->full, u->jtw + to, u->jang + ij, u->jQ + 9 * ij)))
       return st;
+    if (!J->ghost) {
+      const double *Q = u->jQ + 9 * ij;
+      double f[3];
+      char what[200];
+      for (int a = 0; a < 3; ++a)
+        f[a] = Q[3 * a] * J->couple_p[0] + Q[3 * a + 1] * J->couple_p[1] +
+               Q[3 * a + 2] * J->couple_p[2];
+      snprintf(what, sizeof what, "joint %d ('%s')", J->gid, J->name ? J->name : "");
+      if ((st = couple_tilt(net, J->M, f, what))) return st;
+    }
     to += (size_t)J->valence;
   }
   for (int ij = 0; ij < net->njoints; ++ij) /* after every joint used the old w */

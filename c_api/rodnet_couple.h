@@ -15,8 +15,18 @@
  * potential in 3D: it enters the network's gradient (the residual; the
  * energy gets no term) and Hessian (its Jacobian, nonsymmetric), so a
  * network with one is solved only by RN_SOLVER_NOX (Newton on the residual
- * with GMRES); the energy minimisers, path following and stability checks
- * refuse it.
+ * with GMRES); the energy minimisers, path following, the stability checks
+ * (rn_network_stability, rn_hessian_min_eigenvalue), homogenisation
+ * (rn_homogenize) and the periodic cell's relaxation and Bloch analysis
+ * (rn_cell_relax, rn_cell_minimize, rn_cell_bloch, rn_cell_bloch_eigen)
+ * refuse it with RN_ERR_ARG naming the couple.
+ *
+ * The conservative couple's potential is singular where f reaches the axis n
+ * and not bounded below in 3D (each passage of f around n adds 2 pi to phi):
+ * rn_network_update_reference fails with RN_ERR_SOLVER, naming the couple, on a
+ * state that turns f more than 80 degrees out of the plane normal to M (so an
+ * energy minimiser stops there instead of running away; docs/model.md,
+ * Couples), unless rn_network_set_couple_tilt_check switched that off.
  *
  * rn_network_applied_resultant counts each couple as the spatial moment it
  * applies at the current state: m for the conservative couple (of a rod
@@ -55,6 +65,13 @@ rn_status rn_network_add_moment_model(rn_network *net, int rod, int vertex,
  * the same calls (whole-network indices). */
 rn_status rn_network_add_joint_moment_model(rn_network *net, int joint, const double m[3],
                                             rn_couple_model model);
+
+/* Switches the tilt check of the conservative couples on accepted states
+ * (above) on (on != 0, the default) or off; rn_solve switches it off for the
+ * duration of a RN_SOLVER_NOX solve (Newton on the residual finds stationary
+ * points, which may tilt the arm further, and does not descend the energy).
+ * Returns the previous setting (1 or 0), -1 for a NULL network. */
+int rn_network_set_couple_tilt_check(rn_network *net, int on);
 
 /* Number of RN_COUPLE_FIXED couples added to the whole network, on rods and
  * on joints (0: the problem is conservative), and the rod and vertex of the

@@ -127,17 +127,21 @@ typedef struct rn_stability {
                                forced on one: it needs the whole Hessian) or LOBPCG
                                gave no converged eigenpair (method stays LOBPCG) */
   double lowest_eigenvalue; /* lowest eigenvalue of D^{-1/2} H D^{-1/2} outside the
-                               zero modes (0 if there is none) */
+                               symmetries (the soft modes included; 0 if there is
+                               none) */
   double scale;             /* ||D^{-1/2} H D^{-1/2}||_inf, the largest absolute row
                                sum (an upper bound of every |eigenvalue|, >= 1): judge
                                the eigenvalues against it */
-  int verified_minimum;     /* 1: lowest_eigenvalue > 1e-12 scale, established by a
-                               Cholesky factorisation (inertia) or by converged
-                               Ritz pairs; in rn_solve_report also the solve
-                               converged.  0: unstable (a negative eigenvalue),
-                               a mechanism, or not converged */
-  int zero_modes;           /* eigenvalues with |lambda| <= 1e-12 scale (rigid-body
-                               motions of unsupported parts, mechanisms), counted
+  int verified_minimum;     /* 1: the Hessian is positive definite outside the
+                               symmetries, established by a Cholesky factorisation
+                               (inertia) or by converged Ritz pairs; in
+                               rn_solve_report also the solve converged.  0:
+                               unstable (a negative eigenvalue), soft modes whose
+                               sign the check cannot resolve (a mechanism), or not
+                               converged */
+  int zero_modes;           /* eigenvalues the check cannot tell from zero: the
+                               symmetries plus the soft modes not shown positive
+                               (symmetries + soft_modes - soft_positive), counted
                                among the 10 lowest */
   long factorizations;      /* Cholesky factorisations the check took */
   double time_s;            /* its wall time */
@@ -147,6 +151,19 @@ typedef struct rn_stability {
   double cholesky_flops;    /* the cost model: flops of one Cholesky factorisation
                                of the whole Hessian (0 if not estimated: LOBPCG
                                forced, or a distributed network) */
+  int symmetries;           /* exact zero modes of the energy at the state: the
+                               rigid motions no constraint blocks and the spins of
+                               rods' material frames (candidates built from the
+                               model, kept when H v = 0 to 1e-8 scale), excluded
+                               from the verdict; -1: not separated (LOBPCG on a
+                               distributed network: zero_modes counts them) */
+  int soft_modes;           /* eigenvalues outside the symmetries with |lambda| <=
+                               1e-12 scale: very soft modes (the long-wave bending
+                               of a finely discretised rod) or mechanisms; -1: not
+                               separated */
+  int soft_positive;        /* of the soft modes, how many the check showed to be
+                               positive (Cholesky of H itself, or each Ritz value
+                               above its residual); verified_minimum needs all */
 } rn_stability;
 
 /* Why a solve stopped. */
@@ -380,18 +397,22 @@ rn_status rn_dist_gather_state(const rn_network *part, rn_network *whole);
  * Hessian, exact up to round-off, memory n (kd + 1).  Otherwise (joints):
  * bisection on the inertia (sparse Cholesky of H - sigma I) to 5 %, then
  * inverse iteration; the Rayleigh quotient is exact up to round-off when the
- * lowest eigenvalue is separated from the next one.  Needs no runtime
- * initialisation (no Tpetra). */
+ * lowest eigenvalue is separated from the next one.  RN_ERR_ARG for a network
+ * with a couple fixed in space (rodnet_couple.h: no energy, so no Hessian).
+ * Needs no runtime initialisation (no Tpetra). */
 rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
 
 /* Stability of the network's current state (see rn_stability), eigenvalues of
  * the pencil (H, D), D = |diag H| floored at 1e-20 of its largest entry: scale =
- * ||D^{-1/2} H D^{-1/2}||_inf; Cholesky of H - delta D (delta = 1e-12 scale)
- * succeeds: every eigenvalue exceeds delta, verified, the lowest estimated by
- * shift-and-invert Lanczos (an upper bound, 1e-6 relative); otherwise subspace
- * iteration on a block of 10 vectors with (H + s D)^{-1} D, s the smallest shift
- * that factors,
- * gives the zero modes and the lowest eigenvalue outside them.  The banded or
+ * ||D^{-1/2} H D^{-1/2}||_inf.  First the symmetries (rigid motions and frame
+ * spins that H maps to zero).  Without any, Cholesky of H - delta D (delta =
+ * 1e-12 scale) succeeds: every eigenvalue exceeds delta, verified, the lowest
+ * estimated by shift-and-invert Lanczos (an upper bound, 1e-6 relative);
+ * otherwise subspace iteration on a block of 10 vectors with (H + s D)^{-1} D
+ * on the complement of the symmetries, s the smallest shift that factors, gives
+ * the soft modes (|lambda| <= delta) and the lowest eigenvalue; soft modes are
+ * shown positive by the Cholesky factorisation of H itself (no symmetries) or by
+ * Ritz values above their residuals.  The banded or
  * sparse factorisation as rn_solve's RN_FACTOR_AUTO chooses.  verified_minimum
  * here concerns the Hessian alone (not equilibrium).  A part of a distributed
  * network: out->checked = 0 (RN_OK).  Not collective; needs no runtime
@@ -547,7 +568,8 @@ typedef struct rn_homogenization {
  * the fluctuation block K_uu (METIS ordering) solves all strain load cases.
  * Every strain component must be a DOF (RN_ERR_ARG otherwise); RN_ERR_SOLVER if
  * K_uu is not positive definite (a mechanism: a zero-energy periodic
- * fluctuation, or an unstable state).  Serial; needs no runtime
+ * fluctuation, or an unstable state); RN_ERR_ARG for a network with a couple
+ * fixed in space (rodnet_couple.h: no energy).  Serial; needs no runtime
  * initialisation. */
 rn_status rn_homogenize(rn_network *net, rn_homogenization *h);
 
@@ -574,7 +596,9 @@ typedef struct rn_cell_relax_report {
  * fluctuation force is at most 1e-9 of the largest balancing force
  * (rn_network_gradient_magnitude) or the Newton step stalls at round-off.
  * Leaves the result as the current state; RN_OK when it ran (check
- * rep->converged).  Serial; needs no runtime initialisation. */
+ * rep->converged).  RN_ERR_ARG for a network with a couple fixed in space
+ * (rodnet_couple.h; so also rn_cell_minimize, rn_cell_bloch and
+ * rn_cell_bloch_eigen).  Serial; needs no runtime initialisation. */
 rn_status rn_cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep);
 /* As rn_cell_relax, but a minimisation of the energy over the fluctuations that
  * may leave the cell-periodic (principal) branch, e.g. onto the bifurcated branch

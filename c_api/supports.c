@@ -159,7 +159,7 @@ static int null_space(const motion_rows *m, int n, double out[6][6]) {
   }
   jacobi(n, a, ev, V);
   for (int i = 0; i < n; ++i)
-    if (ev[i] <= 1e-20 * fmax(tr, 1.0)) {
+    if (ev[i] <= 1e-12 * fmax(tr, 1.0)) { /* Jacobi: ev to ~1e-16 tr */
       for (int k = 0; k < n; ++k) out[cnt][k] = V[k][i];
       cnt++;
     }

@@ -298,19 +298,44 @@ static void print_partition(const rn_result_info *in) {
   printf(", edge cut %ld, imbalance %.3f\n", in->edge_cut, in->imbalance);
 }
 
+/* The modes the stability line names besides the verdict: symmetries (exact
+ * zero modes, excluded) and soft modes (|lambda| <= 1e-12 scale outside them),
+ * shown positive or not; e.g. "2 symmetries (rigid motions, frame spins), 4
+ * soft modes, all positive". */
+static void stability_modes(const rn_stability *st, char *buf, size_t n) {
+  if (st->symmetries < 0) {
+    snprintf(buf, n, "%d zero modes (symmetries and soft modes not separated)",
+             st->zero_modes);
+    return;
+  }
+  int k = snprintf(buf, n, "%d symmetr%s (rigid motions, frame spins), ", st->symmetries,
+                   st->symmetries == 1 ? "y" : "ies");
+  if (k < 0 || (size_t)k >= n) return;
+  if (st->soft_modes == 0)
+    snprintf(buf + k, n - (size_t)k, "no soft modes");
+  else if (st->soft_positive == st->soft_modes)
+    snprintf(buf + k, n - (size_t)k, "%d soft mode%s, all positive", st->soft_modes,
+             st->soft_modes == 1 ? "" : "s");
+  else
+    snprintf(buf + k, n - (size_t)k, "%d soft mode%s of unresolved sign", st->soft_modes,
+             st->soft_modes == 1 ? "" : "s");
+}
+
 static void print_stability(const rn_result_info *in) {
   const rn_stability *st = &in->stability;
+  char modes[160];
   if (!st->checked) {
     printf("  stability    not checked: %s\n",
            in->stability_note ? in->stability_note : "not available");
     return;
   }
-  printf("  stability    %s: lowest Hessian eigenvalue %.6e (scale %.3e), %d zero "
-         "modes; %s, %ld factorisations, %d iterations, %.3f s\n",
+  stability_modes(st, modes, sizeof modes);
+  printf("  stability    %s: lowest Hessian eigenvalue %.6e outside the symmetries "
+         "(scale %.3e); %s; %s, %ld factorisations, %d iterations, %.3f s\n",
          st->verified_minimum ? "verified local minimum"
          : in->converged      ? "stationary, not a verified minimum"
                               : "not a verified minimum (not converged)",
-         st->lowest_eigenvalue, st->scale, st->zero_modes,
+         st->lowest_eigenvalue, st->scale, modes,
          st->method == RN_STABILITY_LOBPCG ? "lobpcg" : "cholesky", st->factorizations,
          st->iterations, st->time_s);
 }

@@ -204,6 +204,12 @@ static void put_stability(json_out *o) {
   put_num(o, st->scale);
   fprintf(o->f, ", \"verified_minimum\": %s, \"zero_modes\": %d,\n",
           st->verified_minimum ? "true" : "false", st->zero_modes);
+  if (st->symmetries >= 0)
+    fprintf(o->f, "    \"symmetries\": %d, \"soft_modes\": %d, \"soft_positive\": %d,\n",
+            st->symmetries, st->soft_modes, st->soft_positive);
+  else /* LOBPCG on a distributed network: zero_modes holds both kinds */
+    fputs("    \"symmetries\": null, \"soft_modes\": null, \"soft_positive\": null,\n",
+          o->f);
   fprintf(o->f, "    \"factorizations\": %ld, \"time_s\": ", st->factorizations);
   put_num(o, st->time_s);
   fprintf(o->f, ", \"method\": \"%s\", \"iterations\": %d, \"cholesky_flops\": ",

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "homogenize.hpp"
+#include "nonconservative.hpp"
 #include "problem.hpp"
 #include "rodnet_solve.h"
 #include "shim_error.hpp"
@@ -863,6 +864,8 @@ rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report
   rn_cell_relax_report local{};
   rn_cell_relax_report &r = rep ? *rep : local;
   r = rn_cell_relax_report{};
+  if (rn_status st = refuse_nonconservative(net, where, "the cell's relaxation"))
+    return st;
   return guarded(net, where, [&] {
     int ns = 0;
     check_status(rn_network_cell_info(net, nullptr, &ns, nullptr, nullptr),
@@ -903,6 +906,9 @@ extern "C" rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
   rn_bloch_options_default(&def);
   const rn_bloch_options &o = opt ? *opt : def;
   *res = rn_bloch_result{};
+  if (rn_status st =
+          rodnet::refuse_nonconservative(net, "rn_cell_bloch", "the Bloch analysis"))
+    return st;
   return rodnet::guarded(net, "rn_cell_bloch", [&] {
     if (o.grid < 0 || o.grid > 1000)
       throw rodnet::Error(RN_ERR_ARG, "rn_cell_bloch: grid must be in 0 .. 1000");
@@ -917,6 +923,9 @@ extern "C" rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi,
   if (!xi || !eig || neig < 1 || neig > 8)
     return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
                                 "rn_cell_bloch_eigen: bad arguments");
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_cell_bloch_eigen",
+                                                    "the Bloch analysis"))
+    return st;
   return rodnet::guarded(net, "rn_cell_bloch_eigen", [&] {
     rodnet::Bloch b(net, modes);
     b.lowest(xi, neig, eig, vec);

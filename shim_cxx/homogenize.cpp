@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "homogenize.hpp"
+#include "nonconservative.hpp"
 #include "problem.hpp"
 #include "rodnet_solve.h"
 #include "shim_error.hpp"
@@ -120,6 +121,10 @@ extern "C" rn_status rn_homogenize(rn_network *net, rn_homogenization *h) {
   if (!net) return RN_ERR_ARG;
   rn_context *ctx = rn_network_context(net);
   if (!h) return rn_context_set_error(ctx, RN_ERR_ARG, "rn_homogenize: h is NULL");
+  *h = rn_homogenization{};
+  if (rn_status st =
+          rodnet::refuse_nonconservative(net, "rn_homogenize", "homogenisation"))
+    return st;
   try {
     *h = rn_homogenization{};
     rodnet::homogenize(net, h);

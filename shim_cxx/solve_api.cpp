@@ -15,6 +15,7 @@
 #include "dist_predictor.hpp"
 #include "dist_system.hpp"
 #include "monitor.hpp"
+#include "nonconservative.hpp"
 #include "path.hpp"
 #include "predictor.hpp"
 #include "problem.hpp"
@@ -52,20 +53,6 @@ rn_status value_of_name(const char *name, const Enum (&kinds)[N],
       return RN_OK;
     }
   return RN_ERR_ARG;
-}
-
-// RN_ERR_ARG naming the first couple fixed in space (rodnet_couple.h) if the network
-// has one: `what` (an energy minimiser, path following, a stability check) needs a
-// conservative problem.  RN_OK otherwise.
-rn_status refuse_nonconservative(rn_network *net, const char *where, const char *what) {
-  char which[160];
-  if (rn_network_fixed_couples(net, nullptr, nullptr) == 0) return RN_OK;
-  return rn_context_set_error(
-      rn_network_context(net), RN_ERR_ARG,
-      "%s: the moment on %s is a couple fixed in space (\"model\": \"fixed\"), a "
-      "nonconservative load with no energy: %s does not apply; solve it with the nox "
-      "solver (--solver nox), Newton on the residual",
-      where, rn_network_fixed_couple_where(net, which, sizeof which), what);
 }
 
 rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
@@ -719,7 +706,12 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
     onc.predictor = onc.stability = 0;
     onc.energy_tol = 0.0; // the energy does not hold the couple's work
   }
+  // Newton on the residual finds stationary points and does not descend the
+  // energy: the conservative couple's tilt check (rodnet_couple.h) is for the
+  // minimisers
+  const int tilt_check = rn_network_set_couple_tilt_check(net, o.solver != RN_SOLVER_NOX);
   if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, onc, rep); });
+  rn_network_set_couple_tilt_check(net, tilt_check);
   if (rep && s != RN_OK) {
     rep->status = s;
     rep->stop = RN_STOP_FAILED;
@@ -754,6 +746,9 @@ rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min) {
   if (!lambda_min)
     return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
                                 "rn_hessian_min_eigenvalue: lambda_min is NULL");
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_hessian_min_eigenvalue",
+                                                    "the lowest Hessian eigenvalue"))
+    return st;
   return guarded(net, "rn_hessian_min_eigenvalue", [&] {
     rodnet::Problem p(net);
     std::vector<double> x(p.size());

@@ -8,19 +8,31 @@
 // solver's factorisation (banded or sparse); no Trilinos here.
 //
 // scale = ||D^{-1/2} H D^{-1/2}||_inf (an upper bound of every |lambda|, at least 1
-// when no diagonal entry is floored); eigenvalues with |lambda| <= kZeroModeTol *
-// scale are zero modes (rigid-body motions of unsupported parts, mechanisms).  The
-// method:
-//  1. Cholesky of H - delta D (delta = kZeroModeTol * scale) succeeds: every
-//     eigenvalue exceeds delta (inertia) - a verified minimum, no zero modes; the
-//     lowest eigenvalue is then estimated by shift-and-invert Lanczos with that
+// when no diagonal entry is floored).  Zero modes are of two kinds, told apart:
+// - symmetries: exact zero modes of the energy, the rigid motions no constraint
+//   blocks and the spins of rods' material frames.  Candidates are built from the
+//   model (the six rigid motions at the current positions, each rod's spin on
+//   networks of at most 64 rods); the combinations H maps to zero (residual <=
+//   1e-8 scale) are the symmetries, a D-orthonormal basis S.  They are excluded.
+// - soft modes: eigenvalues outside the symmetries with |lambda| <= delta =
+//   kZeroModeTol * scale.  Not necessarily zero: the scaled spectrum of a rod of N
+//   edges reaches down to ~(pi/N)^4 / 6 (the clamped 3200-edge cantilever: its two
+//   lowest bending modes in each plane, 2e-14 and 8e-13 at scale 5.9), and a
+//   mechanism is one too.  Verified positive or not (soft_positive).
+// The method:
+//  1. No symmetries and the Cholesky of H - delta D succeeds: every eigenvalue
+//     exceeds delta (inertia) - a verified minimum, no soft modes; the lowest
+//     eigenvalue is then estimated by shift-and-invert Lanczos with that
 //     factorisation (an upper bound within 1e-6 relative).
 //  2. Otherwise the smallest shift s in {delta, 1e-10 scale, 1e-9 scale, ...} with
 //     H + s D positive definite is found (lambda_min > -s), and subspace iteration
-//     with (H + s D)^{-1} D on a block of kStabilityBlock vectors (Rayleigh-Ritz with
-//     H each sweep) gives the lowest Ritz pairs: the zero modes (multiple eigenvalues
-//     are found with their multiplicity) and the lowest eigenvalue outside the zero
-//     band; a negative one means unstable.
+//     with (H + s D)^{-1} D on a block of kStabilityBlock vectors D-orthogonal to S
+//     (Rayleigh-Ritz with H each sweep) gives the lowest Ritz pairs outside the
+//     symmetries: the soft modes (with their multiplicity) and the lowest
+//     eigenvalue; one below -delta means unstable.  Soft modes are shown positive
+//     by the Cholesky factorisation of H itself (no symmetries: inertia, the lowest
+//     eigenvalue then by Lanczos on H^{-1} D) or by Ritz values above their
+//     residuals; verified_minimum needs every one shown positive.
 #ifndef RODNET_SHIM_STABILITY_HPP
 #define RODNET_SHIM_STABILITY_HPP
 
@@ -46,16 +58,26 @@ class System;
 // names for sys (make_preconditioner, set up on sys.hessian(), which must be
 // assembled at the state).  A Ritz pair is converged when ||A y - mu y|| <= 1e-10
 // scale (||y|| = 1, A the scaled Hessian); verified_minimum needs every requested
-// pair converged and the lowest outside the zero band above it.  No inertia
+// pair converged and the lowest outside the zero band above it.  symmetries >= 0
+// (count_symmetries, serial runs): that many band values nearest 0 are the
+// symmetries, the rest soft modes, and a soft mode means no verified minimum
+// (LOBPCG cannot resolve its sign); -1 (distributed): not separated, zero_modes
+// counts all, symmetries = soft_modes = -1.  No inertia
 // certificate: an eigenvalue LOBPCG misses is not seen.  factorizations counts
 // none (the preconditioner's own are not counted).  Collective over sys's
 // communicator; memory ~ 6 kStabilityBlock vectors per rank plus the
 // preconditioner.  prec: an SPD preconditioner already set up on sys (the
 // solver's, at or near the state: it only speeds LOBPCG up) instead of a new one
-// made and set up here.  Throws Error.
+// made and set up here.  symmetries: the number of exact symmetries of the
+// state (count_symmetries, one process), or -1 if not known (distributed).
+// Throws Error.
 class Preconditioner;
 rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
-                              Preconditioner *prec = nullptr);
+                              Preconditioner *prec = nullptr, int symmetries = -1);
+
+// The number of symmetries at the state p's Hessian holds (hessian_stability's
+// basis; one process, assemble_hessian first).  Throws Error.
+int count_symmetries(Problem &p);
 
 // The stability check after rn_solve, by opt.stability_method (rn_solve_options):
 // on dist (a distributed System, not null: LOBPCG; checked = 0 if CHOLESKY is

@@ -119,11 +119,12 @@ void start_block(TMV &X) {
 } // namespace
 
 rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
-                              Preconditioner *given) {
+                              Preconditioner *given, int symmetries) {
   const auto start = std::chrono::steady_clock::now();
   rn_stability st{};
   st.checked = 1;
   st.method = RN_STABILITY_LOBPCG;
+  st.symmetries = st.soft_modes = -1; // not separated unless the count is given
   const GO n = sys.global_size();
   const Teuchos::RCP<const TCrs> H = sys.hessian();
   const Teuchos::RCP<TVec> d = metric(*H);
@@ -143,6 +144,7 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
     throw Error(RN_ERR_NOT_FINITE, "stability: non-finite Hessian");
   if (n == 0) {
     st.verified_minimum = 1;
+    st.symmetries = st.soft_modes = 0;
   } else if (!(st.scale > 0.0)) {
     st.zero_modes = static_cast<int>(std::min<GO>(n, kStabilityBlock));
   } else {
@@ -204,7 +206,7 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
     // no Ritz pair came out (LOBPCG broke down or converged none): the check did
     // not happen, which is not the same as a lowest eigenvalue of 0
     if (mu.empty()) st.checked = 0;
-    if (st.checked && !mu.empty()) {
+    if (st.checked && !mu.empty() && symmetries < 0) { // zero modes not separated
       size_t j = 0;
       while (j < mu.size() && std::fabs(mu[j]) <= delta) ++j;
       if (mu[0] < -delta) {
@@ -216,6 +218,27 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
           st.lowest_eigenvalue = mu[j];
           st.verified_minimum = ret == Anasazi::Converged && mu[j] > delta;
         }
+      }
+    } else if (st.checked && !mu.empty()) {
+      // the `symmetries` Ritz values in the zero band nearest 0 are the symmetries;
+      // the other ones in the band are soft modes, whose sign LOBPCG's residuals
+      // (1e-10 scale) cannot resolve: no verified minimum with any
+      std::vector<size_t> band;
+      for (size_t i = 0; i < mu.size(); ++i)
+        if (std::fabs(mu[i]) <= delta) band.push_back(i);
+      std::sort(band.begin(), band.end(),
+                [&](size_t a, size_t b) { return std::fabs(mu[a]) < std::fabs(mu[b]); });
+      std::vector<char> sym(mu.size(), 0);
+      st.symmetries = std::min(symmetries, static_cast<int>(band.size()));
+      for (int i = 0; i < st.symmetries; ++i) sym[band[static_cast<size_t>(i)]] = 1;
+      st.soft_modes = static_cast<int>(band.size()) - st.symmetries;
+      st.zero_modes = static_cast<int>(band.size());
+      size_t lo = 0;
+      while (lo < mu.size() && sym[lo]) ++lo;
+      if (lo < mu.size()) {
+        st.lowest_eigenvalue = mu[lo];
+        st.verified_minimum =
+            ret == Anasazi::Converged && st.soft_modes == 0 && mu[lo] > delta;
       }
     }
   }
@@ -255,13 +278,13 @@ rn_stability solve_stability(Problem &p, System *dist, const rn_solve_options &o
     TMV x(sys.map(), 1);
     sys.get_state(x);
     sys.assemble_hessian(x);
-    st = lobpcg_stability(sys, opt, &ws->preconditioner());
+    st = lobpcg_stability(sys, opt, &ws->preconditioner(), count_symmetries(p));
   } else if (lobpcg) {
     SerialSystem sys(p);
     TMV x(sys.map(), 1);
     sys.get_state(x);
     sys.assemble_hessian(x);
-    st = lobpcg_stability(sys, opt);
+    st = lobpcg_stability(sys, opt, nullptr, count_symmetries(p));
   } else {
     st = hessian_stability(p, kind);
   }

@@ -5,7 +5,7 @@
 rn_add_test(api_lifecycle SOURCES unit/api_lifecycle.c LIBS rodnet LABELS unit)
 rn_add_test(api_sections SOURCES unit/api_sections.c LIBS rodnet LABELS unit)
 # The planar model (rodnet_model.h): requests, free DOFs, qualification report.
-rn_add_test(api_planar SOURCES unit/api_planar.c LIBS rodnet LABELS unit)
+rn_add_test(api_planar SOURCES unit/api_planar.c LIBS rodnet m LABELS unit)
 rn_add_test(api_conformance SOURCES unit/api_conformance.c LIBS rodnet LABELS unit)
 rn_add_test(api_fields SOURCES unit/api_fields.c LIBS rodnet LABELS unit)
 rn_add_test(api_joints SOURCES unit/api_joints.c LIBS rodnet LABELS unit)

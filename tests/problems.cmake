@@ -935,6 +935,60 @@ if(RN_WITH_TRILINOS)
                   ABSENT ${RN_CLI_OUT}/${case}_refused.json)
     endforeach()
   endforeach()
+  # The conservative couple in 3D (issue 22 item 4): its potential is unbounded below
+  # past the couple's axis and tr-minres used to follow that for 1822 Newton steps
+  # (energy -17.9, exit 1, no reason given); now the accepted step that turns the arm
+  # beyond 80 degrees stops the solve with a message naming the couple (exit 4),
+  # the same with rol-tr-tcg.  NOX converges on the same scene (arm tilt below 80).
+  set(RN_COUPLE_CONS ${CMAKE_CURRENT_SOURCE_DIR}/data/couple/helix_conservative.json)
+  foreach(solver tr-minres rol-tr-tcg)
+    rn_cli_test(problems_couple_conservative_unbounded_${solver} 4
+                "conservative couple on rod 0 \\('beam'\\) vertex 40 has turned its arm [0-9.]+ degrees out of the plane normal to M.*unbounded below in 3D.*\"model\": \"fixed\".*--solver nox"
+                ARGS solve ${RN_COUPLE_CONS} -o ${RN_CLI_OUT}/couple_cons_${solver}.json
+                     --solver ${solver} --quiet
+                ABSENT ${RN_CLI_OUT}/couple_cons_${solver}.json)
+  endforeach()
+  rn_cli_test(problems_couple_conservative_nox 0 "status +converged.*solver +nox"
+              ARGS solve ${RN_COUPLE_CONS} -o ${RN_CLI_OUT}/couple_cons_nox.json
+                   --solver nox --quiet)
+  # The stability report on the clamped 3201-vertex cantilever (issue 22 item 2): no
+  # rigid motion is free, so no symmetry; its 4 lowest eigenvalues (two bending modes
+  # per plane, 2e-14 .. 8e-13 at scale 5.9) are soft modes below 1e-12 scale, shown
+  # positive by the Cholesky factorisation of H: a verified minimum without zero
+  # modes, the lowest eigenvalue the first bending mode (it used to say "4 zero
+  # modes" and report the fifth, 6.4e-12, as the lowest).
+  rn_cli_test(problems_stability_cantilever_soft 0
+              "stability +verified local minimum: lowest Hessian eigenvalue [0-9.]+e-1[3-5] outside the symmetries \\(scale [0-9.e+]+\\). 0 symmetries \\(rigid motions, frame spins\\), 4 soft modes, all positive"
+              ARGS solve ${RN_SCENES}/cantilever_3201.json
+                   -o ${RN_CLI_OUT}/stability_cantilever_3201.json --quiet)
+  set_tests_properties(problems_stability_cantilever_soft PROPERTIES
+                       FIXTURES_SETUP problems_stability_cantilever_soft)
+  add_test(NAME problems_stability_cantilever_soft_check
+           COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_stability.py
+                   ${RN_CLI_OUT}/stability_cantilever_3201.json --verified true
+                   --zero-modes 0 --symmetries 0 --soft-modes 4 --soft-positive 4
+                   --lowest-below 1e-13)
+  set_tests_properties(problems_stability_cantilever_soft_check PROPERTIES LABELS unit
+                       FIXTURES_REQUIRED problems_stability_cantilever_soft)
+  # The planar model and stored twist (issue 22 item 1): a planar ring with one turn
+  # of twist is refused by "model": "planar" (it used to return after 0 iterations
+  # with the whole 2 pi at one vertex, "verified local minimum"), and the 3D run does
+  # not report that it qualifies; a ring without twist in the planar model, pinned at
+  # its joint: one symmetry (the rotation about z), a verified minimum.
+  set(RN_PLANAR_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/planar)
+  rn_cli_test(problems_planar_ring_link_refused 3
+              "the planar model needs a network in one plane z = const: joint 0 \\('ring'\\): the ring stores 1 full turn of twist \\(\"link\"\\)"
+              ARGS solve ${RN_PLANAR_DATA}/ring_link1_planar.json
+                   -o ${RN_CLI_OUT}/planar_ring_link.json --quiet
+              ABSENT ${RN_CLI_OUT}/planar_ring_link.json)
+  rn_cli_test(problems_planar_ring_link_3d 0
+              "model +3d \\(not planar: joint 0 \\('ring'\\): the ring stores 1 full turn of twist"
+              ARGS solve ${RN_PLANAR_DATA}/ring_link1_3d.json
+                   -o ${RN_CLI_OUT}/planar_ring_link_3d.json --quiet)
+  rn_cli_test(problems_planar_ring_symmetry 0
+              "stability +verified local minimum: .*. 1 symmetry \\(rigid motions, frame spins\\), no soft modes"
+              ARGS solve ${RN_PLANAR_DATA}/ring_planar.json
+                   -o ${RN_CLI_OUT}/planar_ring.json --quiet)
   # The pinned column: NOX finds the straight saddle, tr-minres the buckled minimum.
   rn_cli_test(problems_example_pinned_column_nox 0 "status +converged.*solver +nox"
               ARGS solve ${CMAKE_CURRENT_SOURCE_DIR}/../problems/scenes/pinned_column.json

@@ -16,6 +16,7 @@
 
 #include "rodnet.h"
 #include "rodnet_couple.h"
+#include "rodnet_solve.h"
 #include "testutil.h"
 
 /* The clamped rod "r" with the couple on its last vertex (joint < 0) or on a
@@ -232,6 +233,72 @@ static void test_joint_bookkeeping(rn_context *ctx) {
   rn_network_destroy(&net);
 }
 
+/* The entry points that need an energy refuse a couple fixed in space, naming
+ * it (as rn_solve's minimisers, rn_network_stability and rn_path_follow do):
+ * rn_hessian_min_eigenvalue on the rod, rn_homogenize, rn_cell_relax,
+ * rn_cell_minimize, rn_cell_bloch and rn_cell_bloch_eigen on a square cell
+ * (two bars through one rigid joint and its images) with the couple on a bar;
+ * with the conservative couple they run. */
+static void test_refusals(rn_context *ctx) {
+  const double M[3] = {0.0, 0.0, 0.2};
+  double lmin = 0.0;
+  rn_network *net = make_rod(ctx, M, RN_COUPLE_FIXED);
+  CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin), RN_ERR_ARG);
+  CHECK(strstr(rn_context_last_error(ctx),
+               "rn_hessian_min_eigenvalue: the moment on rod "
+               "'r' vertex 5 is a couple fixed in space") != NULL);
+  rn_network_destroy(&net);
+  for (int model = 0; model < 2; ++model) {
+    const double vec[6] = {1, 0, 0, 0, 1, 0};
+    double bx[9] = {0, 0, 0, 0.5, 0, 0, 1, 0, 0}, by[9] = {0, 0, 0, 0, 0.5, 0, 0, 1, 0};
+    int rx = -1, ry = -1, j = -1, rods[4], ends[4] = {RN_START, RN_END, RN_START, RN_END};
+    int images[12] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0};
+    rn_material m;
+    rn_section sec;
+    CHECK_STATUS(rn_network_create(ctx, &net), RN_OK);
+    CHECK_STATUS(rn_network_set_periodic(net, 2, vec), RN_OK);
+    CHECK_STATUS(rn_network_add_rod(net, "x", 3, bx, (double[3]){0, 0, 1}, &rx), RN_OK);
+    CHECK_STATUS(rn_network_add_rod(net, "y", 3, by, (double[3]){0, 0, 1}, &ry), RN_OK);
+    CHECK_STATUS(rn_material_from_E_nu(1e3, 0.3, 0.0, &m), RN_OK);
+    CHECK_STATUS(rn_section_circle(0.05, &sec), RN_OK);
+    for (int r = 0; r < 2; ++r) {
+      CHECK_STATUS(rn_network_set_material(net, r, -1, &m), RN_OK);
+      CHECK_STATUS(rn_network_set_section(net, r, -1, &sec), RN_OK);
+    }
+    rods[0] = rods[1] = rx;
+    rods[2] = rods[3] = ry;
+    CHECK_STATUS(
+        rn_network_add_joint_images(net, "J", RN_JOINT_RIGID, 4, rods, ends, images, &j),
+        RN_OK);
+    CHECK_STATUS(rn_network_add_moment_model(net, rx, 1, M, (rn_couple_model)model),
+                 RN_OK);
+    CHECK_STATUS(rn_network_finalize(net), RN_OK);
+    const double strain[3] = {0.0, 0.0, 0.0}, xi[3] = {0.1, 0.0, 0.0};
+    double eig[2];
+    rn_homogenization h;
+    rn_cell_relax_report rep;
+    rn_bloch_result res;
+    rn_bloch_options opt;
+    rn_bloch_options_default(&opt);
+    opt.grid = 2;
+    const rn_status want = model == RN_COUPLE_FIXED ? RN_ERR_ARG : RN_OK;
+    const char *msg = "the moment on rod 'x' vertex 1 is a couple fixed in space";
+    CHECK_STATUS(rn_homogenize(net, &h), want);
+    CHECK(!want || strstr(rn_context_last_error(ctx), "rn_homogenize: ") != NULL);
+    CHECK(!want || strstr(rn_context_last_error(ctx), msg) != NULL);
+    CHECK_STATUS(rn_cell_relax(net, strain, &rep), want);
+    CHECK(!want || strstr(rn_context_last_error(ctx), msg) != NULL);
+    CHECK_STATUS(rn_cell_minimize(net, strain, &rep), want);
+    CHECK(!want || strstr(rn_context_last_error(ctx), msg) != NULL);
+    CHECK_STATUS(rn_cell_bloch(net, &opt, &res), want);
+    CHECK(!want || strstr(rn_context_last_error(ctx), msg) != NULL);
+    CHECK_STATUS(rn_cell_bloch_eigen(net, xi, RN_BLOCH_ALL, 2, eig, NULL), want);
+    CHECK(!want || strstr(rn_context_last_error(ctx), msg) != NULL);
+    CHECK_STATUS(rn_hessian_min_eigenvalue(net, &lmin), want);
+    rn_network_destroy(&net);
+  }
+}
+
 int main(void) {
   rn_context *ctx;
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
@@ -241,6 +308,7 @@ int main(void) {
   test_joint_bookkeeping(ctx);
   test_models_at_start_and_off_plane(ctx);
   test_bad_model(ctx);
+  test_refusals(ctx);
   rn_context_destroy(&ctx);
   return rn_test_finish("api_couple_fixed");
 }

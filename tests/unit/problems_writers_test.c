@@ -74,42 +74,43 @@ int main(int argc, char **argv) {
   if (!s) return rn_test_finish("problems_writers");
   rn_network *net = rn_scene_network(s);
   static const long part_dofs[2] = {30, 40}, part_stencils[2] = {50, 60};
-  rn_result_info info = {"max_iterations",
-                         "tr-minres",
-                         "sparse",
-                         "max_iterations",
-                         0,
-                         3,
-                         1,
-                         10,
-                         11,
-                         12,
-                         13,
-                         14,
-                         -0.125,
-                         1.0 / 3.0,
-                         2.5,
-                         0.75,
-                         2,
-                         1e-9,
-                         4.0,
-                         2e-8,
-                         3e-10,
-                         1.5,
-                         4e-9,
-                         "factor",
-                         "local minimum",
-                         2,
-                         part_dofs,
-                         part_stencils,
-                         7,
-                         1.25,
-                         12,
-                         0.5,
-                         0.25,
-                         0.125,
-                         {1, -2.5e-3, 40.0, 0, 2, 3, 0.5, RN_STABILITY_CHOLESKY, 0, 0.0},
-                         NULL};
+  rn_result_info info = {
+      "max_iterations",
+      "tr-minres",
+      "sparse",
+      "max_iterations",
+      0,
+      3,
+      1,
+      10,
+      11,
+      12,
+      13,
+      14,
+      -0.125,
+      1.0 / 3.0,
+      2.5,
+      0.75,
+      2,
+      1e-9,
+      4.0,
+      2e-8,
+      3e-10,
+      1.5,
+      4e-9,
+      "factor",
+      "local minimum",
+      2,
+      part_dofs,
+      part_stencils,
+      7,
+      1.25,
+      12,
+      0.5,
+      0.25,
+      0.125,
+      {1, -2.5e-3, 40.0, 0, 2, 3, 0.5, RN_STABILITY_CHOLESKY, 0, 0.0, 1, 1, 0},
+      NULL};
   remove(argv[2]);
   CHECK_STATUS(rn_result_write_json(ctx, argv[2], s, &info), RN_OK);
   CHECK_STATUS(rn_vtk_write(ctx, argv[3], s), RN_OK);
@@ -135,6 +136,9 @@ int main(int argc, char **argv) {
       CHECK(num(stab, "lowest_eigenvalue") == -2.5e-3);
       CHECK(num(stab, "scale") == 40.0);
       CHECK(num(stab, "zero_modes") == 2);
+      CHECK(num(stab, "symmetries") == 1);
+      CHECK(num(stab, "soft_modes") == 1);
+      CHECK(num(stab, "soft_positive") == 0);
       CHECK(num(stab, "factorizations") == 3);
       CHECK(num(stab, "time_s") == 0.5);
     }

@@ -60,13 +60,33 @@ static void check_against_dense(const rn_network *net, const rn_stability *st,
   for (size_t i = 0; i < n; ++i) z += fabs(w[i]) <= 1e-12 * norm_inf;
   while (first < n && fabs(w[first]) <= 1e-12 * norm_inf) ++first;
   if (w[0] < -1e-12 * norm_inf) first = 0;
+  if (st->symmetries >= 0) {
+    /* separated: the symmetries are the band's eigenvalues nearest 0, the soft
+     * modes the rest of the band; the lowest eigenvalue is the lowest of the
+     * others (a soft one if any) */
+    unsigned char *sym = calloc(n, 1);
+    for (int k = 0; k < st->symmetries; ++k) {
+      size_t best = n;
+      for (size_t i = 0; i < n; ++i)
+        if (!sym[i] && (best == n || fabs(w[i]) < fabs(w[best]))) best = i;
+      if (best < n) sym[best] = 1;
+    }
+    first = 0;
+    while (first < n && sym[first]) ++first;
+    free(sym);
+    CHECK((size_t)(st->symmetries + st->soft_modes) == z);
+    CHECK(st->soft_positive >= 0 && st->soft_positive <= st->soft_modes);
+    CHECK(st->zero_modes == st->symmetries + st->soft_modes - st->soft_positive);
+    if (st->verified_minimum) CHECK(st->zero_modes == st->symmetries);
+    if (st->soft_positive > 0) CHECK(w[first] > 0.0);
+  }
   printf("%s: %zu DOFs, lowest %.10e (dsyev %.10e), scale %.6e, zero modes %d "
          "(dsyev %zu), verified %d, %ld factorisations, %.4f s\n",
          label, n, st->lowest_eigenvalue, w[first], st->scale, st->zero_modes, z,
          st->verified_minimum, st->factorizations, st->time_s);
   CHECK(st->checked == 1);
   CHECK_REL(st->scale, norm_inf, 1e-12);
-  CHECK((size_t)st->zero_modes == z);
+  if (st->symmetries < 0) CHECK((size_t)st->zero_modes == z);
   CHECK(fabs(st->lowest_eigenvalue - w[first]) <= 1e-6 * fabs(w[first]));
   if (st->method == RN_STABILITY_LOBPCG)
     CHECK(st->factorizations == 0 && st->iterations >= 1);
@@ -130,6 +150,7 @@ static void free_rod(rn_context *ctx) {
   CHECK_STATUS(rn_network_stability(net, &st), RN_OK);
   check_against_dense(net, &st, "free quarter circle");
   CHECK(st.zero_modes == 6);
+  CHECK(st.symmetries == 6 && st.soft_modes == 0); /* 3 translations, 3 rotations */
   CHECK(st.verified_minimum == 1);
   rn_network_destroy(&net);
 }
