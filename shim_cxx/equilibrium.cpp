@@ -16,12 +16,13 @@ std::vector<double> eq_levers(rn_network *net, const std::vector<int> &kind) {
   if (!n) return lever;
   std::vector<rn_dof_info> info(n);
   check_status(rn_network_dof_info(net, info.data()), "rn_network_dof_info");
-  // rest lengths of every rod's edges; the shortest of the network for joints
+  // rest lengths of every (local) rod's edges; the shortest of them for joints
   std::vector<std::vector<double>> len(static_cast<size_t>(rn_network_num_rods(net)));
   double shortest = HUGE_VAL;
   for (size_t r = 0; r < len.size(); ++r) {
     const int nv = rn_network_rod_num_vertices(net, static_cast<int>(r));
-    if (nv < 2) continue;
+    if (nv < 2 || !rn_network_rod_is_local(net, static_cast<int>(r)))
+      continue; // (a part's ghost rod: held by another part)
     len[r].resize(static_cast<size_t>(nv - 1));
     check_status(rn_network_rod_rest_lengths(net, static_cast<int>(r), len[r].data()),
                  "rn_network_rod_rest_lengths");

@@ -16,8 +16,8 @@ namespace rodnet {
 
 // Lever arm of every reduced DOF of net (kind: rn_network_dof_kinds) for
 // eq_internal_moment: at a rod vertex the mean rest length of its edges, at a joint
-// position the shortest rest edge of the network, 1 for angles and rotations
-// (whose gradient is a moment already), 0 for strains.  O(n); throws Error.
+// position (or a ghost rod's) the shortest rest edge of the local rods, 1 for angles
+// and rotations (whose gradient is a moment already), 0 for strains.  O(n); throws.
 std::vector<double> eq_levers(rn_network *net, const std::vector<int> &kind);
 
 // The internal moment of the state from gabs (rn_network_gradient_magnitude: at each

@@ -46,11 +46,15 @@ bool Monitor::equilibrium_passes(const IterationView &it) const {
       it.eq.moment_residual <= opt_.gtol_rel * it.eq.moment_scale)
     return true;
   // Within the round-off band only: after an interior (Newton) step no longer than
-  // gtol_rel (1 + ||x||).  The band's max norm cannot tell round-off from a smooth
-  // residual that a long rod turns into a large displacement; the Newton step can
-  // (docs/solvers.md, "Stopping tests").
+  // max(gtol_rel, kBandStep) (1 + ||x||).  The band's max norm cannot tell round-off
+  // from a smooth residual that a long rod turns into a large displacement; the
+  // Newton step can (docs/solvers.md, "Stopping tests").  kBandStep: a gtol_rel
+  // below it asks for the round-off floor, not for steps at round-off, which the
+  // trust region may no longer accept.
+  constexpr double kBandStep = 1e-9;
   return it.iteration > 0 && it.accepted && it.unconstrained &&
-         it.step_norm <= opt_.gtol_rel * (1.0 + it.x_norm) && within_floor_band(opt_, it);
+         it.step_norm <= std::max(opt_.gtol_rel, kBandStep) * (1.0 + it.x_norm) &&
+         within_floor_band(opt_, it);
 }
 
 bool Monitor::check(const IterationView &it) {
