@@ -51,10 +51,12 @@ bool Monitor::equilibrium_passes(const IterationView &it) const {
   // Newton step can (docs/solvers.md, "Stopping tests").  kBandStep: a gtol_rel
   // below it asks for the round-off floor, not for steps at round-off, which the
   // trust region may no longer accept.
+  // A trust radius collapsed within the band: no step is accepted at round-off.
   constexpr double kBandStep = 1e-9;
-  return it.iteration > 0 && it.accepted && it.unconstrained &&
-         it.step_norm <= std::max(opt_.gtol_rel, kBandStep) * (1.0 + it.x_norm) &&
-         within_floor_band(opt_, it);
+  const bool small_step =
+      it.iteration > 0 && it.accepted && it.unconstrained &&
+      it.step_norm <= std::max(opt_.gtol_rel, kBandStep) * (1.0 + it.x_norm);
+  return (small_step || it.radius_collapsed) && within_floor_band(opt_, it);
 }
 
 bool Monitor::check(const IterationView &it) {

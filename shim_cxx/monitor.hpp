@@ -8,10 +8,10 @@
 //    largest moment residual (angles, joint rotations) at most gtol_rel *
 //    moment_scale (the scales: the loads, reactions and internal moment of the
 //    state); or, where kFloorFactor times the round-off floor is larger, both within
-//    max(gtol_rel * scale, kFloorFactor * floor) after an interior step, ||s|| <=
-//    max(gtol_rel, 1e-9) (1 + ||x||) (the band's max norm cannot tell round-off from
-//    a smooth residual; the Newton step can).  If gtol_abs > 0, ||g|| <= gtol_abs
-//    is required too (not an alternative).  Only without significant negative
+//    max(gtol_rel * scale, kFloorFactor * floor) after an interior step (or at a
+//    collapsed radius), ||s|| <= max(gtol_rel, 1e-9) (1 + ||x||) (a max norm cannot
+//    tell round-off from a smooth residual; the Newton step can).  If gtol_abs > 0,
+//    ||g|| <= gtol_abs is required too.  Only without significant negative
 //    curvature (a saddle with a small gradient is not a minimum).  A solver that
 //    provides no EquilibriumView falls back to ||g|| <= gtol_rel * max(||g_0||, f)
 //    (g_0 the gradient at the start of the load step, f = the out-of-balance force
