@@ -12,6 +12,7 @@
 #include <Tpetra_CrsGraph.hpp>
 
 #include "dof_blocks.hpp"
+#include "equilibrium_scale.hpp"
 #include "shim_error.hpp"
 
 namespace rodnet {
@@ -513,9 +514,6 @@ EquilibriumView DistSystem::equilibrium(const TMV &x, const TMV &g) {
   allreduce(load, gload, 2, MPI_DOUBLE, MPI_MAX, c);
   double freac = 0.0, mreac = 0.0;
   reaction_scales(&freac, &mreac);
-  const double f0 = std::max(gload[0], freac), m0 = std::max(gload[1], mreac);
-  v.force_scale = size_ > 0.0 ? std::max(f0, m0 / size_) : f0;
-  v.moment_scale = std::max(m0, f0 * size_);
   // round-off floor: |H delta| + eps * (sum of stencil force magnitudes)
   TMV delta(owned_, 1), hd(owned_, 1), ga(owned_, 1);
   {
@@ -538,6 +536,20 @@ EquilibriumView DistSystem::equilibrium(const TMV &x, const TMV &g) {
                                                  2 * exporter_->getNumExportIDs());
   double fl[2] = {0.0, 0.0}, gfl[2];
   auto hdd = hd.getData(0), gad = ga.getData(0);
+  // the internal moment of the state over the owned DOFs (as equilibrium.cpp)
+  std::vector<double> lever;
+  rn_status lst = RN_OK;
+  try {
+    lever = eq_levers(net_, kind_);
+  } catch (const Error &e) {
+    lst = e.status();
+  }
+  agree(lst);
+  double mint = eq_internal_moment(kind_, lever, gad.getRawPtr(), n_owned_), gmint = 0.0;
+  allreduce(&mint, &gmint, 1, MPI_DOUBLE, MPI_MAX, c);
+  const double f0 = std::max(gload[0], freac), m0 = std::max({gload[1], mreac, gmint});
+  v.force_scale = size_ > 0.0 ? std::max(f0, m0 / size_) : f0;
+  v.moment_scale = std::max(m0, f0 * size_);
   for (size_t i = 0; i < n_owned_; ++i) {
     double &floor = kind_[i] == RN_DOF_POSITION ? fl[0] : fl[1];
     floor = std::max(floor, std::fabs(hdd[static_cast<LO>(i)]) +

@@ -1,5 +1,6 @@
 // equilibrium.cpp - residual of equilibrium on a physical scale (see equilibrium.hpp).
 #include "equilibrium.hpp"
+#include "equilibrium_scale.hpp"
 
 #include <algorithm>
 #include <cfloat>
@@ -8,6 +9,56 @@
 #include "shim_error.hpp"
 
 namespace rodnet {
+
+std::vector<double> eq_levers(rn_network *net, const std::vector<int> &kind) {
+  const size_t n = kind.size();
+  std::vector<double> lever(n, 1.0);
+  if (!n) return lever;
+  std::vector<rn_dof_info> info(n);
+  check_status(rn_network_dof_info(net, info.data()), "rn_network_dof_info");
+  // rest lengths of every (local) rod's edges; the shortest of them for joints
+  std::vector<std::vector<double>> len(static_cast<size_t>(rn_network_num_rods(net)));
+  double shortest = HUGE_VAL;
+  for (size_t r = 0; r < len.size(); ++r) {
+    const int nv = rn_network_rod_num_vertices(net, static_cast<int>(r));
+    if (nv < 2 || !rn_network_rod_is_local(net, static_cast<int>(r)))
+      continue; // (a part's ghost rod: held by another part)
+    len[r].resize(static_cast<size_t>(nv - 1));
+    check_status(rn_network_rod_rest_lengths(net, static_cast<int>(r), len[r].data()),
+                 "rn_network_rod_rest_lengths");
+    for (double l : len[r]) shortest = std::min(shortest, l);
+  }
+  if (!std::isfinite(shortest)) shortest = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    if (kind[i] == RN_DOF_STRAIN) {
+      lever[i] = 0.0;
+    } else if (kind[i] == RN_DOF_POSITION) {
+      const rn_dof_info &d = info[i];
+      lever[i] = shortest;
+      if (d.rod >= 0 && static_cast<size_t>(d.rod) < len.size() && !len[d.rod].empty()) {
+        const std::vector<double> &l = len[static_cast<size_t>(d.rod)];
+        const size_t v = static_cast<size_t>(std::max(d.index, 0)), ne = l.size();
+        if (v == 0)
+          lever[i] = l[0];
+        else if (v >= ne)
+          lever[i] = l[ne - 1];
+        else
+          lever[i] = 0.5 * (l[v - 1] + l[v]);
+      }
+    }
+  }
+  return lever;
+}
+
+double eq_internal_moment(const std::vector<int> &kind, const std::vector<double> &lever,
+                          const double *gabs, size_t n) {
+  double m = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double f = kind[i] == RN_DOF_POSITION ? 0.25 : 0.5;
+    m = std::max(m, f * lever[i] * gabs[i]);
+  }
+  return m;
+}
 
 Equilibrium::Equilibrium(Problem &p) : p_(p) {
   rn_network *net = p.network();
@@ -70,11 +121,6 @@ EquilibriumView Equilibrium::measure(const double *x, const double *g) {
       mreac = std::max(mreac, eq_norm3(r.moment));
     }
   }
-  // Forces and moments convert over the size L of the structure: a force F makes
-  // moments of about F L, a moment M is carried by forces of about M / L.
-  const double f0 = std::max(fload, freac), m0 = std::max(mload, mreac);
-  v.force_scale = size_ > 0.0 ? std::max(f0, m0 / size_) : f0;
-  v.moment_scale = std::max(m0, f0 * size_);
   // Round-off floor: the rounding error of the DOFs propagated by the Hessian, plus
   // the rounding error of the sum of the stencils' forces at each DOF.
   for (size_t i = 0; i < n; ++i)
@@ -84,6 +130,15 @@ EquilibriumView Equilibrium::measure(const double *x, const double *g) {
     check_status(rn_network_gradient_magnitude(net, x, gabs_.data()),
                  "rn_network_gradient_magnitude");
   }
+  // Forces and moments convert over the size L of the structure: a force F makes
+  // moments of about F L, a moment M is carried by forces of about M / L.  The
+  // internal moment gives self-stressed states a scale (levers: O(n), measured
+  // again with the scales only).
+  const double mint =
+      n ? eq_internal_moment(kind_, eq_levers(net, kind_), gabs_.data(), n) : 0.0;
+  const double f0 = std::max(fload, freac), m0 = std::max({mload, mreac, mint});
+  v.force_scale = size_ > 0.0 ? std::max(f0, m0 / size_) : f0;
+  v.moment_scale = std::max(m0, f0 * size_);
   v.force_floor = v.moment_floor = 0.0;
   for (size_t i = 0; i < n; ++i) {
     double &floor = kind_[i] == RN_DOF_POSITION ? v.force_floor : v.moment_floor;

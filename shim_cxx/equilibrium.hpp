@@ -5,14 +5,14 @@
 // position DOF, a moment at a material angle or a joint rotation (rn_network_dof_kinds).
 // Forces and moments are measured separately so that units do not mix:
 //  - residual: the largest |g_i| over the free DOFs of each kind;
-//  - scale: the forces and moments the structure carries: F0 = the largest applied
-//    force or support reaction force, M0 = the largest applied couple or reaction
-//    moment (rn_network_applied_load_max, rn_network_reactions at the current
-//    iterate); force scale max(F0, M0 / L), moment scale max(M0, F0 L), L the size
-//    of the structure (diagonal of the bounding box of its initial vertices: a
-//    force F makes moments of about F L, a moment M is carried by forces of about
-//    M / L), so that a structure loaded by forces alone has a moment scale and one
-//    loaded by couples alone a force scale;
+//  - scale: F0 = the largest applied force or support reaction force, M0 = the
+//    largest applied couple, reaction moment (rn_network_applied_load_max,
+//    rn_network_reactions at the iterate) or internal moment of the state
+//    (equilibrium_scale.hpp: a self-stressed ring has one); force scale max(F0,
+//    M0 / L), moment scale max(M0, F0 L), L the size of the structure (diagonal of
+//    the bounding box of its initial vertices: a force F makes moments of about F L,
+//    a moment M is carried by forces of about M / L), so that a structure loaded by
+//    forces alone has a moment scale and one loaded by couples alone a force scale;
 //  - floor: what round-off alone makes of the gradient: |H delta| with delta the
 //    rounding error of the DOFs (eps times the largest coordinate for positions, eps
 //    for angles, signs alternating pseudo-randomly; one matrix-free Hessian-vector

@@ -20,17 +20,43 @@ bool Monitor::converged() const {
          reason_ == RN_STOP_ENERGY;
 }
 
+namespace {
+
+// Whether the residuals at it are within max(gtol_rel * scale, kFloorFactor * floor),
+// the round-off band (false without an EquilibriumView).
+bool within_floor_band(const rn_solve_options &opt, const IterationView &it) {
+  return it.eq.valid &&
+         it.eq.force_residual <= std::max(opt.gtol_rel * it.eq.force_scale,
+                                          kFloorFactor * it.eq.force_floor) &&
+         it.eq.moment_residual <= std::max(opt.gtol_rel * it.eq.moment_scale,
+                                           kFloorFactor * it.eq.moment_floor);
+}
+
+} // namespace
+
 bool Monitor::equilibrium_passes(const IterationView &it) const {
   const bool abs_ok = opt_.gtol_abs == 0.0 || it.gnorm <= opt_.gtol_abs;
   if (!it.eq.valid) {
     const double scale = started_ ? g_scale_ : std::max(it.gnorm, force_scale_);
     return it.gnorm <= opt_.gtol_rel * scale && abs_ok;
   }
-  const double ftol =
-      std::max(opt_.gtol_rel * it.eq.force_scale, kFloorFactor * it.eq.force_floor);
-  const double mtol =
-      std::max(opt_.gtol_rel * it.eq.moment_scale, kFloorFactor * it.eq.moment_floor);
-  return it.eq.force_residual <= ftol && it.eq.moment_residual <= mtol && abs_ok;
+  if (!abs_ok) return false;
+  // Below gtol_rel times the scales: converged.
+  if (it.eq.force_residual <= opt_.gtol_rel * it.eq.force_scale &&
+      it.eq.moment_residual <= opt_.gtol_rel * it.eq.moment_scale)
+    return true;
+  // Within the round-off band only: after an interior (Newton) step no longer than
+  // max(gtol_rel, kBandStep) (1 + ||x||).  The band's max norm cannot tell round-off
+  // from a smooth residual that a long rod turns into a large displacement; the
+  // Newton step can (docs/solvers.md, "Stopping tests").  kBandStep: a gtol_rel
+  // below it asks for the round-off floor, not for steps at round-off, which the
+  // trust region may no longer accept.
+  // A trust radius collapsed within the band: no step is accepted at round-off.
+  constexpr double kBandStep = 1e-9;
+  const bool small_step =
+      it.iteration > 0 && it.accepted && it.unconstrained &&
+      it.step_norm <= std::max(opt_.gtol_rel, kBandStep) * (1.0 + it.x_norm);
+  return (small_step || it.radius_collapsed) && within_floor_band(opt_, it);
 }
 
 bool Monitor::check(const IterationView &it) {

@@ -4,18 +4,18 @@
 // starting point, iteration 0) with what it knows about the current iterate; the
 // monitor calls the user's progress callback and decides whether to stop:
 //  - gradient (equilibrium on a physical scale, equilibrium.hpp): the largest force
-//    residual (|g_i| over position DOFs) is at most force_tol = max(gtol_rel *
-//    force_scale, kFloorFactor * force_floor) and the largest moment residual (angles,
-//    joint rotations) at most moment_tol, the same with the moment scale and floor;
-//    force_scale = the largest applied force or support reaction at the iterate,
-//    moment_scale = the largest applied couple or reaction moment, or force_scale
-//    times the mean edge length; the floor is the residual that round-off alone
-//    makes.  If gtol_abs > 0, ||g|| <= gtol_abs is required too (not an
-//    alternative).  Only when the solver reports no significant negative curvature
-//    (a saddle with a small gradient is not a minimum).  A solver that provides no
-//    EquilibriumView falls back to ||g|| <= gtol_rel * max(||g_0||, f) (g_0 the
-//    gradient at the start of the load step, f = the out-of-balance force at the
-//    solve's start).
+//    residual (|g_i| over position DOFs) at most gtol_rel * force_scale and the
+//    largest moment residual (angles, joint rotations) at most gtol_rel *
+//    moment_scale (the scales: the loads, reactions and internal moment of the
+//    state); or, where kFloorFactor times the round-off floor is larger, both within
+//    max(gtol_rel * scale, kFloorFactor * floor) after an interior step (or at a
+//    collapsed radius), ||s|| <= max(gtol_rel, 1e-9) (1 + ||x||) (a max norm cannot
+//    tell round-off from a smooth residual; the Newton step can).  If gtol_abs > 0,
+//    ||g|| <= gtol_abs is required too.  Only without significant negative
+//    curvature (a saddle with a small gradient is not a minimum).  A solver that
+//    provides no EquilibriumView falls back to ||g|| <= gtol_rel * max(||g_0||, f)
+//    (g_0 the gradient at the start of the load step, f = the out-of-balance force
+//    at the solve's start).
 //  - step: after an accepted step that the globalisation did not shorten,
 //    ||s|| <= step_tol (1 + ||x||).
 //  - energy: after such a step, |dE| <= energy_tol (1 + |E|).

@@ -31,6 +31,9 @@ rn_add_test(shim_predictor SOURCES unit/shim_predictor.c LIBS rodnet m LABELS un
 # The stopping test certifies equilibrium on a physical scale (strip with a moved
 # clamp: starting gradient 5.5e7; reactions, gtol_abs as a requirement).
 rn_add_test(shim_equilibrium SOURCES unit/shim_equilibrium.c LIBS rodnet m LABELS unit)
+# An unloaded, self-stressed ring (Michell's twisted ring) converges by default: the
+# scale of the stopping test includes the internal moment of the state (issue 22).
+rn_add_test(shim_ring_stop SOURCES unit/shim_ring_stop.c LIBS rodnet m LABELS unit)
 # State snapshots: bit-identical evaluations after solving away and restoring.
 rn_add_test(shim_state SOURCES unit/shim_state.c LIBS rodnet m LABELS unit)
 # The sparse Cholesky factorisation on its own against dense LAPACK (C++: it tests

@@ -3,6 +3,7 @@ if(RN_WITH_TRILINOS)
   add_library(rn_valutil STATIC validation/valutil.c)
   target_link_libraries(rn_valutil PUBLIC rodnet rn_testutil m)
   foreach(v val_cantilever val_end_moment val_buckling val_rest_curvature val_ribbon val_networks
+          val_stopping
           val_homogenize val_couple_fixed val_prescribed_rotation)
     rn_add_test(${v} SOURCES validation/${v}.c LIBS rn_valutil rodnet m LABELS validation)
   endforeach()
