@@ -17,6 +17,7 @@
 #include "result_json.h"
 #include "rodnet_solve.h"
 #include "scene.h"
+#include "scene_json.h"
 #include "text_file.h"
 #include "vtk.h"
 
@@ -276,6 +277,7 @@ typedef struct hom_out {
   const hp_path *path; /* NULL without --path */
   const rn_network *net;
   const hp_post *post; /* --post-buckling */
+  const char *dest;    /* the file written (messages) */
 } hom_out;
 
 #ifdef RN_HAVE_SOLVER
@@ -376,6 +378,35 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
           o->seconds);
   return RN_OK;
+}
+
+/* write_result, checked before a byte reaches f: the text must read back as
+ * JSON, which a number that is not finite ("nan", "inf": the fields that may
+ * be unavailable are written as null) does not.  The error names the file and
+ * the line and column of the first such number (issue 22: every writer refuses
+ * non-finite numbers). */
+static rn_status write_result_checked(FILE *f, void *user, rn_context *ctx) {
+  const hom_out *o = user;
+  char *text = NULL;
+  size_t len = 0;
+  FILE *m = open_memstream(&text, &len);
+  if (!m) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", o->dest);
+  rn_status st = write_result(m, user, ctx);
+  if (fclose(m) != 0 && !st)
+    st = rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", o->dest);
+  cJSON *root = NULL;
+  if (!st && rn_json_parse_text(ctx, o->dest, text, len, &root) != RN_OK) {
+    char why[512];
+    snprintf(why, sizeof why, "%s", rn_context_last_error(ctx));
+    st = rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
+                              "%s: a number is not finite (nan or inf); no file written",
+                              why);
+  }
+  cJSON_Delete(root);
+  if (!st && fwrite(text, 1, len, f) != len)
+    st = rn_context_set_error(ctx, RN_ERR_IO, "%s: write failed", o->dest);
+  free(text);
+  return st;
 }
 
 /* python3 SCRIPT RESULT.json PNG; 0 on success. */
@@ -637,7 +668,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     int prc = write_pattern(ctx, &a, &path, &path.pattern);
     if (prc) rc = prc;
   }
-  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post};
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post, NULL};
   /* a path that stopped early: its partial result beside RESULT.json, never in
    * place of it (a complete earlier result there is kept) */
   char partial[4096];
@@ -649,7 +680,8 @@ int rn_cli_homogenize(int argc, char **argv) {
              a.output);
     dest = partial;
   }
-  st = rn_file_write_atomic(ctx, dest, write_result, &o);
+  o.dest = dest;
+  st = rn_file_write_atomic(ctx, dest, write_result_checked, &o);
   if (!st && a.path && !a.quiet) {
     if (path.inst.found) {
       printf("rodnet homogenize: first instability at load factor %.6g of the path: "
