@@ -12,6 +12,7 @@
 #include <cjson/cJSON.h>
 
 #include "atomic_file.h"
+#include "num_format.h"
 #include "cli.h"
 #include "homog_path.h"
 #include "result_json.h"
@@ -342,13 +343,10 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   fputs("{\n  \"command\": \"homogenize\",\n", f);
   if (o->path && o->path->stopped) /* RESULT.partial.json: the path stopped early */
     fputs("  \"partial\": true,\n", f);
-  fputs("  \"scene\": \"", f);
-  for (const char *p = o->a->scene; *p; p++) {
-    if (*p == '"' || *p == '\\') fputc('\\', f);
-    fputc(*p, f);
-  }
+  fputs("  \"scene\": ", f);
+  rn_put_json_string(f, o->a->scene);
   fprintf(f,
-          "\",\n  \"dimension\": %d,\n  \"%s\": %.17g,\n  \"relative_density\": %.17g,\n",
+          ",\n  \"dimension\": %d,\n  \"%s\": %.17g,\n  \"relative_density\": %.17g,\n",
           h->dim, h->dim == 2 ? "area" : "volume", h->measure, h->relative_density);
   rn_result_put_model(f, o->net);
   fprintf(f, "  \"voigt\": %s,\n",

@@ -7,6 +7,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "num_format.h"
+
 static double seconds_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -571,12 +573,9 @@ static void put_control(FILE *f, int ns, const int *stress) {
 static void put_pattern(FILE *f, const hp_path *p) {
   const hp_pattern *pt = &p->pattern;
   if (pt->requested && !pt->written) { /* why nothing was written */
-    fputs("  \"pattern\": {\"written\": false, \"reason\": \"", f);
-    for (const char *c = pt->why_not[0] ? pt->why_not : "not computed"; *c; ++c) {
-      if (*c == '"' || *c == '\\') fputc('\\', f);
-      if ((unsigned char)*c >= 0x20) fputc(*c, f);
-    }
-    fputs("\"},\n", f);
+    fputs("  \"pattern\": {\"written\": false, \"reason\": ", f);
+    rn_put_json_string(f, pt->why_not[0] ? pt->why_not : "not computed");
+    fputs("},\n", f);
     return;
   }
   if (!pt->written) return;

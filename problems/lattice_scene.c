@@ -8,6 +8,7 @@
 
 #include "atomic_file.h"
 #include "lattice_check.h"
+#include "num_format.h"
 
 typedef struct scene_out {
   FILE *f;
@@ -15,19 +16,6 @@ typedef struct scene_out {
   const rn_lattice_scene *opt;
   int *first, *inc; /* bars at each node: inc[first[n] .. first[n+1]) = 2 b + end */
 } scene_out;
-
-static void put_str(FILE *f, const char *s) {
-  fputc('"', f);
-  for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-    if (*p == '"' || *p == '\\')
-      fprintf(f, "\\%c", *p);
-    else if (*p < 0x20)
-      fprintf(f, "\\u%04x", *p);
-    else
-      fputc(*p, f);
-  }
-  fputc('"', f);
-}
 
 static void put_vec(FILE *f, const double *v) {
   fprintf(f, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
@@ -37,10 +25,10 @@ static void put_header(scene_out *o) {
   const rn_lattice_scene *opt = o->opt;
   FILE *f = o->f;
   fputs("{\n  \"description\": ", f);
-  put_str(f, opt->description ? opt->description : "rodnet lattice");
+  rn_put_json_string(f, opt->description ? opt->description : "rodnet lattice");
   if (opt->model) {
     fputs(",\n  \"model\": ", f);
-    put_str(f, opt->model);
+    rn_put_json_string(f, opt->model);
   }
   fprintf(f, ",\n  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n",
           opt->E, opt->nu);

@@ -11,6 +11,12 @@
 #define RN_NUM_FORMAT_H
 
 #include <stddef.h>
+#include <stdio.h>
+
+/* Writes s (NULL: "") to f as a JSON string: in double quotes, with '"' and
+ * '\\' escaped and control characters as \\u00XX (every writer of rodnet's
+ * JSON files; the text stays valid JSON whatever s holds). */
+void rn_put_json_string(FILE *f, const char *s);
 
 /* Room for any result of rn_format_g17 or rn_format_long, with the terminator. */
 #define RN_NUM_BUF 40

@@ -9,6 +9,7 @@
 
 #include "atomic_file.h"
 #include "lattice_check.h"
+#include "num_format.h"
 
 void rn_pcell_free(rn_pcell *c) {
   if (!c) return;
@@ -389,19 +390,9 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
   const rn_pcell *c = o->c;
   const rn_lattice_scene *opt = o->opt;
   (void)ctx;
-  fputs("{\n  \"description\": \"", f);
-  for (const unsigned char *p =
-           (const unsigned char *)(opt->description ? opt->description
-                                                    : "rodnet periodic cell");
-       *p; p++) { /* a JSON string */
-    if (*p == '"' || *p == '\\')
-      fprintf(f, "\\%c", *p);
-    else if (*p < 0x20)
-      fprintf(f, "\\u%04x", *p);
-    else
-      fputc(*p, f);
-  }
-  fputs("\",\n", f);
+  fputs("{\n  \"description\": ", f);
+  rn_put_json_string(f, opt->description ? opt->description : "rodnet periodic cell");
+  fputs(",\n", f);
   fputs("  \"periodic\": {\"vectors\": [", f);
   for (int m = 0; m < c->dim; m++) {
     if (m) fputs(", ", f);

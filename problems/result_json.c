@@ -61,19 +61,6 @@ static size_t vec_text(json_out *o, const double *v, char *buf) {
   return n;
 }
 
-static void put_str(FILE *f, const char *s) {
-  fputc('"', f);
-  for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-    if (*p == '"' || *p == '\\')
-      fprintf(f, "\\%c", *p);
-    else if (*p < 0x20)
-      fprintf(f, "\\u%04x", *p);
-    else
-      fputc(*p, f);
-  }
-  fputc('"', f);
-}
-
 static void put_key_num(json_out *o, const char *key, double x) {
   fprintf(o->f, "  \"%s\": ", key);
   o->where = key;
@@ -193,7 +180,7 @@ static void put_stability(json_out *o) {
     fputs("  \"stability\": {\"checked\": false, \"verified_minimum\": false, "
           "\"note\": ",
           o->f);
-    put_str(o->f, note);
+    rn_put_json_string(o->f, note);
     fputs("},\n", o->f);
     return;
   }
@@ -225,7 +212,7 @@ void rn_result_put_model(FILE *f, const rn_network *net) {
           rn_network_is_planar(net) == 1 ? "planar" : "3d", ok ? "true" : "false");
   if (!ok) {
     fputs(", \"not_planar\": ", f);
-    put_str(f, why);
+    rn_put_json_string(f, why);
   }
   fputs("},\n", f);
 }
@@ -246,27 +233,27 @@ static void put_summary(json_out *o, rn_network *net) {
   const rn_result_info *in = o->info;
   FILE *f = o->f;
   fprintf(f, "{\n  \"rodnet_version\": \"%s\",\n  \"scene\": ", rn_version_string());
-  put_str(f, rn_scene_label(o->scene));
+  rn_put_json_string(f, rn_scene_label(o->scene));
   fputs(",\n  \"status\": ", f);
-  put_str(f, in->status);
+  rn_put_json_string(f, in->status);
   fprintf(f, ",\n  \"converged\": %s,\n  \"stop_reason\": ",
           in->converged ? "true" : "false");
-  put_str(f, in->stop);
+  rn_put_json_string(f, in->stop);
   fputs(",\n  \"solver\": ", f);
-  put_str(f, in->solver);
+  rn_put_json_string(f, in->solver);
   if (in->factorization) {
     fputs(",\n  \"factorization\": ", f);
-    put_str(f, in->factorization);
+    rn_put_json_string(f, in->factorization);
   }
   fprintf(f, ",\n  \"factorizations\": %ld", in->factorizations);
   if (in->preconditioner) {
     fputs(",\n  \"preconditioner\": ", f);
-    put_str(f, in->preconditioner);
+    rn_put_json_string(f, in->preconditioner);
   }
   int nfixed = rn_network_fixed_couples(net, NULL, NULL);
   if (in->finds) {
     fputs(",\n  \"finds\": ", f);
-    put_str(f, nfixed > 0 ? "stationary point" : in->finds);
+    rn_put_json_string(f, nfixed > 0 ? "stationary point" : in->finds);
   }
   if (nfixed > 0) /* rodnet_couple.h: the energy leaves out their work */
     fprintf(f, ",\n  \"nonconservative_loads\": %d", nfixed);
@@ -316,7 +303,7 @@ static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {
   rn_status st = rn_network_rod_vertices(net, rod, buf);
   if (st) return st;
   fputs("    {\"name\": ", f);
-  put_str(f, rn_network_rod_name(net, rod));
+  rn_put_json_string(f, rn_network_rod_name(net, rod));
   o->kind = "rod";
   o->name = rn_network_rod_name(net, rod);
   o->where = "vertices";
@@ -374,7 +361,7 @@ static rn_status put_joint(json_out *o, rn_network *net, int j) {
   if (st) return st;
   FILE *f = o->f;
   fputs("    {\"name\": ", f);
-  put_str(f, rn_network_joint_name(net, j));
+  rn_put_json_string(f, rn_network_joint_name(net, j));
   o->kind = "joint";
   o->name = rn_network_joint_name(net, j);
   o->where = "position";
@@ -415,10 +402,10 @@ static void put_support(json_out *o, rn_network *net, const rn_reaction *r) {
   fprintf(f, "    {\"kind\": \"%s\", ", kinds[r->kind]);
   if (r->kind == RN_SUPPORT_JOINT) {
     fputs("\"joint\": ", f);
-    put_str(f, rn_network_joint_name(net, r->index));
+    rn_put_json_string(f, rn_network_joint_name(net, r->index));
   } else {
     fputs("\"rod\": ", f);
-    put_str(f, rn_network_rod_name(net, r->rod));
+    rn_put_json_string(f, rn_network_rod_name(net, r->rod));
     if (r->kind == RN_SUPPORT_CLAMP)
       fprintf(f, ", \"end\": \"%s\"", r->index ? "end" : "start");
     else

@@ -144,7 +144,10 @@ int orthonormalize_drop(const std::vector<double> &d, int k, std::vector<double>
 // the axes rn_network_free_motions finds unblocked, about the centroid: a position
 // moves by w x (x - c), a material angle by w . t, a joint rotation by w) and, for
 // networks of at most kMaxSpinRods rods, the spin of each rod's material frame (its free
-// material angles all by 1); the symmetries are the combinations of them that the Hessian
+// material angles all by 1) and each component of the rotation of each rigid joint
+// (at most kMaxSpinRods of them: a spin of the rods through a rigid joint turns it
+// about their tangent, as when a ring of two rods rolls about its centre line); the
+// symmetries are the combinations of them that the Hessian
 // maps to zero: eigenvectors of the projected pencil with |mu| <= kZeroModeTol scale (the
 // zero band) and
 // ||H v - mu D v||_{D^-1} <= kSymmetryTol scale (the gradient left at the state
@@ -179,7 +182,19 @@ std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, dou
   if (rn_network_free_motions(net, &fm) != RN_OK) return {};
   const int nrot = fm.num_rotations;
   const int spins = nrods <= kMaxSpinRods ? nrods : 0;
-  int k = 3 + nrot + spins;
+  // the joints with a rotation (rigid joints): a spin of the rods meeting at one
+  // turns it about their common tangent (a ring rolling about its centre line), so
+  // each rotation component is a candidate too, for as many joints as spins
+  std::vector<int> jslot(static_cast<size_t>(std::max(rn_network_num_joints(net), 0)),
+                         -1);
+  int njrot = 0;
+  for (size_t i = 0; i < n && spins; ++i)
+    if (info[i].kind == RN_DOF_ROTATION && info[i].joint >= 0 &&
+        static_cast<size_t>(info[i].joint) < jslot.size() &&
+        jslot[static_cast<size_t>(info[i].joint)] < 0)
+      jslot[static_cast<size_t>(info[i].joint)] = njrot++;
+  if (njrot > kMaxSpinRods) njrot = 0;
+  int k = 3 + nrot + spins + 3 * njrot;
   std::vector<double> V(n * static_cast<size_t>(k), 0.0);
   auto col = [&](int j) { return V.data() + static_cast<size_t>(j) * n; };
   for (size_t i = 0; i < n; ++i) {
@@ -216,6 +231,9 @@ std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, dou
       if (f.rod < spins) col(3 + nrot + f.rod)[i] = 1.0;
     } else if (f.kind == RN_DOF_ROTATION) {
       for (int b = 0; b < nrot; ++b) col(3 + b)[i] = fm.rotation[b][f.component];
+      if (njrot && f.joint >= 0 && jslot[static_cast<size_t>(f.joint)] >= 0)
+        col(3 + nrot + spins + 3 * jslot[static_cast<size_t>(f.joint)] + f.component)[i] =
+            1.0;
     }
   }
   k = orthonormalize_drop(d, k, V);

@@ -44,6 +44,9 @@ rn_add_test(api_contact SOURCES unit/api_contact.c LIBS rodnet m LABELS unit)
 rn_add_test(api_rings SOURCES unit/api_rings.c LIBS rodnet ${LAPACK_LIBRARIES} m
             LABELS unit validation)
 rn_add_test(api_couple_fixed SOURCES unit/api_couple_fixed.c LIBS rodnet LABELS unit)
+if(RN_WITH_TRILINOS) # the refusals of the solver's entry points (rn_homogenize, ...)
+  target_compile_definitions(api_couple_fixed PRIVATE RN_TEST_SOLVER=1)
+endif()
 # The Hessian pattern of a periodic supercell: work linear in its size, counted
 # (docs/homogenization.md, "Reading large supercells").
 rn_add_test(api_pattern_linear SOURCES unit/api_pattern_linear.c

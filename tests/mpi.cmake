@@ -129,13 +129,15 @@ endforeach()
 # the stopping test's floor, where its decisions are noise and the one- and two-rank
 # paths may part; until then (|g| >= 1e-6 on one rank: the load-step predictor and 14
 # Newton iterations) the two runs take the same steps (--same-path-above), and both
-# converge to the same equilibrium.
+# converge to the same equilibrium.  Both at the default tolerance: the loop rolls
+# freely about its centre line (a symmetry, the stability check's), along which the
+# Newton step is undetermined, so the round-off band of --gtol 1e-14, which asks for
+# a short Newton step (docs/solvers.md "Stopping tests"), is not reached.
 foreach(pre gathered dd)
   set(rn_t mpi_solve_loop_joint)
   set(rn_a "--args=--preconditioner ${pre}")
   if(pre STREQUAL "dd")
     set(rn_t mpi_solve_dd_loop_joint)
-    set(rn_a "--args=--preconditioner dd --gtol 1e-14")
   endif()
   add_test(NAME ${rn_t}
            COMMAND ${RN_VTK_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_mpi_solve.py

@@ -238,7 +238,9 @@ static void test_joint_bookkeeping(rn_context *ctx) {
  * rn_hessian_min_eigenvalue on the rod, rn_homogenize, rn_cell_relax,
  * rn_cell_minimize, rn_cell_bloch and rn_cell_bloch_eigen on a square cell
  * (two bars through one rigid joint and its images) with the couple on a bar;
- * with the conservative couple they run. */
+ * with the conservative couple they run.  (They are the solver's: built with it
+ * only, RN_TEST_SOLVER.) */
+#ifdef RN_TEST_SOLVER
 static void test_refusals(rn_context *ctx) {
   const double M[3] = {0.0, 0.0, 0.2};
   double lmin = 0.0;
@@ -298,6 +300,7 @@ static void test_refusals(rn_context *ctx) {
     rn_network_destroy(&net);
   }
 }
+#endif
 
 int main(void) {
   rn_context *ctx;
@@ -308,7 +311,9 @@ int main(void) {
   test_joint_bookkeeping(ctx);
   test_models_at_start_and_off_plane(ctx);
   test_bad_model(ctx);
+#ifdef RN_TEST_SOLVER
   test_refusals(ctx);
+#endif
   rn_context_destroy(&ctx);
   return rn_test_finish("api_couple_fixed");
 }
