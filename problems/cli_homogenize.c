@@ -25,9 +25,6 @@
 #ifndef RN_PLOT_STIFFNESS_SCRIPT
 #define RN_PLOT_STIFFNESS_SCRIPT "plot_stiffness.py"
 #endif
-#ifndef RN_RENDER_VTU_SCRIPT
-#define RN_RENDER_VTU_SCRIPT "render_vtu.py"
-#endif
 #ifndef RN_PYTHON3
 #define RN_PYTHON3 "python3"
 #endif
@@ -427,7 +424,7 @@ static double now(void) {
  * (The post-buckled branch is not computed: see docs.)  Fills pat. */
 static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path,
                          hp_pattern *pat) {
-  char *text = NULL, *json = NULL, vtu[4096], png[4096];
+  char *text = NULL, *json = NULL;
   size_t len = 0;
   int rc = RN_EXIT_INTERNAL;
   rn_scene *sc = NULL;
@@ -494,22 +491,8 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
   }
   for (size_t i = 0; i < nfl; ++i) x[i] += pat->amplitude * vec[2 * i] / vmax;
   if (rn_network_set_dofs(net, x)) goto fail;
-  snprintf(vtu, sizeof vtu, "%s.vtu", a->pattern);
-  snprintf(png, sizeof png, "%s.png", a->pattern);
-  if (rn_vtk_write(ctx, vtu, sc)) goto fail;
-  pat->written = 1;
-  {
-    const char *const args[] = {vtu,
-                                png,
-                                "--view",
-                                "xy",
-                                "--field",
-                                "bending_moment",
-                                a->quiet ? "--quiet" : NULL,
-                                NULL};
-    pat->png =
-        rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;
-  }
+  if (hp_write_pattern_files(ctx, sc, a->pattern, a->quiet, &pat->written, &pat->png))
+    goto fail;
   rc = RN_EXIT_OK;
   goto done;
 fail_alloc:

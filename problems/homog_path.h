@@ -124,6 +124,15 @@ int hp_instability_supercell(const hp_instability *in, int dim, int rep[3]);
 /* The supercell rep[dim] of the periodic scene file (without "repeat"), every
  * strain component a DOF, no applied stress; pin_out_of_plane: z of every joint
  * and interior vertex and every material angle pinned, the first joint fully. */
+/* The pattern files of a supercell scene sc at its current state: BASE.vtu
+ * (rn_vtk_write; its status, recorded in ctx) and BASE.png drawn from it by
+ * docs/render_vtu.py (view xy, coloured by the bending moment; --quiet if
+ * quiet), through a temporary name; *vtu_written = 1 once the .vtu is there,
+ * *png_written = 1 if the drawing succeeded (a failed drawing is not an
+ * error: the summary says so). */
+rn_status hp_write_pattern_files(rn_context *ctx, rn_scene *sc, const char *base,
+                                 int quiet, int *vtu_written, int *png_written);
+
 rn_status hp_supercell(rn_context *ctx, const char *scene, const int *rep, int dim,
                        int pin_out_of_plane, rn_scene **out);
 /* After hp_run found a local instability: the supercell of its wave vector, the

@@ -219,6 +219,22 @@ static void harmonics(const rn_network *net, const hp_path *p, const double *d,
   for (int h = 0; h < po->nharm; ++h) po->harm[h] = total > 0.0 ? po->harm[h] / total : 0;
 }
 
+rn_status hp_write_pattern_files(rn_context *ctx, rn_scene *sc, const char *base,
+                                 int quiet, int *vtu_written, int *png_written) {
+  char vtu[4096], png[4096];
+  snprintf(vtu, sizeof vtu, "%s.vtu", base);
+  snprintf(png, sizeof png, "%s.png", base);
+  rn_status st = rn_vtk_write(ctx, vtu, sc);
+  if (st) return st;
+  *vtu_written = 1;
+  const char *const args[] = {
+      vtu, png, "--view", "xy", "--field", "bending_moment", quiet ? "--quiet" : NULL,
+      NULL};
+  *png_written =
+      rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;
+  return RN_OK;
+}
+
 rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
                            const char *out_base, hp_post *po) {
   rn_status st = RN_OK;
@@ -338,23 +354,7 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
   }
   harmonics(net, p, xb, po);
   /* the pattern: the last bifurcated state */
-  {
-    char vtu[4096], png[4096];
-    snprintf(vtu, sizeof vtu, "%s.vtu", out_base);
-    snprintf(png, sizeof png, "%s.png", out_base);
-    if ((st = rn_vtk_write(ctx, vtu, sc))) goto done;
-    po->written = 1;
-    const char *const args[] = {vtu,
-                                png,
-                                "--view",
-                                "xy",
-                                "--field",
-                                "bending_moment",
-                                p->quiet ? "--quiet" : NULL,
-                                NULL};
-    po->png =
-        rn_cli_run_script_to("RODNET_RENDER_VTU", RN_RENDER_VTU_SCRIPT, args, png) == 0;
-  }
+  st = hp_write_pattern_files(ctx, sc, out_base, p->quiet, &po->written, &po->png);
 done:
   rn_state_destroy(&prin);
   rn_state_destroy(&bif);
