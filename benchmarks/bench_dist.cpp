@@ -1,12 +1,12 @@
 // bench_dist.cpp - work per rank of a distributed Newton step (issue 7, section 5):
 // run under `mpirun -np P`.  The scene is read as in `rodnet solve` (graph pass,
 // METIS partition, each rank's part), then the evaluations of one Newton step of a
-// distributed solver are repeated on the distributed System (shim_cxx/dist_system.hpp):
-// gradient (energy, ghost import, gradient export), Hessian assembly (CSR values,
-// overlap matrix export), the preconditioner's setup and the Newton system H s = -g
-// by preconditioned MINRES to the relative tolerance 1e-8 (--precond NAME, default
-// dd, the solve's default; --precond none: no linear solve), one trial energy and the
-// accepted reference update.
+// distributed solver are repeated on the distributed System
+// (shim_cxx/system/dist_system.hpp): gradient (energy, ghost import, gradient export),
+// Hessian assembly (CSR values, overlap matrix export), the preconditioner's setup and
+// the Newton system H s = -g by preconditioned MINRES to the relative tolerance 1e-8
+// (--precond NAME, default dd, the solve's default; --precond none: no linear solve), one
+// trial energy and the accepted reference update.
 //
 // Rank 0 writes one CSV row per rank: the common columns (bench dist, case = scene
 // name, size = global DOFs, ranks, median and min wall time per step over the
@@ -38,13 +38,13 @@
 extern "C" {
 #include "bench_config.h"
 #include "bench_util.h"
-#include "scene.h"
+#include "scene/scene.h"
 }
-#include "dist_system.hpp"
-#include "minres.hpp"
-#include "preconditioner.hpp"
+#include "system/dist_system.hpp"
+#include "krylov/minres.hpp"
+#include "pc/preconditioner.hpp"
 #include "rodnet_solve.h"
-#include "solvers.hpp"
+#include "newton/solvers.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 /* bench_io.c - scene reading and result writing at 10^4 .. 10^6 vertices: the
  * parts of `rodnet solve` around the solver, timed separately on the lattices of
- * `rodnet generate` (problems/lattice.h).
+ * `rodnet generate` (problems/generate/lattice.h).
  *
  * Per lattice size: "generate" writes the JSON scene (rn_lattice_write_scene),
  * "read" loads it (rn_scene_load: parse, validate, build and finalize the
@@ -24,14 +24,14 @@
 #include <sys/stat.h>
 
 #include "bench_util.h"
-#include "lattice.h"
-#include "lattice_scene.h"
-#include "result_json.h"
-#include "scene.h"
+#include "generate/lattice.h"
+#include "generate/lattice_scene.h"
+#include "scene/result_json.h"
+#include "scene/scene.h"
 #ifdef RN_HAVE_SOLVER
 #include "rodnet_solve.h"
 #endif
-#include "vtk.h"
+#include "scene/vtk.h"
 
 #define MAX_LIST 32
 

@@ -1,9 +1,9 @@
-/* bench_lattice.c - rn_solve on the lattices of `rodnet generate` (problems/lattice.h):
- * by default hexagonal honeycombs of 10x10, 30x30 and 100x100 cells (period 1,
- * 8 edges per rod, E = 1, nu = 0.3, circle r = 1/50) under a uniaxial stretch of
- * 1e-3 (both faces normal to x pinned, the max face displaced), with rigid and with
- * elastic joints; `--kind octet --cells 3 --load compress-z:1e-3` gives the 3D
- * octet block under compression.
+/* bench_lattice.c - rn_solve on the lattices of `rodnet generate`
+ * (problems/generate/lattice.h): by default hexagonal honeycombs of 10x10, 30x30 and
+ * 100x100 cells (period 1, 8 edges per rod, E = 1, nu = 0.3, circle r = 1/50) under a
+ * uniaxial stretch of 1e-3 (both faces normal to x pinned, the max face displaced), with
+ * rigid and with elastic joints; `--kind octet --cells 3 --load compress-z:1e-3` gives
+ * the 3D octet block under compression.
  *
  * Each repeat writes the scene (next to the CSV, removed afterwards), loads it
  * with the scene reader, and times rn_solve alone (without the stability check of
@@ -18,7 +18,7 @@
  *                 [--dump-system PREFIX] [--out FILE.csv]
  *
  * --dump-system writes, for each case, the Newton system at the initial state to
- * PREFIX-<case>-<cells>.bin for shim_cxx/study/precond_study.cpp (dump_system).
+ * PREFIX-<case>-<cells>.bin for benchmarks/precond_study/precond_study.cpp (dump_system).
  */
 #include <math.h>
 #include <sys/resource.h>
@@ -27,10 +27,10 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "lattice.h"
-#include "lattice_scene.h"
+#include "generate/lattice.h"
+#include "generate/lattice_scene.h"
 #include "rodnet_solve.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define MAX_LIST 16
 

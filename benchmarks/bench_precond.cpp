@@ -17,8 +17,8 @@
 // further Newton step pays), MINRES iterations and time, time per application, the
 // preconditioner's memory per vertex and the process's peak resident size, the true
 // relative residual.  Under mpirun the DOFs are distributed by rods
-// (shim_cxx/replicated_system.hpp: every rank holds the whole network, so memory is
-// not divided).  Prints a line per run and appends CSV rows; asserts only that the
+// (shim_cxx/system/replicated_system.hpp: every rank holds the whole network, so memory
+// is not divided).  Prints a line per run and appends CSV rows; asserts only that the
 // solves converge.
 #include <sys/resource.h>
 #include <unistd.h>
@@ -36,18 +36,18 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 
-#include "alt_preconditioners.hpp"
+#include "pc/alt_preconditioners.hpp"
 #include "bench_config.h"
-#include "minres.hpp"
-#include "replicated_system.hpp"
-#include "shim_error.hpp"
-#include "sparse_cholesky.hpp"
-#include "spd_factor.hpp"
+#include "krylov/minres.hpp"
+#include "system/replicated_system.hpp"
+#include "base/shim_error.hpp"
+#include "factor/sparse_cholesky.hpp"
+#include "factor/spd_factor.hpp"
 
 extern "C" {
-#include "lattice.h"
-#include "lattice_scene.h"
-#include "scene.h"
+#include "generate/lattice.h"
+#include "generate/lattice_scene.h"
+#include "scene/scene.h"
 }
 
 namespace {

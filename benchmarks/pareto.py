@@ -19,7 +19,7 @@ Cases with closed forms (docs/validation.md, tests/validation):
               --periodic`), homogenised by `rodnet homogenize` (a direct Schur
               complement: no solver tolerance, gtol 0 in the CSV); reference: the
               Euler-Bernoulli frame closed form with axial stretching
-              (problems/plot_sweep.py, VALIDATION.md 6.2), error |E1 - E1_ref| / E1_ref;
+              (problems/cli/plot_sweep.py, VALIDATION.md 6.2), error |E1 - E1_ref| / E1_ref;
               only the number of edges per strut varies (clamp "periodic").
 For both clamp conventions (docs/scene-format.md, "at" of a clamp): "midpoint" (the
 clamped edge's midpoint at the root, rod from x = -h/2 to L: second order) and
@@ -118,7 +118,7 @@ def clamps_of(case):
 
 def honeycomb_E1(rho, E_s=1.0):
     """E1 of the rigid-jointed regular honeycomb with square t x t struts at relative
-    density rho = 2 t / (sqrt(3) l), cell size 1 (as problems/plot_sweep.py)."""
+    density rho = 2 t / (sqrt(3) l), cell size 1 (as problems/cli/plot_sweep.py)."""
     l = 1.0 / math.sqrt(3.0)
     t = math.sqrt(3.0) * rho * l / 2.0
     EA, EI = E_s * t * t, E_s * t ** 4 / 12.0

@@ -20,19 +20,19 @@ install(TARGETS rodnet EXPORT rodnetTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(FILES ${PROJECT_SOURCE_DIR}/c_api/rodnet.h ${PROJECT_SOURCE_DIR}/c_api/rodnet_solve.h
-              ${PROJECT_SOURCE_DIR}/c_api/rodnet_model.h
-              ${PROJECT_SOURCE_DIR}/c_api/rodnet_contact.h
-              ${PROJECT_SOURCE_DIR}/c_api/rodnet_couple.h
-              ${PROJECT_SOURCE_DIR}/c_api/rodnet_ring.h
-              ${PROJECT_SOURCE_DIR}/c_api/rodnet_ramp.h
+install(FILES ${PROJECT_SOURCE_DIR}/c_api/include/rodnet.h ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_solve.h
+              ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_model.h
+              ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_contact.h
+              ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_couple.h
+              ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_ring.h
+              ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_ramp.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # The scene reader and result writers (rodnet_scene.h), with the solver only.
 if(TARGET rodnet_scene)
   install(TARGETS rodnet_scene EXPORT rodnetTargets
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
           INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(FILES ${PROJECT_SOURCE_DIR}/problems/rodnet_scene.h
+  install(FILES ${PROJECT_SOURCE_DIR}/problems/include/rodnet_scene.h
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
 

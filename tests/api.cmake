@@ -52,4 +52,5 @@ endif()
 rn_add_test(api_pattern_linear SOURCES unit/api_pattern_linear.c
             LIBS rodnet_internal m LABELS unit)
 target_include_directories(api_pattern_linear PRIVATE
-                           ${CMAKE_CURRENT_SOURCE_DIR}/../kernels)
+                           ${CMAKE_CURRENT_SOURCE_DIR}/../kernels
+                           ${CMAKE_CURRENT_SOURCE_DIR}/../c_api)

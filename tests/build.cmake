@@ -37,7 +37,7 @@ set_tests_properties(exported_symbols PROPERTIES LABELS "unit" TIMEOUT 60)
 if(TARGET rodnet_scene)
   add_test(NAME exported_symbols_scene
     COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_exports.sh ${CMAKE_NM}
-            $<TARGET_FILE:rodnet_scene> ${PROJECT_SOURCE_DIR}/problems/rodnet_scene.h)
+            $<TARGET_FILE:rodnet_scene> ${PROJECT_SOURCE_DIR}/problems/include/rodnet_scene.h)
   set_tests_properties(exported_symbols_scene PROPERTIES LABELS "unit" TIMEOUT 60)
 endif()
 

@@ -58,7 +58,7 @@ rn_fuzz_target_sources(rodnet_problems_obj problems_srcs)
 # The code under test, with coverage instrumentation for libFuzzer.
 add_library(rn_fuzz_lib STATIC ${kernel_srcs} ${core_srcs} ${problems_srcs})
 target_include_directories(rn_fuzz_lib PUBLIC ${PROJECT_SOURCE_DIR}/kernels
-                           ${PROJECT_SOURCE_DIR}/c_api ${PROJECT_SOURCE_DIR}/problems
+                           ${PROJECT_SOURCE_DIR}/c_api ${PROJECT_SOURCE_DIR}/c_api/include ${PROJECT_SOURCE_DIR}/problems ${PROJECT_SOURCE_DIR}/problems/include
                            ${CJSON_INCLUDE_DIR})
 target_compile_options(rn_fuzz_lib PRIVATE ${RN_FUZZ_FLAGS} -fsanitize=fuzzer-no-link)
 target_link_libraries(rn_fuzz_lib PUBLIC ${CJSON_LIBRARY} m)

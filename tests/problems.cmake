@@ -46,7 +46,7 @@ rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
 rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
             LIBS rodnet_problems m LABELS unit
             ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
-# Free rigid-body motions and unbalanced loads on them (c_api/supports.c).
+# Free rigid-body motions and unbalanced loads on them (c_api/bcs/supports.c).
 # The clamp convention of a scene: "at": "midpoint" | "vertex" (scene_rods.c).
 rn_add_test(problems_clamp_at SOURCES unit/problems_clamp_at_test.c
             LIBS rodnet_problems LABELS unit)
@@ -641,7 +641,7 @@ if(RN_WITH_TRILINOS)
                    --steps 1 --bloch-grid 1 -o ${gen}/hom_octet_path.json)
   set_tests_properties(problems_cli_homogenize_path_octet_print PROPERTIES
                        FIXTURES_REQUIRED problems_hom_octet2)
-  # item 8: the plots (problems/plot_*.py) on synthetic data and on rodnet's own
+  # item 8: the plots (problems/cli/plot_*.py) on synthetic data and on rodnet's own
   # RESULT.json, sweep.csv and path CSV: the polar curve inside its frame, the
   # sweep's seed mean said and one colour per series, symlog labels apart.
   add_test(NAME problems_plots_readable
@@ -1104,7 +1104,7 @@ rn_cli_test(problems_cli_check_loop_joint 0 "gradient vs central differences.*PA
             ARGS check ${RN_SCENES}/loop_joint.json --random 2)
 
 # ---- issue 22 item 1: no output overwrites an input or another output ---------------
-# One shared check (problems/cli_paths.c) in every command: an output that is one of
+# One shared check (problems/cli/cli_paths.c) in every command: an output that is one of
 # the inputs (the same path, "./", a symbolic or a hard link, a name derived from a
 # prefix, a file of an output folder) or another output is a usage error, before
 # anything is read or written.  The inputs are copies made at configure time.

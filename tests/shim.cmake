@@ -116,7 +116,7 @@ target_include_directories(shim_newton_counts PRIVATE ${PROJECT_SOURCE_DIR}/prob
 # rods for some networks).
 add_executable(mpi_system unit/mpi_system.cpp)
 target_include_directories(mpi_system PRIVATE ${PROJECT_SOURCE_DIR}/shim_cxx
-                                              ${PROJECT_SOURCE_DIR}/c_api)
+                                              ${PROJECT_SOURCE_DIR}/c_api/include)
 target_include_directories(mpi_system SYSTEM PRIVATE ${Trilinos_INCLUDE_DIRS}
                                                      ${Trilinos_TPL_INCLUDE_DIRS})
 target_link_libraries(mpi_system PRIVATE rodnet_internal rodnet_shim_deps)

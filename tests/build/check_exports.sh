@@ -3,7 +3,7 @@
 # A shared library of rodnet exports its C API and nothing else: every defined
 # dynamic symbol of LIBRARY is an rn_* name (librodnet.so: cmake/librodnet.map).
 # With HEADER, the exported names are exactly the functions HEADER declares
-# (librodnet_scene.so and rodnet_scene.h: problems/librodnet_scene.map).  Prints
+# (librodnet_scene.so and rodnet_scene.h: problems/scene/librodnet_scene.map).  Prints
 # the differences (at most 20 each) and exits 1 if there is any; exits 1 too if
 # fewer than 10 rn_ symbols are exported (an emptied library or the wrong file).
 set -uo pipefail

@@ -35,20 +35,21 @@ includes() {
       }' "$f"
   done
 }
-sources() { find "$src/$1" -maxdepth 2 -type f \( -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort; }
-# A quoted include "x" of a file resolves to an existing file in one of the folders.
+sources() { find "$src/$1" -type f \( -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort; }
+# A quoted include "x" of a file resolves to an existing file under one of the
+# folders: beside the including file, or from the folder's root or its include/
+# (the public headers).  A ".." may not lead out of the allowed folders.
 resolves_in() {
   local name=$1 from=$2; shift 2
-  local dir target
+  local dir root
+  case $name in *..*) return 1 ;; esac
   for dir in "$@"; do
-    target=$src/$dir/$(basename "$name")
-    if [ -f "$target" ]; then
-      # A path component must not lead out of the allowed folder.
-      case $name in
-        */*) [ "$(cd "$(dirname "$from")" && realpath -m "$name")" = "$(realpath -m "$target")" ] && return 0 ;;
-        *) return 0 ;;
-      esac
-    fi
+    case $(dirname "$from")/ in
+      "$src/$dir"/*) [ -f "$(dirname "$from")/$name" ] && return 0 ;;
+    esac
+    for root in "$src/$dir" "$src/$dir/include"; do
+      [ -f "$root/$name" ] && return 0
+    done
   done
   return 1
 }
@@ -90,7 +91,7 @@ check_layer() {
         elif [ "$kind" = '<' ]; then
           if [[ $base =~ $public_api || $name =~ $cjson ]]; then :
           elif [[ $name != *.h ]]; then violation "$rel:$line: problems is C: <$name> is not a C header"
-          elif [ -f "$src/kernels/$base" ] || [ -f "$src/c_api/$base" ] || [ -f "$src/shim_cxx/$base" ]; then
+          elif [ -n "$(find "$src/kernels" "$src/c_api" "$src/shim_cxx" -name "$base" -print -quit)" ]; then
             violation "$rel:$line: problems may use only the public headers rodnet.h/rodnet_solve.h, not <$name>"
           fi
         else

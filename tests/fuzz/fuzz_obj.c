@@ -1,5 +1,5 @@
 /* fuzz_obj.c - libFuzzer target for the OBJ line-graph reader
- * (problems/obj.h).  The contract checked on every input:
+ * (problems/scene/obj.h).  The contract checked on every input:
  *  - rejected: no graph, a negative status, and ONE non-empty line of
  *    message that starts with the label;
  *  - accepted: at least one segment; every segment joins two different
@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "obj.h"
+#include "scene/obj.h"
 
 /* Graphs with more segments are only parsed, not built (fuzzing speed). */
 #define FUZZ_MAX_BUILD_SEGMENTS 2000

@@ -9,7 +9,7 @@
 
 #include <cjson/cJSON.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 typedef struct checker {
   const char *label;

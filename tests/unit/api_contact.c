@@ -1,4 +1,4 @@
-/* api_contact.c - contact in the network (c_api/contact.c, rodnet_contact.h): two
+/* api_contact.c - contact in the network (c_api/contact/contact.c, rodnet_contact.h): two
  * crossing rods and a rod folded back on itself with contact on; the network
  * gradient and HVP against central differences (h-sweep, second order), the CSR
  * Hessian against the HVP (the pattern holds the contact blocks), the gap of

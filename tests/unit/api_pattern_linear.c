@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "network_internal.h"
+#include "core/network_internal.h"
 #include "rodnet.h"
 #include "testutil.h"
 

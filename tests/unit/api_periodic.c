@@ -1,4 +1,4 @@
-/* api_periodic.c - periodic cells (c_api/periodic.c): rod ends at periodic
+/* api_periodic.c - periodic cells (c_api/periodic/periodic.c): rod ends at periodic
  * images of joints and the macroscopic strain DOFs.
  *
  * - energy, gradient, HVP and CSR Hessian with respect to the fluctuation and

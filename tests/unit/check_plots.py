@@ -17,7 +17,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems"))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems", "cli"))
 import plot_path  # noqa: E402
 import plot_stiffness  # noqa: E402
 import plot_sweep  # noqa: E402

@@ -9,7 +9,7 @@ import csv
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems"))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems", "cli"))
 from plot_sweep import honeycomb_closed_form  # noqa: E402
 
 

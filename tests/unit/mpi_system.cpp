@@ -1,5 +1,5 @@
-// mpi_system.cpp - the distributed evaluation layer (shim_cxx/dist_system.hpp) on any
-// number of ranks against the whole network evaluated on every rank: for a single
+// mpi_system.cpp - the distributed evaluation layer (shim_cxx/system/dist_system.hpp) on
+// any number of ranks against the whole network evaluated on every rank: for a single
 // rod, independent rods, a grid with rigid joints, a lattice of one-edge rods with
 // both joint models and component pins, and a frame with elastic joints, partitioned
 // by rn_partition_rods over the ranks and built as parts from the graph:
@@ -26,10 +26,10 @@
 
 #include <Tpetra_Core.hpp>
 
-#include "dist_system.hpp"
+#include "system/dist_system.hpp"
 #include "rodnet.h"
 #include "rodnet_solve.h"
-#include "shim_error.hpp"
+#include "base/shim_error.hpp"
 
 namespace {
 

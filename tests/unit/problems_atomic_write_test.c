@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 #include "testutil.h"
 
 static rn_status write_hello(FILE *f, void *user, rn_context *ctx) {

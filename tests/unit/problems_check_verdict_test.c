@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 typedef struct wrapped {

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 static rn_scene *parse(rn_context *ctx, const char *text) {

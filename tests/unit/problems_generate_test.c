@@ -1,4 +1,4 @@
-/* problems_generate_test.c - lattice scenes (problems/lattice.h,
+/* problems_generate_test.c - lattice scenes (problems/generate/lattice.h,
  * lattice_scene.h): for a small instance of every lattice the node and bar
  * counts, the valence histogram and the bar length follow the closed forms
  * of docs/lattices.md, and the written scene, read back by the scene reader,
@@ -10,11 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lattice.h"
-#include "lattice_check.h"
-#include "lattice_scene.h"
-#include "periodic_cell.h"
-#include "scene.h"
+#include "generate/lattice.h"
+#include "generate/lattice_check.h"
+#include "generate/lattice_scene.h"
+#include "generate/periodic_cell.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 static const char *scratch;

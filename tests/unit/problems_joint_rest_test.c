@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 static const double PI = 3.14159265358979323846;

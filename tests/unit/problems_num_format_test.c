@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "num_format.h"
+#include "io/num_format.h"
 #include "testutil.h"
 
 static long mismatches = 0, compared = 0;

@@ -1,4 +1,4 @@
-/* problems_obj_test.c - the OBJ line-graph reader (problems/obj.h): a valid
+/* problems_obj_test.c - the OBJ line-graph reader (problems/scene/obj.h): a valid
  * file with every accepted feature reads to the right graph, and every class
  * of bad input gets a non-zero status and ONE line "g.obj:LINE: reason"
  * (or "g.obj: reason" for a file-level problem).
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "obj.h"
+#include "scene/obj.h"
 #include "testutil.h"
 
 /* Comments, ignored records, CRLF, forward and negative (relative) indices,

@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "rodnet_ring.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 static const double PI = 3.14159265358979323846;

@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 static void check(rn_context *ctx, const char *dir, const char *name, int nt, int nr,

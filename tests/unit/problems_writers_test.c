@@ -10,10 +10,10 @@
 
 #include <cjson/cJSON.h>
 
-#include "result_json.h"
-#include "scene.h"
+#include "scene/result_json.h"
+#include "scene/scene.h"
 #include "testutil.h"
-#include "vtk.h"
+#include "scene/vtk.h"
 
 static cJSON *read_json(const char *path) {
   FILE *f = fopen(path, "rb");

@@ -1,6 +1,6 @@
 // shim_dd.cpp - the rod-level domain-decomposition preconditioner
-// (shim_cxx/dd_preconditioner.hpp) on a System over 1 or more ranks
-// (shim_cxx/replicated_system.hpp; run under mpirun -np 2 too):
+// (shim_cxx/pc/impls/dd/dd_preconditioner.hpp) on a System over 1 or more ranks
+// (shim_cxx/system/replicated_system.hpp; run under mpirun -np 2 too):
 //  - exact static condensation: with the direct coarse solve and a positive definite
 //    Hessian, M^-1 b equals the sparse Cholesky solution of H x = b to 1e-9
 //    relative (backward error of M^-1 b below 1e-12), no shift is applied and
@@ -39,14 +39,14 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
 
-#include "alt_preconditioners.hpp"
-#include "dd_preconditioner.hpp"
-#include "dof_blocks.hpp"
-#include "minres.hpp"
-#include "pencil_lanczos.hpp"
-#include "replicated_system.hpp"
-#include "sparse_cholesky.hpp"
-#include "spd_factor.hpp"
+#include "pc/alt_preconditioners.hpp"
+#include "pc/impls/dd/dd_preconditioner.hpp"
+#include "system/dof_blocks.hpp"
+#include "krylov/minres.hpp"
+#include "krylov/pencil_lanczos.hpp"
+#include "system/replicated_system.hpp"
+#include "factor/sparse_cholesky.hpp"
+#include "factor/spd_factor.hpp"
 
 extern "C" {
 #include "shim_lattices.h"

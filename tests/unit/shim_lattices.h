@@ -1,4 +1,4 @@
-/* shim_lattices.h - lattices of `rodnet generate` (problems/lattice.h) as loaded
+/* shim_lattices.h - lattices of `rodnet generate` (problems/generate/lattice.h) as loaded
  * scenes for the solver tests: period 1, E = 1, nu = 0.3, circle r = 1/50, uniaxial
  * stretch 1e-3 along x.  C and C++. */
 #ifndef RN_SHIM_LATTICES_H
@@ -7,9 +7,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lattice.h"
-#include "lattice_scene.h"
-#include "scene.h"
+#include "generate/lattice.h"
+#include "generate/lattice_scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 /* The scene of a lattice of cells^d cells, edges per rod, joint model (written to

@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lattice_scene.h"
+#include "generate/lattice_scene.h"
 #include "rodnet_solve.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 /* The compressed 10x10 honeycomb: measured and asserted counts. */

@@ -1,5 +1,5 @@
 // shim_shift_search.cpp - the shifted factorisation's search (factor_shifted,
-// shim_cxx/spd_factor.cpp) where the Hessian has outgrown the metric M: tr-minres
+// shim_cxx/factor/spd_factor.cpp) where the Hessian has outgrown the metric M: tr-minres
 // fixes M = |diag H_0| for a load step, and on a rod started nearly folded (179
 // degrees) H grew 10^4-fold while it unfolded, so that no shift up to 10^10 (the
 // old, fixed end of the search) made H + sigma M positive definite although one
@@ -15,10 +15,10 @@
 #include <memory>
 #include <vector>
 
-#include "problem.hpp"
+#include "system/problem.hpp"
 #include "rodnet.h"
-#include "shim_error.hpp"
-#include "spd_factor.hpp"
+#include "base/shim_error.hpp"
+#include "factor/spd_factor.hpp"
 
 extern "C" {
 #include "testutil.h"

@@ -1,6 +1,6 @@
 // shim_sparse_cholesky.cpp - the shim's sparse Cholesky factorisations on their own,
-// rodnet's supernodal one (shim_cxx/sparse_cholesky.hpp) and CHOLMOD's
-// (shim_cxx/cholmod_factor.hpp), against dense LAPACK and against each other:
+// rodnet's supernodal one (shim_cxx/factor/sparse_cholesky.hpp) and CHOLMOD's
+// (shim_cxx/factor/cholmod_factor.hpp), against dense LAPACK and against each other:
 //  - random sparse symmetric patterns (with and without a dense "joint" block coupled
 //    to everything, disconnected components, n = 1, 2, 3, a diagonal matrix): for
 //    A - s I with s below the lowest eigenvalue (dsyev) by 1e-6 of the spectral
@@ -19,8 +19,8 @@
 #include <set>
 #include <vector>
 
-#include "cholmod_factor.hpp"
-#include "sparse_cholesky.hpp"
+#include "factor/cholmod_factor.hpp"
+#include "factor/sparse_cholesky.hpp"
 
 extern "C" {
 #include "testutil.h"

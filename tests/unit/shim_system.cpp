@@ -24,12 +24,12 @@
 
 #include <Tpetra_Core.hpp>
 
-#include "factor_preconditioner.hpp"
-#include "minres.hpp"
-#include "preconditioner.hpp"
-#include "solvers.hpp"
-#include "stability.hpp"
-#include "system_serial.hpp"
+#include "pc/impls/factor/factor_preconditioner.hpp"
+#include "krylov/minres.hpp"
+#include "pc/preconditioner.hpp"
+#include "newton/solvers.hpp"
+#include "eigen/stability.hpp"
+#include "system/system_serial.hpp"
 
 #include "rodnet.h"
 extern "C" {

@@ -33,11 +33,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lattice.h"
-#include "lattice_scene.h"
-#include "periodic_cell.h"
+#include "generate/lattice.h"
+#include "generate/lattice_scene.h"
+#include "generate/periodic_cell.h"
 #include "rodnet_solve.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 
 #ifndef M_PI

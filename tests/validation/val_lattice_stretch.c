@@ -22,9 +22,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "lattice.h"
-#include "lattice_scene.h"
-#include "scene.h"
+#include "generate/lattice.h"
+#include "generate/lattice_scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 #include "valutil.h"
 

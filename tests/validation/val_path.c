@@ -52,7 +52,7 @@
 #include <string.h>
 
 #include "rodnet_solve.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "testutil.h"
 #include "valutil.h"
 

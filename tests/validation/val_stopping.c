@@ -9,7 +9,7 @@
  * changes (or the trust radius collapses at round-off), the tightly converged
  * answer of the same discretisation.  Asserted: the default solve converged and
  * its tip is within 1e-9 L of that answer.  Before the round-off band needed two
- * iterates in a row (shim_cxx/monitor.hpp) the default test stopped a Newton step
+ * iterates in a row (shim_cxx/newton/monitor.hpp) the default test stopped a Newton step
  * early wherever the floor set the tolerance: the alpha = 1 rod at 1,601
  * vertices ended 6.1e-6 from its tip (docs/solvers.md, "Stopping tests"). */
 #include <math.h>

@@ -1,0 +1,273 @@
+/* bloch.c - Bloch-Floquet Hessians of periodic cells (docs/homogenization.md,
+ * "Stability"): the second variation of the infinite lattice for perturbations
+ * u(cell n) = u_0 exp(i k . s_n), s_n = sum n_m a_m, assembled on one cell.
+ *
+ * A stencil entry at an image record (a rod end at an image of a joint, or the
+ * neighbour of an image end seen from the joint) carries the phase k . s of the
+ * record's lattice shift s; every stencil block H_s adds P^H H_s P to the Bloch
+ * matrix, P = diag(exp(i phi)) over its entries.  The Bloch DOFs are the free
+ * fluctuation DOFs (every reduced DOF but the strain components) and, if
+ * finalize pinned an anchor, its three position components: a Bloch wave moves
+ * every copy of the anchor (only k = 0 has rigid translations).  The macroscopic
+ * strain stays fixed.  The same assembly gives the real "moments" of the phase
+ * expansion, sum_s sum_kl (phi_l - phi_k)^p H_s,kl, for the long-wavelength limit. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/network_internal.h"
+
+static const char *const where_dofs = "rn_network_bloch_dofs";
+
+/* Bloch DOF of every full entry (-1: none; aliases resolved like the reduced map),
+ * and the number of Bloch DOFs.  NULL on allocation failure. */
+static int64_t *bloch_index(const rn_network *net, size_t *n) {
+  const rn_cell *c = net->cell;
+  int64_t *b = malloc((net->nfull ? net->nfull : 1) * sizeof(int64_t));
+  size_t nfl = 0;
+  if (!b) return NULL;
+  for (size_t a = 0; a < net->nfull; ++a) {
+    b[a] = (a >= c->off || net->map[a] < 0) ? -1 : net->map[a];
+    if (b[a] >= 0 && (size_t)b[a] + 1 > nfl) nfl = (size_t)b[a] + 1;
+  }
+  *n = nfl;
+  if (!c->anchored) return b;
+  if (net->njoints > 0) {
+    const rn_joint *J = &net->joints[0];
+    size_t p = rn_dof_joint_position(J->off);
+    for (int q = 0; q < 3; ++q) b[p + (size_t)q] = (int64_t)(nfl + (size_t)q);
+    for (int k = 0; k < J->valence; ++k) { /* the rod end vertices aliasing it */
+      const rn_rod *r = &net->rods[J->rod[k]];
+      size_t v = rn_dof_vertex(r->off, rn_end_vertex(r->nv, J->end[k]));
+      for (int q = 0; q < 3; ++q) b[v + (size_t)q] = (int64_t)(nfl + (size_t)q);
+    }
+  } else {
+    size_t v = rn_dof_vertex(net->rods[0].off, 0);
+    for (int q = 0; q < 3; ++q) b[v + (size_t)q] = (int64_t)(nfl + (size_t)q);
+  }
+  *n = nfl + 3;
+  return b;
+}
+
+/* Phase of the own image shift of the end whose slot is joint stencil entry e
+ * (its material angle belongs to the rod copy in the cell -n: phase -k . s). */
+static void joint_end_phase(const rn_network *net, const rn_bloch_acc *b,
+                            const rn_joint *J, int e, double *ph1, double *ph2) {
+  int rigid = rn_joint_has_rotation(J), e0 = rn_joint_local_end(rigid, 0), k, m;
+  double s[3] = {0.0, 0.0, 0.0};
+  if (!J || !J->image || e < e0 || (e - e0) % 4 != 3) return;
+  k = (e - e0) / 4;
+  for (int q = 0; q < 3; ++q)
+    for (m = 0; m < net->cell->dim; ++m) s[q] += J->image[3 * k + m] * net->cell->a[m][q];
+  for (int q = 0; q < 3; ++q) {
+    *ph1 -= b->k1[q] * s[q];
+    *ph2 -= b->k2[q] * s[q];
+  }
+}
+
+/* Bloch DOF and phase of stencil entry k. */
+static int64_t entry(const rn_network *net, const rn_bloch_acc *b, size_t s,
+                     const size_t *idx, const int32_t *img, const rn_joint *J, int k,
+                     double *ph1, double *ph2) {
+  const rn_cell *c = net->cell;
+  size_t a = idx ? idx[k] : s + (size_t)k;
+  int32_t sl = idx ? (img ? img[k] : -1) : c->slot[a];
+  *ph1 = *ph2 = 0.0;
+  if (J) joint_end_phase(net, b, J, k, ph1, ph2);
+  if (sl < 0) return b->bidx[a];
+  *ph1 = b->ph1 ? b->ph1[sl / 3] : 0.0;
+  *ph2 = b->ph2 ? b->ph2[sl / 3] : 0.0;
+  return b->bidx[c->img[sl / 3].base + (size_t)(sl % 3)];
+}
+
+static void add_entry(rn_bloch_acc *b, int64_t r, int64_t col, double h, double d1,
+                      double d2) {
+  size_t at = (size_t)r * b->n + (size_t)col;
+  if (b->im) {
+    b->re[at] += h * cos(d1);
+    b->im[at] += h * sin(d1);
+  } else
+    b->re[at] += b->order == 0 ? h : b->order == 1 ? h * d1 : h * d1 * d2;
+}
+
+enum { BLOCH_MAX_STENCIL = 4 * RN_ROD_SEGMENT + 3 };
+
+void rn_bloch_add_block(const rn_network *net, rn_bloch_acc *b, size_t s,
+                        const size_t *idx, const int32_t *img, int n, const double *H,
+                        const rn_joint *J) {
+  for (int k = 0; k < n; ++k) {
+    double pk1, pk2;
+    int64_t r = entry(net, b, s, idx, img, J, k, &pk1, &pk2);
+    if (r < 0) continue;
+    for (int l = 0; l < n; ++l) {
+      double pl1, pl2;
+      int64_t col = entry(net, b, s, idx, img, J, l, &pl1, &pl2);
+      if (col < 0 || H[k * n + l] == 0.0) continue;
+      add_entry(b, r, col, H[k * n + l], pl1 - pk1, pl2 - pk2);
+    }
+  }
+}
+
+void rn_bloch_add_band(const rn_network *net, rn_bloch_acc *b, size_t s, int n,
+                       const double *band) {
+  int64_t bi[BLOCH_MAX_STENCIL];
+  double p1[BLOCH_MAX_STENCIL], p2[BLOCH_MAX_STENCIL];
+  if (n > BLOCH_MAX_STENCIL) return; /* (segments are at most this long) */
+  for (int k = 0; k < n; ++k)
+    bi[k] = entry(net, b, s, NULL, NULL, NULL, k, &p1[k], &p2[k]);
+  for (int i = 0; i < n; ++i) {
+    const double *row = band + (size_t)i * RNK_BAND + RNK_BAND_HALF;
+    if (bi[i] < 0) continue;
+    for (int d = -RNK_BAND_HALF; d <= RNK_BAND_HALF; ++d) {
+      int l = i + d;
+      if (l < 0 || l >= n || bi[l] < 0 || row[d] == 0.0) continue;
+      add_entry(b, bi[i], bi[l], row[d], p1[l] - p1[i], p2[l] - p2[i]);
+    }
+  }
+}
+
+static rn_status check_periodic(const rn_network *net, const char *where) {
+  rn_status st;
+  if ((st = rn_net_check_final(net, where))) return st;
+  if (!net->cell)
+    return rn_fail(net->ctx, RN_ERR_STATE, where,
+                   "the network is not periodic (rn_network_set_periodic)");
+  return RN_OK;
+}
+
+rn_status rn_network_bloch_dofs(const rn_network *net, size_t *n, int *kind,
+                                int *component) {
+  rn_status st;
+  size_t nb = 0, nfl;
+  int64_t *b;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_periodic(net, where_dofs))) return st;
+  if (!n) return rn_fail(net->ctx, RN_ERR_ARG, where_dofs, "n is NULL");
+  if (!(b = bloch_index(net, &nb)))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where_dofs, "out of memory");
+  free(b);
+  *n = nb;
+  if (!kind && !component) return RN_OK;
+  nfl = net->cell->anchored ? nb - 3 : nb;
+  rn_dof_info *info = malloc((net->nred ? net->nred : 1) * sizeof(*info));
+  if (!info) return rn_fail(net->ctx, RN_ERR_ALLOC, where_dofs, "out of memory");
+  if ((st = rn_network_dof_info(net, info))) {
+    free(info);
+    return st;
+  }
+  for (size_t i = 0; i < nb; ++i) {
+    int kd = i < nfl ? info[i].kind : RN_DOF_POSITION;
+    int cp = i < nfl ? info[i].component : (int)(i - nfl);
+    if (kind) kind[i] = kd;
+    if (component) component[i] = cp;
+  }
+  free(info);
+  return RN_OK;
+}
+
+/* The Cartesian wave vector of k = sum xi_i b_i (b_i . a_j = 2 pi delta_ij):
+ * b_i = 2 pi sum_j (G^-1)_ij a_j, G = a a^T the Gram matrix. */
+static void cartesian_wave(const rn_cell *c, const double *xi, double *k) {
+  double G[3][3] = {{0}}, Gi[3][3] = {{0}};
+  int d = c->dim;
+  for (int i = 0; i < d; ++i)
+    for (int j = 0; j < d; ++j)
+      for (int q = 0; q < 3; ++q) G[i][j] += c->a[i][q] * c->a[j][q];
+  if (d == 2) {
+    double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+    Gi[0][0] = G[1][1] / det, Gi[1][1] = G[0][0] / det;
+    Gi[0][1] = -G[0][1] / det, Gi[1][0] = -G[1][0] / det;
+  } else {
+    double det = G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
+                 G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
+                 G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        Gi[i][j] = (G[i1][j1] * G[i2][j2] - G[i1][j2] * G[i2][j1]) / det;
+      }
+  }
+  for (int q = 0; q < 3; ++q) {
+    k[q] = 0.0;
+    for (int i = 0; i < d; ++i)
+      for (int j = 0; j < d; ++j)
+        k[q] += 6.283185307179586477 * xi[i] * Gi[i][j] * c->a[j][q];
+  }
+}
+
+/* Phase k . s of every image record. */
+static void record_phases(const rn_cell *c, const double *k, double *ph) {
+  for (int r = 0; r < c->nimg; ++r)
+    ph[r] = k[0] * c->img[r].s[0] + k[1] * c->img[r].s[1] + k[2] * c->img[r].s[2];
+}
+
+/* Assembles into b (re, im zeroed here) with the phase sets of k1, k2. */
+static rn_status bloch_assemble(const rn_network *net, const double *x, const double *k1,
+                                const double *k2, int recip, double *re, double *im,
+                                const char *where) {
+  const rn_cell *c = net->cell;
+  rn_bloch_acc b;
+  rn_status st;
+  size_t n = 0;
+  double *ph = malloc(2 * (size_t)(c->nimg ? c->nimg : 1) * sizeof(double));
+  int64_t *bidx = bloch_index(net, &n);
+  if (!ph || !bidx) {
+    free(ph);
+    free(bidx);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  memset(&b, 0, sizeof(b));
+  b.n = n;
+  b.bidx = bidx;
+  if (k1 && recip) cartesian_wave(c, k1, b.k1);
+  if (k1 && !recip) memcpy(b.k1, k1, sizeof(b.k1));
+  if (k2) memcpy(b.k2, k2, sizeof(b.k2));
+  if (k1) record_phases(c, b.k1, ph);
+  if (k2) record_phases(c, b.k2, ph + (c->nimg ? c->nimg : 1));
+  b.ph1 = k1 ? ph : NULL;
+  b.ph2 = k2 ? ph + (c->nimg ? c->nimg : 1) : NULL;
+  b.order = (k1 != NULL) + (k2 != NULL);
+  b.re = re;
+  b.im = im;
+  memset(re, 0, n * n * sizeof(double));
+  if (im) memset(im, 0, n * n * sizeof(double));
+  st = rn_eval_bloch(net, x, &b, where);
+  free(ph);
+  free(bidx);
+  return st;
+}
+
+static rn_status check_bloch_args(const rn_network *net, const double *x, const void *a,
+                                  const void *b, const char *where) {
+  rn_status st;
+  if ((st = check_periodic(net, where))) return st;
+  if ((!x && net->nred) || !a || !b)
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
+  if (!rn_all_finite(net->nred, x))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
+  return RN_OK;
+}
+
+rn_status rn_network_bloch_hessian(const rn_network *net, const double *x,
+                                   const double *xi, double *re, double *im) {
+  static const char *where = "rn_network_bloch_hessian";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_bloch_args(net, x, re, im, where))) return st;
+  if (!xi) return rn_fail(net->ctx, RN_ERR_ARG, where, "xi is NULL");
+  if (!rn_all_finite((size_t)net->cell->dim, xi))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "xi is not finite");
+  return bloch_assemble(net, x, xi, NULL, 1, re, im, where);
+}
+
+rn_status rn_network_bloch_moment(const rn_network *net, const double *x,
+                                  const double *k1, const double *k2, double *out) {
+  static const char *where = "rn_network_bloch_moment";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_bloch_args(net, x, out, out, where))) return st;
+  if (!k1 && k2) return rn_fail(net->ctx, RN_ERR_ARG, where, "k2 without k1");
+  if ((k1 && !rn_all_finite(3, k1)) || (k2 && !rn_all_finite(3, k2)))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "k1 or k2 is not finite");
+  return bloch_assemble(net, x, k1, k2, 0, out, NULL, where);
+}

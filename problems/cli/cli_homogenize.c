@@ -1,0 +1,759 @@
+/* cli_homogenize.c - `rodnet homogenize SCENE.json -o RESULT.json [--plot PNG]`:
+ * linear effective elasticity of a periodic cell (rn_homogenize;
+ * docs/homogenization.md). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cjson/cJSON.h>
+
+#include "io/atomic_file.h"
+#include "io/num_format.h"
+#include "cli/cli.h"
+#include "cli/homog_path.h"
+#include "scene/result_json.h"
+#include "rodnet_solve.h"
+#include "scene/scene.h"
+#include "scene/scene_json.h"
+#include "io/text_file.h"
+#include "scene/vtk.h"
+
+#ifndef RN_PLOT_STIFFNESS_SCRIPT
+#define RN_PLOT_STIFFNESS_SCRIPT "plot_stiffness.py"
+#endif
+#ifndef RN_PYTHON3
+#define RN_PYTHON3 "python3"
+#endif
+
+static const char homogenize_help[] =
+    "Usage: rodnet homogenize SCENE.json -o RESULT.json [--plot PNG]\n"
+    "       rodnet homogenize SCENE.json --path E11,E22,E12 [--steps N] -o RESULT.json\n"
+    "\n"
+    "Effective linear stiffness of a periodic cell (a scene with a top-level\n"
+    "\"periodic\" object, e.g. from 'rodnet generate KIND --periodic') at its rest\n"
+    "state: the Schur complement of the Hessian onto the macroscopic strain,\n"
+    "C (Voigt, engineering shear; 2D: 11, 22, 12, force per length; 3D: 11, 22,\n"
+    "33, 23, 13, 12, per unit volume), the engineering constants, the cell area or\n"
+    "volume and the relative density, written to RESULT.json (completely or not at\n"
+    "all).\n"
+    "\n"
+    "Options:\n"
+    "  -o, --output FILE   result JSON (required)\n"
+    "      --plot PNG      polar plot of the directional Young's modulus (in the\n"
+    "                      xy plane; 3D cells also xz), by python3 with matplotlib\n"
+    "      --path E,E,E    follow the proportional macroscopic strain path from the\n"
+    "                      rest state to this strain (2D: E11,E22,E12; 3D: E11,E22,\n"
+    "                      E33,E23,E13,E12; engineering shear) and locate its first\n"
+    "                      instability by Bloch-Floquet analysis (RESULT.json gains\n"
+    "                      \"path\" and \"instability\")\n"
+    "      --path E,-,-    mixed control: '-' is a stress-controlled component at\n"
+    "                      zero stress, s:VALUE one at that stress, e:VALUE (or a\n"
+    "                      number) strain-controlled; e.g. uniaxial stress along x\n"
+    "      --path-stress S,S,S  proportional macroscopic stress path (every\n"
+    "                      component stress-controlled; 2D force per length)\n"
+    "      --path-file P.json  piecewise-linear path through waypoints\n"
+    "                      {\"waypoints\": [{\"strain\": [..|null], \"stress\": "
+    "[..|null],\n"
+    "                      \"steps\": n}, ...]} (docs/homogenization.md); under stress\n"
+    "                      control a limit point of the stress ends the path\n"
+    "      --steps N       steps of the path (default 20)\n"
+    "      --modes M       Bloch modes examined: all (default), in-plane or\n"
+    "                      out-of-plane (2D cells at planar states; the planar\n"
+    "                      model has the in-plane modes only)\n"
+    "      --bloch-grid G  wave vectors per reciprocal direction (default 16 in 2D,\n"
+    "                      6 in 3D), refined around the minimum\n"
+    "      --pattern P     after a local instability: the supercell its wave vector\n"
+    "                      calls for at the critical strain plus the critical mode\n"
+    "                      (scaled for display), written to P.vtu and drawn to\n"
+    "                      P.png (docs/render_vtu.py)\n"
+    "      --post-buckling B  after a local instability: continue the path past the\n"
+    "                      critical strain on the bifurcated branch of that supercell\n"
+    "                      (perturbed along the critical mode, minimised by\n"
+    "                      rn_cell_minimize; with --modes in-plane the supercell's\n"
+    "                      out-of-plane DOFs are pinned), the principal branch next to\n"
+    "                      it; the last post-buckled state to B.vtu and B.png;\n"
+    "                      RESULT.json gains \"post_buckling\"\n"
+    "      --post-steps N  steps from the critical strain to the path's end (default "
+    "10)\n"
+    "  -q, --quiet         no summary on stdout\n"
+    "  -h, --help          show this help\n"
+    "\n";
+static const char homogenize_help_tail[] =
+    "A path that stops early (the fluctuations or the mixed solve fail) writes its\n"
+    "partial result to RESULT.partial.json (\"partial\": true) and leaves RESULT.json\n"
+    "as it was (a complete earlier result is kept); exit status 4.\n"
+    "\n"
+    "Exit status: 0 done, 2 usage error, 3 bad scene (not periodic, prescribed\n"
+    "strain) or unwritable output, 4 the cell is a mechanism, the path stopped\n"
+    "early or the plot failed.\n";
+
+typedef struct hom_args {
+  const char *scene, *output, *plot, *path, *pattern, *post;
+  const char *path_stress, *path_file; /* --path-stress, --path-file */
+  int quiet, steps, grid, post_steps;
+  int has_steps, has_grid, has_modes, has_post_steps; /* given on the command line */
+  rn_bloch_modes modes;
+} hom_args;
+
+/* The files the command reads and writes (cli.h); returns their count. */
+static int hom_files(const hom_args *a, rn_cli_file *f) {
+  const rn_cli_file files[] = {{"the scene file", a->scene, NULL, RN_CLI_IN},
+                               {"the --path-file", a->path_file, NULL, RN_CLI_IN},
+                               {"-o", a->output, NULL, RN_CLI_OUT},
+                               {"--plot", a->plot, NULL, RN_CLI_OUT},
+                               {"--pattern", a->pattern, ".vtu", RN_CLI_OUT},
+                               {"--pattern", a->pattern, ".png", RN_CLI_OUT},
+                               {"--post-buckling", a->post, ".vtu", RN_CLI_OUT},
+                               {"--post-buckling", a->post, ".png", RN_CLI_OUT}};
+  memcpy(f, files, sizeof files);
+  return (int)(sizeof files / sizeof files[0]);
+}
+
+static int parse_args(int argc, char **argv, hom_args *a) {
+  memset(a, 0, sizeof *a);
+  a->steps = 20;
+  a->post_steps = 10;
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i], *v = NULL;
+    int m;
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+      fputs(homogenize_help, stdout);
+      fputs(homogenize_help_tail, stdout);
+      return -1;
+    }
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
+      a->quiet = 1;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--output", "-o", &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->output = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--plot", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->plot = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path-stress", NULL,
+                                 &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path_stress = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path-file", NULL,
+                                 &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path_file = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->path = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--pattern", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->pattern = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--post-buckling", NULL,
+                                 &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->post = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--post-steps", NULL,
+                                 &v))) {
+      if (m < 0 ||
+          rn_cli_parse_int("homogenize", "--post-steps", v, 1, 10000, &a->post_steps))
+        return RN_EXIT_USAGE;
+      a->has_post_steps = 1;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--steps", NULL, &v))) {
+      if (m < 0 || rn_cli_parse_int("homogenize", "--steps", v, 1, 100000, &a->steps))
+        return RN_EXIT_USAGE;
+      a->has_steps = 1;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--bloch-grid", NULL,
+                                 &v))) {
+      if (m < 0 || rn_cli_parse_int("homogenize", "--bloch-grid", v, 1, 1000, &a->grid))
+        return RN_EXIT_USAGE;
+      a->has_grid = 1;
+      continue;
+    }
+    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--modes", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      a->has_modes = 1;
+      if (strcmp(v, "all") == 0)
+        a->modes = RN_BLOCH_ALL;
+      else if (strcmp(v, "in-plane") == 0)
+        a->modes = RN_BLOCH_IN_PLANE;
+      else if (strcmp(v, "out-of-plane") == 0)
+        a->modes = RN_BLOCH_OUT_OF_PLANE;
+      else
+        return rn_cli_usage_error(
+            "homogenize", "--modes takes all, in-plane or out-of-plane, not '%s'", v);
+      continue;
+    }
+    if (s[0] == '-' && s[1] != '\0')
+      return rn_cli_usage_error("homogenize", "unknown option '%s'", s);
+    if (a->scene)
+      return rn_cli_usage_error("homogenize", "more than one scene given ('%s' and '%s')",
+                                a->scene, s);
+    a->scene = s;
+  }
+  static const char *const valued[] = {"--output|-o",     "--plot",       "--path-stress",
+                                       "--path-file",     "--path",       "--pattern",
+                                       "--post-buckling", "--post-steps", "--steps",
+                                       "--bloch-grid",    "--modes",      NULL};
+  int rc = rn_cli_check_repeats("homogenize", argc, argv, valued);
+  if (rc) return rc;
+  if (!a->scene) return rn_cli_usage_error("homogenize", "missing the scene file");
+  if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
+  if ((a->path != NULL) + (a->path_stress != NULL) + (a->path_file != NULL) > 1)
+    return rn_cli_usage_error("homogenize",
+                              "give one of --path, --path-stress and --path-file");
+  if (a->path_stress) a->path = a->path_stress;
+  if (a->path_file) a->path = a->path_file;
+  if (a->pattern && !a->path)
+    return rn_cli_usage_error("homogenize", "--pattern needs --path");
+  if (a->post && !a->path)
+    return rn_cli_usage_error("homogenize", "--post-buckling needs --path");
+  /* options of the path only: without one they would be ignored */
+  if (!a->path && (a->has_steps || a->has_grid || a->has_modes))
+    return rn_cli_usage_error("homogenize",
+                              "%s applies to a path only: give --path, --path-stress or "
+                              "--path-file",
+                              a->has_steps  ? "--steps"
+                              : a->has_grid ? "--bloch-grid"
+                                            : "--modes");
+  if (a->has_post_steps && !a->post)
+    return rn_cli_usage_error("homogenize",
+                              "--post-steps applies to --post-buckling only");
+  rn_cli_file files[8];
+  return rn_cli_check_files("homogenize", files, hom_files(a, files));
+}
+
+/* S = C^-1 (n x n, Gauss-Jordan with partial pivoting); 0 if singular. */
+int rn_homog_invert(int n, const double *C, double *S) {
+  double M[6][12];
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < 2 * n; j++) M[i][j] = j < n ? C[i * n + j] : (j - n == i);
+  for (int c = 0; c < n; c++) {
+    int p = c;
+    for (int r = c + 1; r < n; r++)
+      if (fabs(M[r][c]) > fabs(M[p][c])) p = r;
+    if (!(fabs(M[p][c]) > 1e-14 * fabs(C[0]) + 1e-300)) return 0;
+    for (int j = 0; j < 2 * n; j++) {
+      double t = M[c][j];
+      M[c][j] = M[p][j];
+      M[p][j] = t;
+    }
+    for (int r = 0; r < n; r++) {
+      if (r == c) continue;
+      double f = M[r][c] / M[c][c];
+      for (int j = 0; j < 2 * n; j++) M[r][j] -= f * M[c][j];
+    }
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) S[i * n + j] = M[i][n + j] / M[i][i];
+  return 1;
+}
+
+typedef struct hom_out {
+  const hom_args *a;
+  const rn_homogenization *h;
+  const double *S;
+  double seconds;
+  const hp_path *path; /* NULL without --path */
+  const rn_network *net;
+  const hp_post *post; /* --post-buckling */
+  const char *dest;    /* the file written (messages) */
+} hom_out;
+
+#ifdef RN_HAVE_SOLVER
+/* Directional Young's modulus 1 / (s^T S s), s the Voigt form of the unit
+ * uniaxial stress along (cos t, sin t) in the plane of axes i, j. */
+static double directional_E(const rn_homogenization *h, const double *S, double t,
+                            int plane_xz) {
+  double s[6] = {0}, c = cos(t), d = sin(t), q = 0.0;
+  int n = h->nstrain;
+  if (n == 3) {
+    s[0] = c * c, s[1] = d * d, s[2] = c * d;
+  } else if (!plane_xz) {
+    s[0] = c * c, s[1] = d * d, s[5] = c * d;
+  } else {
+    s[0] = c * c, s[2] = d * d, s[4] = c * d;
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) q += s[i] * S[i * n + j] * s[j];
+  return 1.0 / q;
+}
+#endif /* RN_HAVE_SOLVER */
+
+void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S) {
+  int n = h->nstrain;
+#define SIJ(i, j) S[(i)*n + (j)]
+  if (n == 3)
+    fprintf(f,
+            "  \"constants\": {\"E1\": %.17g, \"E2\": %.17g, \"nu12\": %.17g, \"nu21\": "
+            "%.17g, \"G12\": %.17g},\n",
+            1.0 / SIJ(0, 0), 1.0 / SIJ(1, 1), -SIJ(0, 1) / SIJ(0, 0),
+            -SIJ(0, 1) / SIJ(1, 1), 1.0 / SIJ(2, 2));
+  else
+    fprintf(
+        f,
+        "  \"constants\": {\"E1\": %.17g, \"E2\": %.17g, \"E3\": %.17g, \"nu12\": %.17g, "
+        "\"nu13\": %.17g, \"nu23\": %.17g, \"nu21\": %.17g, \"nu31\": %.17g, \"nu32\": "
+        "%.17g, \"G23\": %.17g, \"G13\": %.17g, \"G12\": %.17g},\n",
+        1.0 / SIJ(0, 0), 1.0 / SIJ(1, 1), 1.0 / SIJ(2, 2), -SIJ(0, 1) / SIJ(0, 0),
+        -SIJ(0, 2) / SIJ(0, 0), -SIJ(1, 2) / SIJ(1, 1), -SIJ(0, 1) / SIJ(1, 1),
+        -SIJ(0, 2) / SIJ(2, 2), -SIJ(1, 2) / SIJ(2, 2), 1.0 / SIJ(3, 3), 1.0 / SIJ(4, 4),
+        1.0 / SIJ(5, 5));
+#undef SIJ
+}
+
+#ifndef RN_HAVE_SOLVER
+/* rn_homogenize, rn_cell_relax and rn_cell_bloch are the solver's
+ * (shim_cxx/periodic/homogenize.cpp, cell_path.cpp): without it the command parses its
+ * options (help, usage errors) and refuses; homog_path.c and homog_post.c are
+ * not built. */
+int rn_cli_homogenize(int argc, char **argv) {
+  hom_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+  return rn_cli_no_solver("homogenize");
+}
+#else
+static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
+  const hom_out *o = user;
+  const rn_homogenization *h = o->h;
+  int n = h->nstrain;
+  (void)ctx;
+  fputs("{\n  \"command\": \"homogenize\",\n", f);
+  if (o->path && o->path->stopped) /* RESULT.partial.json: the path stopped early */
+    fputs("  \"partial\": true,\n", f);
+  fputs("  \"scene\": ", f);
+  rn_put_json_string(f, o->a->scene);
+  fprintf(f,
+          ",\n  \"dimension\": %d,\n  \"%s\": %.17g,\n  \"relative_density\": %.17g,\n",
+          h->dim, h->dim == 2 ? "area" : "volume", h->measure, h->relative_density);
+  rn_result_put_model(f, o->net);
+  fprintf(f, "  \"voigt\": %s,\n",
+          n == 3 ? "[\"11\", \"22\", \"12\"]"
+                 : "[\"11\", \"22\", \"33\", \"23\", \"13\", \"12\"]");
+  fprintf(f, "  \"units\": \"%s\",\n",
+          n == 3 ? "force per length (2D stiffness per unit cell area)"
+                 : "force per area (per unit cell volume)");
+  fputs("  \"C\": [", f);
+  for (int i = 0; i < n; i++) {
+    fputs(i ? ",\n        [" : "[", f);
+    for (int j = 0; j < n; j++) fprintf(f, "%s%.17g", j ? ", " : "", h->C[i * n + j]);
+    fputc(']', f);
+  }
+  fputs("],\n", f);
+  rn_homog_put_constants(f, h, o->S);
+  for (int plane = 0; plane < (n == 3 ? 1 : 2); plane++) {
+    fprintf(f, "  \"directional_modulus_%s\": [", plane ? "xz" : "xy");
+    for (int k = 0; k <= 360; k += 2)
+      fprintf(f, "%s%.17g", k ? ", " : "",
+              directional_E(h, o->S, k * 3.14159265358979323846 / 180.0, plane));
+    fputs("],\n", f);
+  }
+  fprintf(f, "  \"directional_modulus_angles_deg\": [0, 360, 2],\n");
+  if (o->path) hp_write_json(f, o->path);
+  if (o->path && o->post) hp_post_write_json(f, o->path, o->post);
+  fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
+          o->seconds);
+  return RN_OK;
+}
+
+/* write_result, checked before a byte reaches f: the text must read back as
+ * JSON, which a number that is not finite ("nan", "inf": the fields that may
+ * be unavailable are written as null) does not.  The error names the file and
+ * the line and column of the first such number (issue 22: every writer refuses
+ * non-finite numbers). */
+static rn_status write_result_checked(FILE *f, void *user, rn_context *ctx) {
+  const hom_out *o = user;
+  char *text = NULL;
+  size_t len = 0;
+  FILE *m = open_memstream(&text, &len);
+  if (!m) return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", o->dest);
+  rn_status st = write_result(m, user, ctx);
+  if (fclose(m) != 0 && !st)
+    st = rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", o->dest);
+  cJSON *root = NULL;
+  if (!st && rn_json_parse_text(ctx, o->dest, text, len, &root) != RN_OK) {
+    char why[512];
+    snprintf(why, sizeof why, "%s", rn_context_last_error(ctx));
+    st = rn_context_set_error(ctx, RN_ERR_NOT_FINITE,
+                              "%s: a number is not finite (nan or inf); no file written",
+                              why);
+  }
+  cJSON_Delete(root);
+  if (!st && fwrite(text, 1, len, f) != len)
+    st = rn_context_set_error(ctx, RN_ERR_IO, "%s: write failed", o->dest);
+  free(text);
+  return st;
+}
+
+/* python3 SCRIPT RESULT.json PNG; 0 on success. */
+static int run_plot(const char *result, const char *png) {
+  const char *const args[] = {result, png, NULL};
+  return rn_cli_run_script_to("RODNET_PLOT_STIFFNESS", RN_PLOT_STIFFNESS_SCRIPT, args,
+                              png);
+}
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* --pattern: the supercell of the critical wave vector on the principal
+ * (cell-periodic) branch at the critical strain plus its critical mode (the
+ * lowest Bloch mode at xi = 0 of the supercell, in the modes examined), scaled
+ * to 5 % of the cell size for display; written as P.vtu and drawn to P.png.
+ * (The post-buckled branch is not computed: see docs.)  Fills pat. */
+static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path,
+                         hp_pattern *pat) {
+  char *text = NULL, *json = NULL;
+  size_t len = 0;
+  int rc = RN_EXIT_INTERNAL;
+  rn_scene *sc = NULL;
+  cJSON *root = NULL;
+  double *x = NULL, *vec = NULL;
+  if (!path->inst.found || path->inst.kind_macroscopic) {
+    /* nothing to draw: said in RESULT.json and the summary (not an error) */
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             path->inst.found ? "the instability is macroscopic (long wavelength): no "
+                                "finite supercell"
+                              : "the path stays stable: no pattern");
+    return RN_EXIT_OK;
+  }
+  if (!hp_instability_supercell(&path->inst, path->dim, pat->rep)) {
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             "the wave vector is not commensurate with a supercell of at most 12 cells "
+             "per direction");
+    fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
+    return RN_EXIT_INTERNAL;
+  }
+  if (rn_text_file_read(ctx, a->scene, 1 << 28, &text, &len)) goto fail;
+  root = cJSON_Parse(text);
+  cJSON *per = cJSON_GetObjectItemCaseSensitive(root, "periodic");
+  if (!cJSON_IsObject(per) || cJSON_GetObjectItemCaseSensitive(per, "repeat")) {
+    snprintf(pat->why_not, sizeof pat->why_not, "%s", "needs a scene without \"repeat\"");
+    fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
+    goto done;
+  }
+  cJSON_DeleteItemFromObjectCaseSensitive(per, "stress");
+  cJSON_DeleteItemFromObjectCaseSensitive(per, "strain");
+  cJSON_AddItemToObject(per, "repeat", cJSON_CreateIntArray(pat->rep, path->dim));
+  if (!(json = cJSON_PrintUnformatted(root))) goto fail_alloc;
+  if (rn_scene_parse(ctx, a->scene, json, strlen(json), &sc)) goto fail;
+  rn_network *net = rn_scene_network(sc);
+  rn_cell_relax_report rep;
+  double eps[6];
+  /* the principal (cell-periodic) branch at the critical strain, in load steps */
+  for (int k = 1; k <= 10; ++k) {
+    for (int v = 0; v < path->ns; ++v) eps[v] = 0.1 * k * path->inst.strain[v];
+    if (rn_cell_relax(net, eps, &rep)) goto fail;
+  }
+  pat->converged = rep.converged;
+  size_t nd = rn_network_num_dofs(net), nb = 0;
+  if (rn_network_bloch_dofs(net, &nb, NULL, NULL)) goto fail;
+  x = malloc(nd * sizeof(double));
+  vec = malloc(2 * nb * sizeof(double));
+  if (!x || !vec) goto fail_alloc;
+  const double zero[3] = {0.0, 0.0, 0.0};
+  double vmax = 0.0, measure = 0.0;
+  if (rn_cell_bloch_eigen(net, zero, path->modes, 1, &pat->eigenvalue, vec) ||
+      rn_network_get_dofs(net, x))
+    goto fail;
+  rn_network_cell_info(net, NULL, NULL, &measure, NULL);
+  /* display amplitude: 5 % of the cell size at the largest displacement */
+  pat->amplitude =
+      0.05 *
+      pow(measure / (pat->rep[0] * pat->rep[1] * (path->dim == 3 ? pat->rep[2] : 1)),
+          1.0 / path->dim);
+  size_t nfl = nd - (size_t)path->ns; /* the strain DOFs are the last */
+  for (size_t i = 0; i < nfl; ++i) vmax = fmax(vmax, fabs(vec[2 * i]));
+  if (!(vmax > 0.0)) {
+    rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
+    goto fail;
+  }
+  for (size_t i = 0; i < nfl; ++i) x[i] += pat->amplitude * vec[2 * i] / vmax;
+  if (rn_network_set_dofs(net, x)) goto fail;
+  if (hp_write_pattern_files(ctx, sc, a->pattern, a->quiet, &pat->written, &pat->png))
+    goto fail;
+  rc = RN_EXIT_OK;
+  goto done;
+fail_alloc:
+  rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+fail:
+  snprintf(pat->why_not, sizeof pat->why_not, "%s", rn_context_last_error(ctx));
+  fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
+done:
+  free(x);
+  free(vec);
+  free(json);
+  free(text);
+  cJSON_Delete(root);
+  rn_scene_destroy(&sc);
+  return rc;
+}
+
+int rn_cli_homogenize(int argc, char **argv) {
+  hom_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+  rn_context *ctx = NULL;
+  if (rn_context_create(&ctx) != RN_OK) {
+    fprintf(stderr, "rodnet homogenize: out of memory\n");
+    return RN_EXIT_INTERNAL;
+  }
+  rn_scene *scene = NULL;
+  rn_homogenization h;
+  double S[36];
+  int dim = 0;
+  hp_path path;
+  hp_post post;
+  memset(&path, 0, sizeof(path));
+  memset(&post, 0, sizeof(post));
+  rn_cli_file files[8];
+  rn_status st = RN_OK;
+  /* every output writable before anything is computed */
+  if ((rc = rn_cli_probe_outputs("homogenize", files, hom_files(&a, files)))) goto done;
+  st = rn_scene_load(ctx, a.scene, &scene);
+  if (st) {
+    fprintf(stderr, "%s\n", rn_context_last_error(ctx));
+    rc = rn_cli_load_exit_code(st);
+    goto done;
+  }
+  rn_network *net = rn_scene_network(scene);
+  rn_network_cell_info(net, &dim, NULL, NULL, NULL);
+  if (dim == 0) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the scene is not periodic (it has no top-level "
+            "\"periodic\" object with lattice vectors; see 'rodnet generate KIND "
+            "--periodic')\n",
+            a.scene);
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (a.path && a.modes == RN_BLOCH_OUT_OF_PLANE && rn_network_is_planar(net) == 1) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes out-of-plane: the scene uses the planar "
+            "model, which has no out-of-plane modes (use \"model\": \"3d\")\n",
+            a.scene);
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (a.path && a.modes != RN_BLOCH_ALL && dim == 3) { /* found before computing */
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes %s: a 3D cell has no in-plane / "
+            "out-of-plane split of its modes (use --modes all)\n",
+            a.scene, a.modes == RN_BLOCH_IN_PLANE ? "in-plane" : "out-of-plane");
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (a.path) {
+    int count = 0, ns = 0, stress[6] = {0};
+    double target[6] = {0};
+    rn_network_cell_info(net, NULL, &ns, NULL, NULL);
+    path.ns = ns;
+    if (a.path_file) {
+      if ((st = hp_read_path_file(ctx, a.path_file, a.steps, &path))) {
+        fprintf(stderr, "rodnet homogenize: --path-file: %s\n",
+                rn_context_last_error(ctx));
+        rc = st == RN_ERR_ALLOC ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
+        goto done;
+      }
+    } else {
+      if (hp_parse_targets(a.path, a.path_stress != NULL, target, stress, &count) ||
+          count != ns) {
+        if (a.path_stress)
+          fprintf(stderr,
+                  "rodnet homogenize: --path-stress '%s': expected %d comma-separated "
+                  "numbers (%s) for this %dD cell\n",
+                  a.path, ns, ns == 3 ? "S11,S22,S12" : "S11,S22,S33,S23,S13,S12", dim);
+        else
+          fprintf(stderr,
+                  "rodnet homogenize: --path '%s': expected %d comma-separated numbers "
+                  "(%s; '-', s:VALUE for stress control) for this %dD cell\n",
+                  a.path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
+        rc = RN_EXIT_USAGE;
+        goto done;
+      }
+      if ((st = hp_single_segment(ctx, &path, target, stress, a.steps))) {
+        rc = RN_EXIT_INTERNAL;
+        goto done;
+      }
+    }
+  }
+  double t0 = now();
+  st = rn_homogenize(net, &h);
+  double seconds = now() - t0;
+  if (st) {
+    fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
+    rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+    goto done;
+  }
+  if (h.relative_density >= 1.0) /* issue 22 item 1 (docs/lattices.md) */
+    fprintf(stderr,
+            "rodnet homogenize: warning: %s: relative density %.6g >= 1: the struts "
+            "overlap, the rod model does not hold for this cell (docs/lattices.md, "
+            "\"Admissible sections\")\n",
+            a.scene, h.relative_density);
+  if (!rn_homog_invert(h.nstrain, h.C, S)) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "
+            "mechanism: some strain costs no energy)\n",
+            a.scene);
+    rc = RN_EXIT_INTERNAL;
+    goto done;
+  }
+  if (a.path) {
+    path.dim = h.dim;
+    path.modes = a.modes;
+    path.grid = a.grid;
+    path.quiet = a.quiet;
+    st = hp_run(net, &path);
+    if (st) {
+      fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
+      rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+      goto done;
+    }
+  }
+  if (a.post) {
+    post.requested = 1;
+    post.nsteps = a.post_steps;
+    st = hp_post_buckling(ctx, a.scene, &path, a.post, &post);
+    if (st) {
+      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n",
+              rn_context_last_error(ctx));
+      rc = RN_EXIT_INTERNAL;
+      st = RN_OK;
+    } else if (post.failed)
+      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n", post.failed);
+  }
+  if (a.pattern) {
+    path.pattern.requested = 1;
+    int prc = write_pattern(ctx, &a, &path, &path.pattern);
+    if (prc) rc = prc;
+  }
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post, NULL};
+  /* a path that stopped early: its partial result beside RESULT.json, never in
+   * place of it (a complete earlier result there is kept) */
+  char partial[4096];
+  const char *dest = a.output;
+  if (a.path && path.stopped) {
+    size_t n = strlen(a.output);
+    int json = n > 5 && strcmp(a.output + n - 5, ".json") == 0;
+    snprintf(partial, sizeof partial, "%.*s.partial.json", (int)(json ? n - 5 : n),
+             a.output);
+    dest = partial;
+  }
+  o.dest = dest;
+  st = rn_file_write_atomic(ctx, dest, write_result_checked, &o);
+  if (!st && a.path && !a.quiet) {
+    if (path.inst.found) {
+      printf("rodnet homogenize: first instability at load factor %.6g of the path: "
+             "strain ",
+             path.inst.t);
+      hp_print_vec(stdout, path.ns, path.inst.strain, 6, 0);
+      printf(" (Voigt %s), %s, wave vector ",
+             path.ns == 3 ? "11 22 12" : "11 22 33 23 13 12",
+             path.inst.stress_limit       ? "macroscopic (limit point of the stress)"
+             : path.inst.kind_macroscopic ? "macroscopic"
+                                          : "local");
+      hp_print_vec(stdout, path.dim, path.inst.xi, 4, 0);
+      printf(", multiplicity %d, %d equivalent wave vector(s)\n", path.inst.multiplicity,
+             path.inst.kind_macroscopic ? 1 : path.inst.nequiv);
+    } else if (path.stopped)
+      printf("rodnet homogenize: the path is stable as far as it went (%d of %d steps)\n",
+             path.done, path.steps);
+    else
+      printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
+    char third[16] = "";
+    if (path.dim == 3) snprintf(third, sizeof third, " x %d", path.pattern.rep[2]);
+    if (path.pattern.written)
+      printf("rodnet homogenize: pattern: %d x %d%s supercell at the critical strain, "
+             "critical mode eigenvalue %.3e (scaled to %.3g)%s; wrote %s.vtu%s%s%s\n",
+             path.pattern.rep[0], path.pattern.rep[1], third, path.pattern.eigenvalue,
+             path.pattern.amplitude, path.pattern.converged ? "" : " (NOT converged)",
+             a.pattern, path.pattern.png ? " and " : "",
+             path.pattern.png ? a.pattern : "", path.pattern.png ? ".png" : "");
+    else if (path.pattern.requested)
+      printf("rodnet homogenize: pattern: nothing written: %s\n",
+             path.pattern.why_not[0] ? path.pattern.why_not : "not computed");
+    if (post.requested && post.failed)
+      printf("rodnet homogenize: post-buckling: nothing written: %s\n", post.failed);
+  }
+  if (a.path && path.stopped) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the path stopped at step %d: %s; the partial result "
+            "is in %s (%s is not written)\n",
+            a.scene, path.done + 1, path.stopped, dest, a.output);
+    if (!rc) rc = RN_EXIT_INTERNAL;
+  }
+  if (!st && post.done && !a.quiet) {
+    const hp_post_step *ls = &post.step[post.done - 1];
+    char third[16] = "";
+    if (path.dim == 3) snprintf(third, sizeof third, " x %d", post.rep[2]);
+    printf("rodnet homogenize: post-buckling: %d x %d%s supercell, %d steps past the "
+           "critical strain; at load factor %.4g stress ",
+           post.rep[0], post.rep[1], third, post.done, ls->t);
+    hp_print_vec(stdout, path.ns, ls->stress, 6, 0);
+    fputs(" (principal ", stdout);
+    hp_print_vec(stdout, path.ns, ls->principal_stress, 6, 0);
+    printf("), %s; wrote %s.vtu%s%s%s\n",
+           ls->verified ? "a verified minimum" : "NOT a verified minimum", a.post,
+           post.png ? " and " : "", post.png ? a.post : "", post.png ? ".png" : "");
+  }
+  hp_post_free(&post);
+  if (st) {
+    fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (!a.quiet) {
+    int n = h.nstrain;
+    char line[320];
+    printf("rodnet homogenize: %s: %dD cell, %s %.6g, relative density %.6g, %zu "
+           "fluctuation DOFs, %.3g s\n  C =",
+           a.scene, h.dim, h.dim == 2 ? "area" : "volume", h.measure, h.relative_density,
+           h.fluctuation_dofs, seconds);
+    for (int i = 0; i < n; i++) {
+      printf(i ? "\n      [" : " [");
+      for (int j = 0; j < n; j++) printf("%s%13.6e", j ? " " : "", h.C[i * n + j]);
+      printf("]");
+    }
+    printf("\n  model %s", rn_result_model_line(net, line, sizeof line));
+    printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
+           1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], dest);
+  }
+  if (a.plot && run_plot(dest, a.plot) != 0) {
+    fprintf(stderr,
+            "rodnet homogenize: the plot %s failed (%s %s with matplotlib; "
+            "RODNET_PYTHON and RODNET_PLOT_STIFFNESS override them); %s is written\n",
+            a.plot, getenv("RODNET_PYTHON") ? getenv("RODNET_PYTHON") : RN_PYTHON3,
+            getenv("RODNET_PLOT_STIFFNESS") ? getenv("RODNET_PLOT_STIFFNESS")
+                                            : RN_PLOT_STIFFNESS_SCRIPT,
+            a.output);
+    rc = RN_EXIT_INTERNAL;
+  }
+done:
+  hp_free(&path);
+  rn_scene_destroy(&scene);
+  rn_context_destroy(&ctx);
+  return rc;
+}
+#endif /* RN_HAVE_SOLVER */

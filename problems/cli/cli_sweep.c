@@ -1,0 +1,744 @@
+/* cli_sweep.c - `rodnet sweep SWEEP.json -o DIR [--plot PNG]`: homogenisation of
+ * periodic cells over a grid of parameters (lattice, joint model, relative
+ * density, imperfection seed) from a sweep file (docs/homogenization.md,
+ * "Sweeps").  Every point is written atomically as soon as it is done
+ * (DIR/point_NNNN.json) with its record (every key of the sweep file at that
+ * point, the rodnet version, a hash of the cell scene); a rerun skips the points
+ * whose record is unchanged, so a killed sweep loses nothing, and recomputes the
+ * others; then DIR/sweep.csv (this sweep's points only) and the plot. */
+#define _POSIX_C_SOURCE 200809L
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "io/atomic_file.h"
+#include "cli/cli.h"
+#include "io/num_format.h"
+#include "cli/homog_path.h"
+#include "generate/periodic_cell.h"
+#include "rodnet_solve.h"
+#include "scene/scene.h"
+#include "io/text_file.h"
+
+#ifndef RN_PLOT_SWEEP_SCRIPT
+#define RN_PLOT_SWEEP_SCRIPT "plot_sweep.py"
+#endif
+
+static const char sweep_help[] =
+    "Usage: rodnet sweep SWEEP.json -o DIR [--plot PNG] [-q]\n"
+    "\n"
+    "Effective stiffness of periodic cells over a grid of parameters given by a\n"
+    "sweep file (docs/homogenization.md, \"Sweeps\"):\n"
+    "  {\"lattice\": \"honeycomb\" or [...], \"joint_model\": \"rigid\" or [...],\n"
+    "   \"relative_density\": [...] or {\"from\": a, \"to\": b, \"count\": n,\n"
+    "   \"scale\": \"log\" or \"linear\"}, \"seed\": [...], \"perturb\": amp,\n"
+    "   \"edges_per_rod\": N, \"cells\": [m, n(, k)], \"E\": 1, \"nu\": 0.3}\n"
+    "Every point (the product of the lists) is written atomically to\n"
+    "DIR/point_NNNN.json as soon as it is done, with its record (every parameter\n"
+    "of the sweep file at that point, the rodnet version, a hash of its cell\n"
+    "scene); a rerun skips the points whose record is unchanged and recomputes the\n"
+    "others, so a killed sweep loses nothing.  Then DIR/sweep.csv (atomically) and,\n"
+    "with --plot, a PNG of E1 and nu12 against relative density (the frame closed\n"
+    "forms on the same axes for the rigid-jointed honeycomb).\n"
+    "\n"
+    "Options:\n"
+    "  -o, --output DIR    output folder (created if missing)\n"
+    "      --plot PNG      the plot (python3 with matplotlib)\n"
+    "  -q, --quiet         no progress bar\n"
+    "  -h, --help          show this help\n"
+    "\n"
+    "Exit status: 0 done, 2 usage error, 3 bad sweep file or unwritable folder,\n"
+    "4 a point failed (the others are written) or the plot failed.\n";
+
+enum { MAX_LIST = 4096 };
+
+typedef struct sweep_spec {
+  int nlat, njm, nrho, nseed;
+  char lat[16][32];
+  int jm[2];
+  double rho[MAX_LIST];
+  long seed[MAX_LIST];
+  double perturb, E, nu;
+  int edges, cells[3];
+} sweep_spec;
+
+typedef struct point {
+  int index;
+  const char *lattice;
+  int joint_model;
+  double rho;
+  long seed;
+} point;
+
+static int sweep_error(const char *file, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static int sweep_error(const char *file, const char *fmt, ...) {
+  va_list ap;
+  fprintf(stderr, "rodnet sweep: %s: ", file);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+  return RN_EXIT_INPUT;
+}
+
+/* A string or a list of strings into out (at most max). */
+static int string_list(const cJSON *v, char (*out)[32], int max, int *n) {
+  *n = 0;
+  if (cJSON_IsString(v)) {
+    snprintf(out[0], 32, "%s", v->valuestring);
+    *n = 1;
+    return 0;
+  }
+  if (!cJSON_IsArray(v)) return -1;
+  const cJSON *e;
+  cJSON_ArrayForEach(e, v) {
+    if (!cJSON_IsString(e) || *n >= max) return -1;
+    snprintf(out[(*n)++], 32, "%s", e->valuestring);
+  }
+  return *n > 0 ? 0 : -1;
+}
+
+static const char *joint_name(int jm) {
+  return jm == RN_JOINT_RIGID ? "rigid" : "elastic";
+}
+
+/* ---- the keys of a sweep file and a point's record of them ------------------
+ * One table: parse_spec accepts exactly these keys, and the record of a point
+ * (its point file's "parameters", compared on a rerun) holds each of them with
+ * its effective value at that point (a list key: the point's entry; a key left
+ * out: its default), written by the key's own function.  A key added to the
+ * sweep file format is added here, with what defines a point by it. */
+typedef int (*put_key)(cJSON *rec, const char *name, const sweep_spec *s, const point *p);
+static int put_lattice(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddStringToObject(r, k, p->lattice) != NULL;
+}
+static int put_joint(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddStringToObject(r, k, joint_name(p->joint_model)) != NULL;
+}
+static int put_rho(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddNumberToObject(r, k, p->rho) != NULL;
+}
+static int put_seed(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)s;
+  return cJSON_AddNumberToObject(r, k, (double)p->seed) != NULL;
+}
+static int put_perturb(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->perturb) != NULL;
+}
+static int put_edges(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->edges) != NULL;
+}
+static int put_cells(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  cJSON *a = cJSON_CreateIntArray(s->cells, 3);
+  return a && cJSON_AddItemToObject(r, k, a);
+}
+static int put_E(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->E) != NULL;
+}
+static int put_nu(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  return cJSON_AddNumberToObject(r, k, s->nu) != NULL;
+}
+static const struct {
+  const char *name;
+  put_key put;
+} spec_keys[] = {{"lattice", put_lattice},
+                 {"joint_model", put_joint},
+                 {"relative_density", put_rho},
+                 {"seed", put_seed},
+                 {"perturb", put_perturb},
+                 {"edges_per_rod", put_edges},
+                 {"cells", put_cells},
+                 {"E", put_E},
+                 {"nu", put_nu}};
+enum { NKEYS = (int)(sizeof spec_keys / sizeof spec_keys[0]) };
+
+/* The record of point p of sweep s: every key of the table (NULL out of memory). */
+static cJSON *point_record(const sweep_spec *s, const point *p) {
+  cJSON *rec = cJSON_CreateObject();
+  for (int k = 0; rec && k < NKEYS; ++k)
+    if (!spec_keys[k].put(rec, spec_keys[k].name, s, p)) {
+      cJSON_Delete(rec);
+      rec = NULL;
+    }
+  return rec;
+}
+
+static int parse_spec(const char *file, const char *text, sweep_spec *s) {
+  cJSON *root = cJSON_Parse(text);
+  const cJSON *v, *e;
+  char jm[2][32];
+  int rc = 0;
+  memset(s, 0, sizeof(*s));
+  s->edges = 16;
+  s->cells[0] = s->cells[1] = s->cells[2] = 1;
+  s->E = 1.0;
+  s->nu = 0.3;
+  s->nseed = 1;
+  if (!cJSON_IsObject(root)) {
+    cJSON_Delete(root);
+    return sweep_error(file, "not a JSON object");
+  }
+  cJSON_ArrayForEach(e, root) {
+    int ok = 0;
+    for (int k = 0; k < NKEYS; ++k) ok |= strcmp(e->string, spec_keys[k].name) == 0;
+    if (!ok) {
+      rc = sweep_error(file, "unknown key '%s'", e->string);
+      goto done;
+    }
+    /* a repeated key: the reader would take the first and ignore the others */
+    for (const cJSON *b = root->child; b != e; b = b->next)
+      if (strcmp(b->string, e->string) == 0) {
+        rc = sweep_error(file, "\"%s\" given more than once: give it once", e->string);
+        goto done;
+      }
+  }
+  if (string_list(cJSON_GetObjectItemCaseSensitive(root, "lattice"), s->lat, 16,
+                  &s->nlat)) {
+    rc = sweep_error(file, "\"lattice\" must be a lattice name or a list of them");
+    goto done;
+  }
+  for (int k = 0; k < s->nlat; ++k) {
+    rn_lattice_kind kind;
+    if (strcmp(s->lat[k], "reentrant") &&
+        rn_lattice_kind_from_name(s->lat[k], &kind) != 0) {
+      rc = sweep_error(file, "unknown lattice '%s'", s->lat[k]);
+      goto done;
+    }
+  }
+  s->njm = 1;
+  s->jm[0] = RN_JOINT_RIGID;
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "joint_model"))) {
+    if (string_list(v, jm, 2, &s->njm)) {
+      rc = sweep_error(file, "\"joint_model\" must be rigid, elastic or a list");
+      goto done;
+    }
+    for (int k = 0; k < s->njm; ++k) {
+      if (strcmp(jm[k], "rigid") == 0)
+        s->jm[k] = RN_JOINT_RIGID;
+      else if (strcmp(jm[k], "elastic") == 0)
+        s->jm[k] = RN_JOINT_ELASTIC;
+      else {
+        rc = sweep_error(file, "unknown joint model '%s'", jm[k]);
+        goto done;
+      }
+    }
+  }
+  v = cJSON_GetObjectItemCaseSensitive(root, "relative_density");
+  if (cJSON_IsArray(v)) {
+    cJSON_ArrayForEach(e, v) {
+      if (!cJSON_IsNumber(e) || s->nrho >= MAX_LIST || !(e->valuedouble > 0.0) ||
+          !(e->valuedouble < 1.0)) {
+        rc = sweep_error(file,
+                         "\"relative_density\"[%d]: the entries must be numbers in "
+                         "(0, 1), at most %d of them",
+                         s->nrho, MAX_LIST);
+        goto done;
+      }
+      s->rho[s->nrho++] = e->valuedouble;
+    }
+  } else if (cJSON_IsObject(v)) {
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(v, "from"),
+                *b = cJSON_GetObjectItemCaseSensitive(v, "to"),
+                *n = cJSON_GetObjectItemCaseSensitive(v, "count"),
+                *sc = cJSON_GetObjectItemCaseSensitive(v, "scale");
+    int logs = !sc || (cJSON_IsString(sc) && strcmp(sc->valuestring, "log") == 0);
+    if (!cJSON_IsNumber(a) || !cJSON_IsNumber(b) || !cJSON_IsNumber(n) ||
+        !(a->valuedouble > 0.0) || !(b->valuedouble < 1.0) ||
+        !(a->valuedouble <= b->valuedouble) || n->valuedouble < 1 ||
+        n->valuedouble > MAX_LIST || n->valuedouble != floor(n->valuedouble) ||
+        (sc && !logs &&
+         !(cJSON_IsString(sc) && strcmp(sc->valuestring, "linear") == 0))) {
+      rc = sweep_error(file, "%s",
+                       "\"relative_density\" range needs from <= to in (0, 1), count in "
+                       "1 .. 4096, scale log or linear");
+      goto done;
+    }
+    s->nrho = (int)n->valuedouble;
+    for (int k = 0; k < s->nrho; ++k) {
+      double f = s->nrho > 1 ? (double)k / (s->nrho - 1) : 0.0;
+      s->rho[k] = logs ? a->valuedouble * pow(b->valuedouble / a->valuedouble, f)
+                       : a->valuedouble + f * (b->valuedouble - a->valuedouble);
+    }
+  } else {
+    rc = sweep_error(file, "\"relative_density\" (a list or a range) is required");
+    goto done;
+  }
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "seed"))) {
+    s->nseed = 0;
+    cJSON_ArrayForEach(e, v) {
+      if (!cJSON_IsNumber(e) || s->nseed >= MAX_LIST || e->valuedouble < 0 ||
+          e->valuedouble != floor(e->valuedouble)) {
+        rc = sweep_error(file, "\"seed\"[%d]: the seeds must be integers >= 0", s->nseed);
+        goto done;
+      }
+      s->seed[s->nseed++] = (long)e->valuedouble;
+    }
+    if (!cJSON_IsArray(v) || s->nseed == 0) {
+      rc = sweep_error(file, "\"seed\" must be a list of integers >= 0");
+      goto done;
+    }
+  }
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "perturb")) &&
+      (!cJSON_IsNumber(v) || !(v->valuedouble >= 0.0) || !(v->valuedouble < 0.5))) {
+    rc = sweep_error(file, "\"perturb\" must be in [0, 0.5)");
+    goto done;
+  }
+  if (v) s->perturb = v->valuedouble;
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "edges_per_rod")) &&
+      (!cJSON_IsNumber(v) || v->valuedouble < 1 || v->valuedouble > 10000 ||
+       v->valuedouble != floor(v->valuedouble))) {
+    rc = sweep_error(file, "\"edges_per_rod\" must be an integer in 1 .. 10000");
+    goto done;
+  }
+  if (v) s->edges = (int)v->valuedouble;
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "cells"))) {
+    int k = 0;
+    cJSON_ArrayForEach(e, v) {
+      if (!cJSON_IsNumber(e) || k >= 3 || e->valuedouble < 1 || e->valuedouble > 1000 ||
+          e->valuedouble != floor(e->valuedouble)) {
+        rc = sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
+        goto done;
+      }
+      s->cells[k++] = (int)e->valuedouble;
+    }
+    if (!cJSON_IsArray(v) || k < 2) {
+      rc = sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
+      goto done;
+    }
+    /* one count per lattice vector: a third count of a planar lattice (or a
+     * missing one of a 3D lattice) would be ignored (or taken as 1) */
+    for (int j = 0; j < s->nlat; ++j) {
+      rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
+      if (strcmp(s->lat[j], "reentrant")) rn_lattice_kind_from_name(s->lat[j], &kind);
+      int dim = rn_lattice_kind_dimension(kind);
+      if (k != dim) {
+        rc = sweep_error(file,
+                         "\"cells\" has %d counts but the lattice '%s' is %dD: give one "
+                         "count per lattice vector (%d)%s",
+                         k, s->lat[j], dim, dim,
+                         s->nlat > 1 ? "; sweep planar and 3D lattices in separate "
+                                       "files"
+                                     : "");
+        goto done;
+      }
+    }
+  }
+  for (int k = 0; k < 2; ++k) {
+    const char *name = k ? "nu" : "E";
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, name))) {
+      if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) ||
+          (k == 0 && !(v->valuedouble > 0.0)) ||
+          (k == 1 && !(v->valuedouble > -1.0 && v->valuedouble < 0.5))) {
+        rc = sweep_error(file, "\"%s\" must be %s", name,
+                         k ? "Poisson's ratio, a number in (-1, 0.5)"
+                           : "Young's modulus, a finite number > 0");
+        goto done;
+      }
+      *(k ? &s->nu : &s->E) = v->valuedouble;
+    }
+  }
+  /* the seeds draw the random perturbation only: without one every seed
+   * would give the same cell (and the same answer) */
+  if (!rc && cJSON_GetObjectItemCaseSensitive(root, "seed") && !(s->perturb > 0.0))
+    rc = sweep_error(file, "\"seed\" draws the random joint perturbation only: give "
+                           "\"perturb\" > 0 (with \"perturb\" 0 every seed gives the "
+                           "same cell)");
+done:
+  cJSON_Delete(root);
+  return rc;
+}
+
+/* The point's cell as a scene file at path. */
+static rn_status write_cell(rn_context *ctx, const sweep_spec *s, const point *p,
+                            const char *path) {
+  rn_pcell c;
+  rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
+  rn_status st;
+  int reentrant = strcmp(p->lattice, "reentrant") == 0;
+  if (!reentrant) rn_lattice_kind_from_name(p->lattice, &kind);
+  st = reentrant ? rn_pcell_reentrant(ctx, s->cells, 1.0, &c)
+                 : rn_pcell_from_lattice(ctx, kind, s->cells, 1.0, &c);
+  if (st) return st;
+  if (s->perturb > 0.0) rn_pcell_perturb(&c, s->perturb, (unsigned long)p->seed);
+  rn_lattice_scene sc = {"rodnet sweep",
+                         s->edges,
+                         p->joint_model,
+                         s->E,
+                         s->nu,
+                         RN_LSEC_RECTANGLE,
+                         {0.0, 0.0},
+                         RN_LLOAD_NONE,
+                         0,
+                         0.0,
+                         0.0,
+                         NULL};
+  rn_pcell_section_for_density(&c, p->rho, &sc);
+  st = rn_pcell_write_scene(ctx, path, &c, &sc, NULL);
+  rn_pcell_free(&c);
+  return st;
+}
+
+typedef struct point_out {
+  const point *p;
+  const rn_homogenization *h;
+  const double *S;
+  double seconds;
+  const char *path;   /* the file being written (messages) */
+  const char *record; /* point_record, unformatted JSON */
+  const char *hash;   /* scene_hash of the cell scene homogenised */
+} point_out;
+
+/* The numbers of a point file are finite (issue 22: no "nan" in JSON): C,
+ * the relative density and the engineering constants 1/S_ii, -S_ij/S_ii that
+ * rn_homog_put_constants writes. */
+static int point_finite(const point_out *o, rn_num_check *chk) {
+  const int n = o->h->nstrain;
+  char field[64];
+  rn_num_checked(chk, "relative_density", o->h->relative_density);
+  for (int i = 0; i < n * n; ++i) {
+    snprintf(field, sizeof field, "C[%d]", i);
+    rn_num_checked(chk, field, o->h->C[i]);
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      snprintf(field, sizeof field, "constants (compliance S[%d][%d])", i, j);
+      rn_num_checked(chk, field,
+                     i == j ? 1.0 / o->S[i * n + i] : -o->S[i * n + j] / o->S[i * n + i]);
+    }
+  rn_num_checked(chk, "time_s", o->seconds);
+  return !chk->bad;
+}
+
+/* FNV-1a (64 bit) of the file at path as "fnv1a64:HEX" in out[32]; 0 on success. */
+static int scene_hash(rn_context *ctx, const char *path, char out[32]) {
+  char *text = NULL;
+  size_t len = 0;
+  uint64_t h = 14695981039346656037ULL;
+  if (rn_text_file_read(ctx, path, 1 << 30, &text, &len)) return -1;
+  for (size_t i = 0; i < len; ++i) {
+    h ^= (unsigned char)text[i];
+    h *= 1099511628211ULL;
+  }
+  free(text);
+  snprintf(out, 32, "fnv1a64:%016llx", (unsigned long long)h);
+  return 0;
+}
+
+static rn_status write_point(FILE *f, void *user, rn_context *ctx) {
+  const point_out *o = user;
+  int n = o->h->nstrain;
+  rn_num_check chk = {0, 0.0, ""};
+  if (!point_finite(o, &chk)) {
+    char msg[512];
+    return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "%s",
+                                rn_num_check_message(&chk, o->path, msg, sizeof msg));
+  }
+  fprintf(f,
+          "{\n  \"index\": %d,\n  \"lattice\": \"%s\",\n  \"joint_model\": \"%s\",\n"
+          "  \"relative_density_target\": %.17g,\n  \"seed\": %ld,\n",
+          o->p->index, o->p->lattice, joint_name(o->p->joint_model), o->p->rho,
+          o->p->seed);
+  fprintf(f, "  \"rodnet_version\": \"%s\",\n  \"scene_hash\": \"%s\",\n",
+          rn_version_string(), o->hash);
+  fprintf(f, "  \"parameters\": %s,\n", o->record);
+  fprintf(f, "  \"dimension\": %d,\n  \"relative_density\": %.17g,\n  \"C\": [",
+          o->h->dim, o->h->relative_density);
+  for (int i = 0; i < n * n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", o->h->C[i]);
+  fputs("],\n", f);
+  rn_homog_put_constants(f, o->h, o->S);
+  fprintf(f, "  \"time_s\": %.6g\n}\n", o->seconds);
+  return RN_OK;
+}
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* 1 if path holds a finished point of index p->index with the record rec (every
+ * parameter that defines it), this rodnet version and the cell scene of hash. */
+static int point_done(rn_context *ctx, const char *path, const point *p, const cJSON *rec,
+                      const char *hash) {
+  char *text = NULL;
+  size_t len = 0;
+  int ok = 0;
+  if (access(path, R_OK) != 0 || rn_text_file_read(ctx, path, 1 << 20, &text, &len))
+    return 0;
+  cJSON *root = cJSON_Parse(text);
+  const cJSON *i = cJSON_GetObjectItemCaseSensitive(root, "index"),
+              *l = cJSON_GetObjectItemCaseSensitive(root, "lattice"),
+              *j = cJSON_GetObjectItemCaseSensitive(root, "joint_model"),
+              *r = cJSON_GetObjectItemCaseSensitive(root, "relative_density_target"),
+              *s = cJSON_GetObjectItemCaseSensitive(root, "seed"),
+              *c = cJSON_GetObjectItemCaseSensitive(root, "constants"),
+              *v = cJSON_GetObjectItemCaseSensitive(root, "rodnet_version"),
+              *h = cJSON_GetObjectItemCaseSensitive(root, "scene_hash"),
+              *pr = cJSON_GetObjectItemCaseSensitive(root, "parameters");
+  ok = cJSON_IsNumber(i) && i->valuedouble == p->index && cJSON_IsString(l) &&
+       strcmp(l->valuestring, p->lattice) == 0 && cJSON_IsString(j) &&
+       strcmp(j->valuestring, joint_name(p->joint_model)) == 0 && cJSON_IsNumber(r) &&
+       r->valuedouble == p->rho && cJSON_IsNumber(s) &&
+       s->valuedouble == (double)p->seed && cJSON_IsObject(c) && cJSON_IsString(v) &&
+       strcmp(v->valuestring, rn_version_string()) == 0 && cJSON_IsString(h) &&
+       strcmp(h->valuestring, hash) == 0 && cJSON_IsObject(pr) &&
+       cJSON_Compare(pr, rec, 1);
+  cJSON_Delete(root);
+  free(text);
+  return ok;
+}
+
+/* Homogenise one point (its cell already written to scene, of hash; rec its
+ * record) into DIR/point_NNNN.json; RN_OK or the failure. */
+static rn_status run_point(rn_context *ctx, const point *p, const char *dir,
+                           const char *scene, const char *rec, const char *hash) {
+  char out[4096];
+  rn_scene *sc = NULL;
+  rn_homogenization h;
+  double S[36];
+  rn_status st;
+  snprintf(out, sizeof out, "%s/point_%04d.json", dir, p->index);
+  if ((st = rn_scene_load(ctx, scene, &sc))) return st;
+  double t0 = now();
+#ifdef RN_HAVE_SOLVER
+  st = rn_homogenize(rn_scene_network(sc), &h);
+#else
+  st = rn_context_set_error(ctx, RN_ERR_STATE,
+                            "rodnet was built without the solver (RN_WITH_TRILINOS=OFF)");
+#endif
+  double seconds = now() - t0;
+  if (!st && !rn_homog_invert(h.nstrain, h.C, S))
+    st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the effective stiffness is singular");
+  if (!st) {
+    point_out o = {p, &h, S, seconds, out, rec, hash};
+    st = rn_file_write_atomic(ctx, out, write_point, &o);
+  }
+  rn_scene_destroy(&sc);
+  return st;
+}
+
+typedef struct csv_in {
+  const char *dir;
+  int npoints;
+  const unsigned char *valid; /* [npoints]: the point file is this sweep's */
+} csv_in;
+
+/* DIR/sweep.csv from the point files. */
+static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
+  const csv_in *in = user;
+  fputs("index,lattice,joint_model,relative_density_target,seed,relative_density,"
+        "dimension,E1,E2,nu12,G12,time_s\n",
+        f);
+  for (int k = 0; k < in->npoints; ++k) {
+    char path[4096], *text = NULL;
+    size_t len = 0;
+    snprintf(path, sizeof path, "%s/point_%04d.json", in->dir, k);
+    if (!in->valid[k]) continue; /* failed: an older file there is another point's */
+    if (rn_text_file_read(ctx, path, 1 << 20, &text, &len)) continue; /* failed point */
+    cJSON *r = cJSON_Parse(text);
+    const cJSON *c = cJSON_GetObjectItemCaseSensitive(r, "constants");
+#define NUM(o, k) cJSON_GetNumberValue(cJSON_GetObjectItemCaseSensitive(o, k))
+#define STR(o, k) cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(o, k))
+    /* a number missing from the point file reads as NaN: refused, not "nan" */
+    static const char *const col[] = {"relative_density_target",
+                                      "seed",
+                                      "relative_density",
+                                      "dimension",
+                                      "constants.E1",
+                                      "constants.E2",
+                                      "constants.nu12",
+                                      "constants.G12",
+                                      "time_s"};
+    const double v[] = {NUM(r, "relative_density_target"),
+                        NUM(r, "seed"),
+                        NUM(r, "relative_density"),
+                        NUM(r, "dimension"),
+                        NUM(c, "E1"),
+                        NUM(c, "E2"),
+                        NUM(c, "nu12"),
+                        NUM(c, "G12"),
+                        NUM(r, "time_s")};
+    const char *lattice = STR(r, "lattice"), *joint = STR(r, "joint_model");
+    rn_num_check chk = {0, 0.0, ""};
+    for (int i = 0; i < 9; ++i) rn_num_checked(&chk, col[i], v[i]);
+    if (!lattice || !joint)
+      rn_num_checked(&chk, lattice ? "joint_model" : "lattice", NAN);
+    if (!chk.bad)
+      fprintf(f, "%d,%s,%s,%.17g,%.0f,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g,%.6g\n", k,
+              lattice, joint, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+#undef NUM
+#undef STR
+    cJSON_Delete(r);
+    free(text);
+    if (chk.bad) {
+      char msg[512], what[4200];
+      snprintf(what, sizeof what, "%s/sweep.csv (from %s)", in->dir, path);
+      return rn_context_set_error(ctx, RN_ERR_NOT_FINITE, "%s",
+                                  rn_num_check_message(&chk, what, msg, sizeof msg));
+    }
+  }
+  return RN_OK;
+}
+
+static int run_plot(const char *csv, const char *png) {
+  const char *const args[] = {csv, png, NULL};
+  return rn_cli_run_script_to("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, args, png);
+}
+
+static void progress(int done, int total, const point *p, int skipped) {
+  char bar[31];
+  int fill = total ? 30 * done / total : 30;
+  for (int i = 0; i < 30; ++i) bar[i] = i < fill ? '#' : '.';
+  bar[30] = '\0';
+  fprintf(stderr, "\rrodnet sweep: [%s] %d/%d  %s %s rho %.4g seed %ld%s   ", bar, done,
+          total, p->lattice, joint_name(p->joint_model), p->rho, p->seed,
+          skipped ? " (done before)" : "");
+  if (done == total) fputc('\n', stderr);
+  fflush(stderr);
+}
+
+int rn_cli_sweep(int argc, char **argv) {
+  const char *file = NULL, *dir = NULL, *plot = NULL;
+  int quiet = 0, rc = 0, failed = 0;
+  unsigned char *valid = NULL;
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i], *v = NULL;
+    int m;
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+      fputs(sweep_help, stdout);
+      return RN_EXIT_OK;
+    }
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
+      quiet = 1;
+      continue;
+    }
+    if ((m = rn_cli_option_value("sweep", argc, argv, &i, "--output", "-o", &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      dir = v;
+      continue;
+    }
+    if ((m = rn_cli_option_value("sweep", argc, argv, &i, "--plot", NULL, &v))) {
+      if (m < 0) return RN_EXIT_USAGE;
+      plot = v;
+      continue;
+    }
+    if (s[0] == '-' && s[1] != '\0')
+      return rn_cli_usage_error("sweep", "unknown option '%s'", s);
+    if (file) return rn_cli_usage_error("sweep", "more than one sweep file given");
+    file = s;
+  }
+  static const char *const valued[] = {"--output|-o", "--plot", NULL};
+  if ((rc = rn_cli_check_repeats("sweep", argc, argv, valued))) return rc;
+  if (!file) return rn_cli_usage_error("sweep", "missing the sweep file");
+  if (!dir) return rn_cli_usage_error("sweep", "missing -o DIR");
+  /* the files read and written: the folder's point files and CSV, the plot */
+  const rn_cli_file files[] = {{"the sweep file", file, NULL, RN_CLI_IN},
+                               {"-o", dir, NULL, RN_CLI_OUT_DIR},
+                               {"-o", dir, "/point_*.json", RN_CLI_OUT},
+                               {"-o", dir, "/sweep.csv", RN_CLI_OUT},
+                               {"--plot", plot, NULL, RN_CLI_OUT}};
+  if ((rc = rn_cli_check_files("sweep", files, 5))) return rc;
+#ifndef RN_HAVE_SOLVER
+  return rn_cli_no_solver("sweep"); /* rn_homogenize is the solver's */
+#endif
+  rn_context *ctx = NULL;
+  if (rn_context_create(&ctx) != RN_OK) return RN_EXIT_INTERNAL;
+  char *text = NULL;
+  size_t len = 0;
+  sweep_spec *s = calloc(1, sizeof(*s));
+  if (!s) {
+    rn_context_destroy(&ctx);
+    return RN_EXIT_INTERNAL;
+  }
+  if (rn_text_file_read(ctx, file, 1 << 20, &text, &len)) {
+    fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if ((rc = parse_spec(file, text, s))) goto done;
+  if ((rc = rn_cli_probe_outputs("sweep", files, 5))) goto done;
+  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "rodnet sweep: %s: cannot create the folder: %s\n", dir,
+            strerror(errno));
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  int total = s->nlat * s->njm * s->nrho * s->nseed, k = 0;
+  if (!(valid = calloc((size_t)total, 1))) {
+    rc = RN_EXIT_INTERNAL;
+    goto done;
+  }
+  for (int a = 0; a < s->nlat; ++a)
+    for (int b = 0; b < s->njm; ++b)
+      for (int c = 0; c < s->nrho; ++c)
+        for (int d = 0; d < s->nseed; ++d, ++k) {
+          point p = {k, s->lat[a], s->jm[b], s->rho[c], s->seed[d]};
+          char out[4096], scene[4096], hash[32];
+          snprintf(out, sizeof out, "%s/point_%04d.json", dir, k);
+          snprintf(scene, sizeof scene, "%s/point_%04d.scene.json", dir, k);
+          /* the point's record: its parameters, the version, its cell scene */
+          cJSON *rec = point_record(s, &p);
+          char *rec_text = rec ? cJSON_PrintUnformatted(rec) : NULL;
+          rn_status st =
+              rec_text ? RN_OK : rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+          if (!st) st = write_cell(ctx, s, &p, scene);
+          if (!st && scene_hash(ctx, scene, hash)) st = RN_ERR_IO;
+          int skip = !st && point_done(ctx, out, &p, rec, hash);
+          if (!st && !skip) st = run_point(ctx, &p, dir, scene, rec_text, hash);
+          cJSON_Delete(rec);
+          cJSON_free(rec_text);
+          valid[k] = !st;
+          if (st) {
+            fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
+                    quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
+                    p.seed, rn_context_last_error(ctx));
+            if (st == RN_ERR_IO) { /* the folder: no point in going on */
+              rc = RN_EXIT_INPUT;
+              goto done;
+            }
+            ++failed;
+          }
+          if (!quiet) progress(k + 1, total, &p, skip);
+        }
+  char csv[4096];
+  snprintf(csv, sizeof csv, "%s/sweep.csv", dir);
+  csv_in in = {dir, total, valid};
+  if (rn_file_write_atomic(ctx, csv, write_csv, &in)) {
+    fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
+    rc = RN_EXIT_INPUT;
+    goto done;
+  }
+  if (!quiet)
+    printf("rodnet sweep: %d points (%d failed); wrote %s\n", total, failed, csv);
+  if (failed) rc = RN_EXIT_INTERNAL;
+  if (plot && run_plot(csv, plot) != 0) {
+    fprintf(stderr, "rodnet sweep: the plot %s failed (python3 with matplotlib)\n", plot);
+    rc = RN_EXIT_INTERNAL;
+  }
+done:
+  free(valid);
+  free(text);
+  free(s);
+  rn_context_destroy(&ctx);
+  return rc;
+}

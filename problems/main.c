@@ -1,4 +1,0 @@
-/* main.c - the `rodnet` command. */
-#include "cli.h"
-
-int main(int argc, char **argv) { return rn_cli_main(argc, argv); }

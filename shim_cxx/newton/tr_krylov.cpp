@@ -1,0 +1,717 @@
+// tr_krylov.cpp - the Newton-Krylov trust region (RN_SOLVER_TR_KRYLOV, issue 7).
+//
+// Written against System (system.hpp) and Preconditioner (preconditioner.hpp) only:
+// vectors are Tpetra vectors on sys.map(), dot products and norms are global
+// reductions, the Hessian is applied as a Tpetra operator and M^{-1} by the
+// preconditioner's inverse().  Nothing here assumes one rank.
+//
+// Iteration at the accepted state x (reference frames of x):
+//  1. g = grad E(x); assemble H(x); set up the SPD preconditioner M (it defines the
+//     trust-region norm ||s||_M = sqrt(s' M s)).  If M had to modify an indefinite
+//     piece (stats().shifted), or if the stopping test is about to pass with a
+//     preconditioner that cannot certify positive definiteness, Lanczos on the pencil
+//     (H, M) (preconditioned, M-orthonormal, full reorthogonalisation, at most
+//     kLanczosSteps) gives the lowest Ritz pair (mu, v): mu < -kCurvTol means negative
+//     curvature, and no convergence test passes (a saddle is never reported).
+//  2. The step: preconditioned MINRES (Paige-Saunders) on H s = -g from s = 0, with
+//     the trust region folded in (the MINRES analogue of Steihaug-Toint):
+//       - its iterates grow monotonically in the M-norm while the Lanczos matrix T_k
+//         is positive definite (Fong and Saunders 2012; Liu and Roosta, "MINRES: from
+//         negative curvature detection to monotonicity properties", 2022); ||s_k||_M is
+//         tracked exactly with M s_k, built from the same recurrences on the
+//         unpreconditioned Lanczos vectors (no product with M is needed);
+//       - nonpositive curvature is detected by the pivots of T_k = L D L' (d_k =
+//         alpha_k - beta_k^2 / d_{k-1} <= 0: T_k is no longer positive definite); the
+//         direction is the conjugate-gradient direction p_k = v_k - (beta_k / d_{k-1})
+//         p_{k-1}, for which p_k' H p_k = d_k (Lanczos-CG connection): the step goes
+//         from s_{k-1} along +-p_k to the boundary, the sign that lowers the model;
+//       - an iterate outside the radius: back to the boundary along the last update;
+//       - otherwise stop when ||r_k||_{M^{-1}} <= eta ||g||_{M^{-1}}, eta the inexact-
+//         Newton forcing term min(0.1, 0.9 (||g_k|| / ||g_{k-1}||)^2) (Eisenstat and
+//         Walker's choice 2), at least krylov_tol; on the first step of a solve,
+//         with no ratio yet, kForcingFirst = 1e-4 (not Eisenstat and Walker's 0.1
+//         or 0.5): a Newton step costs a Hessian assembly and a preconditioner setup,
+//         worth many Krylov iterations, and each decade of the forcing that the first
+//         step leaves costs a later step (choice 2 then squares it).  Measured on
+//         the octet 16^3 under stretch with the multigrid coarse solve: 0.1 took 5
+//         Newton steps (9 MINRES, 130 s CPU), 1e-4 took 2 (11 MINRES, 99 s CPU;
+//         docs/solvers.md).
+//     With negative curvature known from step 1 and an interior step (e.g. at a
+//     symmetric saddle, where g is orthogonal to v and the Krylov space of g never
+//     sees the negative direction), s + tau v on the boundary, tau of the sign that
+//     lowers the model: the iteration leaves saddles.
+//  3. Ratio test, radius update and watchdog as in tr_minres.cpp (steps 4-5a there;
+//     the watchdog needs System::save_state()).
+//  3a. Second-order correction of a step the ratio test rejects, as tr_minres.cpp's
+//     step 5 (where the System provides System::stretch_correction): the Newton step
+//     linearises rotations and so stretches the stiff edges to second order in the
+//     step; x + s + c, c from the fixed point c = -M^{-1} f(s + c) (f the stretching
+//     force the quadratic model misses), replaces x + s if its energy is lower.  M^{-1}
+//     is the preconditioner, exact where it is an unshifted factorisation of H.
+//
+// Why not Belos::MinresIter: its iterate() keeps the Lanczos coefficients alpha_k,
+// beta_k and the Givens rotations (cs, sn, gamma) in local variables and its state
+// (getState(): Y, R1, R2, W, W1, W2) and status tests see only vectors and the
+// residual estimate phibar; the trust region needs the pivots of T_k (nonpositive
+// curvature) and ||s_k||_M after every iteration, and to stop inside an iteration.
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include <Teuchos_Array.hpp>
+
+#include "pc/alt_preconditioners.hpp"
+#include "system/dof_blocks.hpp"
+#include "pc/impls/factor/factor_preconditioner.hpp"
+#include "krylov/minres.hpp"
+#include "pc/impls/gathered/gathered_preconditioner.hpp"
+#include "pc/impls/local/local_preconditioner.hpp"
+#include "newton/monitor.hpp"
+#include "krylov/pencil_lanczos.hpp"
+#include "newton/predictor.hpp"
+#include "pc/preconditioner.hpp"
+#include "base/shim_error.hpp"
+#include "newton/solvers.hpp"
+#include "factor/spd_factor.hpp"
+#include "system/system_serial.hpp"
+
+extern "C" void dstev_(const char *jobz, const int *n, double *d, double *e, double *z,
+                       const int *ldz, double *work, int *info, size_t jobz_len);
+
+namespace rodnet {
+
+namespace {
+
+constexpr double kAccept = 1e-4;               // accept a step if rho > kAccept
+constexpr double kCurvTol = 1e3 * DBL_EPSILON; // significant negative curvature
+constexpr int kLanczosSteps = 30;
+// Negative curvature that marks a saddle for the round-off acceptance rule (run());
+// above it, e.g. a zero mode's Ritz value at round-off, the gradient decides.
+constexpr double kNoiseCurv = 1e-8;
+constexpr int kWatchdogSteps = 2;      // as in tr_minres.cpp
+constexpr double kForcingFirst = 1e-4; // forcing term of the first step (see the top)
+// The second-order correction (step 3a at the top), as in tr_minres.cpp.
+constexpr double kCorrectionTol = 1e-4;
+constexpr int kCorrectionIts = 50;
+constexpr double kCorrectionGrowth = 1e3;
+
+using Vec = TMV; // one column
+
+double dot(const Vec &a, const Vec &b) {
+  Teuchos::Array<double> r(1);
+  a.dot(b, r());
+  return r[0];
+}
+
+// y = H x
+void apply_h(const System &sys, const Vec &x, Vec &y) { sys.hessian()->apply(x, y); }
+
+// The trust-region step of one iteration.
+struct KrylovStep {
+  explicit KrylovStep(const Teuchos::RCP<const TMap> &map) : s(map, 1), Ms(map, 1) {}
+  Vec s, Ms;             // the step and M s
+  int iterations = 0;    // MINRES iterations
+  bool boundary = false; // stopped at the radius
+  bool negative = false; // met nonpositive curvature
+};
+
+// Preconditioned MINRES for H s = -g inside ||s||_M <= radius (see the top).
+class TrustMinres {
+public:
+  TrustMinres(System &sys, const Tpetra::Operator<> &Minv, int max_iterations)
+      : sys_(sys), Minv_(&Minv), maxit_(max_iterations), map_(sys.map()), r1_(map_, 1),
+        r2_(map_, 1), y_(map_, 1), v_(map_, 1), w_(map_, 1), w1_(map_, 1), w2_(map_, 1),
+        Mw_(map_, 1), Mw1_(map_, 1), Mw2_(map_, 1), p_(map_, 1), Mp_(map_, 1),
+        tmp_(map_, 1) {}
+
+  // ||g||_{M^{-1}} of the last solve (beta_1).
+  double beta1() const { return beta1_; }
+  // The preconditioner of the next solves (after a setup; the work vectors stay);
+  // beta1() is 0 again until the next solve, as for a new solver.
+  void rebind(const Tpetra::Operator<> &Minv) {
+    Minv_ = &Minv;
+    beta1_ = 0.0;
+  }
+
+  void solve(const Vec &g, double radius, double eta, KrylovStep &st) {
+    st.s.putScalar(0.0);
+    st.Ms.putScalar(0.0);
+    st.iterations = 0;
+    st.boundary = st.negative = false;
+    r1_.update(-1.0, g, 0.0); // b = -g
+    r2_.assign(r1_);
+    Minv_->apply(r1_, y_);
+    double beta = dot(r1_, y_);
+    if (beta < 0.0 || !std::isfinite(beta))
+      throw Error(RN_ERR_SOLVER, "rn_solve: the preconditioner is not positive definite");
+    beta = std::sqrt(beta);
+    beta1_ = beta;
+    if (beta == 0.0) return;
+    p_.putScalar(0.0);
+    Mp_.putScalar(0.0);
+    double oldb = 0.0, dbar = 0.0, epsln = 0.0, phibar = beta, cs = -1.0, sn = 0.0;
+    double pivot = 0.0, snorm2 = 0.0; // LDL' pivot d_{k-1}; ||s||_M^2
+    w_.putScalar(0.0), w2_.putScalar(0.0), Mw_.putScalar(0.0), Mw2_.putScalar(0.0);
+    for (int k = 1; k <= maxit_; ++k) {
+      st.iterations = k;
+      // Lanczos: v = y / beta (M-orthonormal), M v = r2 / beta.
+      const double s = 1.0 / beta;
+      v_.update(s, y_, 0.0);
+      apply_h(sys_, v_, y_);
+      if (k >= 2) y_.update(-beta / oldb, r1_, 1.0);
+      const double alfa = dot(v_, y_);
+      // The CG direction p_k and its curvature d_k = p' H p (pivot of T_k = L D L').
+      const double l = k >= 2 ? beta / pivot : 0.0;
+      const double d = alfa - (k >= 2 ? beta * beta / pivot : 0.0);
+      p_.update(1.0, v_, -l);
+      Mp_.update(s, r2_, -l);
+      if (!(d > 0.0)) {
+        to_boundary_on_curvature(g, radius, st);
+        return;
+      }
+      pivot = d;
+      y_.update(-alfa / beta, r2_, 1.0);
+      // M w needs M v = r2 / beta before r2 moves on
+      Mw1_.assign(Mw2_);
+      Mw2_.assign(Mw_);
+      Mw_.update(s, r2_, 0.0);
+      r1_.assign(r2_);
+      r2_.assign(y_);
+      Minv_->apply(r2_, y_);
+      oldb = beta;
+      beta = dot(r2_, y_);
+      if (beta < 0.0 || !std::isfinite(beta))
+        throw Error(RN_ERR_SOLVER,
+                    "rn_solve: the preconditioner is not positive definite");
+      beta = std::sqrt(beta);
+      // QR of the tridiagonal, Paige-Saunders
+      const double oldeps = epsln;
+      const double delta = cs * dbar + sn * alfa;
+      const double gbar = sn * dbar - cs * alfa;
+      epsln = sn * beta;
+      dbar = -cs * beta;
+      const double gamma = std::max(std::hypot(gbar, beta), DBL_MIN);
+      cs = gbar / gamma;
+      sn = beta / gamma;
+      const double phi = cs * phibar;
+      phibar = std::fabs(sn * phibar);
+      // w_k = (v_k - oldeps w_{k-2} - delta w_{k-1}) / gamma, and M w_k alike
+      w1_.assign(w2_);
+      w2_.assign(w_);
+      w_.update(1.0 / gamma, v_, 0.0);
+      w_.update(-oldeps / gamma, w1_, -delta / gamma, w2_, 1.0);
+      Mw_.update(-oldeps / gamma, Mw1_, -delta / gamma, Mw2_, 1.0 / gamma);
+      // s_k = s_{k-1} + phi w_k: inside the radius?
+      const double sw = dot(st.s, Mw_), ww = dot(w_, Mw_);
+      const double next = snorm2 + 2.0 * phi * sw + phi * phi * ww;
+      if (std::sqrt(std::max(next, 0.0)) >= radius) {
+        const double tau = boundary_root(snorm2, phi * sw, phi * phi * ww, radius);
+        st.s.update(tau * phi, w_, 1.0);
+        st.Ms.update(tau * phi, Mw_, 1.0);
+        st.boundary = true;
+        return;
+      }
+      st.s.update(phi, w_, 1.0);
+      st.Ms.update(phi, Mw_, 1.0);
+      snorm2 = next;
+      if (phibar <= eta * beta1_ || beta == 0.0) return;
+    }
+  }
+
+private:
+  // The larger root tau of ||s + tau u||_M^2 = ss + 2 tau su + tau^2 uu = radius^2.
+  static double boundary_root(double ss, double su, double uu, double radius) {
+    if (!(uu > 0.0)) return 0.0;
+    const double disc = std::sqrt(std::max(0.0, su * su - uu * (ss - radius * radius)));
+    return (-su + disc) / uu;
+  }
+
+  // Nonpositive curvature along p: from s to the boundary along +-p, the sign that
+  // lowers the model m(s) = g's + s'Hs/2.
+  void to_boundary_on_curvature(const Vec &g, double radius, KrylovStep &st) {
+    apply_h(sys_, p_, tmp_);
+    const double pp = dot(p_, Mp_), sp = dot(st.s, Mp_), ss = dot(st.s, st.Ms);
+    const double slope = dot(g, p_) + dot(st.s, tmp_); // (g + H s)' p
+    const double pHp = dot(p_, tmp_);                  // = d up to round-off
+    const double disc = std::sqrt(std::max(0.0, sp * sp - pp * (ss - radius * radius)));
+    double best = std::numeric_limits<double>::max(), tau_best = 0.0;
+    for (double tau : {(-sp + disc) / pp, (-sp - disc) / pp}) {
+      const double m = tau * slope + 0.5 * tau * tau * pHp;
+      if (m < best) best = m, tau_best = tau;
+    }
+    st.s.update(tau_best, p_, 1.0);
+    st.Ms.update(tau_best, Mp_, 1.0);
+    st.boundary = st.negative = true;
+  }
+
+  System &sys_;
+  const Tpetra::Operator<> *Minv_;
+  int maxit_;
+  Teuchos::RCP<const TMap> map_;
+  Vec r1_, r2_, y_, v_, w_, w1_, w2_, Mw_, Mw1_, Mw2_, p_, Mp_, tmp_;
+  double beta1_ = 0.0;
+};
+
+// Lowest eigenpair of the pencil (H, M) by preconditioned Lanczos (M-orthonormal
+// basis, full reorthogonalisation) from a fixed pseudo-random start; v is returned
+// M-normalised with M v in Mv, mu = v' H v.  H and M^{-1} are operators on map (the
+// System's Hessian and the preconditioner, or the DD's coarse pencil).
+class PencilLanczos {
+public:
+  PencilLanczos(const Tpetra::Operator<> &H, const Tpetra::Operator<> &Minv,
+                const Teuchos::RCP<const TMap> &map)
+      : H_(H), Minv_(Minv), map_(map), z_(map_, 1), y_(map_, 1) {}
+
+  double lowest(Vec &v, Vec &Mv, int *steps) {
+    std::vector<Vec> V, Z; // Lanczos vectors and M times them
+    std::vector<double> alpha, beta;
+    // start: z = pseudo-random (unpreconditioned space), y = M^{-1} z
+    const size_t nloc = z_.getLocalLength();
+    const GO base = map_->getMinGlobalIndex();
+    {
+      auto zv = z_.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (size_t i = 0; i < nloc; ++i)
+        zv(i, 0) =
+            1.0 +
+            0.5 * std::sin(0.7 * static_cast<double>(base + static_cast<GO>(i)) + 0.3);
+    }
+    Minv_.apply(z_, y_);
+    double b = std::sqrt(std::max(dot(z_, y_), 0.0));
+    for (int k = 0; k < kLanczosSteps && b > 0.0; ++k) {
+      V.emplace_back(map_, 1);
+      Z.emplace_back(map_, 1);
+      V.back().update(1.0 / b, y_, 0.0);
+      Z.back().update(1.0 / b, z_, 0.0);
+      if (k > 0) beta.push_back(b);
+      H_.apply(V.back(), z_); // z = H v_k (unpreconditioned)
+      const double a = dot(V.back(), z_);
+      alpha.push_back(a);
+      // z -= a M v_k + b M v_{k-1}; then full reorthogonalisation in the M-inner
+      // product: z -= sum (v_j' z) M v_j
+      z_.update(-a, Z.back(), 1.0);
+      if (k > 0) z_.update(-b, Z[Z.size() - 2], 1.0);
+      for (size_t j = 0; j < V.size(); ++j) z_.update(-dot(V[j], z_), Z[j], 1.0);
+      Minv_.apply(z_, y_);
+      b = std::sqrt(std::max(dot(z_, y_), 0.0));
+      if (b <= 1e-12 * std::fabs(a)) break;
+    }
+    const int m = static_cast<int>(alpha.size());
+    *steps = m;
+    std::vector<double> d(alpha), e(beta), zz(static_cast<size_t>(m) * m),
+        work(static_cast<size_t>(std::max(1, 2 * m - 2)));
+    e.resize(static_cast<size_t>(std::max(m - 1, 1)));
+    int info = 0;
+    dstev_("V", &m, d.data(), e.data(), zz.data(), &m, work.data(), &info, 1);
+    if (info != 0) throw Error(RN_ERR_LAPACK, "rn_solve: Lanczos eigenvalues (dstev)");
+    v.putScalar(0.0);
+    Mv.putScalar(0.0);
+    for (int j = 0; j < m; ++j) { // eigenvector of the lowest Ritz value (column 0)
+      v.update(zz[static_cast<size_t>(j)], V[static_cast<size_t>(j)], 1.0);
+      Mv.update(zz[static_cast<size_t>(j)], Z[static_cast<size_t>(j)], 1.0);
+    }
+    H_.apply(v, y_);
+    const double vv = dot(v, Mv);
+    return vv > 0.0 ? dot(v, y_) / vv : d[0];
+  }
+
+private:
+  const Tpetra::Operator<> &H_;
+  const Tpetra::Operator<> &Minv_;
+  Teuchos::RCP<const TMap> map_;
+  Vec z_, y_;
+};
+
+class TrustRegionKrylov {
+public:
+  TrustRegionKrylov(System &sys, Preconditioner &prec, Monitor &mon,
+                    const rn_solve_options &opt)
+      : sys_(sys), prec_(prec), mon_(mon), opt_(opt), map_(sys.map()), x_(map_, 1),
+        g_(map_, 1), gt_(map_, 1), xt_(map_, 1), xa_(map_, 1), hs_(map_, 1), v_(map_, 1),
+        Mv_(map_, 1), sig_(map_, 1), f_(map_, 1), q_(map_, 1), xc_(map_, 1) {}
+
+  void run();
+
+private:
+  void analyse(const IterationView &it);
+  double model(const Vec &s) { // g's + s'Hs/2
+    apply_h(sys_, s, hs_);
+    return dot(g_, s) + 0.5 * dot(s, hs_);
+  }
+  void add_curvature_direction(double radius, KrylovStep &st);
+  bool correct_step(const KrylovStep &st, Vec &xc);
+  double gradient_radius() { // ||M^{-1} g||_M = sqrt(g' M^{-1} g)
+    prec_.inverse()->apply(g_, hs_);
+    return std::sqrt(std::max(dot(g_, hs_), 0.0));
+  }
+  void take(const Vec &x) { // accept x (reference update), gradient there
+    x_.assign(x);
+    sys_.accept(x_);
+    if (sys_.gradient(x_, &energy_, g_) != RN_OK)
+      throw Error(RN_ERR_SOLVER, "rn_solve: gradient at an accepted point is degenerate");
+  }
+
+  System &sys_;
+  Preconditioner &prec_;
+  Monitor &mon_;
+  const rn_solve_options &opt_;
+  Teuchos::RCP<const TMap> map_;
+  Vec x_, g_, gt_, xt_, xa_, hs_, v_, Mv_, sig_, f_, q_, xc_;
+  double energy_ = 0.0, mu_ = 0.0;
+  bool negcurv_ = false, have_v_ = false;
+};
+
+// Negative curvature at x (step 1): Lanczos on (H, M) when the preconditioner had to
+// modify an indefinite piece, or when the stopping test is about to pass and the
+// preconditioner cannot certify positive definiteness ("factor" can: it is the
+// Cholesky factorisation of H itself when unshifted; so can "dd" with unshifted rod
+// blocks and an unshifted direct coarse solve, an exact block factorisation of H).
+// "dd" with unshifted rod blocks and the multigrid coarse solve certifies by Lanczos
+// on its coarse pencil (S, A) instead (DdPreconditioner::coarse_pencil: H is
+// positive definite iff its Schur complement S is), the whole pencil only if that
+// finds S's lowest Ritz value below kCurvTol.
+void TrustRegionKrylov::analyse(const IterationView &it) {
+  negcurv_ = have_v_ = false;
+  mu_ = 0.0;
+  const auto *dd = dynamic_cast<const DdPreconditioner *>(&prec_);
+  const bool certified =
+      !prec_.stats().shifted && (prec_.name() == "factor" || (dd && dd->exact()));
+  if (!prec_.stats().shifted && (certified || !mon_.equilibrium_passes(it))) return;
+  int steps = 0;
+  Teuchos::RCP<const Tpetra::Operator<>> S, Ainv;
+  if (!prec_.stats().shifted && dd && dd->coarse_pencil(S, Ainv)) {
+    Vec sv(S->getDomainMap(), 1), Msv(S->getDomainMap(), 1);
+    const double mu_s = pencil_lowest(*S, *Ainv, sv, Msv, &steps);
+    sys_.counters.krylov += steps;
+    if (mu_s > kCurvTol) return; // S, hence H, positive definite
+  }
+  mu_ = PencilLanczos(*sys_.hessian(), *prec_.inverse(), map_).lowest(v_, Mv_, &steps);
+  sys_.counters.krylov += steps;
+  have_v_ = true;
+  negcurv_ = mu_ < -kCurvTol;
+}
+
+// Hard case: from an interior step s along the negative-curvature vector v to the
+// boundary, the root with the lower model value.
+void TrustRegionKrylov::add_curvature_direction(double radius, KrylovStep &st) {
+  const double sv = dot(st.s, Mv_), ss = dot(st.s, st.Ms), vv = dot(v_, Mv_);
+  if (!(vv > 0.0)) return;
+  const double disc = std::sqrt(std::max(0.0, sv * sv - vv * (ss - radius * radius)));
+  double best = std::numeric_limits<double>::max(), tau_best = 0.0;
+  for (double tau : {(-sv + disc) / vv, (-sv - disc) / vv}) {
+    xt_.assign(st.s);
+    xt_.update(tau, v_, 1.0);
+    const double m = model(xt_);
+    if (m < best) best = m, tau_best = tau;
+  }
+  st.s.update(tau_best, v_, 1.0);
+  st.Ms.update(tau_best, Mv_, 1.0);
+  st.boundary = true;
+}
+
+// The second-order correction of the step st from x_ (step 3a at the top): xc = x +
+// sigma, sigma the fixed point of sigma = s - M^{-1} f(x, sigma), f the stretching
+// force of the lengths the step gives beyond their linearisation (System::
+// stretch_correction), from sigma = s until the change is below kCorrectionTol of
+// ||M^{-1} f||, at most kCorrectionIts passes (then the last iterate: the energy
+// decides).  M^{-1} is the preconditioner: H^{-1} where it is exact, a positive
+// definite stand-in for (H + lambda M)^{-1} where H was shifted.  False without the
+// System's support, where the preconditioner was shifted without significant
+// negative curvature (a singular H: rigid motions, where the solve amplifies
+// round-off, tr_minres.cpp), at a degenerate state or when the iteration diverges.
+bool TrustRegionKrylov::correct_step(const KrylovStep &st, Vec &xc) {
+  if (!sys_.has_stretch_correction() || (prec_.stats().shifted && !negcurv_))
+    return false;
+  sig_.assign(st.s);
+  double first = 0.0;
+  for (int k = 0; k < kCorrectionIts; ++k) {
+    if (sys_.stretch_correction(x_, sig_, f_) != RN_OK) return false;
+    prec_.inverse()->apply(f_, hs_); // w = M^{-1} f
+    q_.update(1.0, st.s, -1.0, hs_, 0.0);
+    q_.update(-1.0, sig_, 1.0); // q = s - w - sigma
+    const double change = q_.getVector(0)->norm2();
+    if (!std::isfinite(change)) return false;
+    if (k == 0) first = change;
+    if (!(change <= kCorrectionGrowth * first)) return false;
+    sig_.update(1.0, q_, 1.0);
+    if (change <= kCorrectionTol * hs_.getVector(0)->norm2()) break;
+  }
+  xc.assign(x_);
+  xc.update(1.0, sig_, 1.0);
+  return true;
+}
+
+void TrustRegionKrylov::run() {
+  sys_.get_state(x_);
+  if (sys_.gradient(x_, &energy_, g_) != RN_OK)
+    throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
+  double radius = opt_.initial_radius, anchor_energy = 0.0, anchor_pred = 0.0,
+         anchor_radius = 0.0, anchor_step = 0.0, beta1_prev = 0.0;
+  bool fresh = true, check = true, anchor = false, blocked = false;
+  int anchor_steps = 0, iteration = 0;
+  IterationView it;
+  KrylovStep st(map_);
+  std::unique_ptr<TrustMinres> minres;
+  for (;;) {
+    if (fresh) {
+      sys_.assemble_hessian(x_);
+      prec_.setup(sys_);
+      if (minres) // its work vectors for the whole run (page faults of large ones)
+        minres->rebind(*prec_.inverse());
+      else
+        minres.reset(new TrustMinres(sys_, *prec_.inverse(), opt_.krylov_max_iterations));
+    }
+    it.iteration = iteration;
+    it.energy = energy_;
+    it.gnorm = g_.getVector(0)->norm2();
+    it.radius = radius;
+    it.x_norm = x_.getVector(0)->norm2();
+    it.eq = sys_.equilibrium(x_, g_);
+    if (fresh) analyse(it);
+    fresh = false;
+    it.negative_curvature = negcurv_;
+    if (check && mon_.check(it)) break;
+    check = true;
+    // inexact-Newton forcing term: Eisenstat-Walker choice 2 from the second step on;
+    // the first step of a solve (no ratio yet) to kForcingFirst (see the top)
+    double eta = kForcingFirst;
+    if (beta1_prev > 0.0 && minres->beta1() > 0.0) {
+      const double ratio = minres->beta1() / beta1_prev;
+      eta = std::min(0.1, 0.9 * ratio * ratio);
+    }
+    eta = std::max(eta, opt_.krylov_tol);
+    // Automatic first radius: the Newton step, or ||M^{-1} g||_M (a preconditioned
+    // gradient step) where the curvature is negative.  The watchdog's tentative steps
+    // are not limited either (Newton steps that repair the stretch of the anchor's
+    // step): the M-norm changes with H, and the anchor's radius, measured with the
+    // anchor's M, means little at a stretched point whose M is much stiffer.
+    const bool automatic = !(radius > 0.0), unlimited = automatic || anchor;
+    const double floor_radius = automatic ? 1e-8 : radius;
+    double rad = unlimited ? std::numeric_limits<double>::max() : radius;
+    if (unlimited && negcurv_) rad = std::max(gradient_radius(), floor_radius);
+    minres->solve(g_, rad, eta, st);
+    if (unlimited && st.negative && !negcurv_) { // met in the Krylov space only
+      rad = std::max(gradient_radius(), floor_radius);
+      minres->solve(g_, rad, eta, st);
+    }
+    if (negcurv_ && have_v_ && !st.negative && !st.boundary)
+      add_curvature_direction(rad, st);
+    const double snorm = std::sqrt(std::max(dot(st.s, st.Ms), 0.0));
+    if (automatic) radius = std::max(std::min(rad, snorm), 1e-300);
+    const bool limited = rad == radius; // the step was computed with the radius
+    const double pred = -model(st.s);
+    xt_.assign(x_);
+    xt_.update(1.0, st.s, 1.0);
+    double ftrial = std::numeric_limits<double>::infinity();
+    if (sys_.energy(xt_, &ftrial) != RN_OK)
+      ftrial = std::numeric_limits<double>::infinity();
+    const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(energy_));
+    const auto ratio = [&](double f) {
+      return std::isfinite(f) ? (energy_ - f + safe) / (pred + safe)
+                              : -std::numeric_limits<double>::infinity();
+    };
+    double rho = ratio(ftrial);
+    // Second-order correction of a rejected step (step 3a at the top): x + s + c
+    // replaces x + s if its energy is lower.  Not at the round-off level (below).
+    if (!(rho > kAccept) && std::isfinite(ftrial) && !(pred < safe) &&
+        correct_step(st, xc_)) {
+      double fc = std::numeric_limits<double>::infinity();
+      if (sys_.energy(xc_, &fc) == RN_OK && std::isfinite(fc) && fc < ftrial) {
+        xt_.assign(xc_);
+        ftrial = fc;
+        rho = ratio(fc);
+      }
+    }
+    ++iteration;
+    enum class Move { Reject, Accept, Tentative, Back } move = Move::Reject;
+    // At the energy's round-off level (the model's decrease below safe) rho is noise
+    // and would accept steps that raise E by up to safe: repeated, they random-walk
+    // along soft or zero modes and the residual grows (loop_joint.json: 1800
+    // iterations hovering between |g| 1e-12 and 1e-7).  There the gradient decides: the
+    // step is kept iff it lowers ||g||_{M^-1}, the norm MINRES reduces (no watchdog).
+    // Not at a saddle (Lanczos curvature below -kNoiseCurv): leaving it raises |g|.
+    bool noise = false;
+    if (!anchor && !(negcurv_ && mu_ < -kNoiseCurv) && std::isfinite(ftrial) &&
+        pred < safe && minres->beta1() > 0.0) {
+      double Et = 0.0;
+      noise = sys_.gradient(xt_, &Et, gt_) == RN_OK;
+      if (noise) {
+        prec_.inverse()->apply(gt_, hs_);
+        const double gt_norm = std::sqrt(std::max(dot(gt_, hs_), 0.0));
+        move = gt_norm < minres->beta1() ? Move::Accept : Move::Reject;
+      }
+    }
+    if (noise) {
+    } else if (anchor) {
+      if (std::isfinite(ftrial) && ftrial <= anchor_energy - kAccept * anchor_pred)
+        move = Move::Accept;
+      else if (anchor_steps < kWatchdogSteps && rho > kAccept)
+        move = Move::Tentative;
+      else
+        move = Move::Back;
+    } else if (rho > kAccept) {
+      move = Move::Accept;
+    } else if (!blocked && std::isfinite(ftrial) && sys_.save_state()) {
+      move = Move::Tentative;
+      anchor = true;
+      anchor_steps = 0;
+      xa_.assign(x_);
+      anchor_energy = energy_;
+      anchor_pred = pred;
+      anchor_radius = radius;
+      anchor_step = snorm;
+    }
+    it.krylov = st.iterations;
+    it.accepted = move == Move::Accept || move == Move::Tentative;
+    it.unconstrained = !st.boundary && move == Move::Accept && !anchor;
+    it.step_norm = st.s.getVector(0)->norm2();
+    it.energy_change = it.accepted ? ftrial - energy_ : 0.0;
+    it.radius_collapsed =
+        move == Move::Reject && it.step_norm <= 10.0 * DBL_EPSILON * (1.0 + it.x_norm);
+    switch (move) {
+    case Move::Accept:
+      if (anchor)
+        anchor = false;
+      else
+        blocked = false;
+      if (rho < 0.25)
+        radius = 0.25 * std::min(radius, snorm);
+      else if (rho > 0.75 && st.boundary && limited)
+        radius *= 2.0;
+      beta1_prev = minres->beta1();
+      take(xt_);
+      fresh = true;
+      break;
+    case Move::Tentative:
+      ++anchor_steps;
+      beta1_prev = minres->beta1();
+      take(xt_);
+      fresh = true;
+      break;
+    case Move::Back:
+      sys_.restore_state();
+      x_.assign(xa_);
+      if (sys_.gradient(x_, &energy_, g_) != RN_OK)
+        throw Error(RN_ERR_SOLVER, "rn_solve: gradient at the anchor is degenerate");
+      radius = 0.25 * std::min(anchor_radius, anchor_step);
+      anchor = false;
+      blocked = true;
+      fresh = true;
+      check = false;
+      it.accepted = false;
+      break;
+    case Move::Reject:
+      if (rho < 0.25 || noise) radius = 0.25 * std::min(radius, snorm);
+      break;
+    }
+  }
+}
+
+// Adapts a Tpetra operator to MinresSolver's VectorOperator.
+class OperatorAdapter : public VectorOperator {
+public:
+  explicit OperatorAdapter(const Tpetra::Operator<> &A) : A_(A) {}
+  void apply(const MV &x, MV &y) const override { A_.apply(x, y); }
+
+private:
+  const Tpetra::Operator<> &A_;
+};
+
+} // namespace
+
+double pencil_lowest(const Tpetra::Operator<> &H, const Tpetra::Operator<> &Minv, TMV &v,
+                     TMV &Mv, int *steps) {
+  return PencilLanczos(H, Minv, H.getDomainMap()).lowest(v, Mv, steps);
+}
+
+std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
+                                                    const rn_solve_options &opt,
+                                                    rn_preconditioner *used) {
+  const auto *serial = dynamic_cast<const SerialSystem *>(&sys);
+  rn_preconditioner kind = opt.preconditioner;
+  // auto: the rod-level domain decomposition (docs/solvers.md, "Preconditioners for
+  // networks")
+  if (kind == RN_PRECOND_AUTO) kind = RN_PRECOND_DD;
+  if (kind == RN_PRECOND_FACTOR && !serial)
+    throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
+                            "use dd or local (docs/parallel.md)");
+  *used = kind;
+  switch (kind) {
+  case RN_PRECOND_GATHERED:
+    return std::make_unique<GatheredPreconditioner>();
+  case RN_PRECOND_LOCAL:
+    return std::make_unique<LocalPreconditioner>();
+  case RN_PRECOND_DD:
+  case RN_PRECOND_DD_AMG:
+  case RN_PRECOND_MUELU:
+  case RN_PRECOND_IFPACK2:
+  case RN_PRECOND_FROSCH: {
+    // MueLu's near-null space, FROSch's coarse space (whole network only)
+    Teuchos::RCP<const TMV> modes;
+    if ((kind == RN_PRECOND_MUELU || kind == RN_PRECOND_FROSCH) && serial) {
+      const NetworkDofs d =
+          network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
+      modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
+    }
+    return make_preconditioner(rn_preconditioner_name(kind), modes);
+  }
+  default:
+    return std::make_unique<FactorPreconditioner>(opt.factorization);
+  }
+}
+
+KrylovWorkspace::KrylovWorkspace(Problem &p, System *system, const rn_solve_options &opt)
+    : sys_(system) {
+  if (!sys_) {
+    own_ = std::make_unique<SerialSystem>(p);
+    sys_ = own_.get();
+  }
+  prec_ = make_preconditioner(*sys_, opt, &kind_);
+}
+
+KrylovWorkspace::~KrylovWorkspace() = default;
+
+void KrylovWorkspace::account() {
+  const PreconditionerStats &st = prec_->stats();
+  sys_->add_preconditioner_time(st.setup_seconds - setup_seen_,
+                                st.apply_seconds - apply_seen_);
+  setup_seen_ = st.setup_seconds;
+  apply_seen_ = st.apply_seconds;
+}
+
+rn_preconditioner run_tr_krylov(KrylovWorkspace &ws, Monitor &mon,
+                                const rn_solve_options &opt) {
+  struct Account { // the preconditioner's time, also when the run throws
+    KrylovWorkspace &w;
+    ~Account() { w.account(); }
+  } account{ws};
+  TrustRegionKrylov(ws.system(), ws.preconditioner(), mon, opt).run();
+  return ws.kind();
+}
+
+bool predict_step_krylov(Problem &p, KrylovWorkspace &ws, const rn_solve_options &opt,
+                         double t_prev, double t) {
+  return predict_load_step(
+      p,
+      [&opt, &ws](Problem &q, const std::vector<double> &x, std::vector<double> &s) {
+        System &sys = ws.system();
+        Preconditioner &prec = ws.preconditioner();
+        TMV xv(sys.map(), 1), b(sys.map(), 1), sv(sys.map(), 1);
+        std::copy(x.begin(), x.end(), host_data(xv));
+        std::copy(s.begin(), s.end(), host_data(b));
+        sys.assemble_hessian(xv);
+        prec.setup(sys);
+        MinresSolver minres(sys.map(), opt.krylov_tol, opt.krylov_max_iterations);
+        const MinresResult r = minres.solve(OperatorAdapter(*sys.hessian()),
+                                            OperatorAdapter(*prec.inverse()), b, sv);
+        q.counters.krylov += r.iterations;
+        ws.account();
+        std::copy(host_data(sv), host_data(sv) + s.size(), s.begin());
+        return true;
+      },
+      t_prev, t);
+}
+
+} // namespace rodnet

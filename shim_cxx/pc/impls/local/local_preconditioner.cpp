@@ -1,0 +1,138 @@
+// local_preconditioner.cpp - block Jacobi over the ranks with a sparse Cholesky
+// factorisation of each rank's owned block (local_preconditioner.hpp).
+#include "pc/impls/local/local_preconditioner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include "base/shim_error.hpp"
+#include "factor/sparse_cholesky.hpp"
+
+namespace rodnet {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// y = alpha M^{-1} x + beta y, M^{-1} the rank's factorisation (no communication).
+class LocalInverse : public Tpetra::Operator<> {
+public:
+  LocalInverse(const Teuchos::RCP<const TMap> &map, const SparseCholesky *const &f,
+               PreconditionerStats &stats)
+      : map_(map), f_(f), stats_(stats), tmp_(map, 1) {}
+  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
+  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
+  void apply(const TMV &X, TMV &Y, Teuchos::ETransp /*symmetric*/, double alpha,
+             double beta) const override {
+    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
+      throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
+    const Clock::time_point t0 = Clock::now();
+    const size_t n = X.getLocalLength();
+    auto in = X.getData(0);
+    auto out = tmp_.getDataNonConst(0);
+    for (size_t i = 0; i < n; ++i) out[static_cast<LO>(i)] = in[static_cast<LO>(i)];
+    if (n) f_->solve(out.getRawPtr());
+    Y.update(alpha, tmp_, beta);
+    ++stats_.applies;
+    stats_.apply_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+private:
+  Teuchos::RCP<const TMap> map_;
+  const SparseCholesky *const &f_; // the preconditioner's current factor
+  PreconditionerStats &stats_;
+  mutable TMV tmp_;
+};
+
+} // namespace
+
+LocalPreconditioner::LocalPreconditioner() = default;
+LocalPreconditioner::~LocalPreconditioner() = default;
+
+// The owned block of H's local rows: columns that are owned rows (in owned order),
+// sorted; src_ keeps where each entry sits in H's local values.
+void LocalPreconditioner::build_pattern(const TCrs &H) {
+  auto rows = H.getRowMap(), cols = H.getColMap();
+  auto lcl = H.getLocalMatrixHost();
+  n_ = rows->getNodeNumElements();
+  rowptr_.assign(n_ + 1, 0);
+  col_.clear();
+  src_.clear();
+  std::vector<std::pair<int32_t, size_t>> row;
+  for (size_t i = 0; i < n_; ++i) {
+    row.clear();
+    for (size_t k = lcl.graph.row_map(i); k < lcl.graph.row_map(i + 1); ++k) {
+      const LO c = rows->getLocalElement(cols->getGlobalElement(lcl.graph.entries(k)));
+      if (c != Teuchos::OrdinalTraits<LO>::invalid())
+        row.emplace_back(static_cast<int32_t>(c), k);
+    }
+    std::sort(row.begin(), row.end());
+    for (const auto &e : row) {
+      col_.push_back(e.first);
+      src_.push_back(e.second);
+    }
+    rowptr_[i + 1] = static_cast<int64_t>(col_.size());
+  }
+  vals_.assign(col_.size(), 0.0);
+  if (n_) analysis_ = std::make_shared<SparseAnalysis>(n_, rowptr_.data(), col_.data());
+}
+
+void LocalPreconditioner::setup(System &sys) {
+  const Clock::time_point t0 = Clock::now();
+  const TCrs &H = *sys.hessian();
+  const auto comm = sys.map()->getComm();
+  if (rowptr_.empty()) build_pattern(H);
+  auto values = H.getLocalMatrixHost().values;
+  for (size_t k = 0; k < vals_.size(); ++k) vals_[k] = values(src_[k]);
+  if (!metric_done_) {   // D = |diag H|, floored at 1e-8 of its largest entry (all ranks)
+    metric_done_ = true; // (on every rank, also one that owns nothing: collective)
+    m_.assign(vals_.size(), 0.0);
+    double local = 0.0, dmax = 0.0;
+    for (size_t i = 0; i < n_; ++i)
+      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
+        if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i)
+          local = std::max(local, std::fabs(vals_[static_cast<size_t>(k)]));
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &local, &dmax);
+    const bool flat = !(dmax > 0.0) || !std::isfinite(dmax);
+    for (size_t i = 0; i < n_; ++i)
+      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
+        if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i) {
+          const double d = std::fabs(vals_[static_cast<size_t>(k)]);
+          m_[static_cast<size_t>(k)] = flat ? 1.0 : std::max(d, 1e-8 * dmax);
+        }
+  }
+  if (!chol_ && n_) chol_ = std::make_unique<SparseCholesky>(analysis_);
+  // smallest sigma in {0, 1e-10, ..., 1e10} that factors (bisection on the exponent)
+  int failed = 0;
+  sigma_ = 0.0;
+  if (n_ && !chol_->factor(vals_.data(), 0.0, m_.data())) {
+    int lo = -11, hi = 11;
+    bool holds_hi = false;
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      holds_hi = chol_->factor(vals_.data(), std::pow(10.0, mid), m_.data());
+      (holds_hi ? hi : lo) = mid;
+    }
+    sigma_ = std::pow(10.0, hi);
+    if (hi > 10 || (!holds_hi && !chol_->factor(vals_.data(), sigma_, m_.data())))
+      failed = 1;
+  }
+  int any_failed = 0, shifted = sigma_ > 0.0, any_shifted = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &failed, &any_failed);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &shifted, &any_shifted);
+  if (any_failed)
+    throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes a rank's block of the "
+                               "Hessian positive definite (non-finite Hessian?)");
+  if (op_.is_null()) op_ = Teuchos::rcp(new LocalInverse(sys.map(), chol_ptr_, stats_));
+  chol_ptr_ = chol_.get();
+  ++stats_.setups;
+  stats_.shifted = any_shifted != 0;
+  stats_.bytes = 8.0 * static_cast<double>(vals_.size() + m_.size());
+  stats_.setup_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+} // namespace rodnet
