@@ -26,6 +26,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/c_api/include/rodnet.h ${PROJECT_SOURCE_DIR}
               ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_couple.h
               ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_ring.h
               ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_ramp.h
+              ${PROJECT_SOURCE_DIR}/c_api/include/rodnet_registry.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # The scene reader and result writers (rodnet_scene.h), with the solver only.
 if(TARGET rodnet_scene)

@@ -275,8 +275,8 @@ typedef struct rn_solve_report {
   rn_stability stability;
 } rn_solve_report;
 
-/* Name of a stop reason ("gradient", "step", "energy", "max_iterations",
- * "radius", "failed"); name of a solver kind ("tr-minres", "rol-tr-tcg",
+/* Name of a stop reason ("gradient", "step", "energy", "max_iterations", "radius",
+ * "failed"); name of a solver kind (rodnet_registry.h: "tr-minres", "rol-tr-tcg",
  * "rol-ls-newton", "tr-krylov", "nox", "rol-lbfgs"); parse a solver name
  * (RN_ERR_ARG if unknown). */
 const char *rn_solve_stop_name(rn_solve_stop s);
@@ -284,15 +284,15 @@ const char *rn_solver_name(rn_solver_kind k);
 rn_status rn_solver_from_name(const char *name, rn_solver_kind *k);
 /* 1 if the solver kind can solve a network distributed over MPI ranks (its
  * Newton systems never need the whole Hessian on one process), 0 otherwise.
- * TR-KRYLOV and NOX (with the local or gathered preconditioner there);
+ * TR-KRYLOV and NOX (RN_SOLVER_CAN_DISTRIBUTE in rodnet_registry.h);
  * TR-MINRES and the ROL kinds factor the whole Hessian: one process only. */
 int rn_solver_is_distributed(rn_solver_kind k);
 /* Name of a factorisation ("auto", "banded", "sparse") and its parse
  * (RN_ERR_ARG if unknown). */
 const char *rn_factorization_name(rn_factorization f);
 rn_status rn_factorization_from_name(const char *name, rn_factorization *f);
-/* Name of a preconditioner ("auto", "factor", "local", "gathered", "dd", "muelu",
- * "ifpack2") and its
+/* Name of a preconditioner (rodnet_registry.h lists them: "auto", "factor", ...,
+ * "dd-amg"; "unknown" outside the enum) and its
  * parse (RN_ERR_ARG if unknown). */
 const char *rn_preconditioner_name(rn_preconditioner p);
 rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p);

@@ -2,6 +2,7 @@
  * plotting scripts' runner. */
 #define _POSIX_C_SOURCE 200809L /* fork, waitpid, sigprocmask */
 #include "cli/cli.h"
+#include "cli/cli_registry.h"
 
 #include <errno.h>
 #include <signal.h>
@@ -48,8 +49,9 @@ static const char main_help[] =
 static void print_version(void) {
   printf("rodnet %s\n", rn_version_string());
 #ifdef RN_HAVE_SOLVER
-  printf("solver: built in (tr-minres, rol-tr-tcg, rol-ls-newton, tr-krylov, nox, "
-         "rol-lbfgs; Trilinos)\n");
+  char kinds[256];
+  rn_cli_solver_names(kinds, sizeof kinds);
+  printf("solver: built in (%s; Trilinos)\n", kinds);
 #else
   printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' and "
          "'generate' work, the other commands exit with status 5\n");

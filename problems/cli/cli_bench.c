@@ -1,8 +1,9 @@
 /* cli_bench.c - `rodnet bench [--suite quick|full] [--solvers A,B,...] -o DIR`: the
  * optimiser benchmark (docs/benchmarking.md).  Every problem of the suite's
- * manifest (benchmarks/suite/suite.json) is solved by every solver of the table
- * below; one CSV row per problem and solver goes to DIR/runs.csv, and
- * benchmarks/bench_profiles.py draws the performance and data profiles from it. */
+ * manifest (benchmarks/suite/suite.json) is solved by every solver selected
+ * (the default selection below, or --solvers); one CSV row per problem and solver goes to
+ * DIR/runs.csv, and benchmarks/bench_profiles.py draws the performance and data profiles
+ * from it. */
 #define _GNU_SOURCE /* dl_iterate_phdr, gethostname */
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -17,8 +18,10 @@
 
 #include "io/atomic_file.h"
 #include "cli/cli.h"
+#include "cli/cli_registry.h"
 #include "io/num_format.h"
 #include "rodnet_solve.h"
+#include "rodnet_registry.h"
 #include "scene/scene.h"
 #include "io/text_file.h"
 
@@ -39,29 +42,85 @@
 #endif
 
 /* ---- the solvers -------------------------------------------------------------
- * A solver of the benchmark: a name (the CSV's solver column), a kind and its
- * preconditioner, and its iteration limit (0: the rn_solve default, or the
- * scene's).  Add a solver with one line here (docs/benchmarking.md). */
+ * A solver of the benchmark: a solver kind of the library's registry
+ * (rodnet_registry.h) and, for the kinds that take one, a preconditioner, named
+ * KIND or KIND-PRECONDITIONER (the CSV's solver column, e.g. tr-krylov-dd); and its
+ * iteration limit (0: the rn_solve default, or the scene's).  --solvers picks any of
+ * them; without it the default selection below runs (docs/benchmarking.md). */
 typedef struct bench_solver {
-  const char *name;
+  char name[48];
   rn_solver_kind kind;
   rn_preconditioner precond;
   int max_iterations;
   int max_load_cuts; /* -1: default */
 } bench_solver;
 
-static const bench_solver solvers[] = {
-    {"tr-minres", RN_SOLVER_TR_MINRES, RN_PRECOND_AUTO, 0, -1},
-    {"tr-krylov-dd", RN_SOLVER_TR_KRYLOV, RN_PRECOND_DD, 0, -1},
-    {"tr-krylov-factor", RN_SOLVER_TR_KRYLOV, RN_PRECOND_FACTOR, 0, -1},
-    {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG, RN_PRECOND_AUTO, 0, -1},
-    {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON, RN_PRECOND_AUTO, 0, -1},
-    {"nox-dd", RN_SOLVER_NOX, RN_PRECOND_DD, 0, -1},
-    /* first order: more iterations, and a failed attempt is final (no load cuts,
-     * each of which would cost as much again) */
-    {"rol-lbfgs", RN_SOLVER_ROL_LBFGS, RN_PRECOND_AUTO, 3000, 0},
+/* The default selection, in this order (first in the table). */
+static const struct {
+  rn_solver_kind kind;
+  rn_preconditioner precond;
+} default_solvers[] = {
+    {RN_SOLVER_TR_MINRES, RN_PRECOND_AUTO},     {RN_SOLVER_TR_KRYLOV, RN_PRECOND_DD},
+    {RN_SOLVER_TR_KRYLOV, RN_PRECOND_FACTOR},   {RN_SOLVER_ROL_TR_TCG, RN_PRECOND_AUTO},
+    {RN_SOLVER_ROL_LS_NEWTON, RN_PRECOND_AUTO}, {RN_SOLVER_NOX, RN_PRECOND_DD},
+    {RN_SOLVER_ROL_LBFGS, RN_PRECOND_AUTO}};
+enum {
+  N_DEFAULT_SOLVERS = (int)(sizeof default_solvers / sizeof default_solvers[0]),
+  NSOLVERS = 64 /* room for every pair of the registry (the runs' stride) */
 };
-enum { NSOLVERS = (int)(sizeof solvers / sizeof solvers[0]) };
+static bench_solver solvers[NSOLVERS];
+static int n_solvers; /* filled by bench_solvers_make */
+
+/* Appends the pair (kind, precond) to solvers[] unless it is there. */
+static void add_solver(const rn_solver_info *k, const rn_preconditioner_info *p) {
+  for (int i = 0; i < n_solvers; i++)
+    if (solvers[i].kind == k->value && solvers[i].precond == (p ? p->value : 0)) return;
+  if (n_solvers == NSOLVERS) return;
+  bench_solver *s = &solvers[n_solvers++];
+  snprintf(s->name, sizeof s->name, "%s%s%s", k->name, p ? "-" : "", p ? p->name : "");
+  s->kind = k->value;
+  s->precond = p ? p->value : RN_PRECOND_AUTO;
+  /* first order: more iterations, and a failed attempt is final (no load cuts,
+   * each of which would cost as much again) */
+  s->max_iterations = k->value == RN_SOLVER_ROL_LBFGS ? 3000 : 0;
+  s->max_load_cuts = k->value == RN_SOLVER_ROL_LBFGS ? 0 : -1;
+}
+
+/* solvers[]: the default selection, then every other pair of the registry (the
+ * preconditioners that stand for another, auto, not as a name of their own). */
+static void bench_solvers_make(void) {
+  if (n_solvers) return;
+  for (int i = 0; i < N_DEFAULT_SOLVERS; i++) {
+    const rn_solver_info *k = rn_solver_info_of(default_solvers[i].kind);
+    add_solver(k, k->flags & RN_SOLVER_TAKES_PRECONDITIONER
+                      ? rn_preconditioner_info_of(default_solvers[i].precond)
+                      : NULL);
+  }
+  const rn_solver_info *k;
+  for (size_t i = 0; (k = rn_solver_info_at(i)) != NULL; i++) {
+    if (!(k->flags & RN_SOLVER_TAKES_PRECONDITIONER)) {
+      add_solver(k, NULL);
+      continue;
+    }
+    const rn_preconditioner_info *p;
+    for (size_t j = 0; (p = rn_preconditioner_info_at(j)) != NULL; j++)
+      if (!(p->flags & RN_PC_ALIAS)) add_solver(k, p);
+  }
+}
+
+/* The names of solvers[first, last) into buf[n], comma-separated. */
+static void solver_names(int first, int last, char *buf, size_t n) {
+  size_t len = 0;
+  buf[0] = '\0';
+  for (int k = first; k < last; k++) {
+    const char *sep = k > first ? ", " : "";
+    const size_t a = strlen(sep), b = strlen(solvers[k].name);
+    if (len + a + b >= n) break;
+    memcpy(buf + len, sep, a);
+    memcpy(buf + len + a, solvers[k].name, b + 1);
+    len += a + b;
+  }
+}
 
 static const char bench_help[] =
     "Usage: rodnet bench [--suite smoke|quick|full] [--solvers A,B,...] -o DIR\n"
@@ -78,10 +137,9 @@ static const char bench_help[] =
     "Options:\n"
     "  -o, --output DIR    directory to write (created if missing; required)\n"
     "      --suite NAME    smoke (3 small problems), quick (default: under two\n"
-    "                      minutes) or full\n"
-    "      --solvers LIST  comma-separated solvers (default: all): tr-minres,\n"
-    "                      tr-krylov-dd, tr-krylov-factor, rol-tr-tcg,\n"
-    "                      rol-ls-newton, nox-dd, rol-lbfgs\n"
+    "                      minutes) or full\n";
+/* then the --solvers rows (print_bench_help), then: */
+static const char bench_help_tail[] =
     "      --problems LIST only these problems of the manifest (comma-separated;\n"
     "                      whatever suites they belong to)\n"
     "      --manifest FILE the suite's manifest (default: the source tree's\n"
@@ -98,12 +156,37 @@ static const char bench_help[] =
     "Exit status: 0 done (whatever the solvers did), 2 usage error, 3 bad\n"
     "manifest, scene or output path, 4 internal error or failed plot.\n";
 
+/* The names of solvers[first, last) after a label, wrapped at 80 columns from
+ * column 22. */
+static void print_solver_list(const char *label, int first, int last) {
+  int col = printf("%22s%s", "", label);
+  for (int k = first; k < last; k++) {
+    const int len = (int)strlen(solvers[k].name) + (k + 1 < last ? 1 : 0);
+    if (col + 1 + len > 80) col = printf("\n%21s", "") - 1;
+    col += printf(" %s%s", solvers[k].name, k + 1 < last ? "," : "");
+  }
+  fputc('\n', stdout);
+}
+
+static void print_bench_help(void) {
+  char which[128];
+  rn_cli_preconditioned_solvers(which, sizeof which);
+  fputs(bench_help, stdout);
+  printf("      --solvers LIST  comma-separated solvers: a solver kind of `rodnet solve\n"
+         "                      --help`, for %s KIND-PRECONDITIONER\n",
+         which);
+  print_solver_list("default:", 0, N_DEFAULT_SOLVERS);
+  print_solver_list("also:", N_DEFAULT_SOLVERS, n_solvers);
+  fputs(bench_help_tail, stdout);
+}
+
 typedef struct bench_args {
   const char *output, *suite, *solvers, *problems, *manifest;
   int repeats, quiet, no_plot, write_refs;
 } bench_args;
 
 static int parse_bench_args(int argc, char **argv, bench_args *a) {
+  bench_solvers_make();
   memset(a, 0, sizeof *a);
   a->suite = "quick";
   a->repeats = 1;
@@ -111,7 +194,7 @@ static int parse_bench_args(int argc, char **argv, bench_args *a) {
     const char *s = argv[i], *v = NULL;
     int m = 0;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
-      fputs(bench_help, stdout);
+      print_bench_help();
       return -1;
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0)
@@ -171,14 +254,15 @@ static int parse_bench_args(int argc, char **argv, bench_args *a) {
       const char *c = strchr(p, ',');
       size_t len = c ? (size_t)(c - p) : strlen(p);
       int found = 0;
-      for (int k = 0; k < NSOLVERS; k++)
+      for (int k = 0; k < n_solvers; k++)
         found |= strlen(solvers[k].name) == len && !strncmp(solvers[k].name, p, len);
-      if (!found)
+      if (!found) {
+        char known[1024];
+        solver_names(0, n_solvers, known, sizeof known);
         return rn_cli_usage_error("bench",
-                                  "unknown solver '%.*s' in --solvers (known: "
-                                  "tr-minres, tr-krylov-dd, tr-krylov-factor, "
-                                  "rol-tr-tcg, rol-ls-newton, nox-dd, rol-lbfgs)",
-                                  (int)len, p);
+                                  "unknown solver '%.*s' in --solvers (known: %s)",
+                                  (int)len, p, known);
+      }
       if (!c) break;
       p = c + 1;
     }
@@ -575,7 +659,7 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
              "energy,lowest_eigenvalue,energy_evals,factorizations,load_steps,dofs,"
              "suite,commit,compiler,flags,cpu,cores,blas,host,date\n");
   for (int i = 0; i < t->suite->n; i++)
-    for (int k = 0; k < NSOLVERS; k++) {
+    for (int k = 0; k < n_solvers; k++) {
       if (!t->ran[i * NSOLVERS + k]) continue;
       const bench_run *r = &t->runs[i * NSOLVERS + k];
       const bench_problem *p = &t->suite->p[i];
@@ -744,8 +828,9 @@ static int run_suite(const bench_args *a, const bench_suite *s) {
     if (!p->selected) continue;
     bench_ref ref;
     if ((rc = ref_load(p->reference, &ref))) break;
-    for (int k = 0; k < NSOLVERS && !rc; k++) {
-      if (a->solvers && !in_list(a->solvers, solvers[k].name)) continue;
+    for (int k = 0; k < n_solvers && !rc; k++) {
+      if (a->solvers ? !in_list(a->solvers, solvers[k].name) : k >= N_DEFAULT_SOLVERS)
+        continue;
       bench_run *r = &runs[i * NSOLVERS + k];
       if ((rc = run_one(a, p, &solvers[k], &ref, r))) break;
       ran[i * NSOLVERS + k] = 1;

@@ -9,8 +9,10 @@
 
 #include "io/atomic_file.h"
 #include "cli/cli.h"
+#include "cli/cli_registry.h"
 #include "scene/result_json.h"
 #include "rodnet_couple.h"
+#include "rodnet_registry.h"
 #include "rodnet_solve.h"
 #include "scene/scene.h"
 #include "scene/vtk.h"
@@ -31,33 +33,9 @@ static const char solve_help[] =
     "      --vtk FILE      also write the solution as a VTK .vtu file (ParaView):\n"
     "                      displacement, curvature, twist, theta, strain, directors,\n"
     "                      moments, energy density; joints as points with their\n"
-    "                      rotation\n"
-    "      --solver NAME   tr-minres: rodnet's trust-region Newton method, Newton\n"
-    "                        systems by MINRES preconditioned by a Cholesky factor of\n"
-    "                        the shifted Hessian (banded for rods, sparse for\n"
-    "                        networks; default)\n"
-    "                      rol-tr-tcg: ROL trust region with truncated CG\n"
-    "                      rol-ls-newton: ROL line-search Newton with MINRES\n"
-    "                      tr-krylov: Newton-Krylov trust region: preconditioned\n"
-    "                        MINRES stopped at the trust-region boundary, on\n"
-    "                        nonpositive curvature or at an inexact-Newton\n"
-    "                        tolerance (docs/solvers.md)\n"
-    "                      nox: NOX Newton on grad E = 0 with MINRES and the\n"
-    "                        same preconditioner: finds stationary points\n"
-    "                        (minima, saddles or maxima alike), not a minimiser\n"
-    "                      rol-lbfgs: ROL limited-memory BFGS with a line\n"
-    "                        search (gradients only; slow on stiff rods)\n"
-    "      --preconditioner NAME  preconditioner of tr-krylov and nox (it defines the\n"
-    "                      trust-region norm): auto (default: dd), dd (rod-level\n"
-    "                      domain decomposition), factor (Cholesky of the\n"
-    "                      shifted Hessian, one rank), local (each rank's\n"
-    "                      Cholesky of its own block, block Jacobi),\n"
-    "                      gathered (factor's matrix on rank 0: exact, not\n"
-    "                      scalable; docs/parallel.md), muelu (algebraic\n"
-    "                      multigrid on the whole Hessian), ifpack2 (additive\n"
-    "                      Schwarz, local LU), frosch (two-level Schwarz),\n"
-    "                      dd-amg (dd with the multigrid coarse solve at any\n"
-    "                      size); muelu, ifpack2, frosch, dd-amg need MPI\n"
+    "                      rotation\n";
+/* then the --solver and --preconditioner rows (rn_cli_print_solver_help), then: */
+static const char solve_help_mid[] =
     "      --factorization NAME  Cholesky factorisation of the shifted Hessian\n"
     "                      (also spelt --factorisation):\n"
     "                      auto (default: banded for rods, sparse for networks),\n"
@@ -175,6 +153,8 @@ static int parse_solve_args(int argc, char **argv, solve_args *a) {
     int rc = 0;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       fputs(solve_help, stdout);
+      rn_cli_print_solver_help(stdout);
+      fputs(solve_help_mid, stdout);
       fputs(solve_help_tail, stdout);
       return -1;
     }
@@ -234,17 +214,18 @@ static int make_options(const solve_args *a, const rn_scene *scene, rn_solve_opt
        (a->factorization &&
         rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)))
     return RN_EXIT_USAGE;
-  if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK)
-    return rn_cli_usage_error("solve",
-                              "unknown solver '%s' (known: tr-minres, "
-                              "rol-tr-tcg, rol-ls-newton, tr-krylov, nox, rol-lbfgs)",
-                              a->solver);
+  char known[256];
+  if (a->solver && rn_solver_from_name(a->solver, &opt->solver) != RN_OK) {
+    rn_cli_solver_names(known, sizeof known);
+    return rn_cli_usage_error("solve", "unknown solver '%s' (known: %s)", a->solver,
+                              known);
+  }
   if (a->preconditioner &&
-      rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK)
-    return rn_cli_usage_error("solve",
-                              "unknown preconditioner '%s' (known: auto, factor, "
-                              "local, gathered, dd, dd-amg, muelu, ifpack2, frosch)",
-                              a->preconditioner);
+      rn_preconditioner_from_name(a->preconditioner, &opt->preconditioner) != RN_OK) {
+    rn_cli_preconditioner_names(known, sizeof known);
+    return rn_cli_usage_error("solve", "unknown preconditioner '%s' (known: %s)",
+                              a->preconditioner, known);
+  }
   if (a->factorization &&
       rn_factorization_from_name(a->factorization, &opt->factorization) != RN_OK)
     return rn_cli_usage_error("solve",
@@ -396,20 +377,24 @@ static int write_outputs(rn_context *ctx, const solve_args *a, const rn_scene *s
 /* --preconditioner applies to tr-krylov and nox only (the solver chosen by the
  * command line, the scene or the default).  RN_EXIT_USAGE with a message. */
 static int check_preconditioner(const solve_args *a, const rn_solve_options *opt) {
-  if (!a->preconditioner || opt->solver == RN_SOLVER_TR_KRYLOV ||
-      opt->solver == RN_SOLVER_NOX)
+  const rn_solver_info *row = rn_solver_info_of(opt->solver);
+  if (!a->preconditioner || (row && (row->flags & RN_SOLVER_TAKES_PRECONDITIONER)))
     return 0;
+  char which[128];
+  rn_cli_preconditioned_solvers(which, sizeof which);
   return rn_cli_usage_error("solve",
-                            "--preconditioner %s: only the solvers tr-krylov and nox "
+                            "--preconditioner %s: only the solvers %s "
                             "use a preconditioner choice, not '%s'",
-                            a->preconditioner, rn_solver_name(opt->solver));
+                            a->preconditioner, which, rn_solver_name(opt->solver));
 }
 
 /* A couple fixed in space (rodnet_couple.h) has no energy: only NOX solves it.
  * RN_EXIT_USAGE with a message naming the load (printed if loud), else 0. */
 static int refuse_fixed_couples(const solve_args *a, const rn_network *net,
                                 const rn_solve_options *opt, int loud) {
-  if (opt->solver == RN_SOLVER_NOX || rn_network_fixed_couples(net, NULL, NULL) == 0)
+  const rn_solver_info *row = rn_solver_info_of(opt->solver);
+  if ((row && (row->flags & RN_SOLVER_FIXED_COUPLES)) ||
+      rn_network_fixed_couples(net, NULL, NULL) == 0)
     return 0;
   char which[160]; /* the graph pass of a distributed solve has no names */
   if (loud)

@@ -9,6 +9,7 @@
 
 #include "rodnet_contact.h"
 #include "rodnet_model.h"
+#include "rodnet_registry.h"
 #include "scene/scene_internal.h"
 
 static char *dup_string(const char *s) {
@@ -353,54 +354,50 @@ static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) 
   }
 }
 
-/* Solver and factorisation names as in rn_solver_name and rn_factorization_name
- * (parsed here so that a scene can be read by a build without the solver). */
-typedef struct named_value {
-  const char *name;
-  int value;
-} named_value;
+/* The names of a family, value i's (0, 1, ...; NULL past the last): solver kinds and
+ * preconditioners from the library's registry (rodnet_registry.h, in every build:
+ * a scene can be read by a build without the solver), factorisations as in
+ * rn_factorization_name. */
+typedef const char *(*name_at_fn)(size_t i);
 
-static const named_value solver_names[] = {{"tr-minres", RN_SOLVER_TR_MINRES},
-                                           {"rol-tr-tcg", RN_SOLVER_ROL_TR_TCG},
-                                           {"rol-ls-newton", RN_SOLVER_ROL_LS_NEWTON},
-                                           {"tr-krylov", RN_SOLVER_TR_KRYLOV},
-                                           {"nox", RN_SOLVER_NOX},
-                                           {"rol-lbfgs", RN_SOLVER_ROL_LBFGS},
-                                           {NULL, 0}};
-static const named_value preconditioner_names[] = {
-    {"auto", RN_PRECOND_AUTO},       {"factor", RN_PRECOND_FACTOR},
-    {"local", RN_PRECOND_LOCAL},     {"gathered", RN_PRECOND_GATHERED},
-    {"dd", RN_PRECOND_DD},           {"muelu", RN_PRECOND_MUELU},
-    {"ifpack2", RN_PRECOND_IFPACK2}, {"frosch", RN_PRECOND_FROSCH},
-    {"dd-amg", RN_PRECOND_DD_AMG},   {NULL, 0}};
-static const named_value factorization_names[] = {{"auto", RN_FACTOR_AUTO},
-                                                  {"banded", RN_FACTOR_BANDED},
-                                                  {"sparse", RN_FACTOR_SPARSE},
-                                                  {"cholmod", RN_FACTOR_CHOLMOD},
-                                                  {NULL, 0}};
+static const char *solver_name_at(size_t i) {
+  const rn_solver_info *row = rn_solver_info_at(i);
+  return row ? row->name : NULL;
+}
 
-/* The value of name in the NULL-terminated table; -1 if absent. */
-static int value_of_name(const named_value *table, const char *name) {
-  for (; table->name; table++)
-    if (strcmp(name, table->name) == 0) return table->value;
+static const char *preconditioner_name_at(size_t i) {
+  const rn_preconditioner_info *row = rn_preconditioner_info_at(i);
+  return row ? row->name : NULL;
+}
+
+static const char *factorization_name_at(size_t i) {
+  static const char *const names[] = {"auto", "banded", "sparse", "cholmod"};
+  return i < sizeof names / sizeof names[0] ? names[i] : NULL;
+}
+
+/* The value of name in the family; -1 if absent. */
+static int value_of_name(name_at_fn name_at, const char *name) {
+  const char *n;
+  for (size_t i = 0; (n = name_at(i)) != NULL; i++)
+    if (strcmp(name, n) == 0) return (int)i;
   return -1;
 }
 
-/* Optional string key of the solver block naming one of table's values (what
+/* Optional string key of the solver block naming a value of the family (what
  * receives -1 if the key is absent); an error naming the key otherwise. */
 static rn_status read_solver_name(rn_scene_parser *p, const cJSON *v, const char *key,
-                                  const char *what, const named_value *table,
-                                  int *value) {
+                                  const char *what, name_at_fn name_at, int *value) {
   const char *name = NULL;
   *value = -1;
   rn_status st = rn_jm_string(&p->w, v, key, 0, &name);
   if (st || !name) return st;
-  *value = value_of_name(table, name);
+  *value = value_of_name(name_at, name);
   if (*value >= 0) return RN_OK;
-  char known[128] = "";
-  for (const named_value *t = table; t->name; t++) {
-    if (t != table) strcat(known, ", ");
-    strcat(known, t->name);
+  char known[256] = "";
+  const char *n;
+  for (size_t i = 0; (n = name_at(i)) != NULL; i++) {
+    size_t len = strlen(known);
+    snprintf(known + len, sizeof known - len, "%s%s", i ? ", " : "", n);
   }
   size_t mark = rn_jwalk_key(&p->w, key);
   st = rn_jwalk_error(&p->w, "unknown %s \"%s\" (known: %s)", what, name, known);
@@ -412,13 +409,13 @@ static rn_status read_solver_name(rn_scene_parser *p, const cJSON *v, const char
 static rn_status read_solver_names(rn_scene_parser *p, const cJSON *v) {
   rn_scene *s = p->scene;
   int kind, fkind, pkind;
-  rn_status st = read_solver_name(p, v, "method", "solver", solver_names, &kind);
+  rn_status st = read_solver_name(p, v, "method", "solver", solver_name_at, &kind);
   if (!st)
-    st = read_solver_name(p, v, "factorization", "factorization", factorization_names,
+    st = read_solver_name(p, v, "factorization", "factorization", factorization_name_at,
                           &fkind);
   if (!st)
-    st = read_solver_name(p, v, "preconditioner", "preconditioner", preconditioner_names,
-                          &pkind);
+    st = read_solver_name(p, v, "preconditioner", "preconditioner",
+                          preconditioner_name_at, &pkind);
   if (st) return st;
   if (pkind >= 0) {
     s->solver_opt.preconditioner = (rn_preconditioner)pkind;

@@ -3,7 +3,6 @@
 // that the command's MPI paths stay in the shim.
 #include <mpi.h>
 
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -30,14 +29,6 @@ void rn_runtime_ranks(int *rank, int *size) {
   }
   if (rank) *rank = r;
   if (size) *size = s;
-}
-
-int rn_solver_is_distributed(rn_solver_kind k) {
-  // The Newton-Krylov trust region (issue 7) and NOX work on a System
-  // (shim_cxx/system/system.hpp), serial or distributed; every other kind factors the
-  // whole Hessian. (By name: a C caller may pass any int in the enum.)
-  const char *name = rn_solver_name(k);
-  return std::strcmp(name, "tr-krylov") == 0 || std::strcmp(name, "nox") == 0;
 }
 
 rn_status rn_dist_agree(rn_context *ctx, rn_status local) {

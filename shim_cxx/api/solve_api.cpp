@@ -1,5 +1,6 @@
-// solve_api.cpp - extern "C" entry points of rodnet_solve.h: options, names,
-// rn_solve with load stepping, Hessian eigenvalue.
+// solve_api.cpp - extern "C" entry points of rodnet_solve.h: options, names of stop
+// reasons and factorisations (those of solver kinds and preconditioners read the
+// registry, c_api/registry/registry.c), rn_solve with load stepping, Hessian eigenvalue.
 // Every entry catches all exceptions; none crosses into C.
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include "system/problem.hpp"
 #include "rodnet_ramp.h"
 #include "rodnet_solve.h"
+#include "rodnet_registry.h"
 #include "base/runtime.hpp"
 #include "base/shim_error.hpp"
 #include "base/snapshot.hpp"
@@ -57,10 +59,8 @@ rn_status value_of_name(const char *name, const Enum (&kinds)[N],
 
 rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   const char *bad = nullptr;
-  const int kind = enum_value(o.solver);
-  if (kind != RN_SOLVER_TR_MINRES && kind != RN_SOLVER_ROL_TR_TCG &&
-      kind != RN_SOLVER_ROL_LS_NEWTON && kind != RN_SOLVER_TR_KRYLOV &&
-      kind != RN_SOLVER_NOX && kind != RN_SOLVER_ROL_LBFGS)
+  const int kind = enum_value(o.solver), precond = enum_value(o.preconditioner);
+  if (kind < 0 || !rn_solver_info_at(static_cast<size_t>(kind)))
     bad = "unknown solver kind";
   else if (o.max_iterations < 1)
     bad = "max_iterations must be >= 1";
@@ -94,8 +94,7 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
   else if (o.stability_method < RN_STABILITY_AUTO ||
            o.stability_method > RN_STABILITY_LOBPCG)
     bad = "unknown stability_method";
-  else if (enum_value(o.preconditioner) < RN_PRECOND_AUTO ||
-           enum_value(o.preconditioner) > RN_PRECOND_DD_AMG)
+  else if (precond < 0 || !rn_preconditioner_info_at(static_cast<size_t>(precond)))
     bad = "unknown preconditioner";
   if (!bad) return RN_OK;
   return rn_context_set_error(ctx, RN_ERR_ARG, "rn_solve: %s", bad);
@@ -129,10 +128,13 @@ struct SolveTotals {
   }
 };
 
+// The flags of the solver kind's row (rodnet_registry.h; validate_options checked it).
+unsigned solver_flags(rn_solver_kind k) { return rn_solver_info_of(k)->flags; }
+
 // Whether a load step starts with the predictor (opt.predictor; rol-lbfgs uses
 // gradients only: no predictor, which would factor the Hessian).
 bool uses_predictor(const rn_solve_options &opt) {
-  return opt.predictor && opt.solver != RN_SOLVER_ROL_LBFGS;
+  return opt.predictor && (solver_flags(opt.solver) & RN_SOLVER_PREDICTOR);
 }
 
 // The load-step predictor from t_prev to t (predictor.hpp): true if its state was
@@ -596,31 +598,6 @@ const char *rn_solve_stop_name(rn_solve_stop s) {
   return "unknown";
 }
 
-const char *rn_solver_name(rn_solver_kind k) {
-  switch (rodnet::enum_value(k)) {
-  case RN_SOLVER_TR_MINRES:
-    return "tr-minres";
-  case RN_SOLVER_ROL_TR_TCG:
-    return "rol-tr-tcg";
-  case RN_SOLVER_ROL_LS_NEWTON:
-    return "rol-ls-newton";
-  case RN_SOLVER_TR_KRYLOV:
-    return "tr-krylov";
-  case RN_SOLVER_NOX:
-    return "nox";
-  case RN_SOLVER_ROL_LBFGS:
-    return "rol-lbfgs";
-  }
-  return "unknown";
-}
-
-rn_status rn_solver_from_name(const char *name, rn_solver_kind *k) {
-  const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES,     RN_SOLVER_ROL_TR_TCG,
-                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV,
-                                  RN_SOLVER_NOX,           RN_SOLVER_ROL_LBFGS};
-  return rodnet::value_of_name(name, kinds, rn_solver_name, k);
-}
-
 const char *rn_factorization_name(rn_factorization f) {
   switch (rodnet::enum_value(f)) {
   case RN_FACTOR_AUTO:
@@ -639,38 +616,6 @@ rn_status rn_factorization_from_name(const char *name, rn_factorization *f) {
   const rn_factorization kinds[] = {RN_FACTOR_AUTO, RN_FACTOR_BANDED, RN_FACTOR_SPARSE,
                                     RN_FACTOR_CHOLMOD};
   return rodnet::value_of_name(name, kinds, rn_factorization_name, f);
-}
-
-const char *rn_preconditioner_name(rn_preconditioner p) {
-  switch (rodnet::enum_value(p)) {
-  case RN_PRECOND_AUTO:
-    return "auto";
-  case RN_PRECOND_FACTOR:
-    return "factor";
-  case RN_PRECOND_LOCAL:
-    return "local";
-  case RN_PRECOND_GATHERED:
-    return "gathered";
-  case RN_PRECOND_DD:
-    return "dd";
-  case RN_PRECOND_MUELU:
-    return "muelu";
-  case RN_PRECOND_IFPACK2:
-    return "ifpack2";
-  case RN_PRECOND_FROSCH:
-    return "frosch";
-  case RN_PRECOND_DD_AMG:
-    return "dd-amg";
-  }
-  return "unknown";
-}
-
-rn_status rn_preconditioner_from_name(const char *name, rn_preconditioner *p) {
-  const rn_preconditioner kinds[] = {
-      RN_PRECOND_AUTO,     RN_PRECOND_FACTOR, RN_PRECOND_LOCAL,
-      RN_PRECOND_GATHERED, RN_PRECOND_DD,     RN_PRECOND_MUELU,
-      RN_PRECOND_IFPACK2,  RN_PRECOND_FROSCH, RN_PRECOND_DD_AMG};
-  return rodnet::value_of_name(name, kinds, rn_preconditioner_name, p);
 }
 
 rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report *rep) {
@@ -697,7 +642,8 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
   // the factored Hessian as a symmetric matrix) and no stability check (no energy).
   rn_solve_options onc = o;
   const bool nonconservative = rn_network_fixed_couples(net, nullptr, nullptr) > 0;
-  if (s == RN_OK && nonconservative && o.solver != RN_SOLVER_NOX) {
+  if (s == RN_OK && nonconservative &&
+      !(rodnet::solver_flags(o.solver) & RN_SOLVER_FIXED_COUPLES)) {
     const std::string what =
         std::string("the energy minimiser '") + rn_solver_name(o.solver) + "'";
     s = rodnet::refuse_nonconservative(net, "rn_solve", what.c_str());
@@ -709,7 +655,8 @@ rn_status rn_solve(rn_network *net, const rn_solve_options *opt, rn_solve_report
   // Newton on the residual finds stationary points and does not descend the
   // energy: the conservative couple's tilt check (rodnet_couple.h) is for the
   // minimisers
-  const int tilt_check = rn_network_set_couple_tilt_check(net, o.solver != RN_SOLVER_NOX);
+  const int tilt_check = rn_network_set_couple_tilt_check(
+      net, s == RN_OK && (rodnet::solver_flags(o.solver) & RN_SOLVER_DESCENDS));
   if (s == RN_OK) s = guarded(net, "rn_solve", [&] { rodnet::solve(net, onc, rep); });
   rn_network_set_couple_tilt_check(net, tilt_check);
   if (rep && s != RN_OK) {

@@ -21,7 +21,8 @@ libdir=$(cd "$prefix" && dirname "$(find . -name 'librodnet.so' | head -n1)")
 [ "$libdir" != "." ] && [ -n "$libdir" ] || fail "librodnet.so not installed"
 libdir=$prefix/${libdir#./}
 for f in include/rodnet.h include/rodnet_solve.h include/rodnet_contact.h include/rodnet_model.h \
-         include/rodnet_couple.h include/rodnet_ring.h include/rodnet_ramp.h; do
+         include/rodnet_couple.h include/rodnet_ring.h include/rodnet_ramp.h \
+         include/rodnet_registry.h; do
   [ -f "$prefix/$f" ] || fail "$f not installed"
 done
 for f in "$libdir/cmake/rodnet/rodnetConfig.cmake" \

@@ -8,7 +8,8 @@
 #               no headers of shim_cxx/ or problems/;
 #   shim_cxx/ : c_api + Trilinos/MPI/METIS/LAPACK: no kernel, cJSON or problems/ headers;
 #   problems/ : the public c_api headers (rodnet.h, rodnet_solve.h, rodnet_model.h,
-#               rodnet_contact.h, rodnet_couple.h, rodnet_ring.h) + cJSON + libc only.
+#               rodnet_contact.h, rodnet_couple.h, rodnet_ring.h, rodnet_registry.h) + cJSON
+#               + libc only.
 # Prints every violation and exits 1 if there is any.
 set -uo pipefail
 src=$1
@@ -53,7 +54,7 @@ resolves_in() {
   done
   return 1
 }
-public_api='^(rodnet|rodnet_solve|rodnet_model|rodnet_contact|rodnet_couple|rodnet_ring)\.h$'
+public_api='^(rodnet|rodnet_solve|rodnet_model|rodnet_contact|rodnet_couple|rodnet_ring|rodnet_registry)\.h$'
 
 check_layer() {
   local layer=$1; shift
