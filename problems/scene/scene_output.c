@@ -1,9 +1,10 @@
 /* scene_output.c - the result writers of librodnet_scene (rodnet_scene.h) and
  * the solve summary of RESULT.json from rn_solve's report (result_json.h).  Built
- * with the solver only (the solver kinds' names live in the shim). */
+ * with the solver only (it reads rn_solve's report). */
 #include <string.h>
 
 #include "scene/result_json.h"
+#include "rodnet_registry.h"
 #include "rodnet_scene.h"
 #include "scene/vtk.h"
 
@@ -13,14 +14,15 @@ void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt
   in->status = rep->converged ? "converged" : rn_solve_stop_name(rep->stop);
   in->solver = rn_solver_name(opt->solver);
   in->factorization = rn_factorization_name(rep->factorization);
-  if (opt->solver == RN_SOLVER_TR_KRYLOV || opt->solver == RN_SOLVER_NOX)
+  /* what the kind can do: its row of the registry (rodnet_registry.h) */
+  const rn_solver_info *row = rn_solver_info_of(opt->solver);
+  const unsigned flags = row ? row->flags : 0;
+  if (flags & RN_SOLVER_TAKES_PRECONDITIONER)
     in->preconditioner = rn_preconditioner_name(rep->preconditioner);
-  in->finds =
-      opt->solver == RN_SOLVER_NOX ? "stationary point"
-      : (opt->solver == RN_SOLVER_ROL_TR_TCG || opt->solver == RN_SOLVER_ROL_LS_NEWTON ||
-         opt->solver == RN_SOLVER_ROL_LBFGS)
-          ? "stationary point, energy decreasing"
-          : "local minimum";
+  in->finds = !(flags & RN_SOLVER_DESCENDS) ? "stationary point"
+              : !(flags & RN_SOLVER_LEAVES_SADDLES)
+                  ? "stationary point, energy decreasing"
+                  : "local minimum";
   in->stop = rn_solve_stop_name(rep->stop);
   in->converged = rep->converged;
   in->iterations = rep->iterations;
