@@ -9,11 +9,14 @@
  *
  * Adding a preconditioner: its enum value in rodnet_solve.h (values are ABI: never
  * renumber), one row of RN_PRECONDITIONER_LIST below (in enum order: the library
- * does not compile otherwise), its folder shim_cxx/pc/impls/<name>/ and its
- * factory row in shim_cxx/pc/registry.cpp; a row in the docs' tables
- * (docs/solvers.md, docs/cli.md, docs/scene-format.md: the test names what is
- * missing).  A solver kind likewise: its enum value, one row of RN_SOLVER_LIST and
- * its case in shim_cxx/api/solve_api.cpp (solve_load_step). */
+ * does not compile otherwise), its folder shim_cxx/pc/impls/<name>/ (its sources in
+ * shim_cxx/CMakeLists.txt) and its factory row in shim_cxx/pc/registry.cpp; a row
+ * in the docs' tables (docs/solvers.md, docs/cli.md, docs/scene-format.md: the test
+ * names what is missing).  The scene reader, the command, rodnet bench
+ * (tr-krylov-<name>, nox-<name>) and the conformance suite (shim_dd_solve,
+ * mpi_conformance) take it from the row.  A solver kind likewise: its enum value,
+ * one row of RN_SOLVER_LIST, its run_* in shim_cxx/newton/ and its case in
+ * shim_cxx/api/solve_api.cpp (solve_load_step), the docs' rows. */
 #ifndef RODNET_REGISTRY_H
 #define RODNET_REGISTRY_H
 
