@@ -141,19 +141,11 @@ void memory_mb(double *rss, double *peak) {
 
 enum { NCOL = 13 }; // the columns of one rank's row (write_rows)
 
-// The repeated Newton step on this rank's part (gradient, Hessian, a preconditioned
-// MINRES solve if o.precond is not "none", energy, accept): the step times in times,
-// this rank's row of NCOL numbers, *bad set if anything failed.
-std::vector<double> measure(rn_network *net, const Opts &o,
-                            const Teuchos::RCP<const Teuchos::Comm<int>> &comm, long cut,
-                            std::vector<double> &times, int *bad) {
-  const int rank = comm->getRank();
-  double minres_its = 0.0;
-  rodnet::DistSystem sys(net, comm);
-  rodnet::TMV x(sys.map(), 1), g(sys.map(), 1), s(sys.map(), 1);
-  sys.get_state(x);
+// The preconditioner o.precond names on sys (nullptr for "none"; *bad set if it
+// cannot be built).
+std::unique_ptr<rodnet::Preconditioner>
+preconditioner(const rodnet::DistSystem &sys, const Opts &o, int rank, int *bad) {
   std::unique_ptr<rodnet::Preconditioner> prec;
-  rodnet::MinresSolver minres(sys.map(), 1e-8, 1000);
   if (std::strcmp(o.precond, "none") != 0) {
     rn_solve_options opt;
     rn_solve_options_default(&opt);
@@ -166,6 +158,48 @@ std::vector<double> measure(rn_network *net, const Opts &o,
       *bad = 1;
     }
   }
+  return prec;
+}
+
+// This rank's row of NCOL numbers (write_rows): its part, the bytes sent per step,
+// the memory, the bytes a Hessian apply imports, the MINRES iterations per step.
+std::vector<double> part_row(const rodnet::DistSystem &sys, rn_network *net, int rank,
+                             double bytes, long cut, double minres_its) {
+  rn_part_info info;
+  rn_network_part_info(net, &info);
+  std::vector<double> row = {static_cast<double>(rank),
+                             static_cast<double>(info.owned_dofs),
+                             static_cast<double>(info.ghost_dofs),
+                             static_cast<double>(info.owned_stencils),
+                             static_cast<double>(info.owned_rods),
+                             static_cast<double>(info.ghost_rods),
+                             bytes,
+                             static_cast<double>(sys.global_size()),
+                             static_cast<double>(cut),
+                             0.0,
+                             0.0,
+                             0.0,
+                             minres_its};
+  memory_mb(&row[9], &row[10]);
+  // a Krylov iteration's Hessian apply imports the ghost columns of x
+  auto imp = sys.hessian()->getCrsGraph()->getImporter();
+  row[11] = imp.is_null() ? 0.0 : 8.0 * static_cast<double>(imp->getNumExportIDs());
+  return row;
+}
+
+// The repeated Newton step on this rank's part (gradient, Hessian, a preconditioned
+// MINRES solve if o.precond is not "none", energy, accept): the step times in times,
+// this rank's row of NCOL numbers, *bad set if anything failed.
+std::vector<double> measure(rn_network *net, const Opts &o,
+                            const Teuchos::RCP<const Teuchos::Comm<int>> &comm, long cut,
+                            std::vector<double> &times, int *bad) {
+  const int rank = comm->getRank();
+  double minres_its = 0.0;
+  rodnet::DistSystem sys(net, comm);
+  rodnet::TMV x(sys.map(), 1), g(sys.map(), 1), s(sys.map(), 1);
+  sys.get_state(x);
+  std::unique_ptr<rodnet::Preconditioner> prec = preconditioner(sys, o, rank, bad);
+  rodnet::MinresSolver minres(sys.map(), 1e-8, 1000);
   double E = 0.0;
   sys.gradient(x, &E, g); // warm-up: first-touch allocations, Kokkos views
   sys.assemble_hessian(x);
@@ -191,27 +225,8 @@ std::vector<double> measure(rn_network *net, const Opts &o,
     times.push_back(rn_bench_now() - t0);
   }
   if (o.callgrind) CALLGRIND_STOP_INSTRUMENTATION;
-  rn_part_info info;
-  rn_network_part_info(net, &info);
   const double bytes = (sys.comm_stats().bytes_sent - before.bytes_sent) / o.repeats;
-  std::vector<double> row = {static_cast<double>(rank),
-                             static_cast<double>(info.owned_dofs),
-                             static_cast<double>(info.ghost_dofs),
-                             static_cast<double>(info.owned_stencils),
-                             static_cast<double>(info.owned_rods),
-                             static_cast<double>(info.ghost_rods),
-                             bytes,
-                             static_cast<double>(sys.global_size()),
-                             static_cast<double>(cut),
-                             0.0,
-                             0.0,
-                             0.0,
-                             minres_its / o.repeats};
-  memory_mb(&row[9], &row[10]);
-  // a Krylov iteration's Hessian apply imports the ghost columns of x
-  auto imp = sys.hessian()->getCrsGraph()->getImporter();
-  row[11] = imp.is_null() ? 0.0 : 8.0 * static_cast<double>(imp->getNumExportIDs());
-  return row;
+  return part_row(sys, net, rank, bytes, cut, minres_its / o.repeats);
 }
 
 // Rank 0: one CSV row per rank (rows: NCOL numbers per rank) with the median and
