@@ -221,7 +221,8 @@ static const rn_bench_cli cli = {
     "                [--out FILE.csv]\n",
     "scene and result I/O"};
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   memset(o, 0, sizeof *o);
   o->kind = RN_LATTICE_HONEYCOMB;
   o->n_cells = rn_bench_parse_list("21,66,208", o->cells, MAX_LIST);
@@ -244,20 +245,25 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   return 0;
 }
 
-int main(int argc, char **argv) {
-  bench_opts o;
-  rn_bench_run run;
-  int rc = parse_args(argc, argv, &o);
-  if (rc) return rc > 0 ? 0 : 2;
-  if (rn_bench_begin(&run, o.out,
-                     "lattice,cells,edges_per_rod,rods,joints,dofs,bytes,mb_per_s,"
-                     "newton_iterations"))
-    return 1;
-  for (int k = 0; k < o.n_cells && !rc; ++k)
-    rc = bench_size(run.ctx, &o, o.cells[k], run.out);
-  rc = rn_bench_end(&run, rc);
+/* Every lattice size of --cells (then the solver's runtime, if a solve started it,
+ * is finalised). */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
+  int rc = 0;
+  for (int k = 0; k < o->n_cells && !rc; ++k)
+    rc = bench_size(run->ctx, o, o->cells[k], run->out);
 #ifdef RN_HAVE_SOLVER
   rn_runtime_finalize();
 #endif
   return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "lattice,cells,edges_per_rod,rods,joints,dofs,bytes,mb_per_s,newton_iterations",
+    run_all};
+
+int main(int argc, char **argv) {
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

@@ -291,7 +291,8 @@ static const rn_bench_cli cli = {
     "                     [--repeats N] [--min-time SECONDS] [--out FILE.csv]\n",
     "kernel throughput"};
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   o->n_sizes = rn_bench_parse_list("100,1000,10000,100000", o->sizes, MAX_LIST);
   o->shapes[0] = RN_BENCH_STRAIGHT;
   o->shapes[1] = RN_BENCH_CURVED;
@@ -316,18 +317,23 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   return 0;
 }
 
+/* Every shape of --shapes at every size of --sizes. */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
+  int rc = 0;
+  for (int s = 0; s < o->n_shapes && !rc; ++s)
+    for (int k = 0; k < o->n_sizes && !rc; ++k)
+      rc = bench_one(run->ctx, o, o->shapes[s], o->sizes[k], run->out);
+  return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "op,dofs,nnz,batch,median_per_vertex,min_per_vertex,flops_per_vertex,"
+    "divsqrt_per_vertex,bytes_per_vertex,gflops,peak_gflops,peak_fraction,gbytes_per_s",
+    run_all};
+
 int main(int argc, char **argv) {
-  bench_opts o;
-  rn_bench_run run;
-  int rc = parse_args(argc, argv, &o);
-  if (rc) return rc > 0 ? 0 : 2;
-  if (rn_bench_begin(&run, o.out,
-                     "op,dofs,nnz,batch,median_per_vertex,min_per_vertex,"
-                     "flops_per_vertex,divsqrt_per_vertex,bytes_per_vertex,"
-                     "gflops,peak_gflops,peak_fraction,gbytes_per_s"))
-    return 1;
-  for (int s = 0; s < o.n_shapes && !rc; ++s)
-    for (int k = 0; k < o.n_sizes && !rc; ++k)
-      rc = bench_one(run.ctx, &o, o.shapes[s], o.sizes[k], run.out);
-  return rn_bench_end(&run, rc);
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

@@ -324,7 +324,8 @@ static const rn_bench_cli cli = {
     "                     [--dump-system PREFIX] [--out FILE.csv]\n",
     "lattice solve"};
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   memset(o, 0, sizeof *o);
   o->kind = RN_LATTICE_HONEYCOMB;
   o->n_cells = rn_bench_parse_list("10,30,100", o->cells, MAX_LIST);
@@ -357,25 +358,30 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   return 0;
 }
 
-int main(int argc, char **argv) {
-  bench_opts o;
-  rn_bench_run run;
-  int rc = parse_args(argc, argv, &o);
+/* Every lattice of --cells with every joint model of --models, on the solver's
+ * runtime (initialised here without the command line, which holds no runtime
+ * option: parse_args refuses every option it does not know). */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
   char path[4096];
-  if (rc) return rc > 0 ? 0 : 2;
-  snprintf(path, sizeof path, "%s.scene.json", o.out ? o.out : "bench_lattice");
-  if (rn_bench_begin(&run, o.out,
-                     "lattice,cells,joint_model,edges_per_rod,load,rods,joints,"
-                     "solver,factorization,newton_iterations,minres_iterations,"
-                     "minres_per_newton,minres_max,factorizations,load_steps,"
-                     "stop,gradient_norm,energy,preconditioner,peak_rss_mb,"
-                     "hessian_s,setup_s,apply_s"))
-    return 1;
-  if (rn_runtime_initialize(&argc, &argv)) return rn_bench_end(&run, 1);
-  for (int k = 0; k < o.n_cells && !rc; ++k)
-    for (int m = 0; m < o.n_models && !rc; ++m)
-      rc = bench_case(run.ctx, &o, o.cells[k], o.models[m], path, run.out);
-  rc = rn_bench_end(&run, rc);
+  int rc = rn_runtime_initialize(NULL, NULL) != RN_OK;
+  snprintf(path, sizeof path, "%s.scene.json", o->out ? o->out : "bench_lattice");
+  for (int k = 0; k < o->n_cells && !rc; ++k)
+    for (int m = 0; m < o->n_models && !rc; ++m)
+      rc = bench_case(run->ctx, o, o->cells[k], o->models[m], path, run->out);
   rn_runtime_finalize();
   return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "lattice,cells,joint_model,edges_per_rod,load,rods,joints,solver,factorization,"
+    "newton_iterations,minres_iterations,minres_per_newton,minres_max,factorizations,"
+    "load_steps,stop,gradient_norm,energy,preconditioner,peak_rss_mb,hessian_s,setup_s,"
+    "apply_s",
+    run_all};
+
+int main(int argc, char **argv) {
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

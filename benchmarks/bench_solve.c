@@ -211,7 +211,8 @@ static const rn_bench_cli cli = {
     "                   [--repeats N] [--solver NAME] [--load P] [--out FILE.csv]\n",
     "cantilever solve"};
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   memset(o, 0, sizeof *o); /* problem cantilever, no --load */
   o->n_sizes = rn_bench_parse_list("101,401,3201", o->sizes, MAX_LIST);
   o->repeats = 3;
@@ -238,17 +239,22 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   return 0;
 }
 
+/* The problem at every size of --sizes. */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
+  int rc = 0;
+  for (int k = 0; k < o->n_sizes && !rc; ++k)
+    rc = bench_size(run->ctx, o, o->sizes[k], run->out);
+  return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "load,newton_iterations,krylov_iterations,gradient_evals,hvp_evals,load_steps,stop,"
+    "gradient_norm,energy,tip_x,tip_y,tip_z",
+    run_all};
+
 int main(int argc, char **argv) {
-  bench_opts o;
-  rn_bench_run run;
-  int rc = parse_args(argc, argv, &o);
-  if (rc) return rc > 0 ? 0 : 2;
-  if (rn_bench_begin(&run, o.out,
-                     "load,newton_iterations,krylov_iterations,gradient_evals,"
-                     "hvp_evals,load_steps,stop,gradient_norm,energy,tip_x,tip_y,"
-                     "tip_z"))
-    return 1;
-  for (int k = 0; k < o.n_sizes && !rc; ++k)
-    rc = bench_size(run.ctx, &o, o.sizes[k], run.out);
-  return rn_bench_end(&run, rc);
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

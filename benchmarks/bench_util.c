@@ -96,6 +96,15 @@ int rn_bench_end(rn_bench_run *run, int rc) {
   return rc ? 1 : 0;
 }
 
+int rn_bench_main(int argc, char **argv, const rn_bench_program *p, void *opts,
+                  const char *const *out) {
+  rn_bench_run run;
+  int rc = p->parse(argc, argv, opts);
+  if (rc) return rc > 0 ? 0 : 2;
+  if (rn_bench_begin(&run, *out, p->columns)) return 1;
+  return rn_bench_end(&run, p->body(&run, opts));
+}
+
 int rn_bench_usage(const char *prog, const char *msg, const char *synopsis) {
   fprintf(stderr, "%s: %s\n%s", prog, msg, synopsis);
   return 2;

@@ -48,6 +48,24 @@ int rn_bench_begin(rn_bench_run *run, const char *path, const char *extra);
  * nonzero or the output cannot be closed, else 0: the exit status of the main. */
 int rn_bench_end(rn_bench_run *run, int rc);
 
+/* A benchmark program, for rn_bench_main. */
+typedef struct rn_bench_program {
+  /* Fills opts from the command line: 0 to run, 1 after --help, -1 after a usage
+   * error (both print the usage: rn_bench_parse_args). */
+  int (*parse)(int argc, char **argv, void *opts);
+  /* The CSV columns after the common ones (rn_bench_csv_header). */
+  const char *columns;
+  /* Runs the benchmark with the options, writing its rows to run->out; 0 if ok. */
+  int (*body)(rn_bench_run *run, const void *opts);
+} rn_bench_program;
+
+/* The main of a benchmark: p->parse, rn_bench_begin on the CSV path *out (which
+ * parse stored in opts; NULL: stdout) with p->columns, p->body, rn_bench_end.
+ * Returns the exit status: 0 after --help, 2 after a usage error, 1 if the output
+ * cannot be opened or written or the body failed, else 0. */
+int rn_bench_main(int argc, char **argv, const rn_bench_program *p, void *opts,
+                  const char *const *out);
+
 /* Prints "<prog>: <msg>\n<synopsis>" to stderr (the synopsis ends with a newline)
  * and returns 2, the exit status of a usage error. */
 int rn_bench_usage(const char *prog, const char *msg, const char *synopsis);
