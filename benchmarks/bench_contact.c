@@ -39,11 +39,9 @@
 #endif
 
 static int usage(const char *msg) {
-  fprintf(stderr,
-          "bench_contact: %s\nusage: bench_contact [--turns T] [--steps N] [--grid n] "
-          "[--repeats R] [--lattice FILE] [--out FILE.csv]\n",
-          msg);
-  return 2;
+  return rn_bench_usage("bench_contact", msg,
+                        "usage: bench_contact [--turns T] [--steps N] [--grid n] "
+                        "[--repeats R] [--lattice FILE] [--out FILE.csv]\n");
 }
 
 /* The plectoneme rod; contact on or off; the end's motion at load factor 1. */
@@ -152,6 +150,16 @@ static int row(FILE *f, const char *case_name, long edges, rn_network *net,
   return 0;
 }
 
+/* x = the state of on; the twin off set to it at load factor 1, its reference
+ * frames updated there.  The first failing status, or RN_OK. */
+static rn_status set_twin(rn_network *on, rn_network *off, double *x) {
+  rn_status st;
+  if (!(st = rn_network_get_dofs(on, x)) &&
+      !(st = rn_network_set_load_factor(off, 1.0)) && !(st = rn_network_set_dofs(off, x)))
+    st = rn_network_update_reference(off, x);
+  return st;
+}
+
 /* The lattice scene at path with contact (on) and read again without its
  * "contact" (off). */
 static rn_status lattice_scenes(rn_context *ctx, const char *path, rn_scene **on,
@@ -199,9 +207,7 @@ static int lattice_rows(FILE *f, rn_context *ctx, const char *path, int repeats)
   size_t n = on ? rn_network_num_dofs(on) : 0;
   double *x = malloc((n ? n : 1) * sizeof(double));
   if (!st && !x) st = RN_ERR_ALLOC;
-  if (!st && !(st = rn_network_get_dofs(on, x)) &&
-      !(st = rn_network_set_load_factor(off, 1.0)) && !(st = rn_network_set_dofs(off, x)))
-    st = rn_network_update_reference(off, x);
+  if (!st) st = set_twin(on, off, x);
   for (int ir = 0; on && ir < rn_network_num_rods(on); ++ir)
     edges += rn_network_rod_num_vertices(on, ir) - 1;
   int fail = st != RN_OK;
@@ -211,6 +217,52 @@ static int lattice_rows(FILE *f, rn_context *ctx, const char *path, int repeats)
   free(x);
   rn_scene_destroy(&son);
   rn_scene_destroy(&soff);
+  return fail;
+}
+
+/* The plectoneme solved with contact in steps load steps, then both rows at its
+ * last state.  0 if ok. */
+static int plectoneme_rows(FILE *f, rn_context *ctx, double turns, long steps,
+                           int repeats) {
+  rn_network *on = NULL, *off = NULL;
+  int fail = plectoneme_net(ctx, turns, 1, &on) || plectoneme_net(ctx, turns, 0, &off);
+  size_t n = on ? rn_network_num_dofs(on) : 0;
+  double *x = malloc((n ? n : 1) * sizeof(double));
+  for (long k = 1; k <= steps && !fail; ++k) {
+    rn_solve_options opt;
+    rn_solve_report rep;
+    rn_solve_options_default(&opt);
+    opt.stability = 0;
+    rn_status st = rn_network_set_load_factor(on, (double)k / (double)steps);
+    if (!st) st = rn_solve(on, &opt, &rep);
+    if (st) rn_bench_report_error("plectoneme solve", ctx, st);
+    fail = st != RN_OK;
+  }
+  if (!fail) fail = set_twin(on, off, x) != RN_OK;
+  if (!fail) fail = row(f, "plectoneme", 100, on, x, 1, repeats, ctx);
+  if (!fail) fail = row(f, "plectoneme", 100, off, x, 0, repeats, ctx);
+  rn_network_destroy(&on);
+  rn_network_destroy(&off);
+  free(x);
+  return fail;
+}
+
+/* The grid of n x n crossings with and without contact, at its initial state. */
+static int grid_rows(FILE *f, rn_context *ctx, int n, int repeats) {
+  int fail = 0;
+  for (int contact = 1; contact >= 0 && !fail; --contact) {
+    rn_network *net = NULL;
+    if (grid_net(ctx, n, contact, &net)) {
+      rn_bench_report_error("grid", ctx, RN_ERR_ARG);
+      return 1;
+    }
+    size_t m = rn_network_num_dofs(net);
+    double *y = malloc((m ? m : 1) * sizeof(double));
+    fail = !y || rn_network_get_dofs(net, y) ||
+           row(f, "grid", 32 * n, net, y, contact, repeats, ctx);
+    free(y);
+    rn_network_destroy(&net);
+  }
   return fail;
 }
 
@@ -242,47 +294,11 @@ int main(int argc, char **argv) {
   FILE *f = out ? fopen(out, "w") : stdout;
   if (!f) return usage("cannot open --out");
   rn_context *ctx = NULL;
-  rn_network *on = NULL, *off = NULL;
   int fail = rn_context_create(&ctx) != RN_OK;
   rn_bench_csv_header(f, "contact,active_pairs,nnz,us_median,us_min");
   /* plectoneme: solve with contact, evaluate both at its last state */
-  if (!fail)
-    fail = plectoneme_net(ctx, turns, 1, &on) || plectoneme_net(ctx, turns, 0, &off);
-  size_t n = on ? rn_network_num_dofs(on) : 0;
-  double *x = malloc((n ? n : 1) * sizeof(double));
-  for (long k = 1; k <= steps && !fail; ++k) {
-    rn_solve_options opt;
-    rn_solve_report rep;
-    rn_solve_options_default(&opt);
-    opt.stability = 0;
-    rn_status st = rn_network_set_load_factor(on, (double)k / (double)steps);
-    if (!st) st = rn_solve(on, &opt, &rep);
-    if (st) rn_bench_report_error("plectoneme solve", ctx, st);
-    fail = st != RN_OK;
-  }
-  if (!fail)
-    fail = rn_network_get_dofs(on, x) || rn_network_set_load_factor(off, 1.0) ||
-           rn_network_set_dofs(off, x) || rn_network_update_reference(off, x);
-  if (!fail) fail = row(f, "plectoneme", 100, on, x, 1, (int)repeats, ctx);
-  if (!fail) fail = row(f, "plectoneme", 100, off, x, 0, (int)repeats, ctx);
-  rn_network_destroy(&on);
-  rn_network_destroy(&off);
-  free(x);
-  /* the grid of crossings */
-  for (int contact = 1; contact >= 0 && !fail; --contact) {
-    rn_network *net = NULL;
-    if (grid_net(ctx, (int)grid, contact, &net)) {
-      rn_bench_report_error("grid", ctx, RN_ERR_ARG);
-      fail = 1;
-      break;
-    }
-    size_t m = rn_network_num_dofs(net);
-    double *y = malloc((m ? m : 1) * sizeof(double));
-    fail = !y || rn_network_get_dofs(net, y) ||
-           row(f, "grid", 32 * grid, net, y, contact, (int)repeats, ctx);
-    free(y);
-    rn_network_destroy(&net);
-  }
+  if (!fail) fail = plectoneme_rows(f, ctx, turns, steps, (int)repeats);
+  if (!fail) fail = grid_rows(f, ctx, (int)grid, (int)repeats);
   if (!fail && lattice) fail = lattice_rows(f, ctx, lattice, (int)repeats);
   rn_context_destroy(&ctx);
   if (out) fclose(f);

@@ -36,7 +36,6 @@
 #include <Tpetra_Core.hpp>
 
 extern "C" {
-#include "bench_config.h"
 #include "bench_util.h"
 #include "scene/scene.h"
 }
@@ -55,11 +54,10 @@ struct Opts {
 };
 
 int usage(const char *msg) {
-  std::fprintf(stderr,
-               "bench_dist: %s\nusage: mpirun -np P bench_dist SCENE.json [--repeats N] "
-               "[--label NAME] [--out CSV] [--precond NAME|none] [--callgrind]\n",
-               msg);
-  return 2;
+  return rn_bench_usage(
+      "bench_dist", msg,
+      "usage: mpirun -np P bench_dist SCENE.json [--repeats N] "
+      "[--label NAME] [--out CSV] [--precond NAME|none] [--callgrind]\n");
 }
 
 int parse(int argc, char **argv, Opts &o) {
@@ -141,6 +139,120 @@ void memory_mb(double *rss, double *peak) {
   std::fclose(f);
 }
 
+enum { NCOL = 13 }; // the columns of one rank's row (write_rows)
+
+// The preconditioner o.precond names on sys (nullptr for "none"; *bad set if it
+// cannot be built).
+std::unique_ptr<rodnet::Preconditioner>
+preconditioner(const rodnet::DistSystem &sys, const Opts &o, int rank, int *bad) {
+  std::unique_ptr<rodnet::Preconditioner> prec;
+  if (std::strcmp(o.precond, "none") != 0) {
+    rn_solve_options opt;
+    rn_solve_options_default(&opt);
+    rn_preconditioner_from_name(o.precond, &opt.preconditioner);
+    rn_preconditioner used;
+    try {
+      prec = rodnet::make_preconditioner(sys, opt, &used);
+    } catch (const std::exception &e) {
+      if (rank == 0) std::fprintf(stderr, "bench_dist: %s\n", e.what());
+      *bad = 1;
+    }
+  }
+  return prec;
+}
+
+// This rank's row of NCOL numbers (write_rows): its part, the bytes sent per step,
+// the memory, the bytes a Hessian apply imports, the MINRES iterations per step.
+std::vector<double> part_row(const rodnet::DistSystem &sys, rn_network *net, int rank,
+                             double bytes, long cut, double minres_its) {
+  rn_part_info info;
+  rn_network_part_info(net, &info);
+  std::vector<double> row = {static_cast<double>(rank),
+                             static_cast<double>(info.owned_dofs),
+                             static_cast<double>(info.ghost_dofs),
+                             static_cast<double>(info.owned_stencils),
+                             static_cast<double>(info.owned_rods),
+                             static_cast<double>(info.ghost_rods),
+                             bytes,
+                             static_cast<double>(sys.global_size()),
+                             static_cast<double>(cut),
+                             0.0,
+                             0.0,
+                             0.0,
+                             minres_its};
+  memory_mb(&row[9], &row[10]);
+  // a Krylov iteration's Hessian apply imports the ghost columns of x
+  auto imp = sys.hessian()->getCrsGraph()->getImporter();
+  row[11] = imp.is_null() ? 0.0 : 8.0 * static_cast<double>(imp->getNumExportIDs());
+  return row;
+}
+
+// The repeated Newton step on this rank's part (gradient, Hessian, a preconditioned
+// MINRES solve if o.precond is not "none", energy, accept): the step times in times,
+// this rank's row of NCOL numbers, *bad set if anything failed.
+std::vector<double> measure(rn_network *net, const Opts &o,
+                            const Teuchos::RCP<const Teuchos::Comm<int>> &comm, long cut,
+                            std::vector<double> &times, int *bad) {
+  const int rank = comm->getRank();
+  double minres_its = 0.0;
+  rodnet::DistSystem sys(net, comm);
+  rodnet::TMV x(sys.map(), 1), g(sys.map(), 1), s(sys.map(), 1);
+  sys.get_state(x);
+  std::unique_ptr<rodnet::Preconditioner> prec = preconditioner(sys, o, rank, bad);
+  rodnet::MinresSolver minres(sys.map(), 1e-8, 1000);
+  double E = 0.0;
+  sys.gradient(x, &E, g); // warm-up: first-touch allocations, Kokkos views
+  sys.assemble_hessian(x);
+  const rodnet::CommStats before = sys.comm_stats();
+  if (o.callgrind) CALLGRIND_START_INSTRUMENTATION;
+  for (int r = 0; r < o.repeats; ++r) {
+    comm->barrier();
+    const double t0 = rn_bench_now();
+    if (sys.gradient(x, &E, g) != RN_OK) *bad = 1;
+    sys.assemble_hessian(x);
+    if (prec) {
+      prec->setup(sys);
+      g.scale(-1.0);
+      const rodnet::MinresResult mr =
+          minres.solve(OpAdapter(*sys.hessian()), OpAdapter(*prec->inverse()), g, s);
+      minres_its += mr.iterations;
+      if (!mr.converged) *bad = 1;
+    }
+    double Et = 0.0;
+    if (sys.energy(x, &Et) != RN_OK || !std::isfinite(Et)) *bad = 1;
+    sys.accept(x);
+    comm->barrier();
+    times.push_back(rn_bench_now() - t0);
+  }
+  if (o.callgrind) CALLGRIND_STOP_INSTRUMENTATION;
+  const double bytes = (sys.comm_stats().bytes_sent - before.bytes_sent) / o.repeats;
+  return part_row(sys, net, rank, bytes, cut, minres_its / o.repeats);
+}
+
+// Rank 0: one CSV row per rank (rows: NCOL numbers per rank) with the median and
+// minimum step time, appended to o.out (the header if the file is new) or stdout.
+void write_rows(const Opts &o, int size, const std::vector<double> &rows,
+                std::vector<double> &times) {
+  double med = 0.0, mn = 0.0;
+  rn_bench_stats(times.data(), static_cast<int>(times.size()), &med, &mn);
+  FILE *f = o.out ? std::fopen(o.out, "a") : stdout;
+  static const char *const extra =
+      "rank,owned_dofs,ghost_dofs,owned_stencils,owned_rods,"
+      "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb,bytes_per_matvec,precond,"
+      "minres_its";
+  if (f && (!o.out || std::ftell(f) == 0)) rn_bench_csv_header(f, extra);
+  const std::string label = o.label ? o.label : o.scene;
+  for (int q = 0; q < size && f; ++q) {
+    const double *r = &rows[NCOL * static_cast<size_t>(q)];
+    rn_bench_csv_begin_ranks(f, size, "dist", label.c_str(), static_cast<long>(r[7]),
+                             o.repeats, med, mn);
+    std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f,%.0f,%s,%.1f\n", q,
+                 r[1], r[2], r[3], r[4], r[5], r[6], r[8], r[9], r[10], r[11], o.precond,
+                 r[12]);
+  }
+  if (f && o.out) std::fclose(f);
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -159,101 +271,16 @@ int main(int argc, char **argv) {
     rn_context_destroy(&ctx);
     return 1;
   }
-  rn_network *net = rn_scene_network(scene);
   int bad = 0;
-  enum { NCOL = 13 };
-  double minres_its = 0.0;
-  std::vector<double> row(NCOL, 0.0), times;
-  {
-    rodnet::DistSystem sys(net, comm);
-    rodnet::TMV x(sys.map(), 1), g(sys.map(), 1), s(sys.map(), 1);
-    sys.get_state(x);
-    std::unique_ptr<rodnet::Preconditioner> prec;
-    rodnet::MinresSolver minres(sys.map(), 1e-8, 1000);
-    if (std::strcmp(o.precond, "none") != 0) {
-      rn_solve_options opt;
-      rn_solve_options_default(&opt);
-      rn_preconditioner_from_name(o.precond, &opt.preconditioner);
-      rn_preconditioner used;
-      try {
-        prec = rodnet::make_preconditioner(sys, opt, &used);
-      } catch (const std::exception &e) {
-        if (rank == 0) std::fprintf(stderr, "bench_dist: %s\n", e.what());
-        bad = 1;
-      }
-    }
-    double E = 0.0;
-    sys.gradient(x, &E, g); // warm-up: first-touch allocations, Kokkos views
-    sys.assemble_hessian(x);
-    const rodnet::CommStats before = sys.comm_stats();
-    if (o.callgrind) CALLGRIND_START_INSTRUMENTATION;
-    for (int r = 0; r < o.repeats; ++r) {
-      comm->barrier();
-      const double t0 = rn_bench_now();
-      if (sys.gradient(x, &E, g) != RN_OK) bad = 1;
-      sys.assemble_hessian(x);
-      if (prec) {
-        prec->setup(sys);
-        g.scale(-1.0);
-        const rodnet::MinresResult mr =
-            minres.solve(OpAdapter(*sys.hessian()), OpAdapter(*prec->inverse()), g, s);
-        minres_its += mr.iterations;
-        if (!mr.converged) bad = 1;
-      }
-      double Et = 0.0;
-      if (sys.energy(x, &Et) != RN_OK || !std::isfinite(Et)) bad = 1;
-      sys.accept(x);
-      comm->barrier();
-      times.push_back(rn_bench_now() - t0);
-    }
-    if (o.callgrind) CALLGRIND_STOP_INSTRUMENTATION;
-    rn_part_info info;
-    rn_network_part_info(net, &info);
-    const double bytes = (sys.comm_stats().bytes_sent - before.bytes_sent) / o.repeats;
-    row = {static_cast<double>(rank),
-           static_cast<double>(info.owned_dofs),
-           static_cast<double>(info.ghost_dofs),
-           static_cast<double>(info.owned_stencils),
-           static_cast<double>(info.owned_rods),
-           static_cast<double>(info.ghost_rods),
-           bytes,
-           static_cast<double>(sys.global_size()),
-           static_cast<double>(cut),
-           0.0,
-           0.0,
-           0.0,
-           minres_its / o.repeats};
-    memory_mb(&row[9], &row[10]);
-    // a Krylov iteration's Hessian apply imports the ghost columns of x
-    auto imp = sys.hessian()->getCrsGraph()->getImporter();
-    row[11] = imp.is_null() ? 0.0 : 8.0 * static_cast<double>(imp->getNumExportIDs());
-  }
+  std::vector<double> times;
+  const std::vector<double> row =
+      measure(rn_scene_network(scene), o, comm, cut, times, &bad);
   std::vector<double> rows(NCOL * static_cast<size_t>(size));
   MPI_Gather(row.data(), NCOL, MPI_DOUBLE, rows.data(), NCOL, MPI_DOUBLE, 0,
              MPI_COMM_WORLD);
   int any_bad = bad;
   MPI_Allreduce(&bad, &any_bad, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  if (rank == 0) {
-    double med = 0.0, mn = 0.0;
-    rn_bench_stats(times.data(), static_cast<int>(times.size()), &med, &mn);
-    FILE *f = o.out ? std::fopen(o.out, "a") : stdout;
-    static const char *const extra =
-        "rank,owned_dofs,ghost_dofs,owned_stencils,owned_rods,"
-        "ghost_rods,bytes_per_step,edge_cut,rss_mb,peak_mb,bytes_per_matvec,precond,"
-        "minres_its";
-    if (f && (!o.out || std::ftell(f) == 0)) rn_bench_csv_header(f, extra);
-    const std::string label = o.label ? o.label : o.scene;
-    for (int q = 0; q < size && f; ++q) {
-      const double *r = &rows[NCOL * static_cast<size_t>(q)];
-      std::fprintf(f, "\"%s\",\"%s\",\"%s\",%d,dist,%s,%ld,%d,%.6e,%.6e", RN_BENCH_COMMIT,
-                   RN_BENCH_COMPILER, RN_BENCH_FLAGS, size, label.c_str(),
-                   static_cast<long>(r[7]), o.repeats, med, mn);
-      std::fprintf(f, ",%d,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.1f,%.1f,%.0f,%s,%.1f\n",
-                   q, r[1], r[2], r[3], r[4], r[5], r[6], r[8], r[9], r[10], r[11],
-                   o.precond, r[12]);
-    }
-    if (f && o.out) std::fclose(f);
-  }
+  if (rank == 0) write_rows(o, size, rows, times);
   rn_scene_destroy(&scene);
   rn_context_destroy(&ctx);
   return any_bad;

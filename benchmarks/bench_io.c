@@ -210,17 +210,19 @@ static int bench_size(rn_context *ctx, const bench_opts *o, long cells, FILE *ou
   return rc;
 }
 
-static int usage(const char *msg) {
-  fprintf(stderr,
-          "bench_io: %s\n"
-          "usage: bench_io [--kind honeycomb] [--cells 21,66,208] [--edges-per-rod 8]\n"
-          "                [--load stretch-x:1e-3] [--repeats 3] [--solve]\n"
-          "                [--out FILE.csv]\n",
-          msg);
-  return 2;
+static int set_kind(void *o, const char *v) {
+  return rn_lattice_kind_from_name(v, &((bench_opts *)o)->kind) != 0;
 }
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static const rn_bench_cli cli = {
+    "bench_io",
+    "usage: bench_io [--kind honeycomb] [--cells 21,66,208] [--edges-per-rod 8]\n"
+    "                [--load stretch-x:1e-3] [--repeats 3] [--solve]\n"
+    "                [--out FILE.csv]\n",
+    "scene and result I/O"};
+
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   memset(o, 0, sizeof *o);
   o->kind = RN_LATTICE_HONEYCOMB;
   o->n_cells = rn_bench_parse_list("21,66,208", o->cells, MAX_LIST);
@@ -228,51 +230,40 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   o->repeats = 3;
   o->load = RN_LLOAD_STRETCH;
   o->load_value = 1e-3;
-  for (int i = 1; i < argc; ++i) {
-    const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("scene and result I/O"), 1;
-    if (!strcmp(a, "--solve")) {
-      o->solve = 1;
-      continue;
-    }
-    if (!val) return usage("missing value after an option"), -1;
-    if (!strcmp(a, "--kind")) {
-      if (rn_lattice_kind_from_name(val, &o->kind)) return usage("unknown --kind"), -1;
-    } else if (!strcmp(a, "--cells"))
-      o->n_cells = rn_bench_parse_list(val, o->cells, MAX_LIST);
-    else if (!strcmp(a, "--edges-per-rod"))
-      o->edges_per_rod = atoi(val);
-    else if (!strcmp(a, "--repeats"))
-      o->repeats = atoi(val);
-    else if (!strcmp(a, "--out"))
-      o->out = val;
-    else
-      return usage("unknown option"), -1;
-    ++i;
-  }
-  if (o->n_cells < 1) return usage("bad --cells"), -1;
-  if (o->repeats < 1 || o->edges_per_rod < 1) return usage("bad --repeats/--edges"), -1;
+  const rn_bench_option opt[] = {
+      {"--solve", RN_BENCH_FLAG, &o->solve, NULL, 0, NULL, NULL},
+      {"--kind", RN_BENCH_CALL, NULL, NULL, 0, set_kind, "unknown --kind"},
+      {"--cells", RN_BENCH_LIST, o->cells, &o->n_cells, MAX_LIST, NULL, NULL},
+      {"--edges-per-rod", RN_BENCH_INT, &o->edges_per_rod, NULL, 0, NULL, NULL},
+      {"--repeats", RN_BENCH_INT, &o->repeats, NULL, 0, NULL, NULL},
+      {"--out", RN_BENCH_STRING, &o->out, NULL, 0, NULL, NULL}};
+  int rc = rn_bench_parse_args(argc, argv, opt, sizeof opt / sizeof *opt, o, &cli);
+  if (rc) return rc;
+  if (o->n_cells < 1) return rn_bench_bad_args(&cli, "bad --cells");
+  if (o->repeats < 1 || o->edges_per_rod < 1)
+    return rn_bench_bad_args(&cli, "bad --repeats/--edges");
   return 0;
 }
 
-int main(int argc, char **argv) {
-  bench_opts o;
-  int rc = parse_args(argc, argv, &o);
-  if (rc) return rc > 0 ? 0 : 2;
-  FILE *out = o.out ? fopen(o.out, "w") : stdout;
-  if (!out) {
-    perror(o.out);
-    return 1;
-  }
-  rn_context *ctx = NULL;
-  if (rn_context_create(&ctx)) return 1;
-  rn_bench_csv_header(out, "lattice,cells,edges_per_rod,rods,joints,dofs,bytes,mb_per_s,"
-                           "newton_iterations");
-  for (int k = 0; k < o.n_cells && !rc; ++k) rc = bench_size(ctx, &o, o.cells[k], out);
-  rn_context_destroy(&ctx);
-  if (out != stdout && fclose(out) != 0) rc = 1;
+/* Every lattice size of --cells (then the solver's runtime, if a solve started it,
+ * is finalised). */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
+  int rc = 0;
+  for (int k = 0; k < o->n_cells && !rc; ++k)
+    rc = bench_size(run->ctx, o, o->cells[k], run->out);
 #ifdef RN_HAVE_SOLVER
   rn_runtime_finalize();
 #endif
-  return rc ? 1 : 0;
+  return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "lattice,cells,edges_per_rod,rods,joints,dofs,bytes,mb_per_s,newton_iterations",
+    run_all};
+
+int main(int argc, char **argv) {
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

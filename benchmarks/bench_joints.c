@@ -164,96 +164,127 @@ static int check_batch(joint_case *b, int nb, double *work, const double *v, dou
 }
 
 static int usage(const char *msg) {
-  fprintf(stderr,
-          "bench_joints: %s\nusage: bench_joints [--valences 1,2,3,4,6,8,12] "
-          "[--joints 200] [--repeats 7] [--impl closed,jets] [--models rigid,elastic]\n"
-          "       [--out FILE.csv]\n",
-          msg);
+  rn_bench_usage(
+      "bench_joints", msg,
+      "usage: bench_joints [--valences 1,2,3,4,6,8,12] "
+      "[--joints 200] [--repeats 7] [--impl closed,jets] [--models rigid,elastic]\n"
+      "       [--out FILE.csv]\n");
   return 1;
 }
 
-int main(int argc, char **argv) {
-  long val[MAX_LIST] = {1, 2, 3, 4, 6, 8, 12};
-  int nval = 7, nb = 200, repeats = 7, impl_closed = 1, impl_jets = 1, model_rigid = 1,
-      model_elastic = 1;
-  const char *out = NULL;
+typedef struct joints_opts {
+  long val[MAX_LIST];
+  int nval, nb, repeats, impl_closed, impl_jets, model_rigid, model_elastic;
+  const char *out;
+} joints_opts;
+
+/* 0 to run, 1 for --help (usage printed), -1 on a bad option (usage printed). */
+static int parse_args(int argc, char **argv, joints_opts *o) {
+  static const long valences[] = {1, 2, 3, 4, 6, 8, 12};
+  memset(o, 0, sizeof *o);
+  memcpy(o->val, valences, sizeof valences);
+  o->nval = 7;
+  o->nb = 200;
+  o->repeats = 7;
+  o->impl_closed = o->impl_jets = o->model_rigid = o->model_elastic = 1;
   for (int i = 1; i < argc; ++i) {
     const char *a = argv[i], *x = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("joint kernel timing"), 0;
-    if (!x) return usage("missing value after an option");
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("joint kernel timing"), 1;
+    if (!x) return usage("missing value after an option"), -1;
     ++i;
     if (!strcmp(a, "--valences")) {
-      if ((nval = rn_bench_parse_list(x, val, MAX_LIST)) < 1)
-        return usage("bad --valences");
+      if ((o->nval = rn_bench_parse_list(x, o->val, MAX_LIST)) < 1)
+        return usage("bad --valences"), -1;
     } else if (!strcmp(a, "--joints")) {
-      if ((nb = atoi(x)) < 1) return usage("bad --joints");
+      if ((o->nb = atoi(x)) < 1) return usage("bad --joints"), -1;
     } else if (!strcmp(a, "--repeats")) {
-      if ((repeats = atoi(x)) < 1) return usage("bad --repeats");
+      if ((o->repeats = atoi(x)) < 1) return usage("bad --repeats"), -1;
     } else if (!strcmp(a, "--impl")) {
-      impl_closed = strstr(x, "closed") != NULL;
-      impl_jets = strstr(x, "jets") != NULL;
-      if (!impl_closed && !impl_jets) return usage("bad --impl");
+      o->impl_closed = strstr(x, "closed") != NULL;
+      o->impl_jets = strstr(x, "jets") != NULL;
+      if (!o->impl_closed && !o->impl_jets) return usage("bad --impl"), -1;
     } else if (!strcmp(a, "--models")) {
-      model_rigid = strstr(x, "rigid") != NULL;
-      model_elastic = strstr(x, "elastic") != NULL;
-      if (!model_rigid && !model_elastic) return usage("bad --models");
+      o->model_rigid = strstr(x, "rigid") != NULL;
+      o->model_elastic = strstr(x, "elastic") != NULL;
+      if (!o->model_rigid && !o->model_elastic) return usage("bad --models"), -1;
     } else if (!strcmp(a, "--out")) {
-      out = x;
+      o->out = x;
     } else {
-      return usage("unknown option");
+      return usage("unknown option"), -1;
     }
   }
-  FILE *f = out ? fopen(out, "w") : stdout;
+  return 0;
+}
+
+/* Times one operation of one implementation on the batch and writes its CSV row;
+ * t holds the repeats.  0 if ok. */
+static int time_op(FILE *f, const joints_opts *o, joint_case *b, int rigid, int jets,
+                   int op, double *work, const double *vd, double *o1, double *t) {
+  const int v = b[0].j.valence, n = b[0].n;
+  const int nrun = jets && v >= 8 ? (o->nb + 3) / 4 : o->nb; /* the jets are slow */
+  int rc = 0;
+  for (int r = 0; r < o->repeats; ++r) {
+    double t0 = rn_bench_now();
+    for (int i = 0; i < nrun; ++i)
+      if (eval(jets, op, &b[i], work, vd, o1)) rc = 1;
+    t[r] = (rn_bench_now() - t0) / nrun;
+  }
+  double med, mn;
+  rn_bench_stats(t, o->repeats, &med, &mn);
+  char name[64];
+  snprintf(name, sizeof name, "%s-%s-%s", rigid ? "rigid" : "elastic",
+           jets ? "jets" : "closed", op_names[op]);
+  rn_bench_csv_begin(f, "joints", name, v, o->repeats, med, mn);
+  fprintf(f, ",%s,%s,%s,%d,%.1f,%.1f\n", rigid ? "rigid" : "elastic",
+          jets ? "jets" : "closed", op_names[op], n, med * 1e9, mn * 1e9);
+  fprintf(stderr, "%-28s valence %2d  %10.0f ns per joint\n", name, v, med * 1e9);
+  return rc;
+}
+
+/* A batch of joints of valence v: checked (closed forms against jets), then every
+ * operation of every implementation asked for timed.  0 if ok. */
+static int bench_valence(FILE *f, const joints_opts *o, int rigid, int v, double *t) {
+  const int nb = o->nb;
+  int rc = 0;
+  joint_case *b = calloc((size_t)nb, sizeof *b);
+  size_t nwork = 0;
+  for (int i = 0; i < nb && !rc; ++i) {
+    if (make_joint(&b[i], v, rigid, i % 2)) rc = 1;
+    size_t w1 = rnk_joint_work_size(&b[i].j), w2 = rnk_jet_joint_work_size(&b[i].j);
+    nwork = w1 > nwork ? w1 : nwork;
+    nwork = w2 > nwork ? w2 : nwork;
+  }
+  int n = b[0].n;
+  double *work = malloc(sizeof(double) * nwork), *o1 = calloc((size_t)(n * n + n), 8),
+         *o2 = calloc((size_t)(n * n + n), 8), *vd = malloc(sizeof(double) * (size_t)n);
+  for (int i = 0; i < n; ++i) vd[i] = rnd();
+  if (!rc && (!work || !o1 || !o2 || !vd || check_batch(b, nb, work, vd, o1, o2))) rc = 1;
+  for (int jets = 0; jets <= 1 && !rc; ++jets) {
+    if ((jets && !o->impl_jets) || (!jets && !o->impl_closed)) continue;
+    for (int op = 0; op < N_OPS && !rc; ++op)
+      rc = time_op(f, o, b, rigid, jets, op, work, vd, o1, t);
+  }
+  for (int i = 0; i < nb; ++i) free_joint(&b[i]);
+  free(b);
+  free(work);
+  free(o1);
+  free(o2);
+  free(vd);
+  return rc;
+}
+
+int main(int argc, char **argv) {
+  joints_opts o;
+  int rc = parse_args(argc, argv, &o);
+  if (rc) return rc > 0 ? 0 : 1;
+  FILE *f = o.out ? fopen(o.out, "w") : stdout;
   if (!f) return usage("cannot open --out");
   rn_bench_csv_header(f, "model,impl,op,stencil,ns_median,ns_min");
-  double *t = malloc(sizeof(double) * (size_t)repeats);
-  int rc = 0;
+  double *t = malloc(sizeof(double) * (size_t)o.repeats);
   for (int rigid = 1; rigid >= 0 && !rc; --rigid)
-    for (int iv = 0; iv < nval && !rc && (rigid ? model_rigid : model_elastic); ++iv) {
-      int v = (int)val[iv];
-      joint_case *b = calloc((size_t)nb, sizeof *b);
-      size_t nwork = 0;
-      for (int i = 0; i < nb && !rc; ++i) {
-        if (make_joint(&b[i], v, rigid, i % 2)) rc = 1;
-        size_t w1 = rnk_joint_work_size(&b[i].j), w2 = rnk_jet_joint_work_size(&b[i].j);
-        nwork = w1 > nwork ? w1 : nwork;
-        nwork = w2 > nwork ? w2 : nwork;
-      }
-      int n = b[0].n;
-      double *work = malloc(sizeof(double) * nwork), *o1 = calloc((size_t)(n * n + n), 8),
-             *o2 = calloc((size_t)(n * n + n), 8),
-             *vd = malloc(sizeof(double) * (size_t)n);
-      for (int i = 0; i < n; ++i) vd[i] = rnd();
-      if (!rc && (!work || !o1 || !o2 || !vd || check_batch(b, nb, work, vd, o1, o2)))
-        rc = 1;
-      for (int jets = 0; jets <= 1 && !rc; ++jets) {
-        if ((jets && !impl_jets) || (!jets && !impl_closed)) continue;
-        for (int op = 0; op < N_OPS && !rc; ++op) {
-          int nrun = jets && v >= 8 ? (nb + 3) / 4 : nb; /* the jets are slow */
-          for (int r = 0; r < repeats; ++r) {
-            double t0 = rn_bench_now();
-            for (int i = 0; i < nrun; ++i)
-              if (eval(jets, op, &b[i], work, vd, o1)) rc = 1;
-            t[r] = (rn_bench_now() - t0) / nrun;
-          }
-          double med, mn;
-          rn_bench_stats(t, repeats, &med, &mn);
-          char name[64];
-          snprintf(name, sizeof name, "%s-%s-%s", rigid ? "rigid" : "elastic",
-                   jets ? "jets" : "closed", op_names[op]);
-          rn_bench_csv_begin(f, "joints", name, v, repeats, med, mn);
-          fprintf(f, ",%s,%s,%s,%d,%.1f,%.1f\n", rigid ? "rigid" : "elastic",
-                  jets ? "jets" : "closed", op_names[op], n, med * 1e9, mn * 1e9);
-          fprintf(stderr, "%-28s valence %2d  %10.0f ns per joint\n", name, v, med * 1e9);
-        }
-      }
-      for (int i = 0; i < nb; ++i) free_joint(&b[i]);
-      free(b);
-      free(work);
-      free(o1);
-      free(o2);
-      free(vd);
-    }
+    for (int iv = 0; iv < o.nval && !rc && (rigid ? o.model_rigid : o.model_elastic);
+         ++iv)
+      rc = bench_valence(f, &o, rigid, (int)o.val[iv], t);
   free(t);
   if (f != stdout) fclose(f);
   return rc;

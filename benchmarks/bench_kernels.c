@@ -271,17 +271,8 @@ static int bench_one(rn_context *ctx, const bench_opts *o, rn_bench_shape shape,
   return rc;
 }
 
-static int usage(const char *msg) {
-  fprintf(stderr,
-          "bench_kernels: %s\n"
-          "usage: bench_kernels [--sizes 100,1000,10000,100000] [--shapes "
-          "straight,curved]\n"
-          "                     [--repeats N] [--min-time SECONDS] [--out FILE.csv]\n",
-          msg);
-  return 2;
-}
-
-static int parse_shapes(const char *s, bench_opts *o) {
+static int parse_shapes(void *opts, const char *s) {
+  bench_opts *o = opts;
   char buf[64];
   o->n_shapes = 0;
   if (strlen(s) >= sizeof buf) return -1;
@@ -294,7 +285,14 @@ static int parse_shapes(const char *s, bench_opts *o) {
   return o->n_shapes > 0 ? 0 : -1;
 }
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static const rn_bench_cli cli = {
+    "bench_kernels",
+    "usage: bench_kernels [--sizes 100,1000,10000,100000] [--shapes straight,curved]\n"
+    "                     [--repeats N] [--min-time SECONDS] [--out FILE.csv]\n",
+    "kernel throughput"};
+
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   o->n_sizes = rn_bench_parse_list("100,1000,10000,100000", o->sizes, MAX_LIST);
   o->shapes[0] = RN_BENCH_STRAIGHT;
   o->shapes[1] = RN_BENCH_CURVED;
@@ -302,49 +300,40 @@ static int parse_args(int argc, char **argv, bench_opts *o) {
   o->repeats = 11;
   o->min_time = 0.2;
   o->out = NULL;
-  for (int i = 1; i < argc; i += 2) { /* options and their values */
-    const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("kernel throughput"), 1;
-    if (!val) return usage("missing value after an option"), -1;
-    if (!strcmp(a, "--sizes"))
-      o->n_sizes = rn_bench_parse_list(val, o->sizes, MAX_LIST);
-    else if (!strcmp(a, "--shapes")) {
-      if (parse_shapes(val, o)) return usage("bad --shapes"), -1;
-    } else if (!strcmp(a, "--repeats"))
-      o->repeats = atoi(val);
-    else if (!strcmp(a, "--min-time"))
-      o->min_time = atof(val);
-    else if (!strcmp(a, "--out"))
-      o->out = val;
-    else
-      return usage("unknown option"), -1;
-  }
-  if (o->n_sizes < 0) return usage("bad --sizes"), -1;
+  const rn_bench_option opt[] = {
+      {"--sizes", RN_BENCH_LIST, o->sizes, &o->n_sizes, MAX_LIST, NULL, NULL},
+      {"--shapes", RN_BENCH_CALL, NULL, NULL, 0, parse_shapes, "bad --shapes"},
+      {"--repeats", RN_BENCH_INT, &o->repeats, NULL, 0, NULL, NULL},
+      {"--min-time", RN_BENCH_DOUBLE, &o->min_time, NULL, 0, NULL, NULL},
+      {"--out", RN_BENCH_STRING, &o->out, NULL, 0, NULL, NULL}};
+  int rc = rn_bench_parse_args(argc, argv, opt, sizeof opt / sizeof *opt, o, &cli);
+  if (rc) return rc;
+  if (o->n_sizes < 0) return rn_bench_bad_args(&cli, "bad --sizes");
   for (int k = 0; k < o->n_sizes; ++k)
-    if (o->sizes[k] < 3 || o->sizes[k] > 100000000) return usage("sizes in [3, 1e8]"), -1;
+    if (o->sizes[k] < 3 || o->sizes[k] > 100000000)
+      return rn_bench_bad_args(&cli, "sizes in [3, 1e8]");
   if (o->repeats < 1 || !(o->min_time >= 0.0))
-    return usage("bad --repeats/--min-time"), -1;
+    return rn_bench_bad_args(&cli, "bad --repeats/--min-time");
   return 0;
 }
 
+/* Every shape of --shapes at every size of --sizes. */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
+  int rc = 0;
+  for (int s = 0; s < o->n_shapes && !rc; ++s)
+    for (int k = 0; k < o->n_sizes && !rc; ++k)
+      rc = bench_one(run->ctx, o, o->shapes[s], o->sizes[k], run->out);
+  return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "op,dofs,nnz,batch,median_per_vertex,min_per_vertex,flops_per_vertex,"
+    "divsqrt_per_vertex,bytes_per_vertex,gflops,peak_gflops,peak_fraction,gbytes_per_s",
+    run_all};
+
 int main(int argc, char **argv) {
-  bench_opts o;
-  int rc = parse_args(argc, argv, &o);
-  if (rc) return rc > 0 ? 0 : 2;
-  FILE *out = o.out ? fopen(o.out, "w") : stdout;
-  if (!out) {
-    perror(o.out);
-    return 1;
-  }
-  rn_context *ctx = NULL;
-  if (rn_context_create(&ctx)) return 1;
-  rn_bench_csv_header(out, "op,dofs,nnz,batch,median_per_vertex,min_per_vertex,"
-                           "flops_per_vertex,divsqrt_per_vertex,bytes_per_vertex,"
-                           "gflops,peak_gflops,peak_fraction,gbytes_per_s");
-  for (int s = 0; s < o.n_shapes && !rc; ++s)
-    for (int k = 0; k < o.n_sizes && !rc; ++k)
-      rc = bench_one(ctx, &o, o.shapes[s], o.sizes[k], out);
-  rn_context_destroy(&ctx);
-  if (out != stdout && fclose(out) != 0) rc = 1;
-  return rc ? 1 : 0;
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

@@ -260,22 +260,10 @@ static double peak_rss_mb(void) {
   return (double)ru.ru_maxrss / 1024.0;
 }
 
-static int usage(const char *msg) {
-  fprintf(stderr,
-          "bench_lattice: %s\n"
-          "usage: bench_lattice [--kind honeycomb] [--cells 10,30,100]\n"
-          "                     [--models rigid,elastic] [--edges-per-rod 8]\n"
-          "                     [--load stretch-x:1e-3] [--repeats N] [--solver NAME]\n"
-          "                     [--factorization auto|banded|sparse]\n"
-          "                     [--preconditioner auto|factor|dd|muelu|ifpack2]\n"
-          "                     [--dump-system PREFIX] [--out FILE.csv]\n",
-          msg);
-  return 2;
-}
-
 /* "stretch-x:1e-3", "compress-z:1e-3", "grip-x:1e-3", "pull-y:0.1"
  * (docs/lattices.md); 0 if ok. */
-static int parse_load(const char *v, bench_opts *o) {
+static int parse_load(void *opts, const char *v) {
+  bench_opts *o = opts;
   static const char *kinds[4] = {"stretch-", "compress-", "pull-", "grip-"};
   static const rn_lattice_load_kind load[4] = {RN_LLOAD_STRETCH, RN_LLOAD_STRETCH,
                                                RN_LLOAD_PULL, RN_LLOAD_GRIP};
@@ -296,7 +284,8 @@ static int parse_load(const char *v, bench_opts *o) {
   return -1;
 }
 
-static int parse_models(const char *v, bench_opts *o) {
+static int parse_models(void *opts, const char *v) {
+  bench_opts *o = opts;
   o->n_models = 0;
   if (!strcmp(v, "rigid") || !strcmp(v, "rigid,elastic") || !strcmp(v, "elastic,rigid"))
     o->models[o->n_models++] = RN_JOINT_RIGID;
@@ -309,77 +298,90 @@ static int parse_models(const char *v, bench_opts *o) {
   return o->n_models > 0 ? 0 : -1;
 }
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static int set_kind(void *o, const char *v) {
+  return rn_lattice_kind_from_name(v, &((bench_opts *)o)->kind) != 0;
+}
+
+static int set_solver(void *o, const char *v) {
+  return rn_solver_from_name(v, &((bench_opts *)o)->solver) != RN_OK;
+}
+
+static int set_factorization(void *o, const char *v) {
+  return rn_factorization_from_name(v, &((bench_opts *)o)->factorization) != RN_OK;
+}
+
+static int set_preconditioner(void *o, const char *v) {
+  return rn_preconditioner_from_name(v, &((bench_opts *)o)->preconditioner) != RN_OK;
+}
+
+static const rn_bench_cli cli = {
+    "bench_lattice",
+    "usage: bench_lattice [--kind honeycomb] [--cells 10,30,100]\n"
+    "                     [--models rigid,elastic] [--edges-per-rod 8]\n"
+    "                     [--load stretch-x:1e-3] [--repeats N] [--solver NAME]\n"
+    "                     [--factorization auto|banded|sparse]\n"
+    "                     [--preconditioner auto|factor|dd|muelu|ifpack2]\n"
+    "                     [--dump-system PREFIX] [--out FILE.csv]\n",
+    "lattice solve"};
+
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
   memset(o, 0, sizeof *o);
   o->kind = RN_LATTICE_HONEYCOMB;
   o->n_cells = rn_bench_parse_list("10,30,100", o->cells, MAX_LIST);
-  parse_models("rigid,elastic", o);
+  parse_models(o, "rigid,elastic");
   o->edges_per_rod = 8;
   o->repeats = 1;
-  parse_load("stretch-x:1e-3", o);
+  parse_load(o, "stretch-x:1e-3");
   o->solver = RN_SOLVER_TR_MINRES;
   o->factorization = RN_FACTOR_AUTO;
   o->preconditioner = RN_PRECOND_AUTO;
-  for (int i = 1; i < argc; ++i) {
-    const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("lattice solve"), 1;
-    if (!val) return usage("missing value after an option"), -1;
-    if (!strcmp(a, "--kind")) {
-      if (rn_lattice_kind_from_name(val, &o->kind)) return usage("unknown --kind"), -1;
-    } else if (!strcmp(a, "--cells"))
-      o->n_cells = rn_bench_parse_list(val, o->cells, MAX_LIST);
-    else if (!strcmp(a, "--models")) {
-      if (parse_models(val, o)) return usage("bad --models"), -1;
-    } else if (!strcmp(a, "--edges-per-rod"))
-      o->edges_per_rod = atoi(val);
-    else if (!strcmp(a, "--load")) {
-      if (parse_load(val, o)) return usage("bad --load"), -1;
-    } else if (!strcmp(a, "--repeats"))
-      o->repeats = atoi(val);
-    else if (!strcmp(a, "--solver")) {
-      if (rn_solver_from_name(val, &o->solver)) return usage("unknown --solver"), -1;
-    } else if (!strcmp(a, "--factorization")) {
-      if (rn_factorization_from_name(val, &o->factorization))
-        return usage("unknown --factorization"), -1;
-    } else if (!strcmp(a, "--preconditioner")) {
-      if (rn_preconditioner_from_name(val, &o->preconditioner))
-        return usage("unknown --preconditioner"), -1;
-    } else if (!strcmp(a, "--dump-system"))
-      o->dump = val;
-    else if (!strcmp(a, "--out"))
-      o->out = val;
-    else
-      return usage("unknown option"), -1;
-    ++i;
-  }
-  if (o->n_cells < 0) return usage("bad --cells"), -1;
-  if (o->repeats < 1 || o->edges_per_rod < 1) return usage("bad --repeats/--edges"), -1;
+  const rn_bench_option opt[] = {
+      {"--kind", RN_BENCH_CALL, NULL, NULL, 0, set_kind, "unknown --kind"},
+      {"--cells", RN_BENCH_LIST, o->cells, &o->n_cells, MAX_LIST, NULL, NULL},
+      {"--models", RN_BENCH_CALL, NULL, NULL, 0, parse_models, "bad --models"},
+      {"--edges-per-rod", RN_BENCH_INT, &o->edges_per_rod, NULL, 0, NULL, NULL},
+      {"--load", RN_BENCH_CALL, NULL, NULL, 0, parse_load, "bad --load"},
+      {"--repeats", RN_BENCH_INT, &o->repeats, NULL, 0, NULL, NULL},
+      {"--solver", RN_BENCH_CALL, NULL, NULL, 0, set_solver, "unknown --solver"},
+      {"--factorization", RN_BENCH_CALL, NULL, NULL, 0, set_factorization,
+       "unknown --factorization"},
+      {"--preconditioner", RN_BENCH_CALL, NULL, NULL, 0, set_preconditioner,
+       "unknown --preconditioner"},
+      {"--dump-system", RN_BENCH_STRING, &o->dump, NULL, 0, NULL, NULL},
+      {"--out", RN_BENCH_STRING, &o->out, NULL, 0, NULL, NULL}};
+  int rc = rn_bench_parse_args(argc, argv, opt, sizeof opt / sizeof *opt, o, &cli);
+  if (rc) return rc;
+  if (o->n_cells < 0) return rn_bench_bad_args(&cli, "bad --cells");
+  if (o->repeats < 1 || o->edges_per_rod < 1)
+    return rn_bench_bad_args(&cli, "bad --repeats/--edges");
   return 0;
 }
 
-int main(int argc, char **argv) {
-  bench_opts o;
-  int rc = parse_args(argc, argv, &o);
+/* Every lattice of --cells with every joint model of --models, on the solver's
+ * runtime (initialised here without the command line, which holds no runtime
+ * option: parse_args refuses every option it does not know). */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
   char path[4096];
-  if (rc) return rc > 0 ? 0 : 2;
-  snprintf(path, sizeof path, "%s.scene.json", o.out ? o.out : "bench_lattice");
-  FILE *out = o.out ? fopen(o.out, "w") : stdout;
-  if (!out) {
-    perror(o.out);
-    return 1;
-  }
-  rn_context *ctx = NULL;
-  if (rn_runtime_initialize(&argc, &argv) || rn_context_create(&ctx)) return 1;
-  rn_bench_csv_header(out, "lattice,cells,joint_model,edges_per_rod,load,rods,joints,"
-                           "solver,factorization,newton_iterations,minres_iterations,"
-                           "minres_per_newton,minres_max,factorizations,load_steps,"
-                           "stop,gradient_norm,energy,preconditioner,peak_rss_mb,"
-                           "hessian_s,setup_s,apply_s");
-  for (int k = 0; k < o.n_cells && !rc; ++k)
-    for (int m = 0; m < o.n_models && !rc; ++m)
-      rc = bench_case(ctx, &o, o.cells[k], o.models[m], path, out);
-  rn_context_destroy(&ctx);
-  if (out != stdout && fclose(out) != 0) rc = 1;
+  int rc = rn_runtime_initialize(NULL, NULL) != RN_OK;
+  snprintf(path, sizeof path, "%s.scene.json", o->out ? o->out : "bench_lattice");
+  for (int k = 0; k < o->n_cells && !rc; ++k)
+    for (int m = 0; m < o->n_models && !rc; ++m)
+      rc = bench_case(run->ctx, o, o->cells[k], o->models[m], path, run->out);
   rn_runtime_finalize();
-  return rc ? 1 : 0;
+  return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "lattice,cells,joint_model,edges_per_rod,load,rods,joints,solver,factorization,"
+    "newton_iterations,minres_iterations,minres_per_newton,minres_max,factorizations,"
+    "load_steps,stop,gradient_norm,energy,preconditioner,peak_rss_mb,hessian_s,setup_s,"
+    "apply_s",
+    run_all};
+
+int main(int argc, char **argv) {
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

@@ -37,7 +37,6 @@
 #include <Tpetra_Core.hpp>
 
 #include "pc/alt_preconditioners.hpp"
-#include "bench_config.h"
 #include "krylov/minres.hpp"
 #include "system/replicated_system.hpp"
 #include "base/shim_error.hpp"
@@ -45,6 +44,7 @@
 #include "factor/spd_factor.hpp"
 
 extern "C" {
+#include "bench_util.h"
 #include "generate/lattice.h"
 #include "generate/lattice_scene.h"
 #include "scene/scene.h"
@@ -112,14 +112,12 @@ bool parse_load(const std::string &v, Opts &o) {
 }
 
 int usage(const char *msg) {
-  std::fprintf(
-      stderr,
-      "bench_precond: %s\nusage: bench_precond [--kind honeycomb] [--cells 10,30] "
-      "[--models rigid,elastic]\n  [--edges-per-rod 8] [--load stretch-x:1e-3] "
+  return rn_bench_usage(
+      "bench_precond", msg,
+      "usage: bench_precond [--kind honeycomb] [--cells 10,30] [--models rigid,elastic]\n"
+      "  [--edges-per-rod 8] [--load stretch-x:1e-3] "
       "[--precond dd,dd-direct,dd-amg,muelu,ifpack2,frosch,factor]\n  [--tol 1e-8] "
-      "[--max-its 3000] [--repeats 1] [--amg-xml FILE] [--newton] [--out FILE.csv]\n",
-      msg);
-  return 2;
+      "[--max-its 3000] [--repeats 1] [--amg-xml FILE] [--newton] [--out FILE.csv]\n");
 }
 
 int parse(int argc, char **argv, Opts &o) {
@@ -411,6 +409,170 @@ NewtonRun run_newton(ReplicatedSystem &sys, const std::string &name, const Opts 
   return r;
 }
 
+// One lattice (cells, joint model) as the lines and CSV rows describe it.
+struct Case {
+  const Opts &o;
+  long cells;
+  const char *model;
+  long long dofs;
+  long vertices;
+  int rods, joints, nranks;
+};
+
+// The columns every row starts with, up to the preconditioner's name (and its comma).
+void put_row_start(FILE *out, const Case &c, const char *bench, const std::string &pname,
+                   double median, double mn) {
+  const char *kind = rn_lattice_kind_name(c.o.kind);
+  const std::string name = std::string(kind) + "-" + c.model + "-" + pname;
+  rn_bench_csv_begin_ranks(out, c.nranks, bench, name.c_str(), static_cast<long>(c.dofs),
+                           c.o.repeats, median, mn);
+  std::fprintf(out, ",%s,%ld,%s,%d,%s,%ld,%d,%d,%s,", kind, c.cells, c.model, c.o.edges,
+               c.o.load_text.c_str(), c.vertices, c.rods, c.joints, pname.c_str());
+}
+
+// --newton: repeated Newton solves from the scene's state (initial); the line and
+// the row.  0 if the last solve converged.
+int newton_case(FILE *out, ReplicatedSystem &sys, rn_network *net,
+                const rn_state *initial, const Case &c, const std::string &pname,
+                int rank) {
+  std::vector<double> totals;
+  NewtonRun r;
+  for (int k = 0; k < c.o.repeats; ++k) {
+    rn_network_state_restore(net, initial);
+    r = run_newton(sys, pname, c.o);
+    totals.push_back(r.total);
+  }
+  std::sort(totals.begin(), totals.end());
+  const double rss = peak_rss_mb();
+  if (rank == 0) {
+    std::printf("%s %ldx %s, %lld DOFs, %ld vertices: %-9s Newton %d (predictor %d), "
+                "MINRES %d (%.1f per step), total %.2f s (Hessian %.2f, setup %.2f, "
+                "MINRES %.2f), |g|/f %.1e, peak RSS %.0f MB (%.0f B/vertex)%s\n",
+                rn_lattice_kind_name(c.o.kind), c.cells, c.model, c.dofs, c.vertices,
+                pname.c_str(), r.newton, r.predictor ? 1 : 0, r.minres,
+                static_cast<double>(r.minres) / (r.newton + 1), r.total, r.hessian,
+                r.setup, r.minres_s, r.gratio, rss,
+                rss * 1048576.0 / static_cast<double>(c.vertices),
+                r.converged ? "" : " NOT CONVERGED");
+    std::fflush(stdout);
+    if (out) {
+      put_row_start(out, c, "precond-newton", pname, totals[totals.size() / 2],
+                    totals.front());
+      std::fprintf(out, "-,0,0,%.6e,0,%.6e,%d,%.6e,0,0,%.1f,%.1f,%d,%.3e,%d,%d,0\n",
+                   r.hessian, r.setup, r.minres, r.minres_s,
+                   rss * 1048576.0 / static_cast<double>(c.vertices), rss,
+                   r.converged ? 1 : 0, r.gratio, r.newton, r.predictor ? 1 : 0);
+      std::fflush(out);
+    }
+  }
+  return r.converged ? 0 : 1;
+}
+
+// One Newton system H s = -g (g at the initial state, th the Hessian's assembly
+// time) solved with the preconditioner pname, --repeats times; the line and the row.
+// 0 if the last solve converged.
+int system_case(FILE *out, ReplicatedSystem &sys, const TMV &g, double th, const Case &c,
+                const std::string &pname, int rank) {
+  std::vector<double> totals;
+  Run r;
+  for (int k = 0; k < c.o.repeats; ++k) {
+    r = run_one(sys, pname, c.o, g);
+    totals.push_back(r.setup2 + r.minres_s);
+  }
+  std::sort(totals.begin(), totals.end());
+  const double median = totals[totals.size() / 2], mn = totals.front();
+  if (rank == 0) {
+    std::printf("%s %ldx %s, %lld DOFs, %ld vertices: %-9s setup %.3f / %.3f s, "
+                "MINRES %d its %.3f s (apply %.2e s), %.0f B/vertex, coarse %s %lld "
+                "(shift %g, %.1e flops), residual %.1e%s\n",
+                rn_lattice_kind_name(c.o.kind), c.cells, c.model, c.dofs, c.vertices,
+                pname.c_str(), r.setup1, r.setup2, r.its, r.minres_s, r.apply_s,
+                r.bytes / static_cast<double>(c.vertices), r.coarse.c_str(),
+                r.coarse_rows, r.coarse_shift, r.coarse_flops, r.residual,
+                r.converged ? "" : " NOT CONVERGED");
+    std::fflush(stdout);
+    if (out) {
+      put_row_start(out, c, "precond", pname, median, mn);
+      std::fprintf(out,
+                   "%s,%lld,%g,%.6e,%.6e,%.6e,%d,%.6e,%.6e,%.6e,%.3f,%.1f,%d,%.3e,0,0,"
+                   "%.3e\n",
+                   r.coarse.c_str(), r.coarse_rows, r.coarse_shift, th, r.setup1,
+                   r.setup2, r.its, r.minres_s, r.apply_s, r.bytes,
+                   r.bytes / static_cast<double>(c.vertices), peak_rss_mb(),
+                   r.converged ? 1 : 0, r.residual, r.coarse_flops);
+      std::fflush(out);
+    }
+  }
+  return r.converged ? 0 : 1;
+}
+
+// Every preconditioner of --precond on the lattice (cells, model).  0 if ok.
+int lattice_case(FILE *out, rn_context *ctx, const Opts &o,
+                 const Teuchos::RCP<const Teuchos::Comm<int>> &comm, long cells,
+                 int model) {
+  const int rank = comm->getRank(), nranks = comm->getSize();
+  rn_scene *scene = load_lattice(ctx, o, cells, model, rank);
+  if (!scene) return 1;
+  rn_network *net = rn_scene_network(scene);
+  rn_state *initial = nullptr; // every run starts from the scene's state
+  if (rn_network_state_save(net, &initial)) {
+    rn_scene_destroy(&scene);
+    return 1;
+  }
+  int rc = 0;
+  try {
+    ReplicatedSystem sys(net, comm);
+    TMV x(sys.map(), 1), g(sys.map(), 1);
+    sys.get_state(x);
+    double E = 0.0;
+    sys.gradient(x, &E, g);
+    auto t0 = Clock::now();
+    sys.assemble_hessian(x);
+    const double th = since(t0);
+    const Case c{o,
+                 cells,
+                 model == RN_JOINT_RIGID ? "rigid" : "elastic",
+                 static_cast<long long>(sys.global_size()),
+                 rn_scene_num_vertices(scene),
+                 rn_network_num_rods(net),
+                 rn_network_num_joints(net),
+                 nranks};
+    for (const std::string &pname : o.precs) {
+      if (pname == "factor" && nranks > 1) continue;
+      if (o.newton ? newton_case(out, sys, net, initial, c, pname, rank)
+                   : system_case(out, sys, g, th, c, pname, rank))
+        rc = 1;
+    }
+  } catch (const std::exception &e) {
+    if (rank == 0) std::fprintf(stderr, "bench_precond: %s\n", e.what());
+    rc = 1;
+  }
+  rn_state_destroy(&initial);
+  rn_scene_destroy(&scene);
+  return rc;
+}
+
+// Rank 0 with --out: the CSV file opened for appending, its header written if it
+// is new.  nullptr otherwise; *rc = 1 if it cannot be opened.
+FILE *open_csv(const Opts &o, int rank, int *rc) {
+  if (rank != 0 || o.out.empty()) return nullptr;
+  FILE *probe = std::fopen(o.out.c_str(), "r");
+  const bool fresh = probe == nullptr;
+  if (probe) std::fclose(probe);
+  FILE *out = std::fopen(o.out.c_str(), "a");
+  if (!out) {
+    std::fprintf(stderr, "bench_precond: cannot write %s\n", o.out.c_str());
+    *rc = 1;
+    return nullptr;
+  }
+  if (fresh)
+    rn_bench_csv_header(out, "kind,cells,model,edges_per_rod,load,vertices,rods,joints,"
+                             "precond,coarse_solver,coarse_rows,coarse_shift,hessian_s,"
+                             "setup1_s,setup2_s,minres_its,minres_s,apply_s,bytes,"
+                             "bytes_per_vertex,peak_rss_mb,converged,residual");
+  return out;
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -420,149 +582,13 @@ int main(int argc, char **argv) {
     Opts o;
     if ((rc = parse(argc, argv, o))) return rc;
     auto comm = Tpetra::getDefaultComm();
-    const int rank = comm->getRank(), nranks = comm->getSize();
-    FILE *out = nullptr;
-    if (rank == 0 && !o.out.empty()) {
-      FILE *probe = std::fopen(o.out.c_str(), "r");
-      const bool fresh = probe == nullptr;
-      if (probe) std::fclose(probe);
-      out = std::fopen(o.out.c_str(), "a");
-      if (!out) {
-        std::fprintf(stderr, "bench_precond: cannot write %s\n", o.out.c_str());
-        return 1;
-      }
-      if (fresh)
-        std::fprintf(
-            out,
-            "commit,compiler,flags,ranks,bench,case,size,repeats,median,min,kind,cells,"
-            "model,edges_per_rod,load,vertices,rods,joints,precond,coarse_solver,"
-            "coarse_rows,coarse_shift,hessian_s,setup1_s,setup2_s,minres_its,"
-            "minres_s,apply_s,bytes,bytes_per_vertex,peak_rss_mb,converged,"
-            "residual\n");
-    }
+    FILE *out = open_csv(o, comm->getRank(), &rc);
+    if (rc) return rc;
     rn_context *ctx = nullptr;
     rn_context_create(&ctx);
     for (long cells : o.cells)
-      for (int model : o.models) {
-        rn_scene *scene = load_lattice(ctx, o, cells, model, rank);
-        if (!scene) {
-          rc = 1;
-          continue;
-        }
-        rn_network *net = rn_scene_network(scene);
-        const long vertices = rn_scene_num_vertices(scene);
-        rn_state *initial = nullptr; // every run starts from the scene's state
-        if (rn_network_state_save(net, &initial)) {
-          rn_scene_destroy(&scene);
-          rc = 1;
-          continue;
-        }
-        try {
-          ReplicatedSystem sys(net, comm);
-          TMV x(sys.map(), 1), g(sys.map(), 1);
-          sys.get_state(x);
-          double E = 0.0;
-          sys.gradient(x, &E, g);
-          auto t0 = Clock::now();
-          sys.assemble_hessian(x);
-          const double th = since(t0);
-          const char *model_name = model == RN_JOINT_RIGID ? "rigid" : "elastic";
-          for (const std::string &pname : o.precs) {
-            if (pname == "factor" && nranks > 1) continue;
-            if (o.newton) {
-              std::vector<double> totals;
-              NewtonRun r;
-              for (int k = 0; k < o.repeats; ++k) {
-                rn_network_state_restore(net, initial);
-                r = run_newton(sys, pname, o);
-                totals.push_back(r.total);
-              }
-              std::sort(totals.begin(), totals.end());
-              if (!r.converged) rc = 1;
-              const double rss = peak_rss_mb();
-              if (rank == 0) {
-                std::printf(
-                    "%s %ldx %s, %lld DOFs, %ld vertices: %-9s Newton %d (predictor %d), "
-                    "MINRES %d (%.1f per step), total %.2f s (Hessian %.2f, setup %.2f, "
-                    "MINRES %.2f), |g|/f %.1e, peak RSS %.0f MB (%.0f B/vertex)%s\n",
-                    rn_lattice_kind_name(o.kind), cells, model_name,
-                    static_cast<long long>(sys.global_size()), vertices, pname.c_str(),
-                    r.newton, r.predictor ? 1 : 0, r.minres,
-                    static_cast<double>(r.minres) / (r.newton + 1), r.total, r.hessian,
-                    r.setup, r.minres_s, r.gratio, rss,
-                    rss * 1048576.0 / static_cast<double>(vertices),
-                    r.converged ? "" : " NOT CONVERGED");
-                std::fflush(stdout);
-                if (out) {
-                  std::fprintf(
-                      out,
-                      "\"%s\",\"%s\",\"%s\",%d,precond-newton,%s-%s-%s,%lld,%d,%.6e,"
-                      "%.6e,%s,%ld,%s,%d,%s,%ld,%d,%d,%s,-,0,0,%.6e,0,%.6e,%d,%.6e,"
-                      "0,0,%.1f,%.1f,%d,%.3e,%d,%d,0\n",
-                      RN_BENCH_COMMIT, RN_BENCH_COMPILER, RN_BENCH_FLAGS, nranks,
-                      rn_lattice_kind_name(o.kind), model_name, pname.c_str(),
-                      static_cast<long long>(sys.global_size()), o.repeats,
-                      totals[totals.size() / 2], totals.front(),
-                      rn_lattice_kind_name(o.kind), cells, model_name, o.edges,
-                      o.load_text.c_str(), vertices, rn_network_num_rods(net),
-                      rn_network_num_joints(net), pname.c_str(), r.hessian, r.setup,
-                      r.minres, r.minres_s,
-                      rss * 1048576.0 / static_cast<double>(vertices), rss,
-                      r.converged ? 1 : 0, r.gratio, r.newton, r.predictor ? 1 : 0);
-                  std::fflush(out);
-                }
-              }
-              continue;
-            }
-            std::vector<double> totals;
-            Run r;
-            for (int k = 0; k < o.repeats; ++k) {
-              r = run_one(sys, pname, o, g);
-              totals.push_back(r.setup2 + r.minres_s);
-            }
-            std::sort(totals.begin(), totals.end());
-            const double median = totals[totals.size() / 2], mn = totals.front();
-            if (!r.converged) rc = 1;
-            if (rank == 0) {
-              std::printf(
-                  "%s %ldx %s, %lld DOFs, %ld vertices: %-9s setup %.3f / %.3f s, "
-                  "MINRES %d its %.3f s (apply %.2e s), %.0f B/vertex, coarse %s %lld "
-                  "(shift %g, %.1e flops), residual %.1e%s\n",
-                  rn_lattice_kind_name(o.kind), cells, model_name,
-                  static_cast<long long>(sys.global_size()), vertices, pname.c_str(),
-                  r.setup1, r.setup2, r.its, r.minres_s, r.apply_s,
-                  r.bytes / static_cast<double>(vertices), r.coarse.c_str(),
-                  r.coarse_rows, r.coarse_shift, r.coarse_flops, r.residual,
-                  r.converged ? "" : " NOT CONVERGED");
-              std::fflush(stdout);
-              if (out) {
-                std::fprintf(
-                    out,
-                    "\"%s\",\"%s\",\"%s\",%d,precond,%s-%s-%s,%lld,%d,%.6e,%.6e,%s,%ld,%"
-                    "s,"
-                    "%d,%s,%ld,%d,%d,%s,%s,%lld,%g,%.6e,%.6e,%.6e,%d,%.6e,%.6e,%.6e,%.3f,"
-                    "%.1f,%d,%.3e,0,0,%.3e\n",
-                    RN_BENCH_COMMIT, RN_BENCH_COMPILER, RN_BENCH_FLAGS, nranks,
-                    rn_lattice_kind_name(o.kind), model_name, pname.c_str(),
-                    static_cast<long long>(sys.global_size()), o.repeats, median, mn,
-                    rn_lattice_kind_name(o.kind), cells, model_name, o.edges,
-                    o.load_text.c_str(), vertices, rn_network_num_rods(net),
-                    rn_network_num_joints(net), pname.c_str(), r.coarse.c_str(),
-                    r.coarse_rows, r.coarse_shift, th, r.setup1, r.setup2, r.its,
-                    r.minres_s, r.apply_s, r.bytes,
-                    r.bytes / static_cast<double>(vertices), peak_rss_mb(),
-                    r.converged ? 1 : 0, r.residual, r.coarse_flops);
-                std::fflush(out);
-              }
-            }
-          }
-        } catch (const std::exception &e) {
-          if (rank == 0) std::fprintf(stderr, "bench_precond: %s\n", e.what());
-          rc = 1;
-        }
-        rn_state_destroy(&initial);
-        rn_scene_destroy(&scene);
-      }
+      for (int model : o.models)
+        if (lattice_case(out, ctx, o, comm, cells, model)) rc = 1;
     rn_context_destroy(&ctx);
     if (out) std::fclose(out);
   }

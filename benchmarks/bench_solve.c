@@ -181,74 +181,80 @@ static int bench_size(rn_context *ctx, const bench_opts *o, long nv, FILE *out) 
   return 0;
 }
 
-static int usage(const char *msg) {
-  fprintf(
-      stderr,
-      "bench_solve: %s\n"
-      "usage: bench_solve [--problem cantilever|arch|circle] [--sizes 101,401,3201]\n"
-      "                   [--repeats N] [--solver NAME] [--load P] [--out FILE.csv]\n",
-      msg);
-  return 2;
+static int set_load(void *opts, const char *v) {
+  bench_opts *o = opts;
+  o->load = atof(v);
+  o->has_load = 1;
+  return 0;
 }
 
-static int parse_args(int argc, char **argv, bench_opts *o) {
+static int set_problem(void *opts, const char *v) {
+  bench_opts *o = opts;
+  if (!strcmp(v, "cantilever"))
+    o->problem = CANTILEVER;
+  else if (!strcmp(v, "arch"))
+    o->problem = ARCH;
+  else if (!strcmp(v, "circle"))
+    o->problem = CIRCLE;
+  else
+    return -1;
+  return 0;
+}
+
+static int set_solver(void *opts, const char *v) {
+  return rn_solver_from_name(v, &((bench_opts *)opts)->solver) != RN_OK;
+}
+
+static const rn_bench_cli cli = {
+    "bench_solve",
+    "usage: bench_solve [--problem cantilever|arch|circle] [--sizes 101,401,3201]\n"
+    "                   [--repeats N] [--solver NAME] [--load P] [--out FILE.csv]\n",
+    "cantilever solve"};
+
+static int parse_args(int argc, char **argv, void *opts) {
+  bench_opts *o = opts;
+  memset(o, 0, sizeof *o); /* problem cantilever, no --load */
   o->n_sizes = rn_bench_parse_list("101,401,3201", o->sizes, MAX_LIST);
   o->repeats = 3;
   o->load = 0.39;
   o->solver = RN_SOLVER_TR_MINRES;
   o->out = NULL;
-  for (int i = 1; i < argc; ++i) {
-    const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage("cantilever solve"), 1;
-    if (!val) return usage("missing value after an option"), -1;
-    if (!strcmp(a, "--sizes"))
-      o->n_sizes = rn_bench_parse_list(val, o->sizes, MAX_LIST);
-    else if (!strcmp(a, "--repeats"))
-      o->repeats = atoi(val);
-    else if (!strcmp(a, "--load"))
-      o->load = atof(val), o->has_load = 1;
-    else if (!strcmp(a, "--problem")) {
-      if (!strcmp(val, "cantilever"))
-        o->problem = CANTILEVER;
-      else if (!strcmp(val, "arch"))
-        o->problem = ARCH;
-      else if (!strcmp(val, "circle"))
-        o->problem = CIRCLE;
-      else
-        return usage("unknown --problem"), -1;
-    } else if (!strcmp(a, "--solver")) {
-      if (rn_solver_from_name(val, &o->solver)) return usage("unknown --solver"), -1;
-    } else if (!strcmp(a, "--out"))
-      o->out = val;
-    else
-      return usage("unknown option"), -1;
-    ++i;
-  }
+  const rn_bench_option opt[] = {
+      {"--sizes", RN_BENCH_LIST, o->sizes, &o->n_sizes, MAX_LIST, NULL, NULL},
+      {"--repeats", RN_BENCH_INT, &o->repeats, NULL, 0, NULL, NULL},
+      {"--load", RN_BENCH_CALL, NULL, NULL, 0, set_load, NULL},
+      {"--problem", RN_BENCH_CALL, NULL, NULL, 0, set_problem, "unknown --problem"},
+      {"--solver", RN_BENCH_CALL, NULL, NULL, 0, set_solver, "unknown --solver"},
+      {"--out", RN_BENCH_STRING, &o->out, NULL, 0, NULL, NULL}};
+  int rc = rn_bench_parse_args(argc, argv, opt, sizeof opt / sizeof *opt, o, &cli);
+  if (rc) return rc;
   if (!o->has_load)
     o->load = o->problem == ARCH ? 4.0 : o->problem == CIRCLE ? 1.0 : 0.39;
-  if (o->n_sizes < 0) return usage("bad --sizes"), -1;
+  if (o->n_sizes < 0) return rn_bench_bad_args(&cli, "bad --sizes");
   for (int k = 0; k < o->n_sizes; ++k)
-    if (o->sizes[k] < 3 || o->sizes[k] > 10000000) return usage("sizes in [3, 1e7]"), -1;
-  if (o->repeats < 1 || !isfinite(o->load)) return usage("bad --repeats/--load"), -1;
+    if (o->sizes[k] < 3 || o->sizes[k] > 10000000)
+      return rn_bench_bad_args(&cli, "sizes in [3, 1e7]");
+  if (o->repeats < 1 || !isfinite(o->load))
+    return rn_bench_bad_args(&cli, "bad --repeats/--load");
   return 0;
 }
 
+/* The problem at every size of --sizes. */
+static int run_all(rn_bench_run *run, const void *opts) {
+  const bench_opts *o = opts;
+  int rc = 0;
+  for (int k = 0; k < o->n_sizes && !rc; ++k)
+    rc = bench_size(run->ctx, o, o->sizes[k], run->out);
+  return rc;
+}
+
+static const rn_bench_program program = {
+    parse_args,
+    "load,newton_iterations,krylov_iterations,gradient_evals,hvp_evals,load_steps,stop,"
+    "gradient_norm,energy,tip_x,tip_y,tip_z",
+    run_all};
+
 int main(int argc, char **argv) {
-  bench_opts o;
-  int rc = parse_args(argc, argv, &o);
-  if (rc) return rc > 0 ? 0 : 2;
-  FILE *out = o.out ? fopen(o.out, "w") : stdout;
-  if (!out) {
-    perror(o.out);
-    return 1;
-  }
-  rn_context *ctx = NULL;
-  if (rn_context_create(&ctx)) return 1;
-  rn_bench_csv_header(out, "load,newton_iterations,krylov_iterations,gradient_evals,"
-                           "hvp_evals,load_steps,stop,gradient_norm,energy,tip_x,tip_y,"
-                           "tip_z");
-  for (int k = 0; k < o.n_sizes && !rc; ++k) rc = bench_size(ctx, &o, o.sizes[k], out);
-  rn_context_destroy(&ctx);
-  if (out != stdout && fclose(out) != 0) rc = 1;
-  return rc ? 1 : 0;
+  bench_opts o = {0};
+  return rn_bench_main(argc, argv, &program, &o, &o.out);
 }

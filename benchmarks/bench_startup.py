@@ -83,6 +83,59 @@ def run(cmd, env=None):
     return wall
 
 
+def make_jobs(rodnet, tmp, sizes, cases):
+    """The commands to time: (case, size, command, environment, result path or None);
+    the cantilever scenes written into tmp."""
+    env_serial = dict(os.environ)
+    env_serial.pop("RODNET_MPI", None)
+    env_mpi = dict(env_serial, RODNET_MPI="1")
+    jobs = []
+    if "version" in cases:
+        jobs.append(("version", 0, [rodnet, "--version"], env_serial, None))
+    for n in sizes:
+        scene = os.path.join(tmp, f"cantilever_{n}.json")
+        write_cantilever(scene, n)
+        for case, env in (("solve", env_serial), ("solve-mpi1", env_mpi)):
+            if case in cases:
+                res = os.path.join(tmp, f"{case}_{n}.json")
+                jobs.append((case, n, [rodnet, "solve", scene, "-o", res, "--quiet"], env,
+                             res))
+    return jobs
+
+
+def time_jobs(jobs, repeats):
+    """Every job repeats times, interleaved: per (case, size) the wall times and the
+    solves' time_s (0 for jobs without a result); exits if a solve did not converge."""
+    walls = {j[:2]: [] for j in jobs}
+    solves = {j[:2]: [] for j in jobs}
+    for _ in range(repeats):
+        for case, n, cmd, env, res in jobs:
+            wall = run(cmd, env)
+            solve = 0.0
+            if res:
+                with open(res) as f:
+                    result = json.load(f)
+                if not result.get("converged"):
+                    sys.exit(f"bench_startup: {case} {n}: not converged")
+                solve = float(result["time_s"])
+            walls[(case, n)].append(wall)
+            solves[(case, n)].append(solve)
+    return walls, solves
+
+
+def summary_row(prov, case, n, repeats, w, s):
+    """The CSV row of one (case, size) from its wall times w and solve times s
+    (printed as a line on stderr too)."""
+    over = [a - b for a, b in zip(w, s)]
+    print(f"bench_startup: {case:11s} {n:6d} vertices: wall - time_s median "
+          f"{statistics.median(over) * 1e3:8.1f} ms (min {min(over) * 1e3:.1f}), "
+          f"wall median {statistics.median(w) * 1e3:.1f} ms, solve median "
+          f"{statistics.median(s) * 1e3:.1f} ms", file=sys.stderr)
+    return [prov["commit"], prov["compiler"], prov["flags"], 1, "startup", case, n, repeats,
+            f"{statistics.median(over):.6e}", f"{min(over):.6e}",
+            f"{statistics.median(w):.6e}", f"{min(w):.6e}", f"{statistics.median(s):.6e}"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -99,47 +152,11 @@ def main():
     if unknown or args.repeats < 1 or min(sizes) < 3:
         sys.exit(f"bench_startup: bad --cases {sorted(unknown)}, --repeats or --sizes")
     prov = provenance(args.rodnet, args.commit)
-    env_serial = dict(os.environ)
-    env_serial.pop("RODNET_MPI", None)
-    env_mpi = dict(env_serial, RODNET_MPI="1")
-    rows = []
     with tempfile.TemporaryDirectory(prefix="rodnet_startup_") as tmp:
-        jobs = []  # (case, size, command, env, result path)
-        if "version" in cases:
-            jobs.append(("version", 0, [args.rodnet, "--version"], env_serial, None))
-        for n in sizes:
-            scene = os.path.join(tmp, f"cantilever_{n}.json")
-            write_cantilever(scene, n)
-            for case, env in (("solve", env_serial), ("solve-mpi1", env_mpi)):
-                if case in cases:
-                    res = os.path.join(tmp, f"{case}_{n}.json")
-                    jobs.append((case, n, [args.rodnet, "solve", scene, "-o", res,
-                                           "--quiet"], env, res))
-        walls = {j[:2]: [] for j in jobs}
-        solves = {j[:2]: [] for j in jobs}
-        for _ in range(args.repeats):
-            for case, n, cmd, env, res in jobs:
-                wall = run(cmd, env)
-                solve = 0.0
-                if res:
-                    with open(res) as f:
-                        result = json.load(f)
-                    if not result.get("converged"):
-                        sys.exit(f"bench_startup: {case} {n}: not converged")
-                    solve = float(result["time_s"])
-                walls[(case, n)].append(wall)
-                solves[(case, n)].append(solve)
-        for case, n, _, _, _ in jobs:
-            w, s = walls[(case, n)], solves[(case, n)]
-            over = [a - b for a, b in zip(w, s)]
-            rows.append([prov["commit"], prov["compiler"], prov["flags"], 1, "startup", case,
-                         n, args.repeats, f"{statistics.median(over):.6e}",
-                         f"{min(over):.6e}", f"{statistics.median(w):.6e}",
-                         f"{min(w):.6e}", f"{statistics.median(s):.6e}"])
-            print(f"bench_startup: {case:11s} {n:6d} vertices: wall - time_s median "
-                  f"{statistics.median(over) * 1e3:8.1f} ms (min {min(over) * 1e3:.1f}), "
-                  f"wall median {statistics.median(w) * 1e3:.1f} ms, solve median "
-                  f"{statistics.median(s) * 1e3:.1f} ms", file=sys.stderr)
+        jobs = make_jobs(args.rodnet, tmp, sizes, cases)
+        walls, solves = time_jobs(jobs, args.repeats)
+        rows = [summary_row(prov, case, n, args.repeats, walls[(case, n)],
+                            solves[(case, n)]) for case, n, _, _, _ in jobs]
     out = open(args.out, "w", newline="") if args.out else sys.stdout
     wr = csv.writer(out)
     wr.writerow(["commit", "compiler", "flags", "ranks", "bench", "case", "size", "repeats",
@@ -147,7 +164,6 @@ def main():
     wr.writerows(rows)
     if args.out:
         out.close()
-
 
 if __name__ == "__main__":
     main()

@@ -60,11 +60,106 @@ void rn_bench_csv_header(FILE *f, const char *extra) {
           extra ? "," : "", extra ? extra : "");
 }
 
+void rn_bench_csv_begin_ranks(FILE *f, int ranks, const char *bench,
+                              const char *case_name, long size, int repeats,
+                              double median, double min) {
+  fprintf(f, "\"%s\",\"%s\",\"%s\",%d,%s,%s,%ld,%d,%.6e,%.6e", RN_BENCH_COMMIT,
+          RN_BENCH_COMPILER, RN_BENCH_FLAGS, ranks, bench, case_name, size, repeats,
+          median, min);
+}
+
 void rn_bench_csv_begin(FILE *f, const char *bench, const char *case_name, long size,
                         int repeats, double median, double min) {
-  fprintf(f, "\"%s\",\"%s\",\"%s\",%d,%s,%s,%ld,%d,%.6e,%.6e", RN_BENCH_COMMIT,
-          RN_BENCH_COMPILER, RN_BENCH_FLAGS, 1, bench, case_name, size, repeats, median,
-          min);
+  rn_bench_csv_begin_ranks(f, 1, bench, case_name, size, repeats, median, min);
+}
+
+int rn_bench_begin(rn_bench_run *run, const char *path, const char *extra) {
+  run->ctx = NULL;
+  run->out = path ? fopen(path, "w") : stdout;
+  if (!run->out) {
+    perror(path);
+    return 1;
+  }
+  if (rn_context_create(&run->ctx)) {
+    if (run->out != stdout) fclose(run->out);
+    run->out = NULL;
+    return 1;
+  }
+  rn_bench_csv_header(run->out, extra);
+  return 0;
+}
+
+int rn_bench_end(rn_bench_run *run, int rc) {
+  rn_context_destroy(&run->ctx);
+  if (run->out && run->out != stdout && fclose(run->out) != 0) rc = 1;
+  run->out = NULL;
+  return rc ? 1 : 0;
+}
+
+int rn_bench_main(int argc, char **argv, const rn_bench_program *p, void *opts,
+                  const char *const *out) {
+  rn_bench_run run;
+  int rc = p->parse(argc, argv, opts);
+  if (rc) return rc > 0 ? 0 : 2;
+  if (rn_bench_begin(&run, *out, p->columns)) return 1;
+  return rn_bench_end(&run, p->body(&run, opts));
+}
+
+int rn_bench_usage(const char *prog, const char *msg, const char *synopsis) {
+  fprintf(stderr, "%s: %s\n%s", prog, msg, synopsis);
+  return 2;
+}
+
+/* Stores value as o says; 0, or -1 after the usage if a CALL fails. */
+static int set_option(const rn_bench_option *o, const char *value, void *opts,
+                      const rn_bench_cli *cli) {
+  switch (o->kind) {
+  case RN_BENCH_FLAG:
+    *(int *)o->dst = 1;
+    break;
+  case RN_BENCH_INT:
+    *(int *)o->dst = atoi(value);
+    break;
+  case RN_BENCH_DOUBLE:
+    *(double *)o->dst = atof(value);
+    break;
+  case RN_BENCH_STRING:
+    *(const char **)o->dst = value;
+    break;
+  case RN_BENCH_LIST:
+    *o->count = rn_bench_parse_list(value, (long *)o->dst, o->max);
+    break;
+  case RN_BENCH_CALL:
+    if (o->call(opts, value)) return rn_bench_bad_args(cli, o->bad);
+    break;
+  }
+  return 0;
+}
+
+int rn_bench_bad_args(const rn_bench_cli *cli, const char *msg) {
+  rn_bench_usage(cli->prog, msg, cli->synopsis);
+  return -1;
+}
+
+int rn_bench_parse_args(int argc, char **argv, const rn_bench_option *opt, int nopt,
+                        void *opts, const rn_bench_cli *cli) {
+  for (int i = 1; i < argc; ++i) {
+    const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h"))
+      return rn_bench_usage(cli->prog, cli->help, cli->synopsis), 1;
+    const rn_bench_option *o = NULL;
+    for (int k = 0; k < nopt && !o; ++k)
+      if (!strcmp(a, opt[k].name)) o = &opt[k];
+    if (o && o->kind == RN_BENCH_FLAG) {
+      *(int *)o->dst = 1;
+      continue;
+    }
+    if (!val) return rn_bench_bad_args(cli, "missing value after an option");
+    if (!o) return rn_bench_bad_args(cli, "unknown option");
+    if (set_option(o, val, opts, cli)) return -1;
+    ++i;
+  }
+  return 0;
 }
 
 int rn_bench_shape_from_name(const char *name, rn_bench_shape *shape) {

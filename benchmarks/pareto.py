@@ -232,7 +232,7 @@ def provenance(rodnet):
     return out.splitlines()[0] if out else "rodnet", commit.stdout.strip() or "unknown"
 
 
-def main():
+def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--rodnet", default="build/rodnet")
     ap.add_argument("-o", "--outdir", required=True)
@@ -243,43 +243,49 @@ def main():
                          "of the conventions: midpoint 2 (+-0.15) in every case, vertex "
                          "1 (+-0.25) for the cantilever and the half circle, and 2 "
                          "(+-0.15) for the honeycomb cell")
-    a = ap.parse_args()
-    edges = [10, 20, 40, 80] if a.quick else [10, 20, 40, 80, 160, 320]
-    gtols = [1e-3, 1e-9] if a.quick else [1e-2, 1e-4, 1e-6, 1e-9]
-    repeats = a.repeats or (1 if a.quick else 3)
-    os.makedirs(a.outdir, exist_ok=True)
+    return ap.parse_args()
+
+
+def rod_rows(rodnet, tmp, edges, gtols, repeats, commit, version):
+    """Every rod case (CASES) with both clamps at every size and tolerance: a row of
+    error and time per (case, clamp, edges, gtol), printed as it is measured."""
     ref = elastica_tip(2.0)
-    version, commit = provenance(a.rodnet)
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for case in CASES:
-            for clamp in ("midpoint", "vertex"):
-                for n in edges:
-                    path = os.path.join(tmp, f"{case}_{clamp}_{n}.json")
-                    with open(path, "w") as f:
-                        json.dump(scene(case, clamp, n), f)
-                    for g in gtols:
-                        res = [solve(a.rodnet, path, os.path.join(tmp, "r.json"), g)
-                               for _ in range(repeats)]
-                        tip = res[0]["rods"][0]["vertices"][-1]
-                        times = [r["time_s"] for r in res]
-                        rows.append({
-                            "case": case, "clamp": clamp, "edges": n, "gtol": g,
-                            "error": error_of(case, tip, ref),
-                            "time_s": statistics.median(times), "time_min_s": min(times),
-                            "repeats": repeats, "converged": int(res[0]["converged"]),
-                            "iterations": res[0]["iterations"],
-                            "load_steps": res[0]["load_steps"], "commit": commit,
-                            "rodnet": version})
-                        print(f"{case:<11} {clamp:<9} n={n:<4} gtol={g:<7g} "
-                              f"error={rows[-1]['error']:.3e} time={rows[-1]['time_s']:.4f}s",
-                              flush=True)
-        hc_edges = [4, 8, 16, 32] if a.quick else [4, 8, 16, 32, 64, 128]
-        rows += honeycomb_rows(a.rodnet, tmp, hc_edges, repeats, commit, version)
-    with open(os.path.join(a.outdir, "pareto.csv"), "w", newline="") as f:
+    for case in CASES:
+        for clamp in ("midpoint", "vertex"):
+            for n in edges:
+                path = os.path.join(tmp, f"{case}_{clamp}_{n}.json")
+                with open(path, "w") as f:
+                    json.dump(scene(case, clamp, n), f)
+                for g in gtols:
+                    res = [solve(rodnet, path, os.path.join(tmp, "r.json"), g)
+                           for _ in range(repeats)]
+                    tip = res[0]["rods"][0]["vertices"][-1]
+                    times = [r["time_s"] for r in res]
+                    rows.append({
+                        "case": case, "clamp": clamp, "edges": n, "gtol": g,
+                        "error": error_of(case, tip, ref),
+                        "time_s": statistics.median(times), "time_min_s": min(times),
+                        "repeats": repeats, "converged": int(res[0]["converged"]),
+                        "iterations": res[0]["iterations"],
+                        "load_steps": res[0]["load_steps"], "commit": commit,
+                        "rodnet": version})
+                    print(f"{case:<11} {clamp:<9} n={n:<4} gtol={g:<7g} "
+                          f"error={rows[-1]['error']:.3e} time={rows[-1]['time_s']:.4f}s",
+                          flush=True)
+    return rows
+
+
+def write_csv(path, rows):
+    with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
+
+
+def summarise(rows):
+    """Per (case, clamp): the fitted order of the error at the tightest tolerance and
+    the Pareto front of (time, error), printed."""
     summary = []
     for case in ALL_CASES:
         for clamp in clamps_of(case):
@@ -295,25 +301,44 @@ def main():
                                 for i in front)})
             print(f"{case:<11} clamp at {clamp:<9} order {order:.3f}; Pareto front: "
                   f"{summary[-1]['pareto']}")
-    with open(os.path.join(a.outdir, "pareto_orders.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(summary[0].keys()))
-        w.writeheader()
-        w.writerows(summary)
+    return summary
+
+
+def check(rows, summary):
+    """--check: exits 1 naming what failed unless every solve converged and every
+    order is that of its convention."""
+    bad = [f"{r['case']} {r['clamp']} n={r['edges']} gtol={r['gtol']:g}: not converged"
+           for r in rows if not r["converged"]]
+    for s in summary:
+        want = 1.0 if s["clamp"] == "vertex" else 2.0
+        tol = 0.25 if s["clamp"] == "vertex" else 0.15
+        if s["clamp"] == "vertex" and s["case"] == "end_moment":
+            continue  # the full circle hides the vertex clamp's first order
+        if abs(s["order"] - want) > tol:
+            bad.append(f"{s['case']} clamp at {s['clamp']}: order {s['order']}, "
+                       f"expected {want} +- {tol}")
+    if bad:
+        sys.exit("pareto.py: " + "\n  ".join(bad))
+    print("pareto.py: every solve converged; orders as expected")
+
+
+def main():
+    a = parse_args()
+    edges = [10, 20, 40, 80] if a.quick else [10, 20, 40, 80, 160, 320]
+    gtols = [1e-3, 1e-9] if a.quick else [1e-2, 1e-4, 1e-6, 1e-9]
+    repeats = a.repeats or (1 if a.quick else 3)
+    os.makedirs(a.outdir, exist_ok=True)
+    version, commit = provenance(a.rodnet)
+    with tempfile.TemporaryDirectory() as tmp:
+        rows = rod_rows(a.rodnet, tmp, edges, gtols, repeats, commit, version)
+        hc_edges = [4, 8, 16, 32] if a.quick else [4, 8, 16, 32, 64, 128]
+        rows += honeycomb_rows(a.rodnet, tmp, hc_edges, repeats, commit, version)
+    write_csv(os.path.join(a.outdir, "pareto.csv"), rows)
+    summary = summarise(rows)
+    write_csv(os.path.join(a.outdir, "pareto_orders.csv"), summary)
     plot(rows, summary, a.outdir)
     if a.check:
-        bad = [f"{r['case']} {r['clamp']} n={r['edges']} gtol={r['gtol']:g}: not converged"
-               for r in rows if not r["converged"]]
-        for s in summary:
-            want = 1.0 if s["clamp"] == "vertex" else 2.0
-            tol = 0.25 if s["clamp"] == "vertex" else 0.15
-            if s["clamp"] == "vertex" and s["case"] == "end_moment":
-                continue  # the full circle hides the vertex clamp's first order
-            if abs(s["order"] - want) > tol:
-                bad.append(f"{s['case']} clamp at {s['clamp']}: order {s['order']}, "
-                           f"expected {want} +- {tol}")
-        if bad:
-            sys.exit("pareto.py: " + "\n  ".join(bad))
-        print("pareto.py: every solve converged; orders as expected")
+        check(rows, summary)
 
 
 def plot(rows, summary, outdir):

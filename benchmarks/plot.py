@@ -11,7 +11,6 @@ Krylov iterations (right) against the number of vertices.  lattice: median rn_so
 (lattice, joint model).  The title carries the commit and compiler recorded in the CSV.
 """
 import argparse
-import csv
 import sys
 from collections import defaultdict
 
@@ -20,21 +19,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import bench_csv  # noqa: E402
+
 
 def read_rows(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        sys.exit(f"plot.py: {path} has no data rows")
-    for key in ("commit", "compiler", "bench", "case", "size", "median", "min"):
-        if key not in rows[0]:
-            sys.exit(f"plot.py: {path} lacks the column '{key}'")
-    return rows
-
-
-def title(rows, what):
-    r = rows[0]
-    return f"rodnet {what} - commit {r['commit']}, {r['compiler']}, {r['ranks']} rank(s)"
+    return bench_csv.read_rows(path, "plot.py")
 
 
 def plot_kernels(rows, axes, before=None):
@@ -163,7 +152,7 @@ def main():
         plot_lattice(rows, axes)
     else:
         sys.exit(f"plot.py: unknown benchmark '{kind}'")
-    fig.suptitle(title(rows, kind), fontsize="medium")
+    fig.suptitle(bench_csv.title(rows, kind), fontsize="medium")
     fig.tight_layout()
     out = args.output or (args.csv.rsplit(".", 1)[0] + ".png")
     fig.savefig(out, dpi=120)

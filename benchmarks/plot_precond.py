@@ -34,24 +34,23 @@ def slope(xs, ys):
     return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("csv")
-    ap.add_argument("--solve", help="bench_lattice CSV of whole solves")
-    ap.add_argument("-o", "--output", required=True)
-    args = ap.parse_args()
-    with open(args.csv, newline="") as f:
+def read_series(path, solve):
+    """The rows of the bench_precond CSV at path, and its series: (kind, model,
+    precond) -> vertices -> row (the last row of a size wins), one for the Newton
+    systems and one for the whole solves (with those of the bench_lattice CSV solve,
+    per DOF)."""
+    with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     if not rows:
-        sys.exit(f"plot_precond.py: {args.csv} has no data rows")
+        sys.exit(f"plot_precond.py: {path} has no data rows")
     system = defaultdict(dict)  # (kind, model, precond) -> vertices -> row (last wins)
     newton = defaultdict(dict)
     for r in rows:
         key = (r["kind"], r["model"], r["precond"])
         target = system if r["bench"] == "precond" else newton
         target[key][int(r["vertices"])] = r
-    if args.solve:
-        with open(args.solve, newline="") as f:
+    if solve:
+        with open(solve, newline="") as f:
             for r in csv.DictReader(f):
                 key = (r["lattice"], r["joint_model"],
                        r["solver"] + ("+" + r["preconditioner"]
@@ -61,9 +60,19 @@ def main():
                 r["bytes_per_vertex"] = str(float(r["peak_rss_mb"]) * 1048576.0
                                             / float(r["size"]))
                 newton[key][int(r["size"])] = r
-    fig, axes = plt.subplots(2, 3, figsize=(17, 9.5))
-    (a_its, a_time, a_mem), (a_ntime, a_nrate, a_rss) = axes
-    print("fitted exponents of time against DOFs (>= 3 sizes):")
+    return rows, system, newton
+
+
+def print_exponent(what, label, pts, t):
+    """The fitted exponent of time t against DOFs, for a series of 3 sizes or more."""
+    if len(pts) >= 3:
+        dofs = [float(r["size"]) for _, r in pts]
+        print("  %-7s %-32s p = %.2f  (%d sizes, %d..%d vertices)"
+              % (what, label, slope(dofs, t), len(pts), pts[0][0], pts[-1][0]))
+
+
+def plot_systems(system, a_its, a_time, a_mem):
+    """One Newton system per series: MINRES iterations, time and memory per vertex."""
     for key in sorted(system):
         pts = sorted(system[key].items())
         vx = [v for v, _ in pts]
@@ -75,10 +84,11 @@ def main():
         a_its.plot(vx, its, style, marker="o", label=label)
         a_time.plot(vx, [1e6 * ti / v for ti, v in zip(t, vx)], style, marker="o", label=label)
         a_mem.plot(vx, mem, style, marker="o", label=label)
-        if len(pts) >= 3:
-            dofs = [float(r["size"]) for _, r in pts]
-            print("  system  %-32s p = %.2f  (%d sizes, %d..%d vertices)"
-                  % (label, slope(dofs, t), len(pts), vx[0], vx[-1]))
+        print_exponent("system", label, pts, t)
+
+
+def plot_solves(newton, a_ntime, a_nrate, a_rss):
+    """Whole solves per series: time, time per vertex, peak resident size per vertex."""
     for key in sorted(newton):
         pts = sorted(newton[key].items())
         vx = [v for v, _ in pts]
@@ -88,10 +98,21 @@ def main():
         a_ntime.loglog(vx, t, marker="o", label=label)
         a_nrate.plot(vx, [1e6 * ti / v for ti, v in zip(t, vx)], marker="o", label=label)
         a_rss.plot(vx, rss, marker="o", label=label)
-        if len(pts) >= 3:
-            dofs = [float(r["size"]) for _, r in pts]
-            print("  solve   %-32s p = %.2f  (%d sizes, %d..%d vertices)"
-                  % (label, slope(dofs, t), len(pts), vx[0], vx[-1]))
+        print_exponent("solve", label, pts, t)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("csv")
+    ap.add_argument("--solve", help="bench_lattice CSV of whole solves")
+    ap.add_argument("-o", "--output", required=True)
+    args = ap.parse_args()
+    rows, system, newton = read_series(args.csv, args.solve)
+    fig, axes = plt.subplots(2, 3, figsize=(17, 9.5))
+    (a_its, a_time, a_mem), (a_ntime, a_nrate, a_rss) = axes
+    print("fitted exponents of time against DOFs (>= 3 sizes):")
+    plot_systems(system, a_its, a_time, a_mem)
+    plot_solves(newton, a_ntime, a_nrate, a_rss)
     for ax, ttl, yl in (
             (a_its, "MINRES iterations, one Newton system", "iterations"),
             (a_time, "setup (numeric) + MINRES per vertex", "microseconds per vertex"),
@@ -114,7 +135,6 @@ def main():
                  % (r0["commit"], r0["compiler"], r0["ranks"]))
     fig.tight_layout()
     fig.savefig(args.output, dpi=110)
-
 
 if __name__ == "__main__":
     main()

@@ -12,7 +12,6 @@ against the number of vertices, log-log, with 1 us per vertex as a guide.
 The title carries the commit and compiler recorded in the CSV.
 """
 import argparse
-import csv
 import sys
 from collections import defaultdict
 
@@ -21,16 +20,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import bench_csv  # noqa: E402
+
 
 def read_rows(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        sys.exit(f"plot_startup_io.py: {path} has no data rows")
-    for key in ("commit", "compiler", "bench", "case", "size", "median", "min"):
-        if key not in rows[0]:
-            sys.exit(f"plot_startup_io.py: {path} lacks the column '{key}'")
-    return rows
+    return bench_csv.read_rows(path, "plot_startup_io.py")
 
 
 def plot_startup(tables, ax):
@@ -97,9 +91,7 @@ def main():
         plot_io(tables[0], ax)
     else:
         sys.exit(f"plot_startup_io.py: unknown benchmark '{kind}'")
-    r = tables[-1][0]
-    fig.suptitle(f"rodnet {kind} - commit {r['commit']}, {r['compiler']}, "
-                 f"{r['ranks']} rank(s)", fontsize="medium")
+    fig.suptitle(bench_csv.title(tables[-1], kind), fontsize="medium")
     fig.tight_layout()
     out = args.output or (args.csv[0].rsplit(".", 1)[0] + ".png")
     fig.savefig(out, dpi=120)

@@ -87,14 +87,10 @@ def plot(curves, path):
     os.replace(path + ".tmp.png", path)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("csv", nargs="+")
-    ap.add_argument("--min-dofs", type=float, default=1e4)
-    ap.add_argument("-o", "--out", help="write the per-series summary as CSV")
-    ap.add_argument("--plot", help="write a PNG of time and memory per DOF")
-    a = ap.parse_args()
-    rows = read(a.csv)
+def scaling_table(rows, min_dofs):
+    """Per series (lattice, joints, edges per rod, load, solver, preconditioner, ranks):
+    a Markdown row of the sizes, MINRES per Newton step and the time and memory
+    exponents, printed; returns the summary rows and the curves to plot."""
     series = defaultdict(list)
     for r in rows:
         key = (r["lattice"], r["joint_model"], r["edges_per_rod"], r["load"], r["solver"],
@@ -107,7 +103,7 @@ def main():
           "| MINRES/Newton min..max (ratio) | Newton | time exponent | memory exponent |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for key in sorted(series):
-        rs = sorted((r for r in series[key] if float(r["size"]) >= a.min_dofs),
+        rs = sorted((r for r in series[key] if float(r["size"]) >= min_dofs),
                     key=lambda r: int(r["size"]))
         # one row per size: the last measurement of a size wins
         by_size = {}
@@ -135,8 +131,12 @@ def main():
                         dofs_min=dofs[0], dofs_max=dofs[-1], minres_per_newton_min=min(mpn),
                         minres_per_newton_max=max(mpn), minres_ratio=ratio,
                         time_exponent=te, memory_exponent=me))
+    return out, curves
 
-    # Newton steps of tr-krylov against the exact trust region on the same problem
+
+def newton_table(rows):
+    """Newton steps of tr-krylov against the exact trust region on the same problem
+    (a Markdown table, printed if any problem has both)."""
     exact = {}
     krylov = defaultdict(list)
     for r in rows:
@@ -156,15 +156,31 @@ def main():
             ne, nk = int(ex["newton_iterations"]), int(kr["newton_iterations"])
             print(f"| {k[0]} | {k[1]} | {k[4]} | {int(ex['size']):,} | {ne} "
                   f"| {nk} ({kr.get('preconditioner') or '-'}) | {100.0 * (nk - ne) / ne:+.0f} % |")
+
+
+def write_summary(out, path):
+    import os
+    with open(path + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(out[0].keys()) if out else ["lattice"])
+        w.writeheader()
+        w.writerows(out)
+    os.replace(path + ".tmp", path)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("--min-dofs", type=float, default=1e4)
+    ap.add_argument("-o", "--out", help="write the per-series summary as CSV")
+    ap.add_argument("--plot", help="write a PNG of time and memory per DOF")
+    a = ap.parse_args()
+    rows = read(a.csv)
+    out, curves = scaling_table(rows, a.min_dofs)
+    newton_table(rows)
     if a.plot:
         plot(curves, a.plot)
     if a.out:
-        with open(a.out + ".tmp", "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(out[0].keys()) if out else ["lattice"])
-            w.writeheader()
-            w.writerows(out)
-        import os
-        os.replace(a.out + ".tmp", a.out)
+        write_summary(out, a.out)
     return 0
 
 
