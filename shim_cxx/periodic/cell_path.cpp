@@ -531,18 +531,6 @@ private:
   int evals_ = 0;
 };
 
-// Eigenvalues (ascending, w[m]) of the symmetric m x m (m <= 3) matrix a and the
-// eigenvector of the lowest (v[m]).
-void sym_eigen(int m, const double *a, double *w, double *v) {
-  double A[9], work[64];
-  const int lwork = 64;
-  int info = 0;
-  std::copy(a, a + m * m, A);
-  dsyev_("V", "L", &m, A, &m, w, work, &lwork, &info, 1, 1);
-  if (info != 0) throw Error(RN_ERR_SOLVER, "rn_cell_bloch: LAPACK dsyev failed");
-  for (int i = 0; i < m; ++i) v[i] = A[i];
-}
-
 // The acoustic tensor A(n) = (1/V) [-1/2 sum n_J n_L T^T M2_JL T
 //                                   - sum n_J n_L (M1_J^T T)^T K^-1 (M1_L^T T)]
 // over the amplitude components of the modes examined, K the fluctuation block
@@ -647,7 +635,7 @@ void Bloch::acoustic(rn_bloch_result *res) {
   auto probe = [&](const double *nv) {
     double A[9], v[3], w[3];
     tensor(nv, A);
-    sym_eigen(na, A, w, v);
+    sym_eigen(na, A, w, v, "rn_cell_bloch");
     const double lo = w[0];
     top = std::max(top, w[na - 1]);
     if (lo < best) {
@@ -832,27 +820,20 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
   res->evaluations = b.evaluations();
 }
 
-// Runs f; converts any exception to a status with the message in the context.
-template <class F>
-rn_status guarded(rn_network *net, const char *where, F &&f) {
-  rn_context *ctx = rn_network_context(net);
-  try {
-    f();
-    return RN_OK;
-  } catch (const Error &e) {
-    return e.recorded() ? e.status()
-                        : rn_context_set_error(ctx, e.status(), "%s", e.what());
-  } catch (const std::bad_alloc &) {
-    return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", where);
-  } catch (const std::exception &e) {
-    return rn_context_set_error(ctx, RN_ERR_SOLVER, "%s: %s", where, e.what());
-  }
-}
-
 } // namespace
 } // namespace rodnet
 
 namespace rodnet {
+void sym_eigen(int m, const double *a, double *w, double *v, const char *where) {
+  double A[36], work[64];
+  const int lwork = 64;
+  int info = 0;
+  std::copy(a, a + m * m, A);
+  dsyev_("V", "L", &m, A, &m, w, work, &lwork, &info, 1, 1);
+  if (info != 0) throw Error(RN_ERR_SOLVER, std::string(where) + ": LAPACK dsyev failed");
+  for (int i = 0; i < m; ++i) v[i] = A[i];
+}
+
 namespace {
 rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep,
                      bool descend) {
