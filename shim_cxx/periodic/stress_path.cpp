@@ -152,6 +152,16 @@ int mixed_test(const Mixed &m, double tangent_scale, double *d) {
   return (!invertible || step > 0.1) ? -1 : 0;
 }
 
+// The relaxed trial is good: it becomes the last good state (ok, eps_ok), its
+// strain and stress in m.
+rn_status accept(rn_network *net, rn_state **ok, Mixed &m, double *eps_ok) {
+  rn_state_destroy(ok);
+  rn_status st = rn_network_state_save(net, ok);
+  if (!st) st = state_of(net, m.eps, m.sig, nullptr);
+  if (!st) std::memcpy(eps_ok, m.eps, sizeof(m.eps));
+  return st;
+}
+
 // Mixed control at the current segment: the strain-controlled components held
 // at val, the stress-controlled ones free with the homogenised stress val.
 // Newton on those strain components with the effective tangent C_ff
@@ -199,10 +209,7 @@ rn_status mixed_relax(rn_network *net, const Path &p, const int *stress,
       continue;
     }
     halvings = 0;
-    rn_state_destroy(&ok);
-    if ((st = rn_network_state_save(net, &ok))) break;
-    if ((st = state_of(net, m.eps, m.sig, nullptr))) break;
-    std::memcpy(eps_ok, m.eps, sizeof(m.eps));
+    if ((st = accept(net, &ok, m, eps_ok))) break;
     int test = mixed_test(m, p.r->tangent_scale, m.d);
     if (test > 0) {
       s->converged = 1;
