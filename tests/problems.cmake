@@ -569,6 +569,12 @@ if(RN_WITH_TRILINOS)
                    --cell ${gen}/hc_stress_result.json 1e-10)
   set_tests_properties(problems_cli_periodic_solve_stress_cell PROPERTIES LABELS unit
                        FIXTURES_REQUIRED problems_periodic_stress)
+  # The macroscopic load path through the library's C entry (rn_cell_path_run),
+  # without the command: the waypoint path of hc_mixed.json gives the records
+  # `homogenize --path-file` writes (issue 23: the path's numerics in the library).
+  rn_add_test(problems_cell_path SOURCES unit/problems_cell_path_test.c
+              LIBS rodnet_problems m LABELS unit TIMEOUT 120
+              ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json)
   # docs/homog_sweep.py (the sweep figure of the docs): a smoke run of 3 points
   add_test(NAME problems_homog_sweep
            COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/docs/homog_sweep.py ${RN_CLI}

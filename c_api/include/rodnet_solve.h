@@ -680,6 +680,113 @@ rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
 rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes modes,
                               int neig, double *eig, double *vec);
 
+/* ---- macroscopic load paths of periodic cells (docs/homogenization.md, "Strain
+ * paths and stability", "Stress and mixed paths") ---- */
+/* S = C^-1 of the n x n (n <= 6, row-major) matrix C by Gauss-Jordan elimination
+ * with partial pivoting: 1, or 0 if C is singular (a pivot at most 1e-14 |C_00|),
+ * e.g. the compliance of rn_homogenization's C.  Needs no network. */
+int rn_homogenization_invert(int n, const double *C, double *S);
+
+/* One leg of a path: from the state reached at its start, every strain component
+ * v moves linearly in the path parameter from its start value to target[v], the
+ * strain (stress[v] == 0) or the homogenised stress (stress[v] == 1; the strain
+ * component is then a DOF, found by the mixed solve). */
+typedef struct rn_cell_path_segment {
+  int steps;        /* steps of the leg (>= 1) */
+  int stress[6];    /* 1: component v is stress-controlled on this leg */
+  double target[6]; /* its strain or stress at the leg's end */
+  double start[6];  /* its strain or stress at the leg's start (set by
+                       rn_cell_path_run in the result's copy) */
+} rn_cell_path_segment;
+
+/* One step of the path. */
+typedef struct rn_cell_path_step {
+  double t;                       /* path parameter: segment j spans [j, j + 1] */
+  int seg;                        /* the segment */
+  double strain[6], stress[6];    /* Voigt, engineering shear */
+  double energy;                  /* elastic energy of the cell */
+  int newton, converged;          /* rn_cell_relax (Newton summed over the mixed solve) */
+  int outer;                      /* mixed solve iterations (0: strain control) */
+  int jumped;                     /* the mixed solve's correction exceeded the
+                                     predicted step (another branch) */
+  int kuu_indefinite;             /* the mixed solve met an indefinite K_uu (an
+                                     unstable cell-periodic fluctuation) */
+  double tangent_min;             /* lowest eigenvalue of the effective tangent on the
+                                     stress-controlled components over the largest
+                                     eigenvalue of C at rest (NaN without stress
+                                     control) */
+  double local_min, acoustic_min; /* rn_cell_bloch at the step (NaN: not examined) */
+  int stable;                     /* 1 stable, 0 unstable, -1 not examined (past the
+                                     first instability) */
+} rn_cell_path_step;
+
+/* The first instability of a path. */
+typedef struct rn_cell_path_instability {
+  int found;
+  double t, strain[6], stress[6]; /* where: path parameter, strain, stress */
+  double xi[3];                   /* critical wave vector (0: macroscopic) */
+  int nequiv;                     /* symmetry-equivalent wave vectors (rn_bloch_result) */
+  double xi_equiv[12][3];         /* xi first */
+  int kind_macroscopic, multiplicity;
+  double eig[8]; /* the lowest Bloch eigenvalues past it */
+  int neig;
+  double direction[3], amplitude[3]; /* macroscopic: the acoustic tensor's mode */
+  int bisections;
+  int stress_limit;  /* 1: the effective tangent on the stress-controlled
+                        components lost positive definiteness (a limit point) */
+  double mode[6];    /* then: its null vector (strain components) */
+  int cell_periodic; /* 1: under stress control, the cell-periodic fluctuations
+                        (K_uu) lost positive definiteness in modes the Bloch
+                        test does not examine */
+} rn_cell_path_instability;
+
+typedef struct rn_cell_path_result rn_cell_path_result;
+/* Called after each step of the path (res->done: the step just recorded). */
+typedef void (*rn_cell_path_progress)(void *user, const rn_cell_path_result *res);
+
+typedef struct rn_cell_path_options {
+  int grid;                       /* rn_bloch_options.grid (0: its default) */
+  rn_bloch_modes modes;           /* the Bloch modes examined */
+  rn_cell_path_progress progress; /* may be NULL */
+  void *user;                     /* progress's first argument */
+} rn_cell_path_options;
+void rn_cell_path_options_default(rn_cell_path_options *opt);
+
+struct rn_cell_path_result {
+  int ns;                    /* strain components */
+  int nseg;                  /* segments */
+  rn_cell_path_segment *seg; /* [nseg]: a copy of the path with start set */
+  int steps;                 /* steps over all segments */
+  rn_cell_path_step *step;   /* [steps + 1]; step[0] the rest state */
+  int done;                  /* steps computed (step[0 .. done]) */
+  const char *stopped;       /* NULL, or why the path stopped early (static text) */
+  int limit_end;             /* the path ended under stress control at its first
+                                instability: 1 a limit point of the stress, 2 unstable
+                                cell-periodic fluctuations (K_uu indefinite) */
+  double tangent_scale;      /* largest eigenvalue of C at rest */
+  double c_rest[36];         /* C at rest (ns x ns) */
+  rn_cell_path_instability inst;
+};
+
+/* Follows the macroscopic load path seg[nseg] (strain, stress or mixed control
+ * per component and segment; one segment for a proportional path, several for
+ * waypoints) on the periodic network net from its current (rest) state, every
+ * strain component a DOF: at each step the fluctuations by rn_cell_relax, under
+ * stress control the strain components by Newton with the effective tangent
+ * (rn_homogenize), then the Bloch-Floquet test (rn_cell_bloch); the first
+ * instability (local, macroscopic, a limit point of the stress, or unstable
+ * cell-periodic fluctuations) is located by bisection to 0.1 % of the parameter.
+ * Fills res (free it with rn_cell_path_result_free, also after an error).
+ * RN_OK when it ran (the path may have stopped early: res->stopped, or ended at a
+ * limit point of the stress: res->limit_end); RN_ERR_ARG for bad arguments;
+ * another error code otherwise, the message in the network's context.  Leaves
+ * the last state computed as the current state.  Serial; prints nothing
+ * (opt->progress is called after every step). */
+rn_status rn_cell_path_run(rn_network *net, int nseg, const rn_cell_path_segment *seg,
+                           const rn_cell_path_options *opt, rn_cell_path_result *res);
+/* Frees what rn_cell_path_run allocated in res (NULL-safe; res is left empty). */
+void rn_cell_path_result_free(rn_cell_path_result *res);
+
 #ifdef __cplusplus
 }
 #endif

@@ -19,8 +19,6 @@
 #include "rodnet_solve.h"
 #include "scene/scene.h"
 #include "scene/scene_json.h"
-#include "io/text_file.h"
-#include "scene/vtk.h"
 
 #ifndef RN_PLOT_STIFFNESS_SCRIPT
 #define RN_PLOT_STIFFNESS_SCRIPT "plot_stiffness.py"
@@ -113,108 +111,62 @@ static int hom_files(const hom_args *a, rn_cli_file *f) {
   return (int)(sizeof files / sizeof files[0]);
 }
 
-static int parse_args(int argc, char **argv, hom_args *a) {
-  memset(a, 0, sizeof *a);
-  a->steps = 20;
-  a->post_steps = 10;
-  for (int i = 1; i < argc; i++) {
-    const char *s = argv[i], *v = NULL;
-    int m;
-    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
-      fputs(homogenize_help, stdout);
-      fputs(homogenize_help_tail, stdout);
-      return -1;
-    }
-    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
-      a->quiet = 1;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--output", "-o", &v))) {
+/* The option at argv[*i] if it takes a value (advancing *i): 1 matched, 0 not
+ * one of them, RN_EXIT_USAGE (message printed) if its value is missing or bad. */
+static int valued_option(int argc, char **argv, int *i, hom_args *a) {
+  const struct {
+    const char *name, *alias;
+    const char **dest;
+  } strings[] = {{"--output", "-o", &a->output},
+                 {"--plot", NULL, &a->plot},
+                 {"--path-stress", NULL, &a->path_stress},
+                 {"--path-file", NULL, &a->path_file},
+                 {"--path", NULL, &a->path},
+                 {"--pattern", NULL, &a->pattern},
+                 {"--post-buckling", NULL, &a->post}};
+  const struct {
+    const char *name;
+    long hi;
+    int *dest, *given;
+  } ints[] = {{"--post-steps", 10000, &a->post_steps, &a->has_post_steps},
+              {"--steps", 100000, &a->steps, &a->has_steps},
+              {"--bloch-grid", 1000, &a->grid, &a->has_grid}};
+  const char *v = NULL;
+  int m;
+  for (size_t k = 0; k < sizeof strings / sizeof strings[0]; ++k)
+    if ((m = rn_cli_option_value("homogenize", argc, argv, i, strings[k].name,
+                                 strings[k].alias, &v))) {
       if (m < 0) return RN_EXIT_USAGE;
-      a->output = v;
-      continue;
+      *strings[k].dest = v;
+      return 1;
     }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--plot", NULL, &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->plot = v;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path-stress", NULL,
-                                 &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->path_stress = v;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path-file", NULL,
-                                 &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->path_file = v;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--path", NULL, &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->path = v;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--pattern", NULL, &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->pattern = v;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--post-buckling", NULL,
-                                 &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->post = v;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--post-steps", NULL,
-                                 &v))) {
+  for (size_t k = 0; k < sizeof ints / sizeof ints[0]; ++k)
+    if ((m = rn_cli_option_value("homogenize", argc, argv, i, ints[k].name, NULL, &v))) {
       if (m < 0 ||
-          rn_cli_parse_int("homogenize", "--post-steps", v, 1, 10000, &a->post_steps))
+          rn_cli_parse_int("homogenize", ints[k].name, v, 1, ints[k].hi, ints[k].dest))
         return RN_EXIT_USAGE;
-      a->has_post_steps = 1;
-      continue;
+      *ints[k].given = 1;
+      return 1;
     }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--steps", NULL, &v))) {
-      if (m < 0 || rn_cli_parse_int("homogenize", "--steps", v, 1, 100000, &a->steps))
-        return RN_EXIT_USAGE;
-      a->has_steps = 1;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--bloch-grid", NULL,
-                                 &v))) {
-      if (m < 0 || rn_cli_parse_int("homogenize", "--bloch-grid", v, 1, 1000, &a->grid))
-        return RN_EXIT_USAGE;
-      a->has_grid = 1;
-      continue;
-    }
-    if ((m = rn_cli_option_value("homogenize", argc, argv, &i, "--modes", NULL, &v))) {
-      if (m < 0) return RN_EXIT_USAGE;
-      a->has_modes = 1;
-      if (strcmp(v, "all") == 0)
-        a->modes = RN_BLOCH_ALL;
-      else if (strcmp(v, "in-plane") == 0)
-        a->modes = RN_BLOCH_IN_PLANE;
-      else if (strcmp(v, "out-of-plane") == 0)
-        a->modes = RN_BLOCH_OUT_OF_PLANE;
-      else
-        return rn_cli_usage_error(
-            "homogenize", "--modes takes all, in-plane or out-of-plane, not '%s'", v);
-      continue;
-    }
-    if (s[0] == '-' && s[1] != '\0')
-      return rn_cli_usage_error("homogenize", "unknown option '%s'", s);
-    if (a->scene)
-      return rn_cli_usage_error("homogenize", "more than one scene given ('%s' and '%s')",
-                                a->scene, s);
-    a->scene = s;
+  if ((m = rn_cli_option_value("homogenize", argc, argv, i, "--modes", NULL, &v))) {
+    if (m < 0) return RN_EXIT_USAGE;
+    a->has_modes = 1;
+    if (strcmp(v, "all") == 0)
+      a->modes = RN_BLOCH_ALL;
+    else if (strcmp(v, "in-plane") == 0)
+      a->modes = RN_BLOCH_IN_PLANE;
+    else if (strcmp(v, "out-of-plane") == 0)
+      a->modes = RN_BLOCH_OUT_OF_PLANE;
+    else
+      return rn_cli_usage_error(
+          "homogenize", "--modes takes all, in-plane or out-of-plane, not '%s'", v);
+    return 1;
   }
-  static const char *const valued[] = {"--output|-o",     "--plot",       "--path-stress",
-                                       "--path-file",     "--path",       "--pattern",
-                                       "--post-buckling", "--post-steps", "--steps",
-                                       "--bloch-grid",    "--modes",      NULL};
-  int rc = rn_cli_check_repeats("homogenize", argc, argv, valued);
-  if (rc) return rc;
+  return 0;
+}
+
+/* The options that go together (after parsing); 0 or a usage error. */
+static int check_combination(hom_args *a) {
   if (!a->scene) return rn_cli_usage_error("homogenize", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("homogenize", "missing -o RESULT.json");
   if ((a->path != NULL) + (a->path_stress != NULL) + (a->path_file != NULL) > 1)
@@ -237,34 +189,55 @@ static int parse_args(int argc, char **argv, hom_args *a) {
   if (a->has_post_steps && !a->post)
     return rn_cli_usage_error("homogenize",
                               "--post-steps applies to --post-buckling only");
+  return 0;
+}
+
+static int parse_args(int argc, char **argv, hom_args *a) {
+  memset(a, 0, sizeof *a);
+  a->steps = 20;
+  a->post_steps = 10;
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i];
+    int m;
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+      fputs(homogenize_help, stdout);
+      fputs(homogenize_help_tail, stdout);
+      return -1;
+    }
+    if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
+      a->quiet = 1;
+      continue;
+    }
+    if ((m = valued_option(argc, argv, &i, a))) {
+      if (m != 1) return m;
+      continue;
+    }
+    if (s[0] == '-' && s[1] != '\0')
+      return rn_cli_usage_error("homogenize", "unknown option '%s'", s);
+    if (a->scene)
+      return rn_cli_usage_error("homogenize", "more than one scene given ('%s' and '%s')",
+                                a->scene, s);
+    a->scene = s;
+  }
+  static const char *const valued[] = {"--output|-o",     "--plot",       "--path-stress",
+                                       "--path-file",     "--path",       "--pattern",
+                                       "--post-buckling", "--post-steps", "--steps",
+                                       "--bloch-grid",    "--modes",      NULL};
+  int rc = rn_cli_check_repeats("homogenize", argc, argv, valued);
+  if (rc) return rc;
+  if ((rc = check_combination(a))) return rc;
   rn_cli_file files[8];
   return rn_cli_check_files("homogenize", files, hom_files(a, files));
 }
 
-/* S = C^-1 (n x n, Gauss-Jordan with partial pivoting); 0 if singular. */
+/* S = C^-1 (homog_path.h): the library's, where it is built. */
 int rn_homog_invert(int n, const double *C, double *S) {
-  double M[6][12];
-  for (int i = 0; i < n; i++)
-    for (int j = 0; j < 2 * n; j++) M[i][j] = j < n ? C[i * n + j] : (j - n == i);
-  for (int c = 0; c < n; c++) {
-    int p = c;
-    for (int r = c + 1; r < n; r++)
-      if (fabs(M[r][c]) > fabs(M[p][c])) p = r;
-    if (!(fabs(M[p][c]) > 1e-14 * fabs(C[0]) + 1e-300)) return 0;
-    for (int j = 0; j < 2 * n; j++) {
-      double t = M[c][j];
-      M[c][j] = M[p][j];
-      M[p][j] = t;
-    }
-    for (int r = 0; r < n; r++) {
-      if (r == c) continue;
-      double f = M[r][c] / M[c][c];
-      for (int j = 0; j < 2 * n; j++) M[r][j] -= f * M[c][j];
-    }
-  }
-  for (int i = 0; i < n; i++)
-    for (int j = 0; j < n; j++) S[i * n + j] = M[i][n + j] / M[i][i];
-  return 1;
+#ifdef RN_HAVE_SOLVER
+  return rn_homogenization_invert(n, C, S);
+#else
+  (void)n, (void)C, (void)S; /* no rn_homogenize without the solver: no C */
+  return 0;
+#endif
 }
 
 typedef struct hom_out {
@@ -338,7 +311,7 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
   int n = h->nstrain;
   (void)ctx;
   fputs("{\n  \"command\": \"homogenize\",\n", f);
-  if (o->path && o->path->stopped) /* RESULT.partial.json: the path stopped early */
+  if (o->path && o->path->r.stopped) /* RESULT.partial.json: the path stopped early */
     fputs("  \"partial\": true,\n", f);
   fputs("  \"scene\": ", f);
   rn_put_json_string(f, o->a->scene);
@@ -417,66 +390,33 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* --pattern: the supercell of the critical wave vector on the principal
- * (cell-periodic) branch at the critical strain plus its critical mode (the
- * lowest Bloch mode at xi = 0 of the supercell, in the modes examined), scaled
- * to 5 % of the cell size for display; written as P.vtu and drawn to P.png.
- * (The post-buckled branch is not computed: see docs.)  Fills pat. */
-static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path,
-                         hp_pattern *pat) {
-  char *text = NULL, *json = NULL;
-  size_t len = 0;
-  int rc = RN_EXIT_INTERNAL;
-  rn_scene *sc = NULL;
-  cJSON *root = NULL;
-  double *x = NULL, *vec = NULL;
-  if (!path->inst.found || path->inst.kind_macroscopic) {
-    /* nothing to draw: said in RESULT.json and the summary (not an error) */
-    snprintf(pat->why_not, sizeof pat->why_not, "%s",
-             path->inst.found ? "the instability is macroscopic (long wavelength): no "
-                                "finite supercell"
-                              : "the path stays stable: no pattern");
-    return RN_EXIT_OK;
-  }
-  if (!hp_instability_supercell(&path->inst, path->dim, pat->rep)) {
-    snprintf(pat->why_not, sizeof pat->why_not, "%s",
-             "the wave vector is not commensurate with a supercell of at most 12 cells "
-             "per direction");
-    fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
-    return RN_EXIT_INTERNAL;
-  }
-  if (rn_text_file_read(ctx, a->scene, 1 << 28, &text, &len)) goto fail;
-  root = cJSON_Parse(text);
-  cJSON *per = cJSON_GetObjectItemCaseSensitive(root, "periodic");
-  if (!cJSON_IsObject(per) || cJSON_GetObjectItemCaseSensitive(per, "repeat")) {
-    snprintf(pat->why_not, sizeof pat->why_not, "%s", "needs a scene without \"repeat\"");
-    fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
-    goto done;
-  }
-  cJSON_DeleteItemFromObjectCaseSensitive(per, "stress");
-  cJSON_DeleteItemFromObjectCaseSensitive(per, "strain");
-  cJSON_AddItemToObject(per, "repeat", cJSON_CreateIntArray(pat->rep, path->dim));
-  if (!(json = cJSON_PrintUnformatted(root))) goto fail_alloc;
-  if (rn_scene_parse(ctx, a->scene, json, strlen(json), &sc)) goto fail;
-  rn_network *net = rn_scene_network(sc);
+/* The pattern's state on the supercell network net: the principal
+ * (cell-periodic) branch at the critical strain, in 10 load steps, plus its
+ * critical mode (the lowest Bloch mode at xi = 0 of the supercell, in the modes
+ * examined) scaled to 5 % of the cell size at its largest displacement. */
+static rn_status pattern_state(rn_context *ctx, const hp_path *path, rn_network *net,
+                               hp_pattern *pat) {
+  const rn_cell_path_instability *in = &path->r.inst;
   rn_cell_relax_report rep;
-  double eps[6];
-  /* the principal (cell-periodic) branch at the critical strain, in load steps */
+  double eps[6], vmax = 0.0, measure = 0.0, *x = NULL, *vec = NULL;
+  size_t nd = rn_network_num_dofs(net), nb = 0;
+  rn_status st;
   for (int k = 1; k <= 10; ++k) {
-    for (int v = 0; v < path->ns; ++v) eps[v] = 0.1 * k * path->inst.strain[v];
-    if (rn_cell_relax(net, eps, &rep)) goto fail;
+    for (int v = 0; v < path->ns; ++v) eps[v] = 0.1 * k * in->strain[v];
+    if ((st = rn_cell_relax(net, eps, &rep))) return st;
   }
   pat->converged = rep.converged;
-  size_t nd = rn_network_num_dofs(net), nb = 0;
-  if (rn_network_bloch_dofs(net, &nb, NULL, NULL)) goto fail;
+  if ((st = rn_network_bloch_dofs(net, &nb, NULL, NULL))) return st;
   x = malloc(nd * sizeof(double));
   vec = malloc(2 * nb * sizeof(double));
-  if (!x || !vec) goto fail_alloc;
+  if (!x || !vec) {
+    st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+    goto done;
+  }
   const double zero[3] = {0.0, 0.0, 0.0};
-  double vmax = 0.0, measure = 0.0;
-  if (rn_cell_bloch_eigen(net, zero, path->modes, 1, &pat->eigenvalue, vec) ||
-      rn_network_get_dofs(net, x))
-    goto fail;
+  if ((st = rn_cell_bloch_eigen(net, zero, path->modes, 1, &pat->eigenvalue, vec)) ||
+      (st = rn_network_get_dofs(net, x)))
+    goto done;
   rn_network_cell_info(net, NULL, NULL, &measure, NULL);
   /* display amplitude: 5 % of the cell size at the largest displacement */
   pat->amplitude =
@@ -486,27 +426,281 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
   size_t nfl = nd - (size_t)path->ns; /* the strain DOFs are the last */
   for (size_t i = 0; i < nfl; ++i) vmax = fmax(vmax, fabs(vec[2 * i]));
   if (!(vmax > 0.0)) {
-    rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
-    goto fail;
+    st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
+    goto done;
   }
   for (size_t i = 0; i < nfl; ++i) x[i] += pat->amplitude * vec[2 * i] / vmax;
-  if (rn_network_set_dofs(net, x)) goto fail;
-  if (hp_write_pattern_files(ctx, sc, a->pattern, a->quiet, &pat->written, &pat->png))
-    goto fail;
-  rc = RN_EXIT_OK;
-  goto done;
-fail_alloc:
-  rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
-fail:
-  snprintf(pat->why_not, sizeof pat->why_not, "%s", rn_context_last_error(ctx));
-  fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
+  st = rn_network_set_dofs(net, x);
 done:
   free(x);
   free(vec);
-  free(json);
-  free(text);
-  cJSON_Delete(root);
+  return st;
+}
+
+/* --pattern: the supercell of the critical wave vector on the principal
+ * (cell-periodic) branch at the critical strain plus its critical mode
+ * (pattern_state), written as P.vtu and drawn to P.png.  (The post-buckled
+ * branch is not computed: see docs.)  Fills pat. */
+static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path,
+                         hp_pattern *pat) {
+  const rn_cell_path_instability *in = &path->r.inst;
+  rn_scene *sc = NULL;
+  rn_status st;
+  if (!in->found || in->kind_macroscopic) {
+    /* nothing to draw: said in RESULT.json and the summary (not an error) */
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             in->found ? "the instability is macroscopic (long wavelength): no "
+                         "finite supercell"
+                       : "the path stays stable: no pattern");
+    return RN_EXIT_OK;
+  }
+  if (!hp_instability_supercell(in, path->dim, pat->rep))
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             "the wave vector is not commensurate with a supercell of at most 12 cells "
+             "per direction");
+  else if ((st = hp_supercell(ctx, a->scene, pat->rep, path->dim, 0, &sc)))
+    snprintf(pat->why_not, sizeof pat->why_not, "%s",
+             st == RN_ERR_ARG ? "needs a scene without \"repeat\""
+                              : rn_context_last_error(ctx));
+  else if (pattern_state(ctx, path, rn_scene_network(sc), pat) ||
+           hp_write_pattern_files(ctx, sc, a->pattern, a->quiet, &pat->written,
+                                  &pat->png))
+    snprintf(pat->why_not, sizeof pat->why_not, "%s", rn_context_last_error(ctx));
+  else {
+    rn_scene_destroy(&sc);
+    return RN_EXIT_OK;
+  }
+  fprintf(stderr, "rodnet homogenize: --pattern: %s\n", pat->why_not);
   rn_scene_destroy(&sc);
+  return RN_EXIT_INTERNAL;
+}
+
+/* The cell fits the command: periodic, and the --modes asked for exist; 0 or
+ * the exit status (message printed). */
+static int check_cell(const hom_args *a, rn_network *net, int dim) {
+  if (dim == 0) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the scene is not periodic (it has no top-level "
+            "\"periodic\" object with lattice vectors; see 'rodnet generate KIND "
+            "--periodic')\n",
+            a->scene);
+    return RN_EXIT_INPUT;
+  }
+  if (a->path && a->modes == RN_BLOCH_OUT_OF_PLANE && rn_network_is_planar(net) == 1) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes out-of-plane: the scene uses the planar "
+            "model, which has no out-of-plane modes (use \"model\": \"3d\")\n",
+            a->scene);
+    return RN_EXIT_INPUT;
+  }
+  if (a->path && a->modes != RN_BLOCH_ALL && dim == 3) { /* found before computing */
+    fprintf(stderr,
+            "rodnet homogenize: %s: --modes %s: a 3D cell has no in-plane / "
+            "out-of-plane split of its modes (use --modes all)\n",
+            a->scene, a->modes == RN_BLOCH_IN_PLANE ? "in-plane" : "out-of-plane");
+    return RN_EXIT_INPUT;
+  }
+  return 0;
+}
+
+/* The path of --path, --path-stress or --path-file into path (its segments);
+ * 0 or the exit status (message printed). */
+static int read_path(rn_context *ctx, const hom_args *a, rn_network *net, int dim,
+                     hp_path *path) {
+  int count = 0, ns = 0, stress[6] = {0};
+  double target[6] = {0};
+  rn_status st;
+  rn_network_cell_info(net, NULL, &ns, NULL, NULL);
+  path->ns = ns;
+  if (a->path_file) {
+    if ((st = hp_read_path_file(ctx, a->path_file, a->steps, path))) {
+      fprintf(stderr, "rodnet homogenize: --path-file: %s\n", rn_context_last_error(ctx));
+      return st == RN_ERR_ALLOC ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
+    }
+    return 0;
+  }
+  if (hp_parse_targets(a->path, a->path_stress != NULL, target, stress, &count) ||
+      count != ns) {
+    if (a->path_stress)
+      fprintf(stderr,
+              "rodnet homogenize: --path-stress '%s': expected %d comma-separated "
+              "numbers (%s) for this %dD cell\n",
+              a->path, ns, ns == 3 ? "S11,S22,S12" : "S11,S22,S33,S23,S13,S12", dim);
+    else
+      fprintf(stderr,
+              "rodnet homogenize: --path '%s': expected %d comma-separated numbers "
+              "(%s; '-', s:VALUE for stress control) for this %dD cell\n",
+              a->path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
+    return RN_EXIT_USAGE;
+  }
+  if (hp_single_segment(ctx, path, target, stress, a->steps)) return RN_EXIT_INTERNAL;
+  return 0;
+}
+
+/* --post-buckling and --pattern after the path; 0 or the exit status (the
+ * result is written all the same; messages printed). */
+static int after_path(rn_context *ctx, const hom_args *a, hp_path *path, hp_post *post) {
+  int rc = 0;
+  if (a->post) {
+    post->requested = 1;
+    post->nsteps = a->post_steps;
+    rn_status st = hp_post_buckling(ctx, a->scene, path, a->post, post);
+    if (st) {
+      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n",
+              rn_context_last_error(ctx));
+      rc = RN_EXIT_INTERNAL;
+    } else if (post->failed)
+      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n", post->failed);
+  }
+  if (a->pattern) {
+    path->pattern.requested = 1;
+    int prc = write_pattern(ctx, a, path, &path->pattern);
+    if (prc) rc = prc;
+  }
+  return rc;
+}
+
+/* The summary of the path, its instability and pattern on stdout. */
+static void print_path(const hom_args *a, const hp_path *path, const hp_post *post) {
+  const rn_cell_path_instability *in = &path->r.inst;
+  const hp_pattern *pt = &path->pattern;
+  if (in->found) {
+    printf("rodnet homogenize: first instability at load factor %.6g of the path: "
+           "strain ",
+           in->t);
+    hp_print_vec(stdout, path->ns, in->strain, 6, 0);
+    printf(" (Voigt %s), %s, wave vector ",
+           path->ns == 3 ? "11 22 12" : "11 22 33 23 13 12",
+           in->stress_limit ? "macroscopic (limit point of the stress)"
+           : in->kind_macroscopic ? "macroscopic"
+                                  : "local");
+    hp_print_vec(stdout, path->dim, in->xi, 4, 0);
+    printf(", multiplicity %d, %d equivalent wave vector(s)\n", in->multiplicity,
+           in->kind_macroscopic ? 1 : in->nequiv);
+  } else if (path->r.stopped)
+    printf("rodnet homogenize: the path is stable as far as it went (%d of %d steps)\n",
+           path->r.done, path->steps);
+  else
+    printf("rodnet homogenize: the path stays stable (%d steps)\n", path->r.done);
+  char third[16] = "";
+  if (path->dim == 3) snprintf(third, sizeof third, " x %d", pt->rep[2]);
+  if (pt->written)
+    printf("rodnet homogenize: pattern: %d x %d%s supercell at the critical strain, "
+           "critical mode eigenvalue %.3e (scaled to %.3g)%s; wrote %s.vtu%s%s%s\n",
+           pt->rep[0], pt->rep[1], third, pt->eigenvalue, pt->amplitude,
+           pt->converged ? "" : " (NOT converged)", a->pattern, pt->png ? " and " : "",
+           pt->png ? a->pattern : "", pt->png ? ".png" : "");
+  else if (pt->requested)
+    printf("rodnet homogenize: pattern: nothing written: %s\n",
+           pt->why_not[0] ? pt->why_not : "not computed");
+  if (post->requested && post->failed)
+    printf("rodnet homogenize: post-buckling: nothing written: %s\n", post->failed);
+}
+
+/* The summary of the post-buckled branch's last step on stdout. */
+static void print_post(const hom_args *a, const hp_path *path, const hp_post *post) {
+  const hp_post_step *ls = &post->step[post->done - 1];
+  char third[16] = "";
+  if (path->dim == 3) snprintf(third, sizeof third, " x %d", post->rep[2]);
+  printf("rodnet homogenize: post-buckling: %d x %d%s supercell, %d steps past the "
+         "critical strain; at load factor %.4g stress ",
+         post->rep[0], post->rep[1], third, post->done, ls->t);
+  hp_print_vec(stdout, path->ns, ls->stress, 6, 0);
+  fputs(" (principal ", stdout);
+  hp_print_vec(stdout, path->ns, ls->principal_stress, 6, 0);
+  printf("), %s; wrote %s.vtu%s%s%s\n",
+         ls->verified ? "a verified minimum" : "NOT a verified minimum", a->post,
+         post->png ? " and " : "", post->png ? a->post : "", post->png ? ".png" : "");
+}
+
+/* The summary of the cell's effective stiffness on stdout. */
+static void print_cell(const hom_out *o) {
+  const rn_homogenization *h = o->h;
+  const double *S = o->S;
+  int n = h->nstrain;
+  char line[320];
+  printf("rodnet homogenize: %s: %dD cell, %s %.6g, relative density %.6g, %zu "
+         "fluctuation DOFs, %.3g s\n  C =",
+         o->a->scene, h->dim, h->dim == 2 ? "area" : "volume", h->measure,
+         h->relative_density, h->fluctuation_dofs, o->seconds);
+  for (int i = 0; i < n; i++) {
+    printf(i ? "\n      [" : " [");
+    for (int j = 0; j < n; j++) printf("%s%13.6e", j ? " " : "", h->C[i * n + j]);
+    printf("]");
+  }
+  printf("\n  model %s", rn_result_model_line(o->net, line, sizeof line));
+  printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
+         1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], o->dest);
+}
+
+/* The effective stiffness h of the cell and its compliance S, timed; 0 or the
+ * exit status (message printed). */
+static int homogenize_cell(rn_context *ctx, const hom_args *a, rn_network *net,
+                           rn_homogenization *h, double *S, double *seconds) {
+  double t0 = now();
+  rn_status st = rn_homogenize(net, h);
+  *seconds = now() - t0;
+  if (st) {
+    fprintf(stderr, "rodnet homogenize: %s: %s\n", a->scene, rn_context_last_error(ctx));
+    return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+  }
+  if (h->relative_density >= 1.0) /* issue 22 item 1 (docs/lattices.md) */
+    fprintf(stderr,
+            "rodnet homogenize: warning: %s: relative density %.6g >= 1: the struts "
+            "overlap, the rod model does not hold for this cell (docs/lattices.md, "
+            "\"Admissible sections\")\n",
+            a->scene, h->relative_density);
+  if (!rn_homog_invert(h->nstrain, h->C, S)) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "
+            "mechanism: some strain costs no energy)\n",
+            a->scene);
+    return RN_EXIT_INTERNAL;
+  }
+  return 0;
+}
+
+/* Writes RESULT.json (or, for a path that stopped early, its partial result
+ * beside it, never in place of it: a complete earlier result there is kept),
+ * prints the summaries; 0 or the exit status. */
+static int write_and_print(rn_context *ctx, hom_out *o, const hp_path *path,
+                           const hp_post *post) {
+  const hom_args *a = o->a;
+  char partial[4096];
+  int rc = 0;
+  o->dest = a->output;
+  if (a->path && path->r.stopped) {
+    size_t n = strlen(a->output);
+    int json = n > 5 && strcmp(a->output + n - 5, ".json") == 0;
+    snprintf(partial, sizeof partial, "%.*s.partial.json", (int)(json ? n - 5 : n),
+             a->output);
+    o->dest = partial;
+  }
+  rn_status st = rn_file_write_atomic(ctx, o->dest, write_result_checked, o);
+  if (!st && a->path && !a->quiet) print_path(a, path, post);
+  if (a->path && path->r.stopped) {
+    fprintf(stderr,
+            "rodnet homogenize: %s: the path stopped at step %d: %s; the partial result "
+            "is in %s (%s is not written)\n",
+            a->scene, path->r.done + 1, path->r.stopped, o->dest, a->output);
+    rc = RN_EXIT_INTERNAL;
+  }
+  if (!st && post->done && !a->quiet) print_post(a, path, post);
+  if (st) {
+    fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
+    return RN_EXIT_INPUT;
+  }
+  if (!a->quiet) print_cell(o);
+  if (a->plot && run_plot(o->dest, a->plot) != 0) {
+    fprintf(stderr,
+            "rodnet homogenize: the plot %s failed (%s %s with matplotlib; "
+            "RODNET_PYTHON and RODNET_PLOT_STIFFNESS override them); %s is written\n",
+            a->plot, getenv("RODNET_PYTHON") ? getenv("RODNET_PYTHON") : RN_PYTHON3,
+            getenv("RODNET_PLOT_STIFFNESS") ? getenv("RODNET_PLOT_STIFFNESS")
+                                            : RN_PLOT_STIFFNESS_SCRIPT,
+            a->output);
+    rc = RN_EXIT_INTERNAL;
+  }
   return rc;
 }
 
@@ -521,7 +715,7 @@ int rn_cli_homogenize(int argc, char **argv) {
   }
   rn_scene *scene = NULL;
   rn_homogenization h;
-  double S[36];
+  double S[36], seconds = 0.0;
   int dim = 0;
   hp_path path;
   hp_post post;
@@ -539,87 +733,9 @@ int rn_cli_homogenize(int argc, char **argv) {
   }
   rn_network *net = rn_scene_network(scene);
   rn_network_cell_info(net, &dim, NULL, NULL, NULL);
-  if (dim == 0) {
-    fprintf(stderr,
-            "rodnet homogenize: %s: the scene is not periodic (it has no top-level "
-            "\"periodic\" object with lattice vectors; see 'rodnet generate KIND "
-            "--periodic')\n",
-            a.scene);
-    rc = RN_EXIT_INPUT;
-    goto done;
-  }
-  if (a.path && a.modes == RN_BLOCH_OUT_OF_PLANE && rn_network_is_planar(net) == 1) {
-    fprintf(stderr,
-            "rodnet homogenize: %s: --modes out-of-plane: the scene uses the planar "
-            "model, which has no out-of-plane modes (use \"model\": \"3d\")\n",
-            a.scene);
-    rc = RN_EXIT_INPUT;
-    goto done;
-  }
-  if (a.path && a.modes != RN_BLOCH_ALL && dim == 3) { /* found before computing */
-    fprintf(stderr,
-            "rodnet homogenize: %s: --modes %s: a 3D cell has no in-plane / "
-            "out-of-plane split of its modes (use --modes all)\n",
-            a.scene, a.modes == RN_BLOCH_IN_PLANE ? "in-plane" : "out-of-plane");
-    rc = RN_EXIT_INPUT;
-    goto done;
-  }
-  if (a.path) {
-    int count = 0, ns = 0, stress[6] = {0};
-    double target[6] = {0};
-    rn_network_cell_info(net, NULL, &ns, NULL, NULL);
-    path.ns = ns;
-    if (a.path_file) {
-      if ((st = hp_read_path_file(ctx, a.path_file, a.steps, &path))) {
-        fprintf(stderr, "rodnet homogenize: --path-file: %s\n",
-                rn_context_last_error(ctx));
-        rc = st == RN_ERR_ALLOC ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
-        goto done;
-      }
-    } else {
-      if (hp_parse_targets(a.path, a.path_stress != NULL, target, stress, &count) ||
-          count != ns) {
-        if (a.path_stress)
-          fprintf(stderr,
-                  "rodnet homogenize: --path-stress '%s': expected %d comma-separated "
-                  "numbers (%s) for this %dD cell\n",
-                  a.path, ns, ns == 3 ? "S11,S22,S12" : "S11,S22,S33,S23,S13,S12", dim);
-        else
-          fprintf(stderr,
-                  "rodnet homogenize: --path '%s': expected %d comma-separated numbers "
-                  "(%s; '-', s:VALUE for stress control) for this %dD cell\n",
-                  a.path, ns, ns == 3 ? "E11,E22,E12" : "E11,E22,E33,E23,E13,E12", dim);
-        rc = RN_EXIT_USAGE;
-        goto done;
-      }
-      if ((st = hp_single_segment(ctx, &path, target, stress, a.steps))) {
-        rc = RN_EXIT_INTERNAL;
-        goto done;
-      }
-    }
-  }
-  double t0 = now();
-  st = rn_homogenize(net, &h);
-  double seconds = now() - t0;
-  if (st) {
-    fprintf(stderr, "rodnet homogenize: %s: %s\n", a.scene, rn_context_last_error(ctx));
-    rc = st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
-    goto done;
-  }
-  if (h.relative_density >= 1.0) /* issue 22 item 1 (docs/lattices.md) */
-    fprintf(stderr,
-            "rodnet homogenize: warning: %s: relative density %.6g >= 1: the struts "
-            "overlap, the rod model does not hold for this cell (docs/lattices.md, "
-            "\"Admissible sections\")\n",
-            a.scene, h.relative_density);
-  if (!rn_homog_invert(h.nstrain, h.C, S)) {
-    fprintf(stderr,
-            "rodnet homogenize: %s: the effective stiffness is singular (a macroscopic "
-            "mechanism: some strain costs no energy)\n",
-            a.scene);
-    rc = RN_EXIT_INTERNAL;
-    goto done;
-  }
+  if ((rc = check_cell(&a, net, dim))) goto done;
+  if (a.path && (rc = read_path(ctx, &a, net, dim, &path))) goto done;
+  if ((rc = homogenize_cell(ctx, &a, net, &h, S, &seconds))) goto done;
   if (a.path) {
     path.dim = h.dim;
     path.modes = a.modes;
@@ -632,124 +748,12 @@ int rn_cli_homogenize(int argc, char **argv) {
       goto done;
     }
   }
-  if (a.post) {
-    post.requested = 1;
-    post.nsteps = a.post_steps;
-    st = hp_post_buckling(ctx, a.scene, &path, a.post, &post);
-    if (st) {
-      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n",
-              rn_context_last_error(ctx));
-      rc = RN_EXIT_INTERNAL;
-      st = RN_OK;
-    } else if (post.failed)
-      fprintf(stderr, "rodnet homogenize: --post-buckling: %s\n", post.failed);
-  }
-  if (a.pattern) {
-    path.pattern.requested = 1;
-    int prc = write_pattern(ctx, &a, &path, &path.pattern);
-    if (prc) rc = prc;
-  }
+  rc = after_path(ctx, &a, &path, &post);
   hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post, NULL};
-  /* a path that stopped early: its partial result beside RESULT.json, never in
-   * place of it (a complete earlier result there is kept) */
-  char partial[4096];
-  const char *dest = a.output;
-  if (a.path && path.stopped) {
-    size_t n = strlen(a.output);
-    int json = n > 5 && strcmp(a.output + n - 5, ".json") == 0;
-    snprintf(partial, sizeof partial, "%.*s.partial.json", (int)(json ? n - 5 : n),
-             a.output);
-    dest = partial;
-  }
-  o.dest = dest;
-  st = rn_file_write_atomic(ctx, dest, write_result_checked, &o);
-  if (!st && a.path && !a.quiet) {
-    if (path.inst.found) {
-      printf("rodnet homogenize: first instability at load factor %.6g of the path: "
-             "strain ",
-             path.inst.t);
-      hp_print_vec(stdout, path.ns, path.inst.strain, 6, 0);
-      printf(" (Voigt %s), %s, wave vector ",
-             path.ns == 3 ? "11 22 12" : "11 22 33 23 13 12",
-             path.inst.stress_limit       ? "macroscopic (limit point of the stress)"
-             : path.inst.kind_macroscopic ? "macroscopic"
-                                          : "local");
-      hp_print_vec(stdout, path.dim, path.inst.xi, 4, 0);
-      printf(", multiplicity %d, %d equivalent wave vector(s)\n", path.inst.multiplicity,
-             path.inst.kind_macroscopic ? 1 : path.inst.nequiv);
-    } else if (path.stopped)
-      printf("rodnet homogenize: the path is stable as far as it went (%d of %d steps)\n",
-             path.done, path.steps);
-    else
-      printf("rodnet homogenize: the path stays stable (%d steps)\n", path.done);
-    char third[16] = "";
-    if (path.dim == 3) snprintf(third, sizeof third, " x %d", path.pattern.rep[2]);
-    if (path.pattern.written)
-      printf("rodnet homogenize: pattern: %d x %d%s supercell at the critical strain, "
-             "critical mode eigenvalue %.3e (scaled to %.3g)%s; wrote %s.vtu%s%s%s\n",
-             path.pattern.rep[0], path.pattern.rep[1], third, path.pattern.eigenvalue,
-             path.pattern.amplitude, path.pattern.converged ? "" : " (NOT converged)",
-             a.pattern, path.pattern.png ? " and " : "",
-             path.pattern.png ? a.pattern : "", path.pattern.png ? ".png" : "");
-    else if (path.pattern.requested)
-      printf("rodnet homogenize: pattern: nothing written: %s\n",
-             path.pattern.why_not[0] ? path.pattern.why_not : "not computed");
-    if (post.requested && post.failed)
-      printf("rodnet homogenize: post-buckling: nothing written: %s\n", post.failed);
-  }
-  if (a.path && path.stopped) {
-    fprintf(stderr,
-            "rodnet homogenize: %s: the path stopped at step %d: %s; the partial result "
-            "is in %s (%s is not written)\n",
-            a.scene, path.done + 1, path.stopped, dest, a.output);
-    if (!rc) rc = RN_EXIT_INTERNAL;
-  }
-  if (!st && post.done && !a.quiet) {
-    const hp_post_step *ls = &post.step[post.done - 1];
-    char third[16] = "";
-    if (path.dim == 3) snprintf(third, sizeof third, " x %d", post.rep[2]);
-    printf("rodnet homogenize: post-buckling: %d x %d%s supercell, %d steps past the "
-           "critical strain; at load factor %.4g stress ",
-           post.rep[0], post.rep[1], third, post.done, ls->t);
-    hp_print_vec(stdout, path.ns, ls->stress, 6, 0);
-    fputs(" (principal ", stdout);
-    hp_print_vec(stdout, path.ns, ls->principal_stress, 6, 0);
-    printf("), %s; wrote %s.vtu%s%s%s\n",
-           ls->verified ? "a verified minimum" : "NOT a verified minimum", a.post,
-           post.png ? " and " : "", post.png ? a.post : "", post.png ? ".png" : "");
-  }
+  int wrc = write_and_print(ctx, &o, &path, &post);
+  /* the first failure's status, but a failed write of the result wins */
+  if (wrc == RN_EXIT_INPUT || !rc) rc = wrc;
   hp_post_free(&post);
-  if (st) {
-    fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
-    rc = RN_EXIT_INPUT;
-    goto done;
-  }
-  if (!a.quiet) {
-    int n = h.nstrain;
-    char line[320];
-    printf("rodnet homogenize: %s: %dD cell, %s %.6g, relative density %.6g, %zu "
-           "fluctuation DOFs, %.3g s\n  C =",
-           a.scene, h.dim, h.dim == 2 ? "area" : "volume", h.measure, h.relative_density,
-           h.fluctuation_dofs, seconds);
-    for (int i = 0; i < n; i++) {
-      printf(i ? "\n      [" : " [");
-      for (int j = 0; j < n; j++) printf("%s%13.6e", j ? " " : "", h.C[i * n + j]);
-      printf("]");
-    }
-    printf("\n  model %s", rn_result_model_line(net, line, sizeof line));
-    printf("\n  E1 = %.6e  E2 = %.6e  nu12 = %.6f  G12 = %.6e\n  wrote %s\n", 1.0 / S[0],
-           1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], dest);
-  }
-  if (a.plot && run_plot(dest, a.plot) != 0) {
-    fprintf(stderr,
-            "rodnet homogenize: the plot %s failed (%s %s with matplotlib; "
-            "RODNET_PYTHON and RODNET_PLOT_STIFFNESS override them); %s is written\n",
-            a.plot, getenv("RODNET_PYTHON") ? getenv("RODNET_PYTHON") : RN_PYTHON3,
-            getenv("RODNET_PLOT_STIFFNESS") ? getenv("RODNET_PLOT_STIFFNESS")
-                                            : RN_PLOT_STIFFNESS_SCRIPT,
-            a.output);
-    rc = RN_EXIT_INTERNAL;
-  }
 done:
   hp_free(&path);
   rn_scene_destroy(&scene);

@@ -41,7 +41,7 @@ int hp_parse_targets(const char *s, int stress_default, double *target, int *str
   return 0;
 }
 
-static const char *path_kind(const hp_segment *g, int ns) {
+static const char *path_kind(const rn_cell_path_segment *g, int ns) {
   int nstress = 0;
   for (int v = 0; v < ns; ++v) nstress += g->stress[v];
   return nstress == 0 ? "strain" : nstress == ns ? "stress" : "mixed";
@@ -49,7 +49,7 @@ static const char *path_kind(const hp_segment *g, int ns) {
 
 rn_status hp_single_segment(rn_context *ctx, hp_path *p, const double *target,
                             const int *stress, int steps) {
-  p->seg = calloc(1, sizeof(hp_segment));
+  p->seg = calloc(1, sizeof(rn_cell_path_segment));
   if (!p->seg) return rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
   p->nseg = 1;
   p->seg->steps = steps;
@@ -95,7 +95,7 @@ done:
 }
 
 static rn_status read_waypoint(rn_jwalk *w, const cJSON *wp, int ns, int default_steps,
-                               hp_segment *g) {
+                               rn_cell_path_segment *g) {
   static const char *const keys[] = {"strain", "stress", "steps", NULL};
   static const char *const names2[] = {"E11", "E22", "E12"};
   static const char *const names3[] = {"E11", "E22", "E33", "E23", "E13", "E12"};
@@ -148,7 +148,7 @@ rn_status hp_read_path_file(rn_context *ctx, const char *file, int default_steps
     st = rn_jwalk_error(&w, "expected 1 to 1000 waypoints, got %d", n);
     goto done;
   }
-  p->seg = calloc((size_t)n, sizeof(hp_segment));
+  p->seg = calloc((size_t)n, sizeof(rn_cell_path_segment));
   if (!p->seg) {
     st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
     goto done;

@@ -2,8 +2,9 @@
  * mixed paths from the rest state (proportional, or piecewise linear through
  * waypoints) with the Bloch-Floquet first instability and, under stress
  * control, the limit point of the stress (docs/homogenization.md, "Strain
- * paths and stability", "Stress and mixed paths").  The command prints; this
- * module records. */
+ * paths and stability", "Stress and mixed paths").  The library follows the
+ * path (rn_cell_path_run, rodnet_solve.h); this module reads the command's
+ * path, calls it and writes its result. */
 #ifndef RN_HOMOG_PATH_H
 #define RN_HOMOG_PATH_H
 
@@ -11,54 +12,6 @@
 
 #include "rodnet_solve.h"
 #include "scene/scene.h"
-
-/* One leg of a path: from the state reached at its start, every component v
- * moves linearly in the path parameter from its start value to target[v], the
- * strain (stress[v] == 0) or the homogenised stress (stress[v] == 1; the
- * strain component is then a DOF, found by the mixed solve). */
-typedef struct hp_segment {
-  int steps;
-  int stress[6];    /* 1: component v is stress-controlled on this segment */
-  double target[6]; /* its strain or stress at the segment's end */
-  double start[6];  /* its strain or stress at the segment's start (hp_run) */
-} hp_segment;
-
-typedef struct hp_step {
-  double t;                       /* path parameter: segment j spans [j, j + 1] */
-  int seg;                        /* the segment */
-  double strain[6], stress[6];    /* Voigt, engineering shear */
-  double energy;                  /* elastic energy of the cell */
-  int newton, converged;          /* rn_cell_relax (Newton summed over the mixed solve) */
-  int outer;                      /* mixed solve iterations (0: strain control) */
-  int jumped;                     /* the mixed solve's correction exceeded the
-                                     predicted step (another branch) */
-  int kuu_indefinite;             /* the mixed solve met an indefinite K_uu (an
-                                     unstable cell-periodic fluctuation) */
-  double tangent_min;             /* lowest eigenvalue of the effective tangent on the
-                                     stress-controlled components over its rest value
-                                     (NaN without stress control) */
-  double local_min, acoustic_min; /* rn_cell_bloch at the step */
-  int stable;
-} hp_step;
-
-typedef struct hp_instability {
-  int found;
-  double t, strain[6], stress[6];
-  double xi[3];
-  int nequiv;             /* symmetry-equivalent wave vectors (rn_bloch_result) */
-  double xi_equiv[12][3]; /* xi first */
-  int kind_macroscopic, multiplicity;
-  double eig[8];
-  int neig;
-  double direction[3], amplitude[3];
-  int bisections;
-  int stress_limit;  /* 1: the effective tangent on the stress-controlled
-                        components lost positive definiteness (a limit point) */
-  double mode[6];    /* then: its null vector (strain components) */
-  int cell_periodic; /* 1: under stress control, the cell-periodic fluctuations
-                        (K_uu) lost positive definiteness in modes the Bloch
-                        test does not examine (--modes) */
-} hp_instability;
 
 typedef struct hp_pattern {
   int requested, written, png, converged;
@@ -72,22 +25,13 @@ typedef struct hp_path {
   int ns, dim, steps; /* steps: over all segments */
   double target[6];   /* the last segment's target */
   int nseg;
-  hp_segment *seg;      /* [nseg], owned (hp_free) */
-  const char *kind;     /* "strain", "stress", "mixed" or "waypoints" */
-  double tangent_scale; /* largest eigenvalue of C at rest (hp_run) */
-  double c_rest[36];    /* C at rest (hp_run) */
+  rn_cell_path_segment *seg; /* [nseg], as parsed (start unset), owned (hp_free) */
+  const char *kind;          /* "strain", "stress", "mixed" or "waypoints" */
   rn_bloch_modes modes;
   int grid;
   int quiet;
-  hp_step *step;       /* [steps + 1] */
-  int done;            /* steps computed (step[0 .. done]) */
-  const char *stopped; /* NULL, or why the path stopped early */
-  int limit_end;       /* the path ended under stress control at its first
-                          instability: 1 a limit point of the stress, 2 unstable
-                          cell-periodic fluctuations (K_uu indefinite) */
-  hp_instability inst;
-  hp_pattern pattern; /* --pattern (cli_homogenize.c) */
-  double seconds;
+  rn_cell_path_result r; /* rn_cell_path_run (hp_run), owned (hp_free) */
+  hp_pattern pattern;    /* --pattern (cli_homogenize.c) */
 } hp_path;
 
 /* --post-buckling (homog_post.c): the bifurcated branch in the supercell. */
@@ -120,7 +64,7 @@ int hp_period_of(double xi);
  * common multiple of the periods of its wave vector and of the wave vectors
  * equivalent to it, so that it holds every critical mode and their combinations.
  * 0 if one is not commensurate with at most 12 cells per direction. */
-int hp_instability_supercell(const hp_instability *in, int dim, int rep[3]);
+int hp_instability_supercell(const rn_cell_path_instability *in, int dim, int rep[3]);
 /* The supercell rep[dim] of the periodic scene file (without "repeat"), every
  * strain component a DOF, no applied stress; pin_out_of_plane: z of every joint
  * and interior vertex and every material angle pinned, the first joint fully. */
@@ -168,17 +112,19 @@ rn_status hp_single_segment(rn_context *ctx, hp_path *p, const double *target,
 rn_status hp_read_path_file(rn_context *ctx, const char *file, int default_steps,
                             hp_path *p);
 /* Follow the path on net (the scene's network, at rest; every strain component
- * a DOF) and locate the first instability; progress lines on stderr unless
- * quiet.  Returns RN_OK when it ran (the path may have stopped early:
- * p->stopped, or ended at a limit point of the stress: p->limit_end), an error
- * status otherwise. */
+ * a DOF) and locate the first instability by rn_cell_path_run into p->r;
+ * progress lines on stderr unless quiet.  Returns RN_OK when it ran (the path
+ * may have stopped early: p->r.stopped, or ended at a limit point of the
+ * stress: p->r.limit_end), an error status otherwise. */
 rn_status hp_run(rn_network *net, hp_path *p);
 /* Write the "path" and "instability" members (each line ends with ",\n"). */
 void hp_write_json(FILE *f, const hp_path *p);
 void hp_free(hp_path *p);
 
-/* Shared with `rodnet sweep` (cli_homogenize.c): S = C^-1 (n x n); 0 if
- * singular.  The "constants" member of RESULT.json from C and S (ends ",\n"). */
+/* Shared with `rodnet sweep` (cli_homogenize.c): S = C^-1 (n x n) by
+ * rn_homogenization_invert; 0 if singular (always without the solver, where
+ * there is no C to invert).  The "constants" member of RESULT.json from C and S (ends
+ * ",\n"). */
 int rn_homog_invert(int n, const double *C, double *S);
 void rn_homog_put_constants(FILE *f, const rn_homogenization *h, const double *S);
 

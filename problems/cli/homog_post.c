@@ -28,7 +28,7 @@ int hp_period_of(double xi) {
 
 static int gcd_int(int a, int b) { return b ? gcd_int(b, a % b) : a; }
 
-int hp_instability_supercell(const hp_instability *in, int dim, int rep[3]) {
+int hp_instability_supercell(const rn_cell_path_instability *in, int dim, int rep[3]) {
   for (int i = 0; i < dim; ++i) {
     if (!(rep[i] = hp_period_of(in->xi[i]))) return 0;
     for (int e = 0; e < in->nequiv; ++e) {
@@ -130,8 +130,8 @@ done:
 /* Strain of the cell path at parameter t (linear between the recorded steps). */
 static void strain_at(const hp_path *p, double t, double *eps) {
   int k = 1;
-  while (k < p->done && p->step[k].t < t) ++k;
-  const hp_step *a = &p->step[k - 1], *b = &p->step[k];
+  while (k < p->r.done && p->r.step[k].t < t) ++k;
+  const rn_cell_path_step *a = &p->r.step[k - 1], *b = &p->r.step[k];
   double w = b->t > a->t ? (t - a->t) / (b->t - a->t) : 1.0;
   for (int v = 0; v < p->ns; ++v) eps[v] = (1.0 - w) * a->strain[v] + w * b->strain[v];
 }
@@ -235,16 +235,116 @@ rn_status hp_write_pattern_files(rn_context *ctx, rn_scene *sc, const char *base
   return RN_OK;
 }
 
+/* The post-buckling computation on the supercell network: the principal and
+ * bifurcated states (owned), the critical mode (vec, its largest real entry
+ * vmax over the nfl fluctuation DOFs), scratch for the DOFs and positions. */
+typedef struct post_run {
+  rn_network *net;
+  int copies;
+  rn_state *prin, *bif;
+  double *x, *vec, *xp, *xb;
+  size_t nd, nb, npos, nfl;
+  double vmax;
+} post_run;
+
+/* The principal branch to the critical strain (through the path's steps) and
+ * the critical mode there (the lowest Bloch mode at xi = 0 of the supercell). */
+static rn_status post_start(rn_context *ctx, const hp_path *p, hp_post *po, post_run *q) {
+  rn_network *net = q->net;
+  const rn_cell_path_instability *in = &p->r.inst;
+  rn_cell_relax_report rep;
+  rn_status st;
+  for (int k = 1; k <= p->r.done && p->r.step[k].t < in->t; ++k)
+    if ((st = rn_cell_relax(net, p->r.step[k].strain, &rep))) return st;
+  if ((st = rn_cell_relax(net, in->strain, &rep))) return st;
+  q->nd = rn_network_num_dofs(net);
+  for (int r = 0; r < rn_network_num_rods(net); ++r)
+    q->npos += 3 * (size_t)rn_network_rod_num_vertices(net, r);
+  if ((st = rn_network_bloch_dofs(net, &q->nb, NULL, NULL))) return st;
+  q->x = malloc(q->nd * sizeof(double));
+  q->vec = malloc(2 * q->nb * sizeof(double));
+  q->xp = malloc(q->npos * sizeof(double));
+  q->xb = malloc(q->npos * sizeof(double));
+  if (!q->x || !q->vec || !q->xp || !q->xb)
+    return rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+  const double zero[3] = {0.0, 0.0, 0.0};
+  if ((st = rn_cell_bloch_eigen(net, zero, p->modes, 1, &po->mode_eigenvalue, q->vec)))
+    return st;
+  if ((st = rn_network_state_save(net, &q->prin))) return st;
+  double measure_ = 0.0;
+  rn_network_cell_info(net, NULL, NULL, &measure_, NULL);
+  q->nfl = q->nd - (size_t)p->ns;
+  for (size_t i = 0; i < q->nfl && i < q->nb; ++i)
+    q->vmax = fmax(q->vmax, fabs(q->vec[2 * i]));
+  if (!(q->vmax > 0.0))
+    return rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
+  /* perturbation: 1e-3 of the cell size at the largest entry of the mode */
+  po->perturbation = 1e-3 * pow(measure_ / q->copies, 1.0 / p->dim);
+  return RN_OK;
+}
+
+/* Step s (strain s->strain) on both branches: principal from the previous
+ * principal state by rn_cell_relax; bifurcated from the previous bifurcated
+ * state, or the principal one plus the critical mode, by rn_cell_minimize; each
+ * measured, and the amplitude of their difference. */
+static rn_status post_step(hp_post *po, post_run *q, hp_post_step *s) {
+  rn_network *net = q->net;
+  rn_cell_relax_report rep;
+  rn_status st;
+  if ((st = rn_network_state_restore(net, q->prin)) ||
+      (st = rn_cell_relax(net, s->strain, &rep)))
+    return st;
+  s->principal_converged = rep.converged;
+  rn_state_destroy(&q->prin);
+  if ((st = rn_network_state_save(net, &q->prin)) ||
+      (st = measure(net, q->copies, s->principal_stress, &s->principal_energy,
+                    &s->principal_verified, &s->principal_lowest)) ||
+      (st = positions(net, q->xp)))
+    return st;
+  if (q->bif) {
+    if ((st = rn_network_state_restore(net, q->bif))) return st;
+  } else {
+    if ((st = rn_network_get_dofs(net, q->x))) return st;
+    for (size_t i = 0; i < q->nfl && i < q->nb; ++i)
+      q->x[i] += po->perturbation * q->vec[2 * i] / q->vmax;
+    if ((st = rn_network_set_dofs(net, q->x)) ||
+        (st = rn_network_update_reference(net, q->x)))
+      return st;
+  }
+  if ((st = rn_cell_minimize(net, s->strain, &rep))) return st;
+  s->converged = rep.converged;
+  s->iterations = rep.iterations;
+  rn_state_destroy(&q->bif);
+  if ((st = rn_network_state_save(net, &q->bif)) ||
+      (st = measure(net, q->copies, s->stress, &s->energy, &s->verified, &s->lowest)) ||
+      (st = positions(net, q->xb)))
+    return st;
+  s->amplitude = 0.0;
+  for (size_t i = 0; i < q->npos; ++i) {
+    q->xb[i] -= q->xp[i];
+    s->amplitude = fmax(s->amplitude, fabs(q->xb[i]));
+  }
+  return RN_OK;
+}
+
+/* Progress line of post-buckling step j of n on stderr. */
+static void print_post_step(const hp_path *p, const hp_post_step *s, int j, int n) {
+  fprintf(stderr, "rodnet homogenize: post-buckling %d/%d  t %.4f  stress ", j, n, s->t);
+  hp_print_vec(stderr, p->ns, s->stress, 4, 1);
+  fputs(" (principal ", stderr);
+  hp_print_vec(stderr, p->ns, s->principal_stress, 4, 1);
+  fprintf(stderr, ")  amplitude %.3e  %s\n", s->amplitude,
+          s->converged && s->verified ? "verified minimum" : "NOT a verified minimum");
+}
+
 rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
                            const char *out_base, hp_post *po) {
   rn_status st = RN_OK;
   rn_scene *sc = NULL;
-  rn_state *prin = NULL, *bif = NULL;
-  double *x = NULL, *vec = NULL, *xp = NULL, *xb = NULL;
-  rn_cell_relax_report rep;
-  double eps[6];
-  const hp_instability *in = &p->inst;
-  int copies = 1;
+  const rn_cell_path_instability *in = &p->r.inst;
+  post_run q;
+  memset(&q, 0, sizeof q);
+  q.copies = 1;
   if (!in->found || in->kind_macroscopic) {
     po->failed = in->found ? "the instability is macroscopic (long wavelength): no "
                              "finite supercell"
@@ -256,42 +356,12 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
                  "cells per direction";
     return RN_OK;
   }
-  for (int i = 0; i < p->dim; ++i) copies *= po->rep[i];
+  for (int i = 0; i < p->dim; ++i) q.copies *= po->rep[i];
   po->pinned = p->dim == 2 && p->modes == RN_BLOCH_IN_PLANE;
   if ((st = hp_supercell(ctx, scene, po->rep, p->dim, po->pinned, &sc))) return st;
-  rn_network *net = rn_scene_network(sc);
-  /* the principal branch to the critical strain, through the path's steps */
-  for (int k = 1; k <= p->done && p->step[k].t < in->t; ++k) {
-    if ((st = rn_cell_relax(net, p->step[k].strain, &rep))) goto done;
-  }
-  if ((st = rn_cell_relax(net, in->strain, &rep))) goto done;
-  size_t nd = rn_network_num_dofs(net), nb = 0, npos = 0;
-  for (int r = 0; r < rn_network_num_rods(net); ++r)
-    npos += 3 * (size_t)rn_network_rod_num_vertices(net, r);
-  if ((st = rn_network_bloch_dofs(net, &nb, NULL, NULL))) goto done;
-  x = malloc(nd * sizeof(double));
-  vec = malloc(2 * nb * sizeof(double));
-  xp = malloc(npos * sizeof(double));
-  xb = malloc(npos * sizeof(double));
-  if (!x || !vec || !xp || !xb) {
-    st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
-    goto done;
-  }
-  const double zero[3] = {0.0, 0.0, 0.0};
-  if ((st = rn_cell_bloch_eigen(net, zero, p->modes, 1, &po->mode_eigenvalue, vec)))
-    goto done;
-  if ((st = rn_network_state_save(net, &prin))) goto done;
-  double measure_ = 0.0, vmax = 0.0;
-  rn_network_cell_info(net, NULL, NULL, &measure_, NULL);
-  size_t nfl = nd - (size_t)p->ns;
-  for (size_t i = 0; i < nfl && i < nb; ++i) vmax = fmax(vmax, fabs(vec[2 * i]));
-  if (!(vmax > 0.0)) {
-    st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
-    goto done;
-  }
-  /* perturbation: 1e-3 of the cell size at the largest entry of the mode */
-  po->perturbation = 1e-3 * pow(measure_ / copies, 1.0 / p->dim);
-  const double t_end = p->step[p->done].t;
+  q.net = rn_scene_network(sc);
+  if ((st = post_start(ctx, p, po, &q))) goto done;
+  const double t_end = p->r.step[p->r.done].t;
   int n = po->nsteps;
   po->step = calloc((size_t)n + 1, sizeof(hp_post_step));
   if (!po->step) {
@@ -301,67 +371,22 @@ rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
   for (int j = 1; j <= n; ++j) {
     hp_post_step *s = &po->step[j - 1];
     s->t = in->t + (t_end - in->t) * j / n;
-    strain_at(p, s->t, eps);
-    memcpy(s->strain, eps, sizeof(eps));
-    /* principal: from the previous principal state */
-    if ((st = rn_network_state_restore(net, prin)) ||
-        (st = rn_cell_relax(net, eps, &rep)))
-      goto done;
-    s->principal_converged = rep.converged;
-    rn_state_destroy(&prin);
-    if ((st = rn_network_state_save(net, &prin)) ||
-        (st = measure(net, copies, s->principal_stress, &s->principal_energy,
-                      &s->principal_verified, &s->principal_lowest)) ||
-        (st = positions(net, xp)))
-      goto done;
-    /* bifurcated: from the previous bifurcated state, or the principal one plus
-     * the critical mode */
-    if (bif) {
-      if ((st = rn_network_state_restore(net, bif))) goto done;
-    } else {
-      if ((st = rn_network_get_dofs(net, x))) goto done;
-      for (size_t i = 0; i < nfl && i < nb; ++i)
-        x[i] += po->perturbation * vec[2 * i] / vmax;
-      if ((st = rn_network_set_dofs(net, x)) ||
-          (st = rn_network_update_reference(net, x)))
-        goto done;
-    }
-    if ((st = rn_cell_minimize(net, eps, &rep))) goto done;
-    s->converged = rep.converged;
-    s->iterations = rep.iterations;
-    rn_state_destroy(&bif);
-    if ((st = rn_network_state_save(net, &bif)) ||
-        (st = measure(net, copies, s->stress, &s->energy, &s->verified, &s->lowest)) ||
-        (st = positions(net, xb)))
-      goto done;
-    s->amplitude = 0.0;
-    for (size_t i = 0; i < npos; ++i) {
-      xb[i] -= xp[i];
-      s->amplitude = fmax(s->amplitude, fabs(xb[i]));
-    }
+    strain_at(p, s->t, s->strain);
+    if ((st = post_step(po, &q, s))) goto done;
     po->done = j;
-    if (!p->quiet) {
-      fprintf(stderr, "rodnet homogenize: post-buckling %d/%d  t %.4f  stress ", j, n,
-              s->t);
-      hp_print_vec(stderr, p->ns, s->stress, 4, 1);
-      fputs(" (principal ", stderr);
-      hp_print_vec(stderr, p->ns, s->principal_stress, 4, 1);
-      fprintf(stderr, ")  amplitude %.3e  %s\n", s->amplitude,
-              s->converged && s->verified ? "verified minimum"
-                                          : "NOT a verified minimum");
-    }
+    if (!p->quiet) print_post_step(p, s, j, n);
     if (!s->converged) break;
   }
-  harmonics(net, p, xb, po);
+  harmonics(q.net, p, q.xb, po);
   /* the pattern: the last bifurcated state */
   st = hp_write_pattern_files(ctx, sc, out_base, p->quiet, &po->written, &po->png);
 done:
-  rn_state_destroy(&prin);
-  rn_state_destroy(&bif);
-  free(x);
-  free(vec);
-  free(xp);
-  free(xb);
+  rn_state_destroy(&q.prin);
+  rn_state_destroy(&q.bif);
+  free(q.x);
+  free(q.vec);
+  free(q.xp);
+  free(q.xb);
   rn_scene_destroy(&sc);
   return st;
 }

@@ -381,6 +381,8 @@ private:
 
 // ---- Bloch-Floquet analysis -----------------------------------------------------
 
+struct AcousticTensor;
+
 class Bloch {
 public:
   Bloch(rn_network *net, rn_bloch_modes modes) : net_(net) {
@@ -502,6 +504,15 @@ public:
   void acoustic(rn_bloch_result *res);
 
 private:
+  std::vector<int> amplitudes() const;
+  // 1 where Bloch DOF i is the translation of amplitude component a of t.
+  double translation(const AcousticTensor &t, size_t i, int a) const;
+  void first_moments(const AcousticTensor &t, const std::vector<double> &K,
+                     std::vector<double> &M, std::vector<std::vector<double>> &B,
+                     std::vector<std::vector<double>> &X);
+  void second_moments(AcousticTensor &t, std::vector<double> &M,
+                      const std::vector<std::vector<double>> &B,
+                      const std::vector<std::vector<double>> &X);
   void check_decoupled() {
     const double xi[3] = {0.1234, 0.3071, 0.0};
     check_status(rn_network_bloch_hessian(net_, x_.data(), xi, re_.data(), im_.data()),
@@ -531,147 +542,75 @@ private:
   int evals_ = 0;
 };
 
-// Eigenvalues (ascending, w[m]) of the symmetric m x m (m <= 3) matrix a and the
-// eigenvector of the lowest (v[m]).
-void sym_eigen(int m, const double *a, double *w, double *v) {
-  double A[9], work[64];
-  const int lwork = 64;
-  int info = 0;
-  std::copy(a, a + m * m, A);
-  dsyev_("V", "L", &m, A, &m, w, work, &lwork, &info, 1, 1);
-  if (info != 0) throw Error(RN_ERR_SOLVER, "rn_cell_bloch: LAPACK dsyev failed");
-  for (int i = 0; i < m; ++i) v[i] = A[i];
-}
-
 // The acoustic tensor A(n) = (1/V) [-1/2 sum n_J n_L T^T M2_JL T
 //                                   - sum n_J n_L (M1_J^T T)^T K^-1 (M1_L^T T)]
-// over the amplitude components of the modes examined, K the fluctuation block
-// (anchor pinned) on those modes: the second-order term of the Bloch Hessian's
-// acoustic branches (translations t plus the fluctuation i k w they induce).
-void Bloch::acoustic(rn_bloch_result *res) {
-  std::vector<int> amp; // amplitude components present in the modes
-  for (int c = 0; c < 3; ++c)
-    for (size_t i = 0; i < n_; ++i)
-      if (mask_[i] && kind_[i] == RN_DOF_POSITION && comp_[i] == c) {
-        amp.push_back(c);
-        break;
-      }
-  const int na = static_cast<int>(amp.size()), d = dim_;
-  const size_t m = sel0_.size();
-  std::vector<double> M(n_ * n_);
-  check_status(rn_network_bloch_moment(net_, x_.data(), nullptr, nullptr, M.data()),
-               "rn_network_bloch_moment");
-  std::vector<double> K(m * m);
-  for (size_t j = 0; j < m; ++j)
-    for (size_t i = 0; i < m; ++i)
-      K[i + j * m] =
-          M[static_cast<size_t>(sel0_[i]) * n_ + static_cast<size_t>(sel0_[j])];
-  const int mi = static_cast<int>(m);
-  int info = 0;
-  dpotrf_("L", &mi, K.data(), &mi, &info, 1);
-  res->acoustic_valid = info == 0;
-  if (info != 0 || na == 0) return;
-  auto tcol = [&](size_t i, int a) {
-    return kind_[i] == RN_DOF_POSITION && comp_[i] == amp[static_cast<size_t>(a)] ? 1.0
-                                                                                  : 0.0;
-  };
-  // B_J = (M1_J^T T) on sel0 rows, na columns; X_J = K^-1 B_J
-  std::vector<std::vector<double>> B(static_cast<size_t>(d)), X(static_cast<size_t>(d));
-  for (int J = 0; J < d; ++J) {
-    double e[3] = {0.0, 0.0, 0.0};
-    e[J] = 1.0;
-    check_status(rn_network_bloch_moment(net_, x_.data(), e, nullptr, M.data()),
-                 "rn_network_bloch_moment");
-    std::vector<double> &b = B[static_cast<size_t>(J)];
-    b.assign(m * static_cast<size_t>(na), 0.0);
-    for (int a = 0; a < na; ++a)
-      for (size_t r = 0; r < m; ++r) {
-        double s = 0.0;
-        const size_t w = static_cast<size_t>(sel0_[r]);
-        for (size_t i = 0; i < n_; ++i)
-          if (tcol(i, a) != 0.0) s += M[i * n_ + w];
-        b[r + static_cast<size_t>(a) * m] = s;
-      }
-    X[static_cast<size_t>(J)] = b;
-    dpotrs_("L", &mi, &na, K.data(), &mi, X[static_cast<size_t>(J)].data(), &mi, &info,
-            1);
-  }
-  // Q_JL[a][b] = -1/2 T_a^T M2_JL T_b - B_J^T X_L, assembled per pair
-  std::vector<double> Q(static_cast<size_t>(d * d * na * na), 0.0);
-  auto q = [&](int J, int L, int a, int b) -> double & {
+// over the amplitude components amp[na] of the modes examined, K the fluctuation
+// block (anchor pinned) on those modes: the second-order term of the Bloch
+// Hessian's acoustic branches (translations t plus the fluctuation i k w they
+// induce).  Q_JL[a][b] holds the bracket per direction pair.
+struct AcousticTensor {
+  int d = 0, na = 0;
+  double measure = 0.0;
+  std::vector<int> amp;
+  std::vector<double> Q; // [d][d][na][na]
+  double &q(int J, int L, int a, int b) {
     return Q[static_cast<size_t>(((J * d + L) * na + a) * na + b)];
-  };
-  for (int J = 0; J < d; ++J)
-    for (int L = J; L < d; ++L) {
-      double e1[3] = {0.0, 0.0, 0.0}, e2[3] = {0.0, 0.0, 0.0};
-      e1[J] = 1.0;
-      e2[L] = 1.0;
-      check_status(rn_network_bloch_moment(net_, x_.data(), e1, e2, M.data()),
-                   "rn_network_bloch_moment");
-      for (int a = 0; a < na; ++a)
-        for (int b = 0; b < na; ++b) {
-          double s = 0.0;
-          for (size_t i = 0; i < n_; ++i) {
-            if (tcol(i, a) == 0.0) continue;
-            for (size_t j = 0; j < n_; ++j)
-              if (tcol(j, b) != 0.0) s += M[i * n_ + j];
-          }
-          q(J, L, a, b) += -0.5 * s;
-          if (L != J) q(L, J, a, b) += -0.5 * s;
-        }
-    }
-  for (int J = 0; J < d; ++J)
-    for (int L = 0; L < d; ++L)
-      for (int a = 0; a < na; ++a)
-        for (int b = 0; b < na; ++b) {
-          double s = 0.0;
-          const double *bj =
-              B[static_cast<size_t>(J)].data() + static_cast<size_t>(a) * m;
-          const double *xl =
-              X[static_cast<size_t>(L)].data() + static_cast<size_t>(b) * m;
-          for (size_t r = 0; r < m; ++r) s += bj[r] * xl[r];
-          q(J, L, a, b) -= s;
-        }
-  auto tensor = [&](const double *nv, double *A) {
+  }
+  double q(int J, int L, int a, int b) const {
+    return Q[static_cast<size_t>(((J * d + L) * na + a) * na + b)];
+  }
+  // A(n) (na x na) for the unit direction nv.
+  void at(const double *nv, double *A) const {
     for (int a = 0; a < na; ++a)
       for (int b = 0; b < na; ++b) {
         double s = 0.0;
         for (int J = 0; J < d; ++J)
           for (int L = 0; L < d; ++L)
             s += nv[J] * nv[L] * 0.5 * (q(J, L, a, b) + q(J, L, b, a));
-        A[a * na + b] = s / measure_;
+        A[a * na + b] = s / measure;
       }
-  };
+  }
+};
+
+// The lowest eigenvalue of A(n) over unit directions n (best, at bn, its
+// eigenvector bv over the Cartesian components) and the largest (top).
+struct AcousticMin {
+  const AcousticTensor &t;
   double best = std::numeric_limits<double>::infinity(), top = 0.0, bn[3] = {0, 0, 0},
          bv[3] = {0, 0, 0};
-  auto probe = [&](const double *nv) {
+  explicit AcousticMin(const AcousticTensor &tensor) : t(tensor) {}
+
+  double probe(const double *nv) {
     double A[9], v[3], w[3];
-    tensor(nv, A);
-    sym_eigen(na, A, w, v);
+    const int na = t.na;
+    t.at(nv, A);
+    sym_eigen(na, A, w, v, "rn_cell_bloch");
     const double lo = w[0];
     top = std::max(top, w[na - 1]);
     if (lo < best) {
       best = lo;
       std::copy(nv, nv + 3, bn);
       std::fill(bv, bv + 3, 0.0);
-      for (int a = 0; a < na; ++a) bv[amp[static_cast<size_t>(a)]] = v[a];
+      for (int a = 0; a < na; ++a) bv[t.amp[static_cast<size_t>(a)]] = v[a];
     }
     return lo;
-  };
-  if (d == 2) {
+  }
+
+  // 2D: 720 directions of the half circle, then a golden-section refinement of
+  // the angle around the best sample.
+  void search_plane() {
     const int ndir = 720;
     double a0 = 0.0;
     for (int k = 0; k < ndir; ++k) {
-      const double t = M_PI * k / ndir, nv[3] = {std::cos(t), std::sin(t), 0.0};
+      const double th = M_PI * k / ndir, nv[3] = {std::cos(th), std::sin(th), 0.0};
       const double before = best;
       probe(nv);
-      if (best < before) a0 = t;
+      if (best < before) a0 = th;
     }
-    // golden-section refinement of the angle around the best sample
     double lo = a0 - M_PI / ndir, hi = a0 + M_PI / ndir;
     const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
-    auto f = [&](double t) {
-      const double nv[3] = {std::cos(t), std::sin(t), 0.0};
+    auto f = [&](double th) {
+      const double nv[3] = {std::cos(th), std::sin(th), 0.0};
       return probe(nv);
     };
     double c1 = hi - gr * (hi - lo), c2 = lo + gr * (hi - lo), f1 = f(c1), f2 = f(c2);
@@ -690,15 +629,19 @@ void Bloch::acoustic(rn_bloch_result *res) {
         f2 = f(c2);
       }
     }
-  } else {
-    const int ndir = 2000; // Fibonacci points on the upper hemisphere (A(n) = A(-n))
+  }
+
+  // 3D: 2000 Fibonacci points on the upper hemisphere (A(n) = A(-n)), then a
+  // pattern search on the sphere around the best direction.
+  void search_sphere() {
+    const int ndir = 2000;
     for (int k = 0; k < ndir; ++k) {
       const double z = (k + 0.5) / ndir, r = std::sqrt(1.0 - z * z);
       const double ph = k * M_PI * (3.0 - std::sqrt(5.0));
       const double nv[3] = {r * std::cos(ph), r * std::sin(ph), z};
       probe(nv);
     }
-    double h = 0.05; // pattern search on the sphere around the best direction
+    double h = 0.05;
     while (h > 1e-6) {
       bool moved = false;
       for (int ax = 0; ax < 3 && !moved; ++ax)
@@ -714,10 +657,131 @@ void Bloch::acoustic(rn_bloch_result *res) {
       if (!moved) h *= 0.5;
     }
   }
-  res->acoustic_min = best;
-  res->acoustic_scale = top;
-  std::copy(bn, bn + 3, res->direction);
-  std::copy(bv, bv + 3, res->amplitude);
+};
+
+double Bloch::translation(const AcousticTensor &t, size_t i, int a) const {
+  return kind_[i] == RN_DOF_POSITION && comp_[i] == t.amp[static_cast<size_t>(a)] ? 1.0
+                                                                                  : 0.0;
+}
+
+// The amplitude components present in the modes examined.
+std::vector<int> Bloch::amplitudes() const {
+  std::vector<int> amp;
+  for (int c = 0; c < 3; ++c)
+    for (size_t i = 0; i < n_; ++i)
+      if (mask_[i] && kind_[i] == RN_DOF_POSITION && comp_[i] == c) {
+        amp.push_back(c);
+        break;
+      }
+  return amp;
+}
+
+// B_J = (M1_J^T T) on the sel0 rows (m of them), na columns, and X_J = K^-1 B_J
+// with the Cholesky factor K (m x m); M: scratch for the moments.
+void Bloch::first_moments(const AcousticTensor &t, const std::vector<double> &K,
+                          std::vector<double> &M, std::vector<std::vector<double>> &B,
+                          std::vector<std::vector<double>> &X) {
+  const size_t m = sel0_.size();
+  const int mi = static_cast<int>(m), na = t.na;
+  int info = 0;
+  B.assign(static_cast<size_t>(t.d), {});
+  X.assign(static_cast<size_t>(t.d), {});
+  for (int J = 0; J < t.d; ++J) {
+    double e[3] = {0.0, 0.0, 0.0};
+    e[J] = 1.0;
+    check_status(rn_network_bloch_moment(net_, x_.data(), e, nullptr, M.data()),
+                 "rn_network_bloch_moment");
+    std::vector<double> &b = B[static_cast<size_t>(J)];
+    b.assign(m * static_cast<size_t>(na), 0.0);
+    for (int a = 0; a < na; ++a)
+      for (size_t r = 0; r < m; ++r) {
+        double s = 0.0;
+        const size_t w = static_cast<size_t>(sel0_[r]);
+        for (size_t i = 0; i < n_; ++i)
+          if (translation(t, i, a) != 0.0) s += M[i * n_ + w];
+        b[r + static_cast<size_t>(a) * m] = s;
+      }
+    X[static_cast<size_t>(J)] = b;
+    dpotrs_("L", &mi, &na, K.data(), &mi, X[static_cast<size_t>(J)].data(), &mi, &info,
+            1);
+  }
+}
+
+// Q_JL[a][b] = -1/2 T_a^T M2_JL T_b - B_J^T X_L, assembled per pair.
+void Bloch::second_moments(AcousticTensor &t, std::vector<double> &M,
+                           const std::vector<std::vector<double>> &B,
+                           const std::vector<std::vector<double>> &X) {
+  const int d = t.d, na = t.na;
+  const size_t m = sel0_.size();
+  t.Q.assign(static_cast<size_t>(d * d * na * na), 0.0);
+  for (int J = 0; J < d; ++J)
+    for (int L = J; L < d; ++L) {
+      double e1[3] = {0.0, 0.0, 0.0}, e2[3] = {0.0, 0.0, 0.0};
+      e1[J] = 1.0;
+      e2[L] = 1.0;
+      check_status(rn_network_bloch_moment(net_, x_.data(), e1, e2, M.data()),
+                   "rn_network_bloch_moment");
+      for (int a = 0; a < na; ++a)
+        for (int b = 0; b < na; ++b) {
+          double s = 0.0;
+          for (size_t i = 0; i < n_; ++i) {
+            if (translation(t, i, a) == 0.0) continue;
+            for (size_t j = 0; j < n_; ++j)
+              if (translation(t, j, b) != 0.0) s += M[i * n_ + j];
+          }
+          t.q(J, L, a, b) += -0.5 * s;
+          if (L != J) t.q(L, J, a, b) += -0.5 * s;
+        }
+    }
+  for (int J = 0; J < d; ++J)
+    for (int L = 0; L < d; ++L)
+      for (int a = 0; a < na; ++a)
+        for (int b = 0; b < na; ++b) {
+          double s = 0.0;
+          const double *bj =
+              B[static_cast<size_t>(J)].data() + static_cast<size_t>(a) * m;
+          const double *xl =
+              X[static_cast<size_t>(L)].data() + static_cast<size_t>(b) * m;
+          for (size_t r = 0; r < m; ++r) s += bj[r] * xl[r];
+          t.q(J, L, a, b) -= s;
+        }
+}
+
+// The acoustic tensor (AcousticTensor) and its lowest eigenvalue over the
+// directions: fills res->acoustic_* (acoustic_valid 0 if K is not positive
+// definite: no tangent).
+void Bloch::acoustic(rn_bloch_result *res) {
+  AcousticTensor t;
+  t.amp = amplitudes();
+  t.na = static_cast<int>(t.amp.size());
+  t.d = dim_;
+  t.measure = measure_;
+  const size_t m = sel0_.size();
+  std::vector<double> M(n_ * n_);
+  check_status(rn_network_bloch_moment(net_, x_.data(), nullptr, nullptr, M.data()),
+               "rn_network_bloch_moment");
+  std::vector<double> K(m * m);
+  for (size_t j = 0; j < m; ++j)
+    for (size_t i = 0; i < m; ++i)
+      K[i + j * m] =
+          M[static_cast<size_t>(sel0_[i]) * n_ + static_cast<size_t>(sel0_[j])];
+  const int mi = static_cast<int>(m);
+  int info = 0;
+  dpotrf_("L", &mi, K.data(), &mi, &info, 1);
+  res->acoustic_valid = info == 0;
+  if (info != 0 || t.na == 0) return;
+  std::vector<std::vector<double>> B, X;
+  first_moments(t, K, M, B, X);
+  second_moments(t, M, B, X);
+  AcousticMin am(t);
+  if (t.d == 2)
+    am.search_plane();
+  else
+    am.search_sphere();
+  res->acoustic_min = am.best;
+  res->acoustic_scale = am.top;
+  std::copy(am.bn, am.bn + 3, res->direction);
+  std::copy(am.bv, am.bv + 3, res->amplitude);
 }
 
 // Wraps xi_i into (-1/2, 1/2].
@@ -728,14 +792,16 @@ void wrap(double *xi, int d) {
   }
 }
 
-void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result *res) {
-  Bloch b(net, opt.modes);
+// A wave vector and the lowest Bloch eigenvalue there.
+struct Pt {
+  double lam, xi[3];
+};
+
+// The lowest eigenvalue on the G^d grid of the Brillouin zone, half of it
+// (H(-xi) = conj H(xi)): t <= -t (mod G) lexicographically (last index first);
+// in grid order.
+std::vector<Pt> grid_scan(Bloch &b, int G) {
   const int d = b.dim();
-  const int G = opt.grid > 0 ? opt.grid : (d == 2 ? 16 : 6);
-  const double excl = 0.25 / G;
-  struct Pt {
-    double lam, xi[3];
-  };
   std::vector<Pt> pts;
   int total = 1;
   for (int i = 0; i < d; ++i) total *= G;
@@ -746,7 +812,6 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
       c /= G;
       u[i] = (G - t[i]) % G;
     }
-    // half of the zone: t <= -t (mod G) lexicographically (last index first)
     bool keep = true;
     for (int i = d - 1; i >= 0; --i)
       if (t[i] != u[i]) {
@@ -760,6 +825,63 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
     p.lam = b.lowest1(p.xi);
     pts.push_back(p);
   }
+  return pts;
+}
+
+// Pattern search in xi from cur (steps from 1/(2G) down to 1e-4), skipping the
+// wave vectors with 0 < |xi|_inf < excl (left to the long-wavelength test).
+Pt refine(Bloch &b, Pt cur, int G, double excl) {
+  const int d = b.dim();
+  double h = 0.5 / G;
+  while (h >= 1e-4) {
+    bool moved = false;
+    for (int ax = 0; ax < d && !moved; ++ax)
+      for (int sg = -1; sg <= 1 && !moved; sg += 2) {
+        Pt c = cur;
+        c.xi[ax] += sg * h;
+        wrap(c.xi, d);
+        double inf = 0.0;
+        for (int i = 0; i < d; ++i) inf = std::max(inf, std::fabs(c.xi[i]));
+        if (inf > 0.0 && inf < excl) continue;
+        c.lam = b.lowest1(c.xi);
+        if (c.lam < cur.lam) {
+          cur = c;
+          moved = true;
+        }
+      }
+    if (!moved) h *= 0.5;
+  }
+  return cur;
+}
+
+// Ties (symmetry-equivalent minima, equal up to round-off): the first in grid
+// order becomes best, and all of them are reported in res->xi_equiv.
+void ties(const std::vector<Pt> &grid_pts, Pt &best, rn_bloch_result *res) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Pt &q : grid_pts) {
+    lo = std::min(lo, q.lam);
+    hi = std::max(hi, q.lam);
+  }
+  const double tie =
+      grid_pts.empty() ? 0.0 : 1e-8 * std::max(hi - lo, std::fabs(best.lam));
+  res->nequiv = 0;
+  for (const Pt &q : grid_pts)
+    if (std::fabs(q.lam - best.lam) <= tie && res->nequiv < 12) {
+      if (res->nequiv == 0) best = q;
+      std::copy(q.xi, q.xi + 3, res->xi_equiv[res->nequiv++]);
+    }
+  if (res->nequiv == 0) {
+    std::copy(best.xi, best.xi + 3, res->xi_equiv[0]);
+    res->nequiv = 1;
+  }
+}
+
+void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result *res) {
+  Bloch b(net, opt.modes);
+  const int d = b.dim();
+  const int G = opt.grid > 0 ? opt.grid : (d == 2 ? 16 : 6);
+  const double excl = 0.25 / G;
+  std::vector<Pt> pts = grid_scan(b, G);
   const std::vector<Pt> grid_pts = pts; // in grid order
   std::sort(pts.begin(), pts.end(),
             [](const Pt &a, const Pt &c) { return a.lam < c.lam; });
@@ -778,49 +900,12 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
   Pt best = starts.front();
   for (const Pt &s : starts)
     if (s.lam < best.lam) best = s;
-  if (opt.refine) {
-    for (Pt cur : starts) {
-      double h = 0.5 / G;
-      while (h >= 1e-4) {
-        bool moved = false;
-        for (int ax = 0; ax < d && !moved; ++ax)
-          for (int sg = -1; sg <= 1 && !moved; sg += 2) {
-            Pt c = cur;
-            c.xi[ax] += sg * h;
-            wrap(c.xi, d);
-            double inf = 0.0;
-            for (int i = 0; i < d; ++i) inf = std::max(inf, std::fabs(c.xi[i]));
-            if (inf > 0.0 && inf < excl) continue;
-            c.lam = b.lowest1(c.xi);
-            if (c.lam < cur.lam) {
-              cur = c;
-              moved = true;
-            }
-          }
-        if (!moved) h *= 0.5;
-      }
+  if (opt.refine)
+    for (const Pt &start : starts) {
+      Pt cur = refine(b, start, G, excl);
       if (cur.lam < best.lam) best = cur;
     }
-  }
-  // Ties (symmetry-equivalent minima, equal up to round-off): the first in grid
-  // order, and all of them reported.
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Pt &q : grid_pts) {
-    lo = std::min(lo, q.lam);
-    hi = std::max(hi, q.lam);
-  }
-  const double tie =
-      grid_pts.empty() ? 0.0 : 1e-8 * std::max(hi - lo, std::fabs(best.lam));
-  res->nequiv = 0;
-  for (const Pt &q : grid_pts)
-    if (std::fabs(q.lam - best.lam) <= tie && res->nequiv < 12) {
-      if (res->nequiv == 0) best = q;
-      std::copy(q.xi, q.xi + 3, res->xi_equiv[res->nequiv++]);
-    }
-  if (res->nequiv == 0) {
-    std::copy(best.xi, best.xi + 3, res->xi_equiv[0]);
-    res->nequiv = 1;
-  }
+  ties(grid_pts, best, res);
   res->local_min = best.lam;
   std::copy(best.xi, best.xi + 3, res->xi);
   res->neig = b.lowest(best.xi, 8, res->eig);
@@ -832,27 +917,20 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
   res->evaluations = b.evaluations();
 }
 
-// Runs f; converts any exception to a status with the message in the context.
-template <class F>
-rn_status guarded(rn_network *net, const char *where, F &&f) {
-  rn_context *ctx = rn_network_context(net);
-  try {
-    f();
-    return RN_OK;
-  } catch (const Error &e) {
-    return e.recorded() ? e.status()
-                        : rn_context_set_error(ctx, e.status(), "%s", e.what());
-  } catch (const std::bad_alloc &) {
-    return rn_context_set_error(ctx, RN_ERR_ALLOC, "%s: out of memory", where);
-  } catch (const std::exception &e) {
-    return rn_context_set_error(ctx, RN_ERR_SOLVER, "%s: %s", where, e.what());
-  }
-}
-
 } // namespace
 } // namespace rodnet
 
 namespace rodnet {
+void sym_eigen(int m, const double *a, double *w, double *v, const char *where) {
+  double A[36], work[64];
+  const int lwork = 64;
+  int info = 0;
+  std::copy(a, a + m * m, A);
+  dsyev_("V", "L", &m, A, &m, w, work, &lwork, &info, 1, 1);
+  if (info != 0) throw Error(RN_ERR_SOLVER, std::string(where) + ": LAPACK dsyev failed");
+  for (int i = 0; i < m; ++i) v[i] = A[i];
+}
+
 namespace {
 rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep,
                      bool descend) {
