@@ -4,12 +4,9 @@
 #include <string.h>
 
 #include "core/network_internal.h"
+#include "rodq.h"
 
-static double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static double norm3(const double a[3]) { return sqrt(dot3(a, a)); }
+static double norm3(const double a[3]) { return sqrt(rq_dot3(a, a)); }
 
 void rn_mat_vec3(const double R[9], const double v[3], double out[3]) {
   for (int i = 0; i < 3; ++i)
@@ -17,7 +14,7 @@ void rn_mat_vec3(const double R[9], const double v[3], double out[3]) {
 }
 
 void rn_rotation_matrix(const double w[3], double R[9]) {
-  double th2 = dot3(w, w), th = sqrt(th2), s, c;
+  double th2 = rq_dot3(w, w), th = sqrt(th2), s, c;
   double K[9] = {0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0};
   if (th < 1e-4) { /* series of sin(th)/th and (1 - cos th)/th^2 */
     s = 1.0 - th2 / 6.0 + th2 * th2 / 120.0;
@@ -64,7 +61,7 @@ static rn_status first_director(rn_context *ctx, int rod, const double t[3],
   dn = norm3(d);
   if (!(dn > 0.0))
     return rn_fail(ctx, RN_ERR_ARG, where, "rod %d: d1 is the zero vector", rod);
-  for (int k = 0; k < 3; ++k) a1[k] = d[k] - dot3(d, t) * t[k];
+  for (int k = 0; k < 3; ++k) a1[k] = d[k] - rq_dot3(d, t) * t[k];
   an = norm3(a1);
   if (an < 1e-8 * dn)
     return rn_fail(ctx, RN_ERR_GEOMETRY, where,
@@ -93,7 +90,7 @@ static rn_status edge_frames(rn_context *ctx, rn_rod *r, int rod, const double *
         return rn_fail(ctx, RN_ERR_GEOMETRY, where,
                        "rod %d vertex %d: consecutive edges point in opposite directions",
                        rod, j);
-      for (int k = 0; k < 3; ++k) a[k] -= dot3(a, f->t) * f->t[k];
+      for (int k = 0; k < 3; ++k) a[k] -= rq_dot3(a, f->t) * f->t[k];
       an = norm3(a);
       for (int k = 0; k < 3; ++k) f->a1[k] = a[k] / an;
     }
