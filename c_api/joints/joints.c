@@ -217,6 +217,19 @@ static rn_status smooth_ends(const rn_network *net, const char *where, const cha
   return RN_OK;
 }
 
+/* Stores the checked joint J (its m local ends lrods[k], lends[k]) as the next
+ * joint: the rod ends point to it, a smooth joint of a rod's end to its own start
+ * closes the rod; *joint (if given) its whole-network index. */
+static void attach_joint(rn_network *net, const rn_joint *J, int m, const int *lrods,
+                         const int *lends, int *joint) {
+  for (int k = 0; k < m; ++k) net->rods[lrods[k]].joint[lends[k]] = net->njoints;
+  if (J->model == RN_JOINT_SMOOTH && m == 2 && lrods[0] == lrods[1])
+    net->rods[lrods[0]].closed = 1; /* its end joined to its start: a ring */
+  net->joints[net->njoints] = *J;
+  if (joint) *joint = J->gid;
+  net->njoints++;
+}
+
 static rn_status add_joint(rn_network *net, const char *where, const char *name,
                            rn_joint_model model, int n_ends, const int *rods,
                            const int *ends, const int *images, int *joint) {
@@ -269,14 +282,8 @@ static rn_status add_joint(rn_network *net, const char *where, const char *name,
     free(buf);
     return st;
   }
-  for (int k = 0; k < m; ++k)
-    net->rods[buf[n_ends + k]].joint[buf[2 * n_ends + k]] = net->njoints;
-  if (model == RN_JOINT_SMOOTH && m == 2 && buf[n_ends] == buf[n_ends + 1])
-    net->rods[buf[n_ends]].closed = 1; /* its end joined to its start: a ring */
+  attach_joint(net, &J, m, buf + n_ends, buf + 2 * n_ends, joint);
   free(buf);
-  net->joints[net->njoints] = J;
-  if (joint) *joint = J.gid;
-  net->njoints++;
   return RN_OK;
 }
 
