@@ -384,92 +384,90 @@ static inline int32_t entry_slot(const rn_cell *c, size_t s, const int32_t *img,
   return img ? img[k] : c->slot[s + (size_t)k];
 }
 
-void rn_cell_gather(const rn_network *net, const double *x, size_t s, const size_t *idx,
-                    const int32_t *img, int n, double *q) {
+/* The read rule of a gather: full entry a reads free[map[a]] if it is free,
+ * fixed[a] if it is fixed; a NULL side reads 0.  The state: (x, xfull); a
+ * direction: (v, NULL); a direction on the fixed entries: (NULL, vfull). */
+typedef struct dof_src {
+  const double *free, *fixed;
+} dof_src;
+
+static inline double src_value(const rn_network *net, dof_src src, size_t a) {
+  int64_t m = net->map[a];
+  if (m >= 0) return src.free ? src.free[m] : 0.0;
+  return src.fixed ? src.fixed[a] : 0.0;
+}
+
+/* The one gather of the image entries of a stencil (contiguous at s, or by the
+ * image list img): q[k] = the unshifted entry (+ the shift at zero strain if
+ * with_shift) + T eps, every value read from src. */
+static inline void cell_gather(const rn_network *net, dof_src src, int with_shift,
+                               size_t s, const size_t *idx, const int32_t *img, int n,
+                               double *q) {
   const rn_cell *c = net->cell;
   double eps[6];
   int have = 0;
-  (void)idx;
   if (!c || (idx && !img)) return;
   for (int k = 0; k < n; ++k) {
     int32_t sl = entry_slot(c, s, img, k);
     if (sl < 0) continue;
     const rn_image *im = &c->img[sl / 3];
     int comp = sl % 3;
-    size_t b = im->base + (size_t)comp;
     if (!have) {
-      strain_of(net, x, eps);
+      for (int w = 0; w < c->nstrain; ++w)
+        eps[w] = src_value(net, src, c->off + (size_t)w);
       have = 1;
     }
-    q[k] = (net->map[b] >= 0 ? x[net->map[b]] : net->xfull[b]) + im->s[comp];
-    for (int v = 0; v < c->nstrain; ++v) q[k] += im->T[comp][v] * eps[v];
+    q[k] = src_value(net, src, im->base + (size_t)comp);
+    if (with_shift) q[k] += im->s[comp];
+    for (int w = 0; w < c->nstrain; ++w) q[k] += im->T[comp][w] * eps[w];
   }
+}
+
+/* The one scatter (the transpose): T^T gl onto the strain entries, of the
+ * reduced vector g (free ones) or of the full-layout vector gfull (all). */
+static inline void cell_scatter(const rn_network *net, const double *gl, size_t s,
+                                const size_t *idx, const int32_t *img, int n, double *g,
+                                double *gfull) {
+  const rn_cell *c = net->cell;
+  if (!c || (idx && !img)) return;
+  for (int k = 0; k < n; ++k) {
+    int32_t sl = entry_slot(c, s, img, k);
+    if (sl < 0) continue;
+    const rn_image *im = &c->img[sl / 3];
+    int comp = sl % 3;
+    for (int w = 0; w < c->nstrain; ++w) {
+      size_t a = c->off + (size_t)w;
+      if (gfull)
+        gfull[a] += im->T[comp][w] * gl[k];
+      else if (net->map[a] >= 0)
+        g[net->map[a]] += im->T[comp][w] * gl[k];
+    }
+  }
+}
+
+void rn_cell_gather(const rn_network *net, const double *x, size_t s, const size_t *idx,
+                    const int32_t *img, int n, double *q) {
+  cell_gather(net, (dof_src){x, net->xfull}, 1, s, idx, img, n, q);
 }
 
 void rn_cell_gather_dir(const rn_network *net, const double *v, size_t s,
                         const size_t *idx, const int32_t *img, int n, double *q) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    size_t b = im->base + (size_t)comp;
-    q[k] = net->map[b] >= 0 ? v[net->map[b]] : 0.0;
-    for (int w = 0; w < c->nstrain; ++w) {
-      int64_t m = net->map[c->off + (size_t)w];
-      if (m >= 0) q[k] += im->T[comp][w] * v[m];
-    }
-  }
+  cell_gather(net, (dof_src){v, NULL}, 0, s, idx, img, n, q);
 }
 
 void rn_cell_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s,
                               const size_t *idx, const int32_t *img, int n, double *q) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    size_t b = im->base + (size_t)comp;
-    q[k] = net->map[b] >= 0 ? 0.0 : vfull[b];
-    for (int w = 0; w < c->nstrain; ++w) {
-      size_t a = c->off + (size_t)w;
-      if (net->map[a] < 0) q[k] += im->T[comp][w] * vfull[a];
-    }
-  }
+  cell_gather(net, (dof_src){NULL, vfull}, 0, s, idx, img, n, q);
 }
 
 void rn_cell_scatter(const rn_network *net, const double *gl, size_t s, const size_t *idx,
                      const int32_t *img, int n, double *g) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    for (int w = 0; w < c->nstrain; ++w) {
-      int64_t m = net->map[c->off + (size_t)w];
-      if (m >= 0) g[m] += im->T[comp][w] * gl[k];
-    }
-  }
+  cell_scatter(net, gl, s, idx, img, n, g, NULL);
 }
 
 void rn_cell_scatter_full(const rn_network *net, const double *gl, size_t s,
                           const size_t *idx, const int32_t *img, int n, double *gfull) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    for (int w = 0; w < c->nstrain; ++w)
-      gfull[c->off + (size_t)w] += im->T[comp][w] * gl[k];
-  }
+  cell_scatter(net, gl, s, idx, img, n, NULL, gfull);
 }
 
 /* Position of column col in row r of the CSR pattern, -1 if absent. */
