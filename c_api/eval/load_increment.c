@@ -7,7 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
+#include "eval/eval.h"
 #include "rodq.h"
 
 static const char *const where = "rn_network_load_increment";

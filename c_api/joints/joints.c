@@ -6,7 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 #include "rodnet_couple.h"
 #include "rodnet_ring.h"
 
@@ -20,13 +21,6 @@ void rn_joint_free(rn_joint *J) {
   free(J->img);
   free(J->rest_frames);
   memset(J, 0, sizeof(*J));
-}
-
-size_t rn_joints_full_count(const rn_network *net) {
-  size_t n = 0;
-  for (int i = 0; i < net->njoints; ++i)
-    n += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[i]));
-  return n;
 }
 
 static const char *end_name(int end) { return end == RN_START ? "start" : "end"; }
@@ -555,5 +549,34 @@ rn_status rn_network_set_ring_total_twist(rn_network *net, int joint, double tot
   J->has_total_twist = 1;
   J->total_twist = total;
   J->link = 0;
+  return RN_OK;
+}
+
+/* ---- closed rods ------------------------------------------------------------ */
+rn_status rn_network_add_closed_rod(rn_network *net, const char *name, int nv,
+                                    const double *xyz, const double *d1, int *rod,
+                                    int *joint) {
+  static const char *where = "rn_network_add_closed_rod";
+  double *xc;
+  rn_status st;
+  int r = -1, rods[2], ends[2] = {RN_END, RN_START};
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
+  if (nv < 3)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "closed rod '%s' needs at least 3 vertices, got %d", name ? name : "",
+                   nv);
+  xc = malloc(3 * ((size_t)nv + 1) * sizeof(double));
+  if (!xc) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  memcpy(xc, xyz, 3 * (size_t)nv * sizeof(double));
+  memcpy(xc + 3 * (size_t)nv, xyz, 3 * sizeof(double)); /* the closing vertex */
+  st = rn_network_add_rod(net, name, nv + 1, xc, d1, &r);
+  free(xc);
+  if (st) return st;
+  rods[0] = rods[1] = r;
+  if ((st = rn_network_add_joint(net, name, RN_JOINT_SMOOTH, 2, rods, ends, joint)))
+    return st;
+  if (rod) *rod = r;
   return RN_OK;
 }

@@ -6,14 +6,15 @@
  * the lattice vectors; joint and rod DOFs are positions as usual (their
  * periodic fluctuation plus the affine part).  A rod end at the image n of a
  * joint sits at x_J + F s, s = sum_m n_m a_m: an affine alias of the joint
- * position.  Only the gathers and scatters of assembly know about it (this
- * file); the kernels do not change.  Symmetric F removes the rigid rotations;
- * finalize pins one joint (the anchor) unless a BC already fixes a position. */
+ * position.  Only the gathers and scatters of assembly know about it
+ * (core/gather.c) and the Hessian rows (this file); the kernels do not change.
+ * Symmetric F removes the rigid rotations; finalize pins one joint (the
+ * anchor) unless a BC already fixes a position. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "periodic/periodic.h"
 
 void rn_cell_free(rn_cell **c) {
   if (!c || !*c) return;
@@ -90,7 +91,7 @@ rn_status rn_network_set_periodic(rn_network *net, int dim, const double *vector
   return RN_OK;
 }
 
-static rn_status check_cell(const rn_network *net, const char *where, int building) {
+rn_status rn_cell_check(const rn_network *net, const char *where, int building) {
   rn_status st;
   if ((st =
            building ? rn_net_check_building(net, where) : rn_net_check_final(net, where)))
@@ -115,7 +116,7 @@ rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
   static const char *where = "rn_network_set_cell_strain";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 1))) return st;
+  if ((st = rn_cell_check(net, where, 1))) return st;
   if (!fixed) return rn_fail(net->ctx, RN_ERR_ARG, where, "fixed is NULL");
   if (strain && !rn_all_finite((size_t)net->cell->nstrain, strain))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "strain is not finite");
@@ -136,7 +137,7 @@ rn_status rn_network_set_cell_stress(rn_network *net, const double *stress) {
   static const char *where = "rn_network_set_cell_stress";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 1))) return st;
+  if ((st = rn_cell_check(net, where, 1))) return st;
   if (!stress) return rn_fail(net->ctx, RN_ERR_ARG, where, "stress is NULL");
   if (!rn_all_finite((size_t)net->cell->nstrain, stress))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "stress is not finite");
@@ -198,7 +199,7 @@ rn_status rn_network_cell_strain_dofs(const rn_network *net, int64_t *idx) {
   static const char *where = "rn_network_cell_strain_dofs";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
+  if ((st = rn_cell_check(net, where, 0))) return st;
   if (!idx) return rn_fail(net->ctx, RN_ERR_ARG, where, "idx is NULL");
   for (int v = 0; v < net->cell->nstrain; ++v)
     idx[v] = net->map[net->cell->off + (size_t)v];
@@ -209,33 +210,13 @@ rn_status rn_network_cell_strain(const rn_network *net, const double *x, double 
   static const char *where = "rn_network_cell_strain";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
+  if ((st = rn_cell_check(net, where, 0))) return st;
   if (!strain) return rn_fail(net->ctx, RN_ERR_ARG, where, "strain is NULL");
   for (int v = 0; v < net->cell->nstrain; ++v) {
     size_t a = net->cell->off + (size_t)v;
     strain[v] = (x && net->map[a] >= 0) ? x[net->map[a]] : net->xfull[a];
   }
   return RN_OK;
-}
-
-rn_status rn_network_cell_stress(const rn_network *net, const double *x, double *stress) {
-  static const char *where = "rn_network_cell_stress";
-  rn_status st;
-  double *gfull;
-  rn_cell *c;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
-  if (!stress || (!x && net->nred))
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
-  c = net->cell;
-  gfull = malloc(net->nfull * sizeof(double));
-  if (!gfull) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  st = rn_eval_gradient_full(net, x, gfull, where);
-  if (st == RN_OK)
-    for (int v = 0; v < c->nstrain; ++v) /* the gradient includes -lambda V sigma */
-      stress[v] = gfull[c->off + (size_t)v] / c->measure + net->lambda * c->stress[v];
-  free(gfull);
-  return st;
 }
 
 /* ---- finalize --------------------------------------------------------------- */
@@ -370,106 +351,6 @@ static void strain_of(const rn_network *net, const double *x, double eps[6]) {
   }
 }
 
-void rn_cell_shift(const rn_network *net, const rn_image *im, const double *full,
-                   double out[3]) {
-  const rn_cell *c = net->cell;
-  for (int k = 0; k < 3; ++k) {
-    out[k] = im->s[k];
-    for (int v = 0; v < c->nstrain; ++v) out[k] += im->T[k][v] * full[c->off + (size_t)v];
-  }
-}
-
-/* Record slot (3 r + c) of stencil entry k, -1 if none. */
-static inline int32_t entry_slot(const rn_cell *c, size_t s, const int32_t *img, int k) {
-  return img ? img[k] : c->slot[s + (size_t)k];
-}
-
-/* The read rule of a gather: full entry a reads free[map[a]] if it is free,
- * fixed[a] if it is fixed; a NULL side reads 0.  The state: (x, xfull); a
- * direction: (v, NULL); a direction on the fixed entries: (NULL, vfull). */
-typedef struct dof_src {
-  const double *free, *fixed;
-} dof_src;
-
-static inline double src_value(const rn_network *net, dof_src src, size_t a) {
-  int64_t m = net->map[a];
-  if (m >= 0) return src.free ? src.free[m] : 0.0;
-  return src.fixed ? src.fixed[a] : 0.0;
-}
-
-/* The one gather of the image entries of a stencil (contiguous at s, or by the
- * image list img): q[k] = the unshifted entry (+ the shift at zero strain if
- * with_shift) + T eps, every value read from src. */
-static inline void cell_gather(const rn_network *net, dof_src src, int with_shift,
-                               size_t s, const size_t *idx, const int32_t *img, int n,
-                               double *q) {
-  const rn_cell *c = net->cell;
-  double eps[6];
-  int have = 0;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    if (!have) {
-      for (int w = 0; w < c->nstrain; ++w)
-        eps[w] = src_value(net, src, c->off + (size_t)w);
-      have = 1;
-    }
-    q[k] = src_value(net, src, im->base + (size_t)comp);
-    if (with_shift) q[k] += im->s[comp];
-    for (int w = 0; w < c->nstrain; ++w) q[k] += im->T[comp][w] * eps[w];
-  }
-}
-
-/* The one scatter (the transpose): T^T gl onto the strain entries, of the
- * reduced vector g (free ones) or of the full-layout vector gfull (all). */
-static inline void cell_scatter(const rn_network *net, const double *gl, size_t s,
-                                const size_t *idx, const int32_t *img, int n, double *g,
-                                double *gfull) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    for (int w = 0; w < c->nstrain; ++w) {
-      size_t a = c->off + (size_t)w;
-      if (gfull)
-        gfull[a] += im->T[comp][w] * gl[k];
-      else if (net->map[a] >= 0)
-        g[net->map[a]] += im->T[comp][w] * gl[k];
-    }
-  }
-}
-
-void rn_cell_gather(const rn_network *net, const double *x, size_t s, const size_t *idx,
-                    const int32_t *img, int n, double *q) {
-  cell_gather(net, (dof_src){x, net->xfull}, 1, s, idx, img, n, q);
-}
-
-void rn_cell_gather_dir(const rn_network *net, const double *v, size_t s,
-                        const size_t *idx, const int32_t *img, int n, double *q) {
-  cell_gather(net, (dof_src){v, NULL}, 0, s, idx, img, n, q);
-}
-
-void rn_cell_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s,
-                              const size_t *idx, const int32_t *img, int n, double *q) {
-  cell_gather(net, (dof_src){NULL, vfull}, 0, s, idx, img, n, q);
-}
-
-void rn_cell_scatter(const rn_network *net, const double *gl, size_t s, const size_t *idx,
-                     const int32_t *img, int n, double *g) {
-  cell_scatter(net, gl, s, idx, img, n, g, NULL);
-}
-
-void rn_cell_scatter_full(const rn_network *net, const double *gl, size_t s,
-                          const size_t *idx, const int32_t *img, int n, double *gfull) {
-  cell_scatter(net, gl, s, idx, img, n, NULL, gfull);
-}
-
 /* Position of column col in row r of the CSR pattern, -1 if absent. */
 static int64_t find(const rn_network *net, int64_t r, int64_t col) {
   int64_t lo = net->rowptr[r], hi = net->rowptr[r + 1] - 1;
@@ -523,7 +404,7 @@ void rn_cell_hess_block(const rn_network *net, size_t s, const size_t *idx,
   double w_buf[64 * 6], *w = w_buf;
   int any = 0;
   if (!c || (idx && !img)) return;
-  for (int k = 0; k < n && !any; ++k) any = entry_slot(c, s, img, k) >= 0;
+  for (int k = 0; k < n && !any; ++k) any = rn_cell_entry_slot(c, s, img, k) >= 0;
   if (!any) return;
   if (n > 64) {
     slots = malloc((size_t)n * sizeof(int32_t));
@@ -532,7 +413,7 @@ void rn_cell_hess_block(const rn_network *net, size_t s, const size_t *idx,
     if (!slots || !rowmap || !w) goto done; /* (tiny; never in practice) */
   }
   for (int k = 0; k < n; ++k) {
-    slots[k] = entry_slot(c, s, img, k);
+    slots[k] = rn_cell_entry_slot(c, s, img, k);
     rowmap[k] = net->map[idx ? idx[k] : s + (size_t)k];
   }
   for (int k = 0; k < n; ++k)
@@ -633,18 +514,6 @@ void rn_cell_image_offset(const rn_network *net, const int *n, const double *ful
   }
 }
 
-void rn_cell_expand(const rn_network *net, double *full) {
-  const rn_cell *c = net->cell;
-  if (!c || !c->slot) return;
-  for (size_t a = 0; a < net->nfull; ++a) {
-    int32_t sl = c->slot[a];
-    double sh[3];
-    if (sl < 0) continue;
-    rn_cell_shift(net, &c->img[sl / 3], full, sh);
-    full[a] = full[c->img[sl / 3].base + (size_t)(sl % 3)] + sh[sl % 3];
-  }
-}
-
 void rn_joint_gather_full(const rn_network *net, const rn_joint *J, const double *full,
                           double *q) {
   int n = rn_joint_stencil_count(rn_joint_has_rotation(J), J->valence);
@@ -684,7 +553,7 @@ rn_status rn_network_cell_relative_density(const rn_network *net, double *rho) {
   rn_status st;
   double sum = 0.0;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
+  if ((st = rn_cell_check(net, where, 0))) return st;
   if (!rho) return rn_fail(net->ctx, RN_ERR_ARG, where, "rho is NULL");
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];

@@ -3,7 +3,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
+#include "contact/contact.h"
+#include "eval/eval.h"
+#include "joints/joints.h"
+#include "parts/parts.h"
+#include "periodic/periodic.h"
 
 static const char *where = "rn_network_finalize";
 
@@ -288,6 +293,8 @@ rn_status rn_network_finalize(rn_network *net) {
     return RN_OK;
   }
   if ((st = check_input(net))) return st;
+  net->accept_state = rn_contact_pattern_update;
+  net->rebuild_pattern = rn_rebuild_hessian_pattern;
   net->planar = net->model == RN_MODEL_PLANAR;
   if ((st = build(net)) || (st = start(net))) {
     undo_finalize(net);
@@ -295,4 +302,25 @@ rn_status rn_network_finalize(rn_network *net) {
   }
   net->finalized = 1;
   return RN_OK;
+}
+
+/* ---- destroy ---------------------------------------------------------------- */
+void rn_network_destroy(rn_network **net) {
+  rn_network *n;
+  if (!net || !*net) return;
+  n = *net;
+  for (int i = 0; i < n->nrods; ++i) rn_rod_free(&n->rods[i]);
+  free(n->rods);
+  free(n->moments);
+  for (int i = 0; i < n->njoints; ++i) rn_joint_free(&n->joints[i]);
+  free(n->joints);
+  free(n->map);
+  free(n->red2full);
+  free(n->xfull);
+  rn_hessian_pattern_free(n);
+  rn_part_free(&n->part);
+  rn_cell_free(&n->cell);
+  rn_contact_free(n);
+  free(n);
+  *net = NULL;
 }
