@@ -18,16 +18,13 @@
 #include <math.h>
 
 #include "rnk.h"
+#include "rodq.h"
 
 /* Parameters and regime of the closest points. */
 typedef struct seg_closest {
   double s, t;
   int fs, ft; /* 1: the parameter is free (interior) */
 } seg_closest;
-
-static double dot3(const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 static double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
 
@@ -45,8 +42,8 @@ static seg_closest closest(const double *x) {
     e1[k] = x[9 + k] - x[6 + k];
     w[k] = x[k] - x[6 + k];
   }
-  const double a = dot3(e0, e0), b = dot3(e0, e1), c = dot3(e1, e1);
-  const double d = dot3(e0, w), e = dot3(e1, w), ww = dot3(w, w);
+  const double a = rq_dot3(e0, e0), b = rq_dot3(e0, e1), c = rq_dot3(e1, e1);
+  const double d = rq_dot3(e0, w), e = rq_dot3(e1, w), ww = rq_dot3(w, w);
   const double det = a * c - b * b;
   seg_closest best = {0.0, 0.0, 0, 0};
   if (det > RNK_CONTACT_PARALLEL * a * c) {
@@ -88,13 +85,13 @@ int rnk_segment_distance2(const double x[12], double *d2, double *g, double *H) 
     e0[k] = x[3 + k] - x[k];
     e1[k] = x[9 + k] - x[6 + k];
   }
-  const double a = dot3(e0, e0), b = dot3(e0, e1), c = dot3(e1, e1);
+  const double a = rq_dot3(e0, e0), b = rq_dot3(e0, e1), c = rq_dot3(e1, e1);
   if (!(a > 0.0) || !(c > 0.0)) return RNK_DEGENERATE;
   const seg_closest cl = closest(x);
   const double cf[4] = {1.0 - cl.s, cl.s, -(1.0 - cl.t), -cl.t};
   for (int k = 0; k < 3; ++k)
     r[k] = cf[0] * x[k] + cf[1] * x[3 + k] + cf[2] * x[6 + k] + cf[3] * x[9 + k];
-  *d2 = dot3(r, r);
+  *d2 = rq_dot3(r, r);
   if (g)
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) g[3 * i + k] = 2.0 * cf[i] * r[k];
@@ -208,7 +205,7 @@ int rnk_contact_ccd(const double x0[12], const double x1[12], double radius, dou
     for (int j = 2; j < 4; ++j) {
       double v[3];
       for (int k = 0; k < 3; ++k) v[k] = dx[3 * i + k] - dx[3 * j + k];
-      double n = sqrt(dot3(v, v));
+      double n = sqrt(rq_dot3(v, v));
       if (n > vmax) vmax = n;
     }
   *hit = 1;

@@ -3,11 +3,8 @@
 #include <math.h>
 
 #include "rnk.h"
+#include "rodq.h"
 #include "stencil.h"
-
-static double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 static void cross3(const double a[3], const double b[3], double r[3]) {
   double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
@@ -21,11 +18,11 @@ int rnk_transport(const double ta[3], const double tb[3], const double v[3],
                   double out[3]) {
   /* R v = c v + n x v + n (n . v) / (1 + c), n = ta x tb, c = ta . tb:
    * no division by sin(angle), exact identity for ta == tb. */
-  double c = dot3(ta, tb), n[3], nv[3];
+  double c = rq_dot3(ta, tb), n[3], nv[3];
   if (!(1.0 + c >= RNK_OPPOSITE_TOL)) return RNK_DEGENERATE;
   cross3(ta, tb, n);
   cross3(n, v, nv);
-  double s = dot3(n, v) / (1.0 + c);
+  double s = rq_dot3(n, v) / (1.0 + c);
   for (int k = 0; k < 3; ++k) out[k] = c * v[k] + nv[k] + s * n[k];
   return RNK_OK;
 }
@@ -33,7 +30,7 @@ int rnk_transport(const double ta[3], const double tb[3], const double v[3],
 int rnk_edge_jet_eval(const double e[3], double theta, const rnk_frame *ref, int ord,
                       rnk_edge_jet *f) {
   const int n = 4;
-  double l2 = dot3(e, e);
+  double l2 = rq_dot3(e, e);
   if (!(l2 > 0.0) || !isfinite(l2)) return RNK_DEGENERATE;
   jvec ev;
   for (int k = 0; k < 3; ++k) jet_var(&ev.c[k], n, ord, e[k], k);
@@ -205,9 +202,9 @@ int rnk_frame_update(const double e[3], rnk_frame *ref) {
     a[k] = f.a1.c[k].v;
   }
   /* re-orthonormalise against round-off drift */
-  double ta = dot3(t, a);
+  double ta = rq_dot3(t, a);
   for (int k = 0; k < 3; ++k) a[k] -= ta * t[k];
-  double na = sqrt(dot3(a, a));
+  double na = sqrt(rq_dot3(a, a));
   if (!(na > 0.5)) return RNK_DEGENERATE;
   for (int k = 0; k < 3; ++k) {
     ref->t[k] = t[k];

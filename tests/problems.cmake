@@ -46,7 +46,7 @@ rn_add_test(problems_scene SOURCES unit/problems_scene_test.c
 rn_add_test(problems_check_verdict SOURCES unit/problems_check_verdict_test.c
             LIBS rodnet_problems m LABELS unit
             ARGS ${RN_SCENES}/stepped_beam.json ${RN_SCENES}/portal_frame.json)
-# Free rigid-body motions and unbalanced loads on them (c_api/bcs/supports.c).
+# Free rigid-body motions and unbalanced loads on them (c_api/reactions/supports.c).
 # The clamp convention of a scene: "at": "midpoint" | "vertex" (scene_rods.c).
 rn_add_test(problems_clamp_at SOURCES unit/problems_clamp_at_test.c
             LIBS rodnet_problems LABELS unit)

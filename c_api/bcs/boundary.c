@@ -4,7 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
+#include "contact/contact.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 #include "rodnet_ramp.h"
 
 /* Checks a call on end `end` of rod g (whole-network index); *lr receives the
@@ -74,28 +77,6 @@ rn_status rn_network_pin_components(rn_network *net, int rod, int vertex,
                                     int components) {
   if (!net) return RN_ERR_ARG;
   return pin_vertex(net, "rn_network_pin_components", rod, vertex, components);
-}
-
-int rn_rod_in_clamp(const rn_rod *r, int v) {
-  return (r->clamped[RN_START] && v <= 1) || (r->clamped[RN_END] && v >= r->nv - 2);
-}
-
-int rn_rod_fixed_components(const rn_rod *r, int v) {
-  return rn_rod_in_clamp(r, v) ? RN_FIX_XYZ : r->pinned[v];
-}
-
-int rn_free_displaced_component(int mask, const double disp[3]) {
-  for (int k = 0; k < 3; ++k)
-    if (disp[k] != 0.0 && !rn_component_fixed(mask, k)) return k;
-  return -1;
-}
-
-const char *rn_components_name(int mask, char buf[4]) {
-  int n = 0;
-  for (int k = 0; k < 3; ++k)
-    if (rn_component_fixed(mask, k)) buf[n++] = "xyz"[k];
-  buf[n] = '\0';
-  return buf;
 }
 
 rn_status rn_network_fix_theta(rn_network *net, int rod, int edge) {

@@ -6,27 +6,8 @@
 
 #include <math.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
 #include "rodnet_couple.h"
-
-void rn_couple_vector(const double f[9], const double m[3], double b[3]) {
-  int best = 0;
-  double bv = 2.0, mm = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-  b[0] = b[1] = b[2] = 0.0;
-  if (!(mm > 0.0)) return;
-  for (int k = 0; k < 3; ++k) {
-    double c = fabs(f[3 * k] * m[0] + f[3 * k + 1] * m[1] + f[3 * k + 2] * m[2]) / mm;
-    if (c < bv) bv = c, best = k;
-  }
-  /* u = f_best - (f_best . n) n in world coordinates, then b = F u / |u| */
-  double n[3] = {m[0] / mm, m[1] / mm, m[2] / mm}, u[3];
-  const double *fb = f + 3 * best;
-  double fn = fb[0] * n[0] + fb[1] * n[1] + fb[2] * n[2];
-  for (int a = 0; a < 3; ++a) u[a] = fb[a] - fn * n[a];
-  double nu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-  for (int k = 0; k < 3; ++k)
-    b[k] = (f[3 * k] * u[0] + f[3 * k + 1] * u[1] + f[3 * k + 2] * u[2]) / nu;
-}
 
 int rn_moment_edge(int nv, int vertex) { return vertex < nv - 1 ? vertex : nv - 2; }
 

@@ -24,7 +24,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
 
 /* Relative tolerances: positions (of the network's extent), directions of
  * loads and motions (of their own size), sections and rest strains. */

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "contact/contact.h"
 
 /* One contact edge: its rod and index, the full indices of its two end
  * vertices (p0 then p1, 3 components each), the rest arc length from the
@@ -420,7 +420,8 @@ rn_status rn_contact_pattern_update(rn_network *net, int force, const char *wher
       qsort(keys, L.n, sizeof(uint64_t), cmp_u64);
       c->pat = keys;
       c->npat = L.n;
-      if ((st = rn_rebuild_hessian_pattern(net))) { /* the old pattern stays */
+      st = net->rebuild_pattern ? net->rebuild_pattern(net) : RN_ERR_INTERNAL;
+      if (st) { /* the old pattern stays */
         c->pat = keep;
         c->npat = nkeep;
         free(keys);

@@ -4,12 +4,9 @@
 #include <string.h>
 
 #include "core/network_internal.h"
+#include "rodq.h"
 
-static double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static double norm3(const double a[3]) { return sqrt(dot3(a, a)); }
+static double norm3(const double a[3]) { return sqrt(rq_dot3(a, a)); }
 
 void rn_mat_vec3(const double R[9], const double v[3], double out[3]) {
   for (int i = 0; i < 3; ++i)
@@ -17,7 +14,7 @@ void rn_mat_vec3(const double R[9], const double v[3], double out[3]) {
 }
 
 void rn_rotation_matrix(const double w[3], double R[9]) {
-  double th2 = dot3(w, w), th = sqrt(th2), s, c;
+  double th2 = rq_dot3(w, w), th = sqrt(th2), s, c;
   double K[9] = {0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0};
   if (th < 1e-4) { /* series of sin(th)/th and (1 - cos th)/th^2 */
     s = 1.0 - th2 / 6.0 + th2 * th2 / 120.0;
@@ -64,7 +61,7 @@ static rn_status first_director(rn_context *ctx, int rod, const double t[3],
   dn = norm3(d);
   if (!(dn > 0.0))
     return rn_fail(ctx, RN_ERR_ARG, where, "rod %d: d1 is the zero vector", rod);
-  for (int k = 0; k < 3; ++k) a1[k] = d[k] - dot3(d, t) * t[k];
+  for (int k = 0; k < 3; ++k) a1[k] = d[k] - rq_dot3(d, t) * t[k];
   an = norm3(a1);
   if (an < 1e-8 * dn)
     return rn_fail(ctx, RN_ERR_GEOMETRY, where,
@@ -93,7 +90,7 @@ static rn_status edge_frames(rn_context *ctx, rn_rod *r, int rod, const double *
         return rn_fail(ctx, RN_ERR_GEOMETRY, where,
                        "rod %d vertex %d: consecutive edges point in opposite directions",
                        rod, j);
-      for (int k = 0; k < 3; ++k) a[k] -= dot3(a, f->t) * f->t[k];
+      for (int k = 0; k < 3; ++k) a[k] -= rq_dot3(a, f->t) * f->t[k];
       an = norm3(a);
       for (int k = 0; k < 3; ++k) f->a1[k] = a[k] / an;
     }
@@ -116,4 +113,23 @@ rn_status rn_rod_init_frames(rn_context *ctx, rn_rod *r, int rod, const double *
                      rod, i);
   }
   return RN_OK;
+}
+
+void rn_couple_vector(const double f[9], const double m[3], double b[3]) {
+  int best = 0;
+  double bv = 2.0, mm = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  b[0] = b[1] = b[2] = 0.0;
+  if (!(mm > 0.0)) return;
+  for (int k = 0; k < 3; ++k) {
+    double c = fabs(f[3 * k] * m[0] + f[3 * k + 1] * m[1] + f[3 * k + 2] * m[2]) / mm;
+    if (c < bv) bv = c, best = k;
+  }
+  /* u = f_best - (f_best . n) n in world coordinates, then b = F u / |u| */
+  double n[3] = {m[0] / mm, m[1] / mm, m[2] / mm}, u[3];
+  const double *fb = f + 3 * best;
+  double fn = fb[0] * n[0] + fb[1] * n[1] + fb[2] * n[2];
+  for (int a = 0; a < 3; ++a) u[a] = fb[a] - fn * n[a];
+  double nu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  for (int k = 0; k < 3; ++k)
+    b[k] = (f[3 * k] * u[0] + f[3 * k + 1] * u[1] + f[3 * k + 2] * u[2]) / nu;
 }

@@ -94,26 +94,6 @@ void rn_rod_free(rn_rod *r) {
   memset(r, 0, sizeof(*r));
 }
 
-void rn_network_destroy(rn_network **net) {
-  rn_network *n;
-  if (!net || !*net) return;
-  n = *net;
-  for (int i = 0; i < n->nrods; ++i) rn_rod_free(&n->rods[i]);
-  free(n->rods);
-  free(n->moments);
-  for (int i = 0; i < n->njoints; ++i) rn_joint_free(&n->joints[i]);
-  free(n->joints);
-  free(n->map);
-  free(n->red2full);
-  free(n->xfull);
-  rn_hessian_pattern_free(n);
-  rn_part_free(&n->part);
-  rn_cell_free(&n->cell);
-  rn_contact_free(n);
-  free(n);
-  *net = NULL;
-}
-
 /* ---- rods ------------------------------------------------------------------ */
 static rn_status rod_alloc(rn_rod *r, int nv, const char *name) {
   size_t v = (size_t)nv, e = v - 1, in = v - 2;
@@ -197,34 +177,6 @@ rn_status rn_network_add_rod(rn_network *net, const char *name, int nv, const do
   net->rods[net->nrods] = r;
   if (rod) *rod = r.gid;
   net->nrods++;
-  return RN_OK;
-}
-
-rn_status rn_network_add_closed_rod(rn_network *net, const char *name, int nv,
-                                    const double *xyz, const double *d1, int *rod,
-                                    int *joint) {
-  static const char *where = "rn_network_add_closed_rod";
-  double *xc;
-  rn_status st;
-  int r = -1, rods[2], ends[2] = {RN_END, RN_START};
-  if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_building(net, where))) return st;
-  if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
-  if (nv < 3)
-    return rn_fail(net->ctx, RN_ERR_ARG, where,
-                   "closed rod '%s' needs at least 3 vertices, got %d", name ? name : "",
-                   nv);
-  xc = malloc(3 * ((size_t)nv + 1) * sizeof(double));
-  if (!xc) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  memcpy(xc, xyz, 3 * (size_t)nv * sizeof(double));
-  memcpy(xc + 3 * (size_t)nv, xyz, 3 * sizeof(double)); /* the closing vertex */
-  st = rn_network_add_rod(net, name, nv + 1, xc, d1, &r);
-  free(xc);
-  if (st) return st;
-  rods[0] = rods[1] = r;
-  if ((st = rn_network_add_joint(net, name, RN_JOINT_SMOOTH, 2, rods, ends, joint)))
-    return st;
-  if (rod) *rod = r;
   return RN_OK;
 }
 
@@ -372,6 +324,13 @@ rn_status rn_network_set_rest_lengths(rn_network *net, int rod, const double *le
 }
 
 /* ---- sizes and state -------------------------------------------------------- */
+size_t rn_joints_full_count(const rn_network *net) {
+  size_t n = 0;
+  for (int i = 0; i < net->njoints; ++i)
+    n += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[i]));
+  return n;
+}
+
 size_t rn_network_num_dofs(const rn_network *net) {
   return (net && net->finalized) ? net->nred : 0;
 }
@@ -419,74 +378,5 @@ rn_status rn_network_set_dofs(rn_network *net, const double *x) {
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
   rn_expand_state(net, x, net->xfull); /* every alias of a reduced DOF */
   net->lambda_x = net->lambda;
-  return rn_contact_pattern_update(net, 0, where);
-}
-
-/* ---- stencil gather / scatter --------------------------------------------- */
-void rn_gather(const rn_network *net, const double *x, size_t s, int n, double *q) {
-  for (int k = 0; k < n; ++k) {
-    int64_t m = net->map[s + (size_t)k];
-    q[k] = m >= 0 ? x[m] : net->xfull[s + (size_t)k];
-  }
-  if (net->cell) rn_cell_gather(net, x, s, NULL, NULL, n, q);
-}
-
-void rn_gather_dir(const rn_network *net, const double *v, size_t s, int n, double *q) {
-  for (int k = 0; k < n; ++k) {
-    int64_t m = net->map[s + (size_t)k];
-    q[k] = m >= 0 ? v[m] : 0.0;
-  }
-  if (net->cell) rn_cell_gather_dir(net, v, s, NULL, NULL, n, q);
-}
-
-void rn_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s, int n,
-                         double *q) {
-  for (int k = 0; k < n; ++k)
-    q[k] = net->map[s + (size_t)k] >= 0 ? 0.0 : vfull[s + (size_t)k];
-  if (net->cell) rn_cell_gather_fixed_dir(net, vfull, s, NULL, NULL, n, q);
-}
-
-void rn_scatter_add(const rn_network *net, const double *gl, size_t s, int n, double *g) {
-  for (int k = 0; k < n; ++k) {
-    int64_t m = net->map[s + (size_t)k];
-    if (m >= 0) g[m] += gl[k];
-  }
-  if (net->cell) rn_cell_scatter(net, gl, s, NULL, NULL, n, g);
-}
-
-void rn_expand_state(const rn_network *net, const double *x, double *full) {
-  for (size_t a = 0; a < net->nfull; ++a) {
-    int64_t m = net->map[a];
-    full[a] = m >= 0 ? x[m] : net->xfull[a];
-  }
-  if (net->cell) rn_cell_expand(net, full);
-}
-
-void rn_gather_idx(const rn_network *net, const double *x, const size_t *idx, int n,
-                   double *q) {
-  for (int k = 0; k < n; ++k) {
-    int64_t m = net->map[idx[k]];
-    q[k] = m >= 0 ? x[m] : net->xfull[idx[k]];
-  }
-}
-
-void rn_gather_dir_idx(const rn_network *net, const double *v, const size_t *idx, int n,
-                       double *q) {
-  for (int k = 0; k < n; ++k) {
-    int64_t m = net->map[idx[k]];
-    q[k] = m >= 0 ? v[m] : 0.0;
-  }
-}
-
-void rn_gather_fixed_dir_idx(const rn_network *net, const double *vfull,
-                             const size_t *idx, int n, double *q) {
-  for (int k = 0; k < n; ++k) q[k] = net->map[idx[k]] >= 0 ? 0.0 : vfull[idx[k]];
-}
-
-void rn_scatter_add_idx(const rn_network *net, const double *gl, const size_t *idx, int n,
-                        double *g) {
-  for (int k = 0; k < n; ++k) {
-    int64_t m = net->map[idx[k]];
-    if (m >= 0) g[m] += gl[k];
-  }
+  return rn_net_accept_state(net, where);
 }

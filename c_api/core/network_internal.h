@@ -1,5 +1,34 @@
-/* network_internal.h - private layout of rn_network and helpers shared by the
- * c_api source files.  Not installed. */
+/* network_internal.h - the private layout of rn_network (its rods, joints,
+ * couples, DOF map, Hessian pattern, periodic cell) and the core functions every
+ * c_api module uses: errors and argument checks, the partition's index
+ * translation (partition.c), the gathers and scatters of the stencils
+ * (gather.c, with the periodic image entries), frames, fixed components, state.
+ * Not installed.
+ *
+ * The modules of c_api/ (one folder each) depend in ONE direction; a module
+ * includes the headers of the modules below it only:
+ *
+ *   core < periodic < joints < contact < bcs < eval < parts < reactions < homog
+ *        < lifecycle
+ *
+ *   core       the network object, its rods, partition index, DOF gathers,
+ *              state, frames, results (this header; partition.h)
+ *   periodic   the periodic cell: strain DOFs, image records, its Hessian rows,
+ *              the Bloch accumulator (periodic/periodic.h)
+ *   joints     joints: building calls, stencils, placement (joints/joints.h)
+ *   contact    contact edges, candidate pairs, pattern pairs (contact/contact.h)
+ *   bcs        boundary conditions, loads, the load factor, the planar model
+ *              (bcs/bcs.h)
+ *   eval       energy, gradient, Hessian (pattern and CSR), load increments,
+ *              derivative checks (eval/eval.h)
+ *   parts      making a part of a partition, its state exchange, DOF blocks
+ *   reactions  reactions, internal forces, free rigid motions
+ *   homog      cell stress and Bloch-Floquet Hessians of periodic cells
+ *   lifecycle  finalize, reference update, destroy: the calls that drive
+ *              every module
+ *
+ * Where a lower module must reach a higher one, it calls a hook of the
+ * network that finalize sets (accept_state, rebuild_pattern below). */
 #ifndef RODNET_NETWORK_INTERNAL_H
 #define RODNET_NETWORK_INTERNAL_H
 
@@ -106,7 +135,8 @@ typedef struct rn_joint {
   int *image;   /* periodic cells: lattice shift (3 ints) of each end's
                    joint copy [3 valence]; NULL: no image ends */
   int32_t *img; /* built at finalize: image record of each kernel stencil
-                   entry (periodic.c), -1 none; NULL: no image ends */
+                   entry (periodic.c, read by gather.c), -1 none; NULL:
+                   no image ends */
   /* built at finalize */
   rnk_joint_end *ends; /* kernel parameters [valence]; twist.ref_twist is the
                           reference twist stored at the last update */
@@ -174,9 +204,21 @@ struct rn_network {
   int planar_ok;                 /* 1: the network qualifies for it (set at finalize) */
   char planar_why[240];          /* if not: what leaves the plane */
   struct rn_contact *contact;    /* NULL: no contact (contact.c) */
+  /* hooks set by finalize (lifecycle/finalize.c): a lower module's calls into a
+   * higher one.  accept_state: the accepted state changed (core's state calls
+   * -> contact's pattern pairs, rn_contact_pattern_update); rebuild_pattern:
+   * the Hessian pattern again (contact -> eval, rn_rebuild_hessian_pattern). */
+  rn_status (*accept_state)(rn_network *net, int force, const char *where);
+  rn_status (*rebuild_pattern)(rn_network *net);
 };
 
-/* ---- parts of a network (part.c) ------------------------------------------
+/* The accepted state changed (set_dofs, state restore, load factor): the
+ * contact pattern follows it (RN_OK before finalize: nothing to follow). */
+static inline rn_status rn_net_accept_state(rn_network *net, const char *where) {
+  return net->accept_state ? net->accept_state(net, 0, where) : RN_OK;
+}
+
+/* ---- parts of a network (partition.c, parts/part.c) -------------------------
  * A network built in graph-only mode records the rod graph and nothing else; a
  * part holds the rods and joints that one part of a partition needs (owned and
  * ghost ones, in increasing whole-network index) under their whole-network
@@ -212,27 +254,15 @@ rn_status rn_net_joint(const rn_network *net, const char *where, int *joint);
 rn_status rn_part_add_rod(rn_network *net, int nv, const double *xyz, int *keep);
 rn_status rn_part_add_joint(rn_network *net, const char *name, int n_ends,
                             const int *rods, const int *ends, int *keep, int *keep_end);
-/* Graph-only finalize: coincident joints (the check every part cannot make). */
-rn_status rn_part_graph_validate(const rn_network *net, const char *where);
 int rn_part_next_moment(rn_network *net);
 /* Sets gid/owner/ghost of the rod or joint just added locally. */
 void rn_part_tag_rod(const rn_network *net, rn_rod *r);
 void rn_part_tag_joint(const rn_network *net, rn_joint *J);
-/* Finalize of a part: marks the full DOFs no evaluated stencil reads with
- * RN_DOF_ABSENT in net->map (called after fixed and aliased entries are
- * marked, before numbering) and returns 1 if full entry a (canonical) is owned
- * by this part (numbering order: owned first). */
-void rn_part_mark_absent(rn_network *net);
-int rn_part_entry_owned(const rn_network *net, size_t a);
-/* Global keys of the reduced DOFs (after numbering); RN_ERR_ALLOC. */
-rn_status rn_part_begin_numbering(rn_network *net);
-rn_status rn_part_build_keys(rn_network *net);
-void rn_part_free(rn_part_data **p);
 /* 1 if the stencils of rod ir / joint ij / moment im are evaluated here. */
 static inline int rn_rod_evaluated(const rn_rod *r) { return !r->ghost; }
 static inline int rn_joint_evaluated(const rn_joint *J) { return !J->ghost; }
 
-/* ---- periodic cells (periodic.c; docs/homogenization.md) ---------------------
+/* ---- periodic cells (periodic/, gather.c; docs/homogenization.md) -------------
  * A periodic network has lattice vectors a_m (2 or 3) and macroscopic strain
  * DOFs (Voigt, engineering shear: 3 in 2D, 6 in 3D) after the joints in the full
  * layout; the cell deforms with F = I + sum_v eps_v B_v (symmetric).  A rod end
@@ -260,19 +290,16 @@ typedef struct rn_cell {
   int nimg, cap_img;
   int32_t *slot; /* [nfull]: 3 r + c for component c of record r, -1 */
 } rn_cell;
-void rn_cell_free(struct rn_cell **c);
 /* Number of full strain DOFs (0 if not periodic). */
 static inline size_t rn_cell_full_count(const rn_network *net) {
   return net->cell ? (size_t)net->cell->nstrain : 0;
 }
-/* Finalize: marks the strain DOFs (map), after the joints' offsets are set. */
-void rn_cell_mark(rn_network *net);
-/* Finalize: image records and slots (after build_dof_map's numbering and
- * rn_joints_build); anchor (before the DOF map). */
-rn_status rn_cell_build(rn_network *net);
-void rn_cell_anchor(rn_network *net);
-/* Fixed strain components of xfull at the load factor. */
-void rn_cell_place(rn_network *net);
+/* Record slot (3 r + c) of entry k of a stencil (contiguous at full index s, or
+ * by the image list img), -1 if none. */
+static inline int32_t rn_cell_entry_slot(const rn_cell *c, size_t s, const int32_t *img,
+                                         int k) {
+  return img ? img[k] : c->slot[s + (size_t)k];
+}
 /* Shift of record r at the strain of the full state full. */
 void rn_cell_shift(const rn_network *net, const rn_image *im, const double *full,
                    double out[3]);
@@ -288,30 +315,7 @@ void rn_cell_scatter(const rn_network *net, const double *gl, size_t s, const si
                      const int32_t *img, int n, double *g);
 void rn_cell_scatter_full(const rn_network *net, const double *gl, size_t s,
                           const size_t *idx, const int32_t *img, int n, double *gfull);
-/* Hessian: the strain rows and columns of a stencil's dense block H[n n]
- * (contiguous at s, or by idx/img), or of rod band rows (rnk.h band storage). */
-void rn_cell_hess_block(const rn_network *net, size_t s, const size_t *idx,
-                        const int32_t *img, int n, const double *H, double *vals);
-void rn_cell_hess_band(const rn_network *net, size_t s, int n, const double *band,
-                       double *vals);
-/* Pattern: 1 if reduced column list of row r must include the strain DOFs;
- * the extra candidates of a strain row (appends to buf via push). */
-int rn_cell_pattern_flags(const rn_network *net, const size_t *lo, const size_t *hi,
-                          unsigned char *touch);
-/* Energy and gradient of the applied macroscopic stress at x (load scale lambda):
- * E -= lambda V sigma . eps. */
-double rn_cell_load(const rn_network *net, const double *x, double lambda, double *g,
-                    double *gfull);
-/* F s of the lattice shift n[3] at the strain of the full state (the offset of
- * an image end from its joint), and the image slots of a full state set from
- * their joints (after the other entries). */
-void rn_cell_image_offset(const rn_network *net, const int *n, const double *full,
-                          double out[3]);
 void rn_cell_expand(const rn_network *net, double *full);
-/* Joint stencil from a full state: q[k] = full[idx[k]] plus image shifts. */
-void rn_joint_gather_full(const rn_network *net, const rn_joint *J, const double *full,
-                          double *q);
-
 /* ---- errors -------------------------------------------------------------- */
 /* Record "where: what" in ctx (ctx may be NULL) and return s. */
 rn_status rn_fail(rn_context *ctx, rn_status s, const char *where, const char *fmt, ...)
@@ -335,20 +339,7 @@ int rn_all_bounded(size_t n, const double *v);
  * range. */
 int rn_wrap_index(int i, int n);
 
-/* ---- the planar model (planar.c; docs/model.md) ----------------------------
- * Finalize: whether the network qualifies (planar_ok, planar_why; before the
- * DOF map, on the input data), and, with the planar model, marks the
- * out-of-plane full DOFs fixed (z of every position, material angles, joint
- * rotations about x and y; after the rods' and joints' own marks, before the
- * joint ends alias their joints).  rn_planar_assess_built completes the
- * assessment once the joints are built (their rest frames, stored twist and
- * rest strains; the rods' rest twist a ring's total twist lowered); finalize
- * fails with the planar model if it clears planar_ok. */
-void rn_planar_assess(rn_network *net);
-void rn_planar_assess_built(rn_network *net);
-void rn_planar_mark(rn_network *net);
-
-/* ---- fixed components (boundary.c) ------------------------------------------ */
+/* ---- fixed components (fixed.c) --------------------------------------------- */
 /* Fixed position components (RN_FIX_* bitmask) of rod vertex v: its pins and
  * the clamps of the rod's ends; of a joint: its pins, all if clamped. */
 int rn_rod_fixed_components(const rn_rod *r, int v);
@@ -364,7 +355,7 @@ int rn_free_displaced_component(int mask, const double disp[3]);
 /* "x", "xz", ... (the components of mask) into buf[4]; returns buf. */
 const char *rn_components_name(int mask, char buf[4]);
 
-/* ---- state and stencils --------------------------------------------------- */
+/* ---- state and stencils (gather.c) ----------------------------------------- */
 /* Local stencil of n DOFs starting at full index s: q[k] = x[map] if free,
  * else the fixed value in net->xfull. */
 void rn_gather(const rn_network *net, const double *x, size_t s, int n, double *q);
@@ -387,61 +378,6 @@ void rn_gather_fixed_dir_idx(const rn_network *net, const double *vfull,
 void rn_scatter_add_idx(const rn_network *net, const double *gl, const size_t *idx, int n,
                         double *g);
 
-/* ---- load increment (assembly.c) -------------------------------------------- */
-/* Hv[nred] = H_{free,fixed}(x) vfull: every stencil's Hessian block applied to
- * the fixed entries of the full-layout direction vfull[nfull], free rows only.
- * No argument checks (where names the caller in messages). */
-rn_status rn_eval_fixed_hvp(const rn_network *net, const double *x, const double *vfull,
-                            double *Hv, const char *where);
-/* g[nred] = gradient of the load terms (forces, couples) at load factor 1: their
- * derivative with respect to the load factor (loads are linear in it). */
-rn_status rn_eval_load_rate(const rn_network *net, const double *x, double *g,
-                            const char *where);
-
-/* gfull[nfull] = gradient of the energy with respect to every full DOF (free and
- * fixed; an aliased rod end slot gets its rod's stencils, the joint's slot the
- * joint stencil and the joint force) at the reduced state x (reactions.c). */
-rn_status rn_eval_gradient_full(const rn_network *net, const double *x, double *gfull,
-                                const char *where);
-
-/* gfull[nfull] += gradient of rod ir's own stretching, bending and twisting
- * energy (no loads, no joints) at the reduced state x, on its full-layout slots
- * (reactions.c: internal forces). */
-rn_status rn_eval_rod_gradient_full(const rn_network *net, int ir, const double *x,
-                                    double *gfull, const char *where);
-
-/* gabs[nred] = sum over the stencils (and loads) of |their gradient| at each reduced
- * DOF: the magnitude of the forces that balance there (reactions.c). */
-rn_status rn_eval_gradient_magnitude(const rn_network *net, const double *x, double *gabs,
-                                     const char *where);
-
-/* ---- Bloch-Floquet Hessians of periodic cells (bloch.c) ----------------------
- * An accumulator of stencil Hessian blocks onto the dense n x n Bloch matrix
- * (row-major): entry (k, l) of a stencil, at the Bloch DOFs bk, bl of its entries
- * with image phases phi_k, phi_l (phi = k . s of the entry's lattice shift s),
- * adds H_kl w(phi_l - phi_k): complex mode (im != NULL) w = exp(i d); real moment
- * mode w = d1 (order 1) or d1 d2 (order 2), d1, d2 the differences under the two
- * phase sets ph1, ph2. */
-typedef struct rn_bloch_acc {
-  size_t n;
-  const int64_t *bidx; /* [nfull] Bloch DOF of each full entry (aliases resolved), -1 */
-  const double *ph1;   /* [nimg] phase of each image record */
-  const double *ph2;   /* [nimg] second phase set (order 2), or NULL */
-  double k1[3], k2[3]; /* the Cartesian wave vectors of ph1, ph2 */
-  int order;           /* real mode: 0, 1 or 2 */
-  double *re, *im;     /* output; im NULL: real mode */
-} rn_bloch_acc;
-/* A block of n entries at full index s, or by index list idx (a joint stencil:
- * J given, whose ends at images carry their rod's DOFs from another cell). */
-void rn_bloch_add_block(const rn_network *net, rn_bloch_acc *b, size_t s,
-                        const size_t *idx, const int32_t *img, int n, const double *H,
-                        const struct rn_joint *J);
-void rn_bloch_add_band(const rn_network *net, rn_bloch_acc *b, size_t s, int n,
-                       const double *band);
-/* Every stencil's Hessian block at x into b (assembly.c). */
-rn_status rn_eval_bloch(const rn_network *net, const double *x, rn_bloch_acc *b,
-                        const char *where);
-
 /* ---- frames (frames.c) ----------------------------------------------------- */
 /* Reference frames of a new rod from its vertices and optional d1, reference
  * twists (prev 0) and rest quantities at the input shape (theta = 0). */
@@ -450,49 +386,7 @@ rn_status rn_rod_init_frames(rn_context *ctx, rn_rod *r, int rod_index, const do
 void rn_rotation_matrix(const double w[3], double R[9]);
 void rn_mat_vec3(const double R[9], const double v[3], double out[3]);
 
-/* ---- finalize / load factor ------------------------------------------------ */
-/* Writes the fixed entries of net->xfull for the current load factor and the
- * reference frames of clamped ends with a prescribed rotation. */
-rn_status rn_apply_load_factor(rn_network *net);
-/* The largest prescribed rotation per unit load factor (rad): clamped rod ends
- * with a prescribed motion and clamped joints. */
-double rn_prescribed_rotation_rate(const rn_network *net);
-/* Largest turn of a prescribed rotation per step of rn_ramp_load_factor (rad). */
-#define RN_RAMP_ANGLE 0.7853981633974483
-/* Moves the applied load factor from net->lambda to lambda in steps that turn no
- * prescribed rotation by more than RN_RAMP_ANGLE, each rn_apply_load_factor, so the
- * reference twists next to turned clamps keep their winding. */
-void rn_ramp_load_factor(rn_network *net, double lambda);
-/* Steps of at most RN_RAMP_ANGLE for a turn (rad): 1 for a turn up to RN_RAMP_ANGLE,
- * or beyond RN_RAMP_MAX_STEPS steps (or not finite: such a turn is applied at once
- * and its winding is not followed). */
-#define RN_RAMP_MAX_STEPS 16384
-int rn_ramp_steps(double turn);
-/* Builds the Hessian pattern (hessian.c). */
-rn_status rn_build_hessian_pattern(rn_network *net);
-/* Builds the pattern again (contact pairs changed); keeps the old one and
- * returns RN_ERR_ALLOC on failure. */
-rn_status rn_rebuild_hessian_pattern(rn_network *net);
-/* Adds the free-free entries of a dense n x n stencil block at full index s
- * into CSR values (hessian.c). */
-void rn_csr_add_block(const rn_network *net, size_t s, int n, const double *H,
-                      double *vals);
-/* Adds rows s .. s + n - 1 of the full layout given in rnk.h band storage
- * (band[i * RNK_BAND + c - (s + i) + RNK_BAND_HALF] = entry (s + i, c); rod
- * stencils only) into CSR values.  Returns 1 if every value it added was at
- * most RN_HESS_BOUND in magnitude (rn_all_bounded). */
-int rn_csr_add_band(const rn_network *net, size_t s, int n, const double *band,
-                    double *vals);
-/* Zeroes the CSR values that the rod bands do not store (net->hzero). */
-void rn_hessian_zero(const rn_network *net, double *vals);
-/* Frees the Hessian pattern (rowptr, col, band, rod_direct, hzero) and sets
- * the pointers NULL. */
-void rn_hessian_pattern_free(rn_network *net);
-/* The same for a stencil gathered by the full index list idx[n]. */
-void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
-                          const double *H, double *vals);
-
-/* ---- joints (joints.c, joint_stencil.c) ------------------------------------ */
+/* ---- joints (the rest: joints/joints.h) -------------------------------------- */
 /* End vertices of a joint coincide, and two joints are coincident, within
  * this fraction of the shortest incident terminal edge. */
 #define RN_JOINT_COINCIDE_TOL 1e-9
@@ -501,58 +395,8 @@ void rn_csr_add_block_idx(const rn_network *net, const size_t *idx, int n,
 static inline int rn_joint_has_rotation(const rn_joint *J) {
   return J->model == RN_JOINT_RIGID || J->clamped;
 }
-void rn_joint_free(rn_joint *J);
-
-/* ---- contact (contact.c) ---------------------------------------------------- */
-typedef struct rn_contact rn_contact;
-/* Pairs of contact edges (indices into the contact edge list), a < b. */
-typedef struct rn_contact_list {
-  int *pair; /* [2 n] */
-  size_t n, cap;
-} rn_contact_list;
-/* At finalize after the DOF map: the contact edges (RN_OK without contact). */
-rn_status rn_contact_build(rn_network *net, const char *where);
-void rn_contact_unbuild(rn_network *net);
-void rn_contact_free(rn_network *net);
-/* The Hessian pattern's contact pairs (docs/contact.md, "Hessian pattern"):
- * the pairs whose boxes, inflated by the radius, dhat / 2 and margin / 2,
- * overlap at the accepted state.  rn_contact_pattern_update keeps them (force
- * 0) if every pair within half the margin at the accepted state is one of
- * them, else rebuilds them there and the CSR pattern with them
- * (pattern_version + 1); the old pattern stays on failure.  Called at
- * finalize and wherever the accepted state changes. */
-rn_status rn_contact_pattern_update(rn_network *net, int force, const char *where);
-int rn_contact_in_pattern(const rn_network *net, int a, int b);
-size_t rn_contact_pattern_count(const rn_network *net);
-/* The two contact edges (a < b, indices into the contact's edge list) of pattern
- * pair i: the one decoding of the pattern's keys. */
-void rn_contact_pattern_pair(const rn_network *net, size_t i, int *a, int *b);
-/* The 12 full indices of pattern pair i. */
-void rn_contact_pattern_idx(const rn_network *net, size_t i, size_t idx[12]);
-/* 1 if pattern pair i joins two rods or two edges of one rod at least 3 apart
- * (edges j and j + 2, close on every straight rod, stay inside its band). */
-int rn_contact_pattern_far(const rn_network *net, size_t i);
-/* RN_ERR_GEOMETRY if the initial state interpenetrates. */
-rn_status rn_contact_check_initial(const rn_network *net, const char *where);
-/* The pairs within the barrier's reach at x (x NULL: the accepted state); with
- * ccd, first the continuous check of the motion from the accepted state to x
- * (RN_DEGENERATE naming the pair if it would cross).  L is freed on error. */
-rn_status rn_contact_candidates(const rn_network *net, const double *x, int ccd,
-                                const char *where, rn_contact_list *L);
-void rn_contact_list_free(rn_contact_list *L);
-/* The 12 full indices of pair (a, b): (p0, p1) of edge a, then of edge b. */
-void rn_contact_pair_idx(const rn_network *net, int a, int b, size_t idx[12]);
-/* The kernel parameters of pair (a, b): radius the sum of the rods' radii. */
-rnk_contact_param rn_contact_pair_param(const rn_network *net, int a, int b);
-/* rn_fail with a message naming the pair's rods and edges. */
-rn_status rn_contact_pair_fail(const rn_network *net, rn_status st, const char *where,
-                               int a, int b, const char *what);
 /* Number of full DOFs of all joints. */
 size_t rn_joints_full_count(const rn_network *net);
-/* Finalize steps: BC conflicts with rod vertices, coincident joints
- * (validate); kernel parameters and stencil index lists (build, after the
- * DOF offsets are set); the fit at the initial state (check_initial). */
-rn_status rn_joints_validate(const rn_network *net, const char *where);
 /* Initial position, shortest incident terminal edge, index and name of a joint;
  * the coincidence check (the first pair closer than RN_JOINT_COINCIDE_TOL of
  * their shorter lmin is an RN_ERR_GEOMETRY error naming both). */
@@ -561,54 +405,10 @@ typedef struct rn_joint_point {
   int gid;
   const char *name;
 } rn_joint_point;
-rn_status rn_joint_points_check(rn_context *ctx, const char *where, int n,
-                                const rn_joint_point *p);
-rn_status rn_joints_build(rn_network *net);
-rn_status rn_joints_check_initial(const rn_network *net, const char *where);
-void rn_joints_unbuild(rn_network *net);
-/* Fixed joint DOFs (positions, prescribed rotations Qhat) for the current
- * load factor, copied to the aliased rod end vertices of net->xfull (place);
- * then, once every fixed DOF is placed, the stored twists of clamped joints
- * with a prescribed motion are continued (continue_twists). */
-void rn_joints_place(rn_network *net);
-void rn_joints_continue_twists(rn_network *net);
-/* Copies each joint position in net->xfull to its rod end vertices. */
-void rn_joints_sync(rn_network *net);
-
-/* Kernel parameters of joint ij: copies the terminal edges' current
- * reference frames to refs[valence] and fills kj, the couple scaled by
- * load_scale (the network's load factor, or 1 for the load rate). */
-void rn_joint_kernel(const rn_network *net, int ij, double load_scale, rnk_frame *refs,
-                     rnk_joint *kj);
-/* Scratch of one joint evaluation (declared by the caller, on its stack:
- * evaluation stays reentrant): q[n], v[n], loc[n n] (gradient or Hessian
- * block), the kernel workspace and the reference frames; in the embedded
- * buffers up to valence 8, on the heap beyond. */
-enum { RN_JOINT_STACK = 5120, RN_JOINT_STACK_ENDS = 8 };
-typedef struct rn_joint_scratch {
-  int n; /* stencil size */
-  double *q, *v, *loc, *work;
-  double *fix; /* a fixed couple's force and Jacobian (n + n n), NULL if the
-                  joint has none */
-  rnk_frame *refs;
-  double *heap; /* NULL if the buffers below suffice */
-  rnk_frame *heap_refs;
-  double buf[RN_JOINT_STACK];
-  rnk_frame frames[RN_JOINT_STACK_ENDS];
-} rn_joint_scratch;
-/* RN_ERR_ALLOC if the heap fallback fails. */
-rn_status rn_joint_scratch_init(const rn_joint *J, rn_joint_scratch *s);
-void rn_joint_scratch_free(rn_joint_scratch *s);
-
 /* ---- rods ---------------------------------------------------------------- */
 void rn_rod_free(rn_rod *r);
-/* Vertex forces r->fvert from point forces, line load and gravity (loads.c). */
-void rn_rod_lump_forces(const rn_network *net, rn_rod *r);
 /* The vector a couple m works on, in the coordinates of the frame f (rows
  * f[3k..3k+2], orthonormal): the frame vector most perpendicular to m,
  * projected onto the plane normal to m and normalised (zero if m = 0). */
 void rn_couple_vector(const double f[9], const double m[3], double b[3]);
-/* Edge of the material frame a moment at vertex acts on. */
-int rn_moment_edge(int nv, int vertex);
-
 #endif

@@ -6,20 +6,25 @@
 
 #include "core/network_internal.h"
 
-static rn_status check_result(const rn_network *net, const char *where, int *rod) {
+/* The opening of every getter: net given, finalized (final: the getters of the
+ * current state), rod a rod of this network (translated into the local index
+ * *rod), out (named name) given if name is not NULL; *r its rod. */
+static rn_status result_rod(const rn_network *net, const char *where, int final, int *rod,
+                            const void *out, const char *name, const rn_rod **r) {
   rn_status st;
-  if ((st = rn_net_check_final(net, where))) return st;
-  return rn_net_check_rod(net, where, rod);
+  if (!net) return RN_ERR_ARG;
+  if (final && (st = rn_net_check_final(net, where))) return st;
+  if ((st = rn_net_check_rod(net, where, rod))) return st;
+  if (name && !out) return rn_fail(net->ctx, RN_ERR_ARG, where, "%s is NULL", name);
+  *r = &net->rods[*rod];
+  return RN_OK;
 }
 
 rn_status rn_network_rod_vertices(const rn_network *net, int rod, double *xyz) {
   static const char *where = "rn_network_rod_vertices";
-  const rn_rod *r;
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, &rod))) return st;
-  if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
-  r = &net->rods[rod];
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 1, &rod, xyz, "xyz", &r);
+  if (st) return st;
   for (int v = 0; v < r->nv; ++v)
     memcpy(xyz + 3 * v, net->xfull + rn_dof_vertex(r->off, v), 3 * sizeof(double));
   return RN_OK;
@@ -27,33 +32,27 @@ rn_status rn_network_rod_vertices(const rn_network *net, int rod, double *xyz) {
 
 rn_status rn_network_rod_theta(const rn_network *net, int rod, double *theta) {
   static const char *where = "rn_network_rod_theta";
-  const rn_rod *r;
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, &rod))) return st;
-  if (!theta) return rn_fail(net->ctx, RN_ERR_ARG, where, "theta is NULL");
-  r = &net->rods[rod];
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 1, &rod, theta, "theta", &r);
+  if (st) return st;
   for (int j = 0; j < r->ne; ++j) theta[j] = net->xfull[rn_dof_theta(r->off, j)];
   return RN_OK;
 }
 
 rn_status rn_network_rod_initial_vertices(const rn_network *net, int rod, double *xyz) {
   static const char *where = "rn_network_rod_initial_vertices";
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_rod(net, where, &rod))) return st;
-  if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
-  memcpy(xyz, net->rods[rod].x0, 3 * (size_t)net->rods[rod].nv * sizeof(double));
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 0, &rod, xyz, "xyz", &r);
+  if (st) return st;
+  memcpy(xyz, r->x0, 3 * (size_t)r->nv * sizeof(double));
   return RN_OK;
 }
 
 rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1, double *d2) {
   static const char *where = "rn_network_rod_frames";
-  const rn_rod *r;
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, &rod))) return st;
-  r = &net->rods[rod];
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 1, &rod, NULL, NULL, &r);
+  if (st) return st;
   for (int j = 0; j < r->ne; ++j) {
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
     double e[3];
@@ -69,11 +68,9 @@ rn_status rn_network_rod_frames(const rn_network *net, int rod, double *d1, doub
 rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
                                  double *kappa, double *tau) {
   static const char *where = "rn_network_rod_strains";
-  const rn_rod *r;
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, &rod))) return st;
-  r = &net->rods[rod];
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 1, &rod, NULL, NULL, &r);
+  if (st) return st;
   for (int j = 0; strain && j < r->ne; ++j) {
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
     double l2 = 0.0;
@@ -100,11 +97,10 @@ rn_status rn_network_rod_strains(const rn_network *net, int rod, double *strain,
 
 rn_status rn_network_rod_rest_lengths(const rn_network *net, int rod, double *len) {
   static const char *where = "rn_network_rod_rest_lengths";
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_rod(net, where, &rod))) return st;
-  if (!len) return rn_fail(net->ctx, RN_ERR_ARG, where, "len is NULL");
-  memcpy(len, net->rods[rod].lbar, (size_t)net->rods[rod].ne * sizeof(double));
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 0, &rod, len, "len", &r);
+  if (st) return st;
+  memcpy(len, r->lbar, (size_t)r->ne * sizeof(double));
   return RN_OK;
 }
 
@@ -121,11 +117,9 @@ rn_status rn_network_rod_vertex_fields(const rn_network *net, int rod, double *m
                                        double *twist_moment, double *bend_energy,
                                        double *twist_energy) {
   static const char *where = "rn_network_rod_vertex_fields";
-  const rn_rod *r;
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, &rod))) return st;
-  r = &net->rods[rod];
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 1, &rod, NULL, NULL, &r);
+  if (st) return st;
   for (int i = 1; i < r->nv - 1; ++i) {
     const double *q = net->xfull + rn_dof_vertex_stencil(r->off, i);
     const rnk_frame *ref = &r->ref[i - 1];
@@ -151,11 +145,9 @@ rn_status rn_network_rod_vertex_fields(const rn_network *net, int rod, double *m
 rn_status rn_network_rod_edge_fields(const rn_network *net, int rod, double *axial_force,
                                      double *stretch_energy) {
   static const char *where = "rn_network_rod_edge_fields";
-  const rn_rod *r;
-  rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_result(net, where, &rod))) return st;
-  r = &net->rods[rod];
+  const rn_rod *r = NULL;
+  rn_status st = result_rod(net, where, 1, &rod, NULL, NULL, &r);
+  if (st) return st;
   for (int j = 0; j < r->ne; ++j) {
     const double *q = net->xfull + rn_dof_edge_stencil(r->off, j);
     double l2 = 0.0, E = 0.0;

@@ -166,7 +166,7 @@ rn_status rn_network_state_restore(rn_network *net, const rn_state *s) {
   copy_rods_in(net, s);
   copy_moments_in(net, s);
   copy_joints_in(net, s);
-  return rn_contact_pattern_update(net, 0, where);
+  return rn_net_accept_state(net, where);
 }
 
 void rn_state_destroy(rn_state **s) {

@@ -5,7 +5,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "contact/contact.h"
+#include "eval/eval.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 #include "rnk_couple.h"
 #include "rodnet_couple.h"
 

@@ -8,7 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "contact/contact.h"
+#include "eval/eval.h"
+#include "periodic/periodic.h"
 
 /* Widens [lo, hi] of every DOF of a stencil slice [s, s + n) to the slice. */
 static void cover(size_t *lo, size_t *hi, size_t s, int n) {
@@ -399,7 +401,7 @@ static rn_status build_rod_direct(rn_network *net) {
     for (size_t i = 0; i <= n; ++i) {
       int64_t mi = i < n ? net->map[r->off + i] : -1;
       if (i < n && net->cell && net->cell->slot[r->off + i] >= 0)
-        mi = -1; /* a periodic image end: its value needs the shift (periodic.c) */
+        mi = -1; /* a periodic image end: its value needs the shift (core/gather.c) */
       int joins = i > a && mi >= 0 && mi == net->map[r->off + i - 1] + 1;
       if (i == a && mi >= 0) continue; /* a run starts */
       if (joins) continue;

@@ -7,7 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
+#include "eval/eval.h"
+#include "rodq.h"
 
 static const char *const where = "rn_network_load_increment";
 
@@ -26,10 +28,6 @@ static rn_status check_args(const rn_network *net, const double *x, double t_pre
   return RN_OK;
 }
 
-static double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Angle about the clamped edge's tangent at t (positions in full_t) from the
  * director of the reference frame ref_prev (at t_prev) to that of ref_t, both
  * transported to that tangent: the material angle that gives, with the
@@ -40,7 +38,7 @@ static int clamp_angle(const double *full_t, size_t s, const rnk_frame *ref_prev
   double e[3], n, tt[3], a[3], b[3], c[3];
   int rc;
   for (int k = 0; k < 3; ++k) e[k] = xb[k] - xa[k];
-  n = sqrt(dot3(e, e));
+  n = sqrt(rq_dot3(e, e));
   if (!(n > 0.0)) return RNK_DEGENERATE;
   for (int k = 0; k < 3; ++k) tt[k] = e[k] / n;
   if ((rc = rnk_transport(ref_prev->t, tt, ref_prev->a1, a)) != RNK_OK) return rc;
@@ -48,7 +46,7 @@ static int clamp_angle(const double *full_t, size_t s, const rnk_frame *ref_prev
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
-  *phi = atan2(dot3(tt, c), dot3(a, b));
+  *phi = atan2(rq_dot3(tt, c), rq_dot3(a, b));
   return RNK_OK;
 }
 

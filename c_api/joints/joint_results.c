@@ -1,7 +1,8 @@
 /* joint_results.c - joint position and rotation at the current state. */
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 
 /* Checks a result call on joint *joint (whole-network index) and translates it
  * into the local index; RN_ERR_RANGE also for a joint held by another part and,

@@ -7,7 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 
 #define RN_PI 3.14159265358979323846
 

@@ -6,7 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 #include "rodnet_couple.h"
 #include "rodnet_ring.h"
 
@@ -20,13 +21,6 @@ void rn_joint_free(rn_joint *J) {
   free(J->img);
   free(J->rest_frames);
   memset(J, 0, sizeof(*J));
-}
-
-size_t rn_joints_full_count(const rn_network *net) {
-  size_t n = 0;
-  for (int i = 0; i < net->njoints; ++i)
-    n += rn_dof_joint_count(rn_joint_has_rotation(&net->joints[i]));
-  return n;
 }
 
 static const char *end_name(int end) { return end == RN_START ? "start" : "end"; }
@@ -217,6 +211,19 @@ static rn_status smooth_ends(const rn_network *net, const char *where, const cha
   return RN_OK;
 }
 
+/* Stores the checked joint J (its m local ends lrods[k], lends[k]) as the next
+ * joint: the rod ends point to it, a smooth joint of a rod's end to its own start
+ * closes the rod; *joint (if given) its whole-network index. */
+static void attach_joint(rn_network *net, const rn_joint *J, int m, const int *lrods,
+                         const int *lends, int *joint) {
+  for (int k = 0; k < m; ++k) net->rods[lrods[k]].joint[lends[k]] = net->njoints;
+  if (J->model == RN_JOINT_SMOOTH && m == 2 && lrods[0] == lrods[1])
+    net->rods[lrods[0]].closed = 1; /* its end joined to its start: a ring */
+  net->joints[net->njoints] = *J;
+  if (joint) *joint = J->gid;
+  net->njoints++;
+}
+
 static rn_status add_joint(rn_network *net, const char *where, const char *name,
                            rn_joint_model model, int n_ends, const int *rods,
                            const int *ends, const int *images, int *joint) {
@@ -269,14 +276,8 @@ static rn_status add_joint(rn_network *net, const char *where, const char *name,
     free(buf);
     return st;
   }
-  for (int k = 0; k < m; ++k)
-    net->rods[buf[n_ends + k]].joint[buf[2 * n_ends + k]] = net->njoints;
-  if (model == RN_JOINT_SMOOTH && m == 2 && buf[n_ends] == buf[n_ends + 1])
-    net->rods[buf[n_ends]].closed = 1; /* its end joined to its start: a ring */
+  attach_joint(net, &J, m, buf + n_ends, buf + 2 * n_ends, joint);
   free(buf);
-  net->joints[net->njoints] = J;
-  if (joint) *joint = J.gid;
-  net->njoints++;
   return RN_OK;
 }
 
@@ -548,5 +549,34 @@ rn_status rn_network_set_ring_total_twist(rn_network *net, int joint, double tot
   J->has_total_twist = 1;
   J->total_twist = total;
   J->link = 0;
+  return RN_OK;
+}
+
+/* ---- closed rods ------------------------------------------------------------ */
+rn_status rn_network_add_closed_rod(rn_network *net, const char *name, int nv,
+                                    const double *xyz, const double *d1, int *rod,
+                                    int *joint) {
+  static const char *where = "rn_network_add_closed_rod";
+  double *xc;
+  rn_status st;
+  int r = -1, rods[2], ends[2] = {RN_END, RN_START};
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (!xyz) return rn_fail(net->ctx, RN_ERR_ARG, where, "xyz is NULL");
+  if (nv < 3)
+    return rn_fail(net->ctx, RN_ERR_ARG, where,
+                   "closed rod '%s' needs at least 3 vertices, got %d", name ? name : "",
+                   nv);
+  xc = malloc(3 * ((size_t)nv + 1) * sizeof(double));
+  if (!xc) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  memcpy(xc, xyz, 3 * (size_t)nv * sizeof(double));
+  memcpy(xc + 3 * (size_t)nv, xyz, 3 * sizeof(double)); /* the closing vertex */
+  st = rn_network_add_rod(net, name, nv + 1, xc, d1, &r);
+  free(xc);
+  if (st) return st;
+  rods[0] = rods[1] = r;
+  if ((st = rn_network_add_joint(net, name, RN_JOINT_SMOOTH, 2, rods, ends, joint)))
+    return st;
+  if (rod) *rod = r;
   return RN_OK;
 }

@@ -18,7 +18,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "contact/contact.h"
 
 static void set_dof(const rn_network *net, size_t a, int32_t blk, const double p[3],
                     const double t[3], int32_t *block, double *point, double *axis) {

@@ -6,14 +6,15 @@
  * the lattice vectors; joint and rod DOFs are positions as usual (their
  * periodic fluctuation plus the affine part).  A rod end at the image n of a
  * joint sits at x_J + F s, s = sum_m n_m a_m: an affine alias of the joint
- * position.  Only the gathers and scatters of assembly know about it (this
- * file); the kernels do not change.  Symmetric F removes the rigid rotations;
- * finalize pins one joint (the anchor) unless a BC already fixes a position. */
+ * position.  Only the gathers and scatters of assembly know about it
+ * (core/gather.c) and the Hessian rows (this file); the kernels do not change.
+ * Symmetric F removes the rigid rotations; finalize pins one joint (the
+ * anchor) unless a BC already fixes a position. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "periodic/periodic.h"
 
 void rn_cell_free(rn_cell **c) {
   if (!c || !*c) return;
@@ -90,7 +91,7 @@ rn_status rn_network_set_periodic(rn_network *net, int dim, const double *vector
   return RN_OK;
 }
 
-static rn_status check_cell(const rn_network *net, const char *where, int building) {
+rn_status rn_cell_check(const rn_network *net, const char *where, int building) {
   rn_status st;
   if ((st =
            building ? rn_net_check_building(net, where) : rn_net_check_final(net, where)))
@@ -115,7 +116,7 @@ rn_status rn_network_set_cell_strain(rn_network *net, const int *fixed,
   static const char *where = "rn_network_set_cell_strain";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 1))) return st;
+  if ((st = rn_cell_check(net, where, 1))) return st;
   if (!fixed) return rn_fail(net->ctx, RN_ERR_ARG, where, "fixed is NULL");
   if (strain && !rn_all_finite((size_t)net->cell->nstrain, strain))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "strain is not finite");
@@ -136,7 +137,7 @@ rn_status rn_network_set_cell_stress(rn_network *net, const double *stress) {
   static const char *where = "rn_network_set_cell_stress";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 1))) return st;
+  if ((st = rn_cell_check(net, where, 1))) return st;
   if (!stress) return rn_fail(net->ctx, RN_ERR_ARG, where, "stress is NULL");
   if (!rn_all_finite((size_t)net->cell->nstrain, stress))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "stress is not finite");
@@ -198,7 +199,7 @@ rn_status rn_network_cell_strain_dofs(const rn_network *net, int64_t *idx) {
   static const char *where = "rn_network_cell_strain_dofs";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
+  if ((st = rn_cell_check(net, where, 0))) return st;
   if (!idx) return rn_fail(net->ctx, RN_ERR_ARG, where, "idx is NULL");
   for (int v = 0; v < net->cell->nstrain; ++v)
     idx[v] = net->map[net->cell->off + (size_t)v];
@@ -209,33 +210,13 @@ rn_status rn_network_cell_strain(const rn_network *net, const double *x, double 
   static const char *where = "rn_network_cell_strain";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
+  if ((st = rn_cell_check(net, where, 0))) return st;
   if (!strain) return rn_fail(net->ctx, RN_ERR_ARG, where, "strain is NULL");
   for (int v = 0; v < net->cell->nstrain; ++v) {
     size_t a = net->cell->off + (size_t)v;
     strain[v] = (x && net->map[a] >= 0) ? x[net->map[a]] : net->xfull[a];
   }
   return RN_OK;
-}
-
-rn_status rn_network_cell_stress(const rn_network *net, const double *x, double *stress) {
-  static const char *where = "rn_network_cell_stress";
-  rn_status st;
-  double *gfull;
-  rn_cell *c;
-  if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
-  if (!stress || (!x && net->nred))
-    return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
-  c = net->cell;
-  gfull = malloc(net->nfull * sizeof(double));
-  if (!gfull) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  st = rn_eval_gradient_full(net, x, gfull, where);
-  if (st == RN_OK)
-    for (int v = 0; v < c->nstrain; ++v) /* the gradient includes -lambda V sigma */
-      stress[v] = gfull[c->off + (size_t)v] / c->measure + net->lambda * c->stress[v];
-  free(gfull);
-  return st;
 }
 
 /* ---- finalize --------------------------------------------------------------- */
@@ -370,108 +351,6 @@ static void strain_of(const rn_network *net, const double *x, double eps[6]) {
   }
 }
 
-void rn_cell_shift(const rn_network *net, const rn_image *im, const double *full,
-                   double out[3]) {
-  const rn_cell *c = net->cell;
-  for (int k = 0; k < 3; ++k) {
-    out[k] = im->s[k];
-    for (int v = 0; v < c->nstrain; ++v) out[k] += im->T[k][v] * full[c->off + (size_t)v];
-  }
-}
-
-/* Record slot (3 r + c) of stencil entry k, -1 if none. */
-static inline int32_t entry_slot(const rn_cell *c, size_t s, const int32_t *img, int k) {
-  return img ? img[k] : c->slot[s + (size_t)k];
-}
-
-void rn_cell_gather(const rn_network *net, const double *x, size_t s, const size_t *idx,
-                    const int32_t *img, int n, double *q) {
-  const rn_cell *c = net->cell;
-  double eps[6];
-  int have = 0;
-  (void)idx;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    size_t b = im->base + (size_t)comp;
-    if (!have) {
-      strain_of(net, x, eps);
-      have = 1;
-    }
-    q[k] = (net->map[b] >= 0 ? x[net->map[b]] : net->xfull[b]) + im->s[comp];
-    for (int v = 0; v < c->nstrain; ++v) q[k] += im->T[comp][v] * eps[v];
-  }
-}
-
-void rn_cell_gather_dir(const rn_network *net, const double *v, size_t s,
-                        const size_t *idx, const int32_t *img, int n, double *q) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    size_t b = im->base + (size_t)comp;
-    q[k] = net->map[b] >= 0 ? v[net->map[b]] : 0.0;
-    for (int w = 0; w < c->nstrain; ++w) {
-      int64_t m = net->map[c->off + (size_t)w];
-      if (m >= 0) q[k] += im->T[comp][w] * v[m];
-    }
-  }
-}
-
-void rn_cell_gather_fixed_dir(const rn_network *net, const double *vfull, size_t s,
-                              const size_t *idx, const int32_t *img, int n, double *q) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    size_t b = im->base + (size_t)comp;
-    q[k] = net->map[b] >= 0 ? 0.0 : vfull[b];
-    for (int w = 0; w < c->nstrain; ++w) {
-      size_t a = c->off + (size_t)w;
-      if (net->map[a] < 0) q[k] += im->T[comp][w] * vfull[a];
-    }
-  }
-}
-
-void rn_cell_scatter(const rn_network *net, const double *gl, size_t s, const size_t *idx,
-                     const int32_t *img, int n, double *g) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    for (int w = 0; w < c->nstrain; ++w) {
-      int64_t m = net->map[c->off + (size_t)w];
-      if (m >= 0) g[m] += im->T[comp][w] * gl[k];
-    }
-  }
-}
-
-void rn_cell_scatter_full(const rn_network *net, const double *gl, size_t s,
-                          const size_t *idx, const int32_t *img, int n, double *gfull) {
-  const rn_cell *c = net->cell;
-  if (!c || (idx && !img)) return;
-  for (int k = 0; k < n; ++k) {
-    int32_t sl = entry_slot(c, s, img, k);
-    if (sl < 0) continue;
-    const rn_image *im = &c->img[sl / 3];
-    int comp = sl % 3;
-    for (int w = 0; w < c->nstrain; ++w)
-      gfull[c->off + (size_t)w] += im->T[comp][w] * gl[k];
-  }
-}
-
 /* Position of column col in row r of the CSR pattern, -1 if absent. */
 static int64_t find(const rn_network *net, int64_t r, int64_t col) {
   int64_t lo = net->rowptr[r], hi = net->rowptr[r + 1] - 1;
@@ -525,7 +404,7 @@ void rn_cell_hess_block(const rn_network *net, size_t s, const size_t *idx,
   double w_buf[64 * 6], *w = w_buf;
   int any = 0;
   if (!c || (idx && !img)) return;
-  for (int k = 0; k < n && !any; ++k) any = entry_slot(c, s, img, k) >= 0;
+  for (int k = 0; k < n && !any; ++k) any = rn_cell_entry_slot(c, s, img, k) >= 0;
   if (!any) return;
   if (n > 64) {
     slots = malloc((size_t)n * sizeof(int32_t));
@@ -534,7 +413,7 @@ void rn_cell_hess_block(const rn_network *net, size_t s, const size_t *idx,
     if (!slots || !rowmap || !w) goto done; /* (tiny; never in practice) */
   }
   for (int k = 0; k < n; ++k) {
-    slots[k] = entry_slot(c, s, img, k);
+    slots[k] = rn_cell_entry_slot(c, s, img, k);
     rowmap[k] = net->map[idx ? idx[k] : s + (size_t)k];
   }
   for (int k = 0; k < n; ++k)
@@ -635,18 +514,6 @@ void rn_cell_image_offset(const rn_network *net, const int *n, const double *ful
   }
 }
 
-void rn_cell_expand(const rn_network *net, double *full) {
-  const rn_cell *c = net->cell;
-  if (!c || !c->slot) return;
-  for (size_t a = 0; a < net->nfull; ++a) {
-    int32_t sl = c->slot[a];
-    double sh[3];
-    if (sl < 0) continue;
-    rn_cell_shift(net, &c->img[sl / 3], full, sh);
-    full[a] = full[c->img[sl / 3].base + (size_t)(sl % 3)] + sh[sl % 3];
-  }
-}
-
 void rn_joint_gather_full(const rn_network *net, const rn_joint *J, const double *full,
                           double *q) {
   int n = rn_joint_stencil_count(rn_joint_has_rotation(J), J->valence);
@@ -686,7 +553,7 @@ rn_status rn_network_cell_relative_density(const rn_network *net, double *rho) {
   rn_status st;
   double sum = 0.0;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_cell(net, where, 0))) return st;
+  if ((st = rn_cell_check(net, where, 0))) return st;
   if (!rho) return rn_fail(net->ctx, RN_ERR_ARG, where, "rho is NULL");
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "core/network_internal.h"
+#include "rodq.h"
 
 typedef struct motion_rows {
   double A[6][6]; /* C^T C */
@@ -166,10 +167,6 @@ static int null_space(const motion_rows *m, int n, double out[6][6]) {
   return cnt;
 }
 
-static double dot3(const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Orthonormal basis (Gram-Schmidt, dropping dependent vectors) of the k
  * vectors v[i][off..off+2]; returns its size. */
 static int basis3(double v[6][6], int k, int off, double out[3][3]) {
@@ -177,10 +174,10 @@ static int basis3(double v[6][6], int k, int off, double out[3][3]) {
   for (int i = 0; i < k && n < 3; ++i) {
     double u[3] = {v[i][off], v[i][off + 1], v[i][off + 2]};
     for (int j = 0; j < n; ++j) {
-      double d = dot3(u, out[j]);
+      double d = rq_dot3(u, out[j]);
       for (int c = 0; c < 3; ++c) u[c] -= d * out[j][c];
     }
-    double l = sqrt(dot3(u, u));
+    double l = sqrt(rq_dot3(u, u));
     if (l < 1e-8) continue;
     for (int c = 0; c < 3; ++c) out[n][c] = u[c] / l;
     n++;
@@ -216,19 +213,20 @@ rn_status rn_network_free_motions(const rn_network *net, rn_free_motions *fm) {
   for (int ir = 0; ir < net->nrods; ++ir)
     for (int v = 0; v < net->rods[ir].nv; ++v)
       fsum += fabs(net->lambda) *
-              sqrt(dot3(&net->rods[ir].fvert[3 * v], &net->rods[ir].fvert[3 * v]));
+              sqrt(rq_dot3(&net->rods[ir].fvert[3 * v], &net->rods[ir].fvert[3 * v]));
   for (int ij = 0; ij < net->njoints; ++ij) {
-    fsum += fabs(net->lambda) * sqrt(dot3(net->joints[ij].force, net->joints[ij].force));
-    msum += fabs(net->lambda) * sqrt(dot3(net->joints[ij].M, net->joints[ij].M));
+    fsum +=
+        fabs(net->lambda) * sqrt(rq_dot3(net->joints[ij].force, net->joints[ij].force));
+    msum += fabs(net->lambda) * sqrt(rq_dot3(net->joints[ij].M, net->joints[ij].M));
   }
   for (int im = 0; im < net->nmom; ++im)
-    msum += fabs(net->lambda) * sqrt(dot3(net->moments[im].M, net->moments[im].M));
+    msum += fabs(net->lambda) * sqrt(rq_dot3(net->moments[im].M, net->moments[im].M));
   const double ftol = 1e-10 * fsum, mtol = 1e-10 * (msum + fsum * m.L);
   for (int i = 0; i < fm->num_translations; ++i)
-    if (fabs(dot3(F, fm->translation[i])) > ftol) fm->unbalanced_force = 1;
-  if (sqrt(dot3(F, F)) <= ftol)
+    if (fabs(rq_dot3(F, fm->translation[i])) > ftol) fm->unbalanced_force = 1;
+  if (sqrt(rq_dot3(F, F)) <= ftol)
     for (int i = 0; i < k; ++i) /* (t, w L): power F.t + M.w = M.w here */
-      if (fabs(dot3(M, &nall[i][3])) / m.L > mtol) fm->unbalanced_moment = 1;
+      if (fabs(rq_dot3(M, &nall[i][3])) / m.L > mtol) fm->unbalanced_moment = 1;
   return RN_OK;
 }
 

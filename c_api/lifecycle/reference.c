@@ -10,7 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "contact/contact.h"
+#include "joints/joints.h"
+#include "periodic/periodic.h"
 #include "rodnet_couple.h"
 
 static const char *where = "rn_network_update_reference";

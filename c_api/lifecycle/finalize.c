@@ -3,7 +3,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/network_internal.h"
+#include "bcs/bcs.h"
+#include "contact/contact.h"
+#include "eval/eval.h"
+#include "joints/joints.h"
+#include "parts/parts.h"
+#include "periodic/periodic.h"
 
 static const char *where = "rn_network_finalize";
 
@@ -216,15 +221,10 @@ static void undo_finalize(rn_network *net) {
   net->nfull = net->nred = net->nnz = net->bandwidth = 0;
 }
 
-rn_status rn_network_finalize(rn_network *net) {
+/* The input before anything is built: rods, joints, the cell's anchor, the
+ * planar model's condition. */
+static rn_status check_input(rn_network *net) {
   rn_status st;
-  if (!net) return RN_ERR_ARG;
-  if ((st = rn_net_check_building(net, where))) return st;
-  if (rn_network_is_graph_only(net)) { /* only the rod graph: nothing to build */
-    if ((st = rn_part_graph_validate(net, where))) return st;
-    net->finalized = 1;
-    return RN_OK;
-  }
   if (rn_net_num_rods_g(net) == 0)
     return rn_fail(net->ctx, RN_ERR_ARG, where, "the network has no rods");
   rn_cell_anchor(net); /* periodic: one joint pinned unless a BC fixes a position */
@@ -236,57 +236,91 @@ rn_status rn_network_finalize(rn_network *net) {
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "the planar model needs a network in one plane z = const: %s",
                    net->planar_why);
-  net->planar = net->model == RN_MODEL_PLANAR;
+  return RN_OK;
+}
+
+/* Kernel parameters and lumped forces, DOF map, joint stencils, cell images,
+ * contact edges and Hessian pattern (the caller undoes them on failure). */
+static rn_status build(rn_network *net) {
+  rn_status st = RN_OK;
   for (int ir = 0; ir < net->nrods; ++ir) {
-    if (build_params(&net->rods[ir])) {
-      undo_finalize(net);
+    if (build_params(&net->rods[ir]))
       return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-    }
     rn_rod_lump_forces(net, &net->rods[ir]);
   }
-  if (build_dof_map(net) || (st = rn_joints_build(net)) || rn_cell_build(net)) {
-    undo_finalize(net);
-    if (st) return st;
-    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  }
+  if (build_dof_map(net) || (st = rn_joints_build(net)) || rn_cell_build(net))
+    return st ? st : rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   rn_planar_assess_built(net);
-  if (net->planar && !net->planar_ok) {
-    undo_finalize(net);
+  if (net->planar && !net->planar_ok)
     return rn_fail(net->ctx, RN_ERR_ARG, where,
                    "the planar model needs a network in one plane z = const: %s",
                    net->planar_why);
+  if ((st = rn_contact_build(net, where))) return st;
+  if (net->nred > (size_t)INT32_MAX) /* CSR columns are int32 */
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "%zu free DOFs exceed the int32 CSR limit", net->nred);
+  if (rn_build_hessian_pattern(net))
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  return RN_OK;
+}
+
+/* The joints and contacts are checked on the initial geometry (load factor 0);
+ * then the prescribed motions are ramped to the load factor (keeping twist
+ * windings; the state there may be a degenerate trial point, which the solver
+ * ramps through), the couples take their reference, and the contact pattern is
+ * built at that state. */
+static rn_status start(rn_network *net) {
+  rn_status st;
+  const double target = net->lambda;
+  net->lambda = net->lambda_x = 0.0; /* the initial geometry is load factor 0's */
+  rn_apply_load_factor(net);
+  if (!(st = rn_joints_check_initial(net, where)) &&
+      !(st = rn_contact_check_initial(net, where))) {
+    rn_ramp_load_factor(net, target);
+    st = init_moments(net);
   }
-  if ((st = rn_contact_build(net, where))) {
+  if (!st) st = rn_contact_pattern_update(net, 1, where);
+  return st;
+}
+
+rn_status rn_network_finalize(rn_network *net) {
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_net_check_building(net, where))) return st;
+  if (rn_network_is_graph_only(net)) { /* only the rod graph: nothing to build */
+    if ((st = rn_part_graph_validate(net, where))) return st;
+    net->finalized = 1;
+    return RN_OK;
+  }
+  if ((st = check_input(net))) return st;
+  net->accept_state = rn_contact_pattern_update;
+  net->rebuild_pattern = rn_rebuild_hessian_pattern;
+  net->planar = net->model == RN_MODEL_PLANAR;
+  if ((st = build(net)) || (st = start(net))) {
     undo_finalize(net);
     return st;
   }
-  if (net->nred > (size_t)INT32_MAX) { /* CSR columns are int32 */
-    size_t nred = net->nred;
-    undo_finalize(net);
-    return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "%zu free DOFs exceed the int32 CSR limit", nred);
-  }
-  if (rn_build_hessian_pattern(net)) {
-    undo_finalize(net);
-    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  }
-  { /* the joints are checked on the initial geometry (load factor 0); then the
-     * prescribed motions are ramped to the load factor (keeping twist windings; the
-     * state there may be a degenerate trial point, which the solver ramps through) */
-    const double target = net->lambda;
-    net->lambda = net->lambda_x = 0.0; /* the initial geometry is load factor 0's */
-    rn_apply_load_factor(net);
-    if (!(st = rn_joints_check_initial(net, where)) &&
-        !(st = rn_contact_check_initial(net, where))) {
-      rn_ramp_load_factor(net, target);
-      st = init_moments(net);
-    }
-    if (!st) st = rn_contact_pattern_update(net, 1, where);
-    if (st) {
-      undo_finalize(net);
-      return st;
-    }
-  }
   net->finalized = 1;
   return RN_OK;
+}
+
+/* ---- destroy ---------------------------------------------------------------- */
+void rn_network_destroy(rn_network **net) {
+  rn_network *n;
+  if (!net || !*net) return;
+  n = *net;
+  for (int i = 0; i < n->nrods; ++i) rn_rod_free(&n->rods[i]);
+  free(n->rods);
+  free(n->moments);
+  for (int i = 0; i < n->njoints; ++i) rn_joint_free(&n->joints[i]);
+  free(n->joints);
+  free(n->map);
+  free(n->red2full);
+  free(n->xfull);
+  rn_hessian_pattern_free(n);
+  rn_part_free(&n->part);
+  rn_cell_free(&n->cell);
+  rn_contact_free(n);
+  free(n);
+  *net = NULL;
 }
