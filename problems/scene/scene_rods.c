@@ -249,32 +249,32 @@ static rn_status read_d1(rn_jwalk *w, const cJSON *rod, const double *xyz, doubl
 
 /* ---- properties ---------------------------------------------------------------- */
 
-rn_status rn_scene_material_ref(rn_scene_parser *p, const cJSON *obj, int *m) {
+/* The material or section (what) that obj's key names: its index into *out,
+ * else an error listing the names defined. */
+static rn_status property_ref(rn_scene_parser *p, const cJSON *obj, const char *key,
+                              int (*find)(const rn_scene_parser *, const char *),
+                              const char *const *names, int n, int *out) {
   const char *name = NULL;
-  rn_status st = rn_jm_string(&p->w, obj, "material", 1, &name);
+  rn_status st = rn_jm_string(&p->w, obj, key, 1, &name);
   if (st) return st;
-  *m = rn_scene_parser_material(p, name);
-  if (*m >= 0) return RN_OK;
+  *out = find(p, name);
+  if (*out >= 0) return RN_OK;
   char list[512];
-  name_list(p->mat_names, p->nmat, list, sizeof list);
-  size_t mark = rn_jwalk_key(&p->w, "material");
-  st = rn_jwalk_error(&p->w, "unknown material \"%s\" (defined: %s)", name, list);
+  name_list(names, n, list, sizeof list);
+  size_t mark = rn_jwalk_key(&p->w, key);
+  st = rn_jwalk_error(&p->w, "unknown %s \"%s\" (defined: %s)", key, name, list);
   rn_jwalk_pop(&p->w, mark);
   return st;
 }
 
+rn_status rn_scene_material_ref(rn_scene_parser *p, const cJSON *obj, int *m) {
+  return property_ref(p, obj, "material", rn_scene_parser_material, p->mat_names, p->nmat,
+                      m);
+}
+
 rn_status rn_scene_section_ref(rn_scene_parser *p, const cJSON *obj, int *s) {
-  const char *name = NULL;
-  rn_status st = rn_jm_string(&p->w, obj, "section", 1, &name);
-  if (st) return st;
-  *s = rn_scene_parser_section(p, name);
-  if (*s >= 0) return RN_OK;
-  char list[512];
-  name_list(p->sec_names, p->nsec, list, sizeof list);
-  size_t mark = rn_jwalk_key(&p->w, "section");
-  st = rn_jwalk_error(&p->w, "unknown section \"%s\" (defined: %s)", name, list);
-  rn_jwalk_pop(&p->w, mark);
-  return st;
+  return property_ref(p, obj, "section", rn_scene_parser_section, p->sec_names, p->nsec,
+                      s);
 }
 
 /* Set material m / section s (either may be -1) on edges [first, last]. */
