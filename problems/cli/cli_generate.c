@@ -279,6 +279,61 @@ static int parse_repeat(gen_args *a, const char *v) {
   return 0;
 }
 
+/* Value option number which (of parse_value_option's names) set to v; 0 or
+ * an exit status. */
+static int set_value_option(gen_args *a, int which, const char *v) {
+  int rc = 0;
+  switch (which) {
+  case 0:
+    a->output = v;
+    break;
+  case 1:
+    rc = parse_cells(a, v);
+    break;
+  case 2:
+    rc = rn_cli_parse_double("generate", "--cell-size", v, 0.0, &a->a);
+    break;
+  case 3:
+    rc = rn_cli_parse_int("generate", "--edges-per-rod", v, 1, 100000L,
+                          &a->sc.edges_per_rod);
+    break;
+  case 4:
+    rc = parse_section(a, v);
+    break;
+  case 5:
+    rc = parse_material(a, v);
+    break;
+  case 6:
+    rc = parse_joint_model(a, v);
+    break;
+  case 13:
+    if (strcmp(v, "planar") != 0 && strcmp(v, "3d") != 0)
+      rc = rn_cli_usage_error("generate", "--model expects planar or 3d, got '%s'", v);
+    a->sc.model = v;
+    break;
+  case 8:
+    rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
+    break;
+  case 9:
+    rc = parse_below("--relative-density", v, 1.0, "(0, 1)", &a->density);
+    break;
+  case 10:
+    rc = parse_below("--perturb", v, 0.5, "(0, 0.5)", &a->perturb);
+    break;
+  case 11:
+    rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
+    a->has_seed = 1;
+    break;
+  case 12:
+    rc = parse_repeat(a, v);
+    break;
+  default:
+    rc = parse_load(a, v);
+    break;
+  }
+  return rc;
+}
+
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
   static const char *const names[] = {"--output",           "--cells",   "--cell-size",
@@ -301,54 +356,7 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
   }
   *rc = m < 0 ? RN_EXIT_USAGE : 0;
   if (m <= 0) return m != 0;
-  switch (which) {
-  case 0:
-    a->output = v;
-    break;
-  case 1:
-    *rc = parse_cells(a, v);
-    break;
-  case 2:
-    *rc = rn_cli_parse_double("generate", "--cell-size", v, 0.0, &a->a);
-    break;
-  case 3:
-    *rc = rn_cli_parse_int("generate", "--edges-per-rod", v, 1, 100000L,
-                           &a->sc.edges_per_rod);
-    break;
-  case 4:
-    *rc = parse_section(a, v);
-    break;
-  case 5:
-    *rc = parse_material(a, v);
-    break;
-  case 6:
-    *rc = parse_joint_model(a, v);
-    break;
-  case 13:
-    if (strcmp(v, "planar") != 0 && strcmp(v, "3d") != 0)
-      *rc = rn_cli_usage_error("generate", "--model expects planar or 3d, got '%s'", v);
-    a->sc.model = v;
-    break;
-  case 8:
-    *rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
-    break;
-  case 9:
-    *rc = parse_below("--relative-density", v, 1.0, "(0, 1)", &a->density);
-    break;
-  case 10:
-    *rc = parse_below("--perturb", v, 0.5, "(0, 0.5)", &a->perturb);
-    break;
-  case 11:
-    *rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
-    a->has_seed = 1;
-    break;
-  case 12:
-    *rc = parse_repeat(a, v);
-    break;
-  default:
-    *rc = parse_load(a, v);
-    break;
-  }
+  *rc = set_value_option(a, which, v);
   return 1;
 }
 

@@ -235,6 +235,18 @@ static int settle_steps(path_args *a) {
   return 0;
 }
 
+/* The start's load factors in [0, 1]; branch switching needs the
+ * eigenvalues.  0 or a usage error. */
+static int check_start(const path_args *a) {
+  if (!(a->start >= 0.0 && a->start <= 1.0))
+    return rn_cli_usage_error("path", "--start: the load factor must be in [0, 1]");
+  if (!(a->load_factor >= 0.0 && a->load_factor <= 1.0))
+    return rn_cli_usage_error("path", "--load-factor: must be in [0, 1]");
+  if (a->opt.branch_switch && !a->opt.eigenvalues)
+    return rn_cli_usage_error("path", "--branch-switch needs the eigenvalues");
+  return 0;
+}
+
 static int parse_args(int argc, char **argv, path_args *a) {
   memset(a, 0, sizeof *a);
   rn_path_options_default(&a->opt);
@@ -288,13 +300,7 @@ static int parse_args(int argc, char **argv, path_args *a) {
   if (rc) return rc;
   if (!a->scene) return rn_cli_usage_error("path", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("path", "missing -o PATH.csv");
-  if ((rc = check_modes(a)) || (rc = settle_steps(a))) return rc;
-  if (!(a->start >= 0.0 && a->start <= 1.0))
-    return rn_cli_usage_error("path", "--start: the load factor must be in [0, 1]");
-  if (!(a->load_factor >= 0.0 && a->load_factor <= 1.0))
-    return rn_cli_usage_error("path", "--load-factor: must be in [0, 1]");
-  if (a->opt.branch_switch && !a->opt.eigenvalues)
-    return rn_cli_usage_error("path", "--branch-switch needs the eigenvalues");
+  if ((rc = check_modes(a)) || (rc = settle_steps(a)) || (rc = check_start(a))) return rc;
   rn_cli_file files[3];
   return rn_cli_check_files("path", files, path_files(a, files));
 }
