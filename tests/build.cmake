@@ -15,6 +15,11 @@ add_test(NAME layering
           $<TARGET_FILE:rodnet_kernels_static> ${CMAKE_NM})
 set_tests_properties(layering PROPERTIES LABELS "unit" TIMEOUT 120
   ENVIRONMENT "CC=${CMAKE_C_COMPILER}")
+# The folder-order part of `layering` fails on a violation: a fixture tree with an
+# upward include and one between independent folders (tests/build/folder_order_fixture/).
+add_test(NAME layering_folder_order_fixture
+  COMMAND ${RN_BASH} ${RN_BUILD_TEST_DIR}/check_folder_order_fixture.sh ${RN_BUILD_TEST_DIR})
+set_tests_properties(layering_folder_order_fixture PROPERTIES LABELS "unit" TIMEOUT 120)
 
 # (b) install into a temporary prefix, then build and run tests/build/consumer/
 # against it with find_package(rodnet) and with pkg-config.

@@ -55,6 +55,10 @@ rn_add_test(problems_supports SOURCES unit/problems_supports_test.c
             ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/supports ${RN_SCENES})
 rn_add_test(problems_num_format SOURCES unit/problems_num_format_test.c
             LIBS rodnet_problems m LABELS unit)
+# The command's help lists exactly the rows of its subcommand table (cli.c),
+# every row dispatches (its --help), an unknown name is refused.
+rn_add_test(problems_cli_commands SOURCES unit/problems_cli_commands_test.c
+            LIBS rodnet_cli_lib LABELS unit)
 rn_add_test(problems_atomic_write SOURCES unit/problems_atomic_write_test.c
             LIBS rodnet_problems LABELS unit ARGS ${RN_CLI_OUT}/atomic_scratch)
 set(RN_OBJ_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/obj)

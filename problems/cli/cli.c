@@ -1,50 +1,118 @@
-/* cli.c - `rodnet` dispatch, top-level help and version, option helpers, the
- * plotting scripts' runner. */
-#define _POSIX_C_SOURCE 200809L /* fork, waitpid, sigprocmask */
+/* cli.c - `rodnet` dispatch from the table of subcommands, top-level help and
+ * version, the refusals (no solver, mpirun), option helpers. */
 #include "cli/cli.h"
 #include "cli/cli_registry.h"
 
 #include <errno.h>
-#include <signal.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <stdint.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-static const char main_help[] =
-    "\n"
-    "Usage: rodnet COMMAND [options]\n"
-    "\n"
-    "Commands:\n"
-    "  solve SCENE.json -o RESULT.json   compute the equilibrium of a scene and write\n"
-    "                                    the result as JSON (and VTK with --vtk)\n"
-    "  check SCENE.json                  derivative self-test: gradient and Hessian of\n"
-    "                                    the scene's energy against finite differences\n"
-    "  generate KIND -o SCENE.json       write a lattice scene (square, triangular,\n"
-    "                                    honeycomb, kagome, cubic, bcc, octet;\n"
-    "                                    --periodic: a periodic cell)\n"
-    "  homogenize SCENE.json -o RESULT.json  effective stiffness of a periodic cell\n"
-    "  bench [--suite quick|full] -o DIR  optimiser benchmark: every problem of the\n"
-    "                                    suite against every solver (runs.csv and\n"
-    "                                    performance profiles)\n"
-    "  path SCENE.json -o PATH.csv       follow the equilibrium path past limit points\n"
-    "                                    (load or displacement control; --plot PNG)\n"
-    "  sweep SWEEP.json -o DIR           homogenisation over a grid of parameters\n"
-    "\n"
-    "Options:\n"
-    "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
-    "options\n"
-    "  -V, --version    print the version and whether the solver was built in\n"
-    "\n"
-    "Exit status: 0 success, 1 not converged (solve) or test failed (check),\n"
-    "2 usage error, 3 bad scene or unusable input/output path, 4 solver or internal\n"
-    "error, 5 the command needs the solver and this build has none (-V says).\n"
-    "Scene format: docs/scene-format.md.  Commands: docs/cli.md.\n";
+/* The subcommands, in the order of the help: dispatch, the help's "Commands:"
+ * list, the refusals without the solver and under mpirun all come from this
+ * table (adding a subcommand: its file, its handler in cli.h, one row here).
+ * help: the lines of its description, '\n'-separated. */
+static const rn_cli_command commands[] = {
+    {"solve", "solve SCENE.json -o RESULT.json",
+     "compute the equilibrium of a scene and write\n"
+     "the result as JSON (and VTK with --vtk)",
+     rn_cli_solve, RN_CLI_NEEDS_SOLVER | RN_CLI_DISTRIBUTED},
+    {"check", "check SCENE.json",
+     "derivative self-test: gradient and Hessian of\n"
+     "the scene's energy against finite differences",
+     rn_cli_check, 0},
+    {"generate", "generate KIND -o SCENE.json",
+     "write a lattice scene (square, triangular,\n"
+     "honeycomb, kagome, cubic, bcc, octet;\n"
+     "--periodic: a periodic cell)",
+     rn_cli_generate, 0},
+    {"homogenize", "homogenize SCENE.json -o RESULT.json",
+     "effective stiffness of a periodic cell", rn_cli_homogenize, RN_CLI_NEEDS_SOLVER},
+    {"bench", "bench [--suite quick|full] -o DIR",
+     "optimiser benchmark: every problem of the\n"
+     "suite against every solver (runs.csv and\n"
+     "performance profiles)",
+     rn_cli_bench, RN_CLI_NEEDS_SOLVER},
+    {"path", "path SCENE.json -o PATH.csv",
+     "follow the equilibrium path past limit points\n"
+     "(load or displacement control; --plot PNG)",
+     rn_cli_path, RN_CLI_NEEDS_SOLVER},
+    {"sweep", "sweep SWEEP.json -o DIR", "homogenisation over a grid of parameters",
+     rn_cli_sweep, RN_CLI_NEEDS_SOLVER},
+};
+enum { n_commands = (int)(sizeof commands / sizeof commands[0]) };
+
+const rn_cli_command *rn_cli_commands(int *n) {
+  *n = n_commands;
+  return commands;
+}
+
+static const rn_cli_command *find_command(const char *name) {
+  for (int i = 0; i < n_commands; i++)
+    if (strcmp(commands[i].name, name) == 0) return &commands[i];
+  return NULL;
+}
+
+/* The synopsis padded to column 36 (two spaces at least), then the help, its
+ * further lines indented to the same column. */
+static void print_command_line(FILE *out, const rn_cli_command *c) {
+  enum { column = 34 };
+  int len = (int)strlen(c->synopsis);
+  fprintf(out, "  %s%*s", c->synopsis, len + 2 > column ? 2 : column - len, "");
+  for (const char *p = c->help; *p;) {
+    size_t n = strcspn(p, "\n");
+    fprintf(out, "%.*s\n", (int)n, p);
+    p += n;
+    if (*p == '\n') fprintf(out, "%*s", column + 2, "");
+    p += *p == '\n';
+  }
+}
+
+/* The names of the commands that work without the solver, each between
+ * prefix and "'", joined by ", " and " and " into buf: "'check' and
+ * 'generate'". */
+static const char *solver_free(char *buf, size_t size, const char *prefix) {
+  int k = 0, total = 0;
+  size_t len = 0;
+  buf[0] = '\0';
+  for (int i = 0; i < n_commands; i++)
+    total += !(commands[i].flags & RN_CLI_NEEDS_SOLVER);
+  for (int i = 0; i < n_commands && len < size; i++) {
+    if (commands[i].flags & RN_CLI_NEEDS_SOLVER) continue;
+    k++;
+    int w = snprintf(buf + len, size - len, "%s'%s%s'",
+                     k == 1       ? ""
+                     : k == total ? " and "
+                                  : ", ",
+                     prefix, commands[i].name);
+    if (w < 0) break;
+    len += (size_t)w;
+  }
+  return buf;
+}
+
+static void print_help(void) {
+  printf("rodnet %s - static equilibria of discrete elastic rods\n", rn_version_string());
+  fputs("\n"
+        "Usage: rodnet COMMAND [options]\n"
+        "\n"
+        "Commands:\n",
+        stdout);
+  for (int i = 0; i < n_commands; i++) print_command_line(stdout, &commands[i]);
+  fputs("\n"
+        "Options:\n"
+        "  -h, --help       show this help; 'rodnet COMMAND --help' shows a command's "
+        "options\n"
+        "  -V, --version    print the version and whether the solver was built in\n"
+        "\n"
+        "Exit status: 0 success, 1 not converged (solve) or test failed (check),\n"
+        "2 usage error, 3 bad scene or unusable input/output path, 4 solver or internal\n"
+        "error, 5 the command needs the solver and this build has none (-V says).\n"
+        "Scene format: docs/scene-format.md.  Commands: docs/cli.md.\n",
+        stdout);
+}
 
 static void print_version(void) {
   printf("rodnet %s\n", rn_version_string());
@@ -53,8 +121,10 @@ static void print_version(void) {
   rn_cli_solver_names(kinds, sizeof kinds);
   printf("solver: built in (%s; Trilinos)\n", kinds);
 #else
-  printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); 'check' and "
-         "'generate' work, the other commands exit with status 5\n");
+  char names[256];
+  printf("solver: not built (configured with RN_WITH_TRILINOS=OFF); %s work, the other "
+         "commands exit with status 5\n",
+         solver_free(names, sizeof names, ""));
 #endif
 }
 
@@ -119,39 +189,32 @@ int rn_cli_main(int argc, char **argv) {
   }
   const char *cmd = argv[1];
   if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
-    printf("rodnet %s - static equilibria of discrete elastic rods\n",
-           rn_version_string());
-    fputs(main_help, stdout);
+    print_help();
     return RN_EXIT_OK;
   }
   if (strcmp(cmd, "-V") == 0 || strcmp(cmd, "--version") == 0) {
     print_version();
     return RN_EXIT_OK;
   }
-  if (strcmp(cmd, "solve") == 0) return rn_cli_solve(argc - 1, argv + 1);
-  static const char *const one_process[] = {"check", "generate", "homogenize", "bench",
-                                            "path",  "sweep",    NULL};
-  for (int i = 0; one_process[i]; i++)
-    if (strcmp(cmd, one_process[i]) == 0) {
-      int rc = refuse_mpi(cmd);
-      if (rc) return rc;
-    }
-  if (strcmp(cmd, "check") == 0) return rn_cli_check(argc - 1, argv + 1);
-  if (strcmp(cmd, "generate") == 0) return rn_cli_generate(argc - 1, argv + 1);
-  if (strcmp(cmd, "homogenize") == 0) return rn_cli_homogenize(argc - 1, argv + 1);
-  if (strcmp(cmd, "bench") == 0) return rn_cli_bench(argc - 1, argv + 1);
-  if (strcmp(cmd, "path") == 0) return rn_cli_path(argc - 1, argv + 1);
-  if (strcmp(cmd, "sweep") == 0) return rn_cli_sweep(argc - 1, argv + 1);
-  fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
-  return RN_EXIT_USAGE;
+  const rn_cli_command *c = find_command(cmd);
+  if (!c) {
+    fprintf(stderr, "rodnet: unknown command '%s'\nTry 'rodnet --help'.\n", cmd);
+    return RN_EXIT_USAGE;
+  }
+  if (!(c->flags & RN_CLI_DISTRIBUTED)) {
+    int rc = refuse_mpi(cmd);
+    if (rc) return rc;
+  }
+  return c->run(argc - 1, argv + 1);
 }
 
 int rn_cli_no_solver(const char *cmd) {
+  char names[256];
   fprintf(stderr,
           "rodnet %s: this rodnet was built without the solver (configured with "
-          "-DRN_WITH_TRILINOS=OFF); rebuild with -DRN_WITH_TRILINOS=ON. 'rodnet check' "
-          "and 'rodnet generate' work without it.\n",
-          cmd);
+          "-DRN_WITH_TRILINOS=OFF); rebuild with -DRN_WITH_TRILINOS=ON. %s work without "
+          "it.\n",
+          cmd, solver_free(names, sizeof names, "rodnet "));
   return RN_EXIT_NO_SOLVER;
 }
 
@@ -247,73 +310,4 @@ int rn_cli_check_repeats(const char *cmd, int argc, char **argv,
 
 int rn_cli_load_exit_code(rn_status st) {
   return (st == RN_ERR_ALLOC || st == RN_ERR_INTERNAL) ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
-}
-
-#ifndef RN_PYTHON3
-#define RN_PYTHON3 "python3"
-#endif
-
-int rn_cli_run_script(const char *script_env, const char *default_script,
-                      const char *const *args) {
-  const char *script = getenv(script_env), *python = getenv("RODNET_PYTHON");
-  const char *argv[11];
-  int n = 0;
-  if (!script || !*script) script = default_script;
-  if (!python || !*python) python = RN_PYTHON3;
-  argv[n++] = python;
-  argv[n++] = script;
-  for (int i = 0; args[i] && n < 10; i++) argv[n++] = args[i];
-  argv[n] = NULL;
-  fflush(stdout);
-  fflush(stderr);
-  /* no signal between the fork and the child's registration: the handler
-   * kills the script (cli_signals.c) */
-  sigset_t block, old;
-  sigemptyset(&block);
-  sigaddset(&block, SIGINT);
-  sigaddset(&block, SIGTERM);
-  sigaddset(&block, SIGHUP);
-  sigprocmask(SIG_BLOCK, &block, &old);
-  pid_t pid = fork();
-  if (pid == 0) {
-    sigprocmask(SIG_SETMASK, &old, NULL);
-    execvp(python, (char *const *)(uintptr_t)argv);
-    _exit(127);
-  }
-  if (pid > 0) rn_cli_child((long)pid);
-  sigprocmask(SIG_SETMASK, &old, NULL);
-  if (pid < 0) return -1;
-  int status = 0, rc = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) {
-      rc = -1;
-      break;
-    }
-  rn_cli_child(0);
-  return !rc && WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
-}
-
-int rn_cli_run_script_to(const char *script_env, const char *default_script,
-                         const char *const *args, const char *output) {
-  struct stat sb;
-  /* a device (/dev/null) or FIFO is written in place, as atomic_file.h does */
-  if (stat(output, &sb) == 0 && !S_ISREG(sb.st_mode) && !S_ISDIR(sb.st_mode))
-    return rn_cli_run_script(script_env, default_script, args);
-  const char *slash = strrchr(output, '/'), *dot = strrchr(output, '.');
-  const char *ext = dot && (!slash || dot > slash + 1) ? dot : "";
-  size_t len = strlen(output) + strlen(ext) + 48;
-  char *tmp = malloc(len);
-  const char *targs[9];
-  int n = 0, rc;
-  if (!tmp) return -1;
-  snprintf(tmp, len, "%s.tmp.%ld%s", output, (long)getpid(), ext);
-  for (; args[n] && n < 8; n++) targs[n] = args[n] == output ? tmp : args[n];
-  targs[n] = NULL;
-  rn_cli_temp_file(tmp, 1);
-  rc = rn_cli_run_script(script_env, default_script, targs);
-  if (rc == 0 && rename(tmp, output) != 0) rc = -1;
-  if (rc) remove(tmp);
-  rn_cli_temp_file(tmp, 0);
-  free(tmp);
-  return rc;
 }

@@ -28,6 +28,24 @@ int rn_cli_bench(int argc, char **argv);
 int rn_cli_path(int argc, char **argv);
 int rn_cli_sweep(int argc, char **argv);
 
+/* The table of the subcommands (cli.c): dispatch, the help's list and the
+ * refusals come from it. */
+enum {
+  RN_CLI_NEEDS_SOLVER = 1, /* refused with RN_EXIT_NO_SOLVER by a build without
+                              the solver (after parsing its options) */
+  RN_CLI_DISTRIBUTED = 2   /* runs under mpirun on several ranks; the others
+                              refuse there with RN_EXIT_USAGE */
+};
+typedef struct rn_cli_command {
+  const char *name;     /* "solve" */
+  const char *synopsis; /* "solve SCENE.json -o RESULT.json" */
+  const char *help;     /* its lines in the help, '\n'-separated */
+  int (*run)(int argc, char **argv);
+  unsigned flags; /* RN_CLI_NEEDS_SOLVER | RN_CLI_DISTRIBUTED */
+} rn_cli_command;
+/* The rows in the order of the help; *n of them. */
+const rn_cli_command *rn_cli_commands(int *n);
+
 /* ---- helpers shared by the subcommands ---------------------------------- */
 /* Print "rodnet CMD: message" and a hint to stderr; returns RN_EXIT_USAGE. */
 int rn_cli_usage_error(const char *cmd, const char *fmt, ...)
@@ -57,7 +75,8 @@ int rn_cli_check_repeats(const char *cmd, int argc, char **argv,
 int rn_cli_no_solver(const char *cmd);
 /* Exit status for a failed scene load. */
 int rn_cli_load_exit_code(rn_status st);
-/* Run a plotting script with Python and wait for it: the interpreter is
+/* ---- plotting scripts (cli_plot.c) -------------------------------------------
+ * Run a plotting script with Python and wait for it: the interpreter is
  * $RODNET_PYTHON or the python3 found at configure time, the script
  * $script_env or default_script, then args (NULL-terminated, at most 8).
  * Flushes stdout and stderr first.  0 if the script exited with status 0,
@@ -70,6 +89,10 @@ int rn_cli_run_script(const char *script_env, const char *default_script,
  * the plot, too, is written completely or not at all. */
 int rn_cli_run_script_to(const char *script_env, const char *default_script,
                          const char *const *args, const char *output);
+/* python3 SCRIPT INPUT PNG with rn_cli_run_script_to (the plot of one file:
+ * path's CSV, sweep's CSV, homogenize's RESULT.json); 0 on success. */
+int rn_cli_plot(const char *script_env, const char *default_script, const char *input,
+                const char *png);
 
 /* ---- input and output files (cli_paths.c) ----------------------------------
  * Every command lists the files it reads and writes; before any computation

@@ -185,6 +185,34 @@ typedef struct bench_args {
   int repeats, quiet, no_plot, write_refs;
 } bench_args;
 
+/* The options that exclude each other, the lists, the suite: 0 or a usage
+ * error. */
+static int check_bench_options(const bench_args *a) {
+  if (a->write_refs && (a->output || a->solvers || a->repeats != 1 || a->no_plot))
+    return rn_cli_usage_error("bench",
+                              "--write-references solves with tr-minres once and writes "
+                              "the references only: %s does not apply",
+                              a->output    ? "-o"
+                              : a->solvers ? "--solvers"
+                              : a->no_plot ? "--no-plot"
+                                           : "--repeats");
+  if (!a->output && !a->write_refs) return rn_cli_usage_error("bench", "missing -o DIR");
+  /* an empty list (or item) would select nothing and run nothing */
+  const char *lists[2] = {a->solvers, a->problems},
+             *opts[2] = {"--solvers", "--problems"};
+  for (int k = 0; k < 2; k++)
+    if (lists[k] && (!*lists[k] || strstr(lists[k], ",,") || *lists[k] == ',' ||
+                     lists[k][strlen(lists[k]) - 1] == ','))
+      return rn_cli_usage_error("bench",
+                                "%s '%s': an empty name; give a comma-separated "
+                                "list of names",
+                                opts[k], lists[k]);
+  if (strcmp(a->suite, "smoke") && strcmp(a->suite, "quick") && strcmp(a->suite, "full"))
+    return rn_cli_usage_error("bench", "--suite expects smoke, quick or full, got '%s'",
+                              a->suite);
+  return 0;
+}
+
 static int parse_bench_args(int argc, char **argv, bench_args *a) {
   bench_solvers_make();
   memset(a, 0, sizeof *a);
@@ -227,28 +255,7 @@ static int parse_bench_args(int argc, char **argv, bench_args *a) {
                                        NULL};
   int rc = rn_cli_check_repeats("bench", argc, argv, valued);
   if (rc) return rc;
-  if (a->write_refs && (a->output || a->solvers || a->repeats != 1 || a->no_plot))
-    return rn_cli_usage_error("bench",
-                              "--write-references solves with tr-minres once and writes "
-                              "the references only: %s does not apply",
-                              a->output    ? "-o"
-                              : a->solvers ? "--solvers"
-                              : a->no_plot ? "--no-plot"
-                                           : "--repeats");
-  if (!a->output && !a->write_refs) return rn_cli_usage_error("bench", "missing -o DIR");
-  /* an empty list (or item) would select nothing and run nothing */
-  const char *lists[2] = {a->solvers, a->problems},
-             *opts[2] = {"--solvers", "--problems"};
-  for (int k = 0; k < 2; k++)
-    if (lists[k] && (!*lists[k] || strstr(lists[k], ",,") || *lists[k] == ',' ||
-                     lists[k][strlen(lists[k]) - 1] == ','))
-      return rn_cli_usage_error("bench",
-                                "%s '%s': an empty name; give a comma-separated "
-                                "list of names",
-                                opts[k], lists[k]);
-  if (strcmp(a->suite, "smoke") && strcmp(a->suite, "quick") && strcmp(a->suite, "full"))
-    return rn_cli_usage_error("bench", "--suite expects smoke, quick or full, got '%s'",
-                              a->suite);
+  if ((rc = check_bench_options(a))) return rc;
   if (a->solvers) {
     for (const char *p = a->solvers; *p;) {
       const char *c = strchr(p, ',');
@@ -334,28 +341,57 @@ static const char *member_string(const cJSON *obj, const char *key, int *bad) {
 
 /* Read the manifest; select the problems of suite (and of the --problems list).
  * 0 or an exit status (message printed). */
-static int suite_load(const bench_args *a, bench_suite *s) {
+/* The manifest's JSON into *root, its array "problems" into *list; 0 or an
+ * exit status (message printed). */
+static int read_manifest(const char *manifest, cJSON **root, const cJSON **list) {
   rn_context *ctx = NULL;
   char *text = NULL;
   size_t len = 0;
-  int rc = 0;
-  memset(s, 0, sizeof *s);
+  *root = NULL;
   if (rn_context_create(&ctx) != RN_OK) return RN_EXIT_INTERNAL;
-  if (rn_text_file_read(ctx, a->manifest, (size_t)1 << 24, &text, &len) != RN_OK) {
+  if (rn_text_file_read(ctx, manifest, (size_t)1 << 24, &text, &len) != RN_OK) {
     fprintf(stderr, "rodnet bench: %s\n", rn_context_last_error(ctx));
     rn_context_destroy(&ctx);
     return RN_EXIT_INPUT;
   }
   rn_context_destroy(&ctx);
-  cJSON *root = cJSON_ParseWithLength(text, len);
+  *root = cJSON_ParseWithLength(text, len);
   free(text);
-  const cJSON *list = root ? cJSON_GetObjectItemCaseSensitive(root, "problems") : NULL;
-  if (!cJSON_IsArray(list)) {
-    fprintf(stderr, "rodnet bench: %s: %s\n", a->manifest,
-            root ? "no array \"problems\"" : "not valid JSON");
-    cJSON_Delete(root);
+  *list = *root ? cJSON_GetObjectItemCaseSensitive(*root, "problems") : NULL;
+  if (!cJSON_IsArray(*list)) {
+    fprintf(stderr, "rodnet bench: %s: %s\n", manifest,
+            *root ? "no array \"problems\"" : "not valid JSON");
+    cJSON_Delete(*root);
+    *root = NULL;
     return RN_EXIT_INPUT;
   }
+  return 0;
+}
+
+/* Every name of the --problems list is a problem of the manifest: 0, else a
+ * usage error (message printed). */
+static int check_problem_names(const bench_args *a, const bench_suite *s) {
+  for (const char *q = a->problems; *q;) {
+    const char *c = strchr(q, ',');
+    size_t l = c ? (size_t)(c - q) : strlen(q);
+    int found = 0;
+    for (int i = 0; i < s->n; i++)
+      found |= strlen(s->p[i].name) == l && !strncmp(s->p[i].name, q, l);
+    if (!found) {
+      fprintf(stderr, "rodnet bench: %s has no problem '%.*s'\n", a->manifest, (int)l, q);
+      return RN_EXIT_USAGE;
+    }
+    q = c ? c + 1 : q + l;
+  }
+  return 0;
+}
+
+static int suite_load(const bench_args *a, bench_suite *s) {
+  cJSON *root = NULL;
+  const cJSON *list = NULL;
+  memset(s, 0, sizeof *s);
+  int rc = read_manifest(a->manifest, &root, &list);
+  if (rc) return rc;
   int n = cJSON_GetArraySize(list), idx = 0;
   s->p = calloc((size_t)n + 1, sizeof *s->p);
   if (!s->p) rc = RN_EXIT_INTERNAL;
@@ -387,20 +423,7 @@ static int suite_load(const bench_args *a, bench_suite *s) {
   }
   cJSON_Delete(root);
   if (rc == RN_EXIT_INTERNAL) fprintf(stderr, "rodnet bench: out of memory\n");
-  if (!rc && a->problems) /* every name asked for must exist */
-    for (const char *q = a->problems; *q && !rc;) {
-      const char *c = strchr(q, ',');
-      size_t l = c ? (size_t)(c - q) : strlen(q);
-      int found = 0;
-      for (int i = 0; i < s->n; i++)
-        found |= strlen(s->p[i].name) == l && !strncmp(s->p[i].name, q, l);
-      if (!found) {
-        fprintf(stderr, "rodnet bench: %s has no problem '%.*s'\n", a->manifest, (int)l,
-                q);
-        rc = RN_EXIT_USAGE;
-      }
-      q = c ? c + 1 : q + l;
-    }
+  if (!rc && a->problems) rc = check_problem_names(a, s); /* every name must exist */
   if (rc) suite_free(s);
   return rc;
 }
@@ -516,6 +539,40 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+/* Solve the scene with solver s once; returns the solve's time.  first: the
+ * first run, whose counters, answer check and stability fill it (else NULL). */
+static double solve_scene(rn_context *ctx, rn_scene *scene, const bench_solver *s,
+                          const bench_ref *ref, bench_run *first) {
+  rn_network *net = rn_scene_network(scene);
+  rn_solve_options opt;
+  rn_solve_report rep;
+  rn_solve_options_default(&opt);
+  rn_scene_apply_solver(scene, &opt);
+  opt.solver = s->kind;
+  opt.preconditioner = s->precond;
+  if (s->max_iterations > 0) opt.max_iterations = s->max_iterations;
+  if (s->max_load_cuts >= 0) opt.max_load_cuts = s->max_load_cuts;
+  opt.stability = 0; /* checked below, outside the solve's time */
+  long nv = 0;
+  double *x0 = first ? all_vertices(net, &nv) : NULL;
+  memset(&rep, 0, sizeof rep);
+  rn_status st = rn_solve(net, &opt, &rep);
+  if (first) {
+    bench_run *r = first;
+    r->rep = rep;
+    r->status_ok = st == RN_OK;
+    r->dofs = rn_network_num_dofs(net);
+    r->vertices = nv;
+    if (st) snprintf(r->message, sizeof r->message, "%s", rn_context_last_error(ctx));
+    if (!st && rep.converged) r->verified = verified_minimum(net, &r->lowest);
+    double *x = all_vertices(net, &nv);
+    if (x && x0 && !st) r->error = answer_error(x, nv, x0, ref);
+    free(x);
+  }
+  free(x0);
+  return rep.time_s;
+}
+
 /* Solve problem p with solver s (repeats times, the first run's counters);
  * fills r.  0, or an exit status for a scene that cannot be read. */
 static int run_one(const bench_args *a, const bench_problem *p, const bench_solver *s,
@@ -538,35 +595,8 @@ static int run_one(const bench_args *a, const bench_problem *p, const bench_solv
       fprintf(stderr, "rodnet bench: problem %s: %s\n", p->name,
               rn_context_last_error(ctx));
       rc = rn_cli_load_exit_code(st);
-    } else {
-      rn_network *net = rn_scene_network(scene);
-      rn_solve_options opt;
-      rn_solve_report rep;
-      rn_solve_options_default(&opt);
-      rn_scene_apply_solver(scene, &opt);
-      opt.solver = s->kind;
-      opt.preconditioner = s->precond;
-      if (s->max_iterations > 0) opt.max_iterations = s->max_iterations;
-      if (s->max_load_cuts >= 0) opt.max_load_cuts = s->max_load_cuts;
-      opt.stability = 0; /* checked below, outside the solve's time */
-      long nv = 0;
-      double *x0 = k == 0 ? all_vertices(net, &nv) : NULL;
-      memset(&rep, 0, sizeof rep);
-      st = rn_solve(net, &opt, &rep);
-      times[k] = rep.time_s;
-      if (k == 0) {
-        r->rep = rep;
-        r->status_ok = st == RN_OK;
-        r->dofs = rn_network_num_dofs(net);
-        r->vertices = nv;
-        if (st) snprintf(r->message, sizeof r->message, "%s", rn_context_last_error(ctx));
-        if (!st && rep.converged) r->verified = verified_minimum(net, &r->lowest);
-        double *x = all_vertices(net, &nv);
-        if (x && x0 && !st) r->error = answer_error(x, nv, x0, ref);
-        free(x);
-      }
-      free(x0);
-    }
+    } else
+      times[k] = solve_scene(ctx, scene, s, ref, k == 0 ? r : NULL);
     rn_scene_destroy(&scene);
     rn_context_destroy(&ctx);
   }
@@ -805,6 +835,19 @@ static int make_dir(const char *dir) {
   return 0;
 }
 
+/* The progress table's row of one run (stderr). */
+static void print_run(const bench_problem *p, const bench_solver *solver,
+                      const bench_run *r) {
+  fprintf(stderr, "%-22s %-17s %4d %3s %6d %7ld %8ld %9.2e %9.2e %9.4f%s%s\n", p->name,
+          solver->name, r->rep.converged,
+          r->verified < 0 ? "-"
+          : r->verified   ? "yes"
+                          : "no",
+          r->rep.iterations, r->rep.gradient_evals, r->rep.hvp_evals,
+          r->rep.gradient_norm, r->error, r->time_median,
+          r->status_ok ? "" : "  error: ", r->message);
+}
+
 static int run_suite(const bench_args *a, const bench_suite *s) {
   machine_info m;
   machine_probe(&m);
@@ -834,15 +877,7 @@ static int run_suite(const bench_args *a, const bench_suite *s) {
       bench_run *r = &runs[i * NSOLVERS + k];
       if ((rc = run_one(a, p, &solvers[k], &ref, r))) break;
       ran[i * NSOLVERS + k] = 1;
-      if (!a->quiet)
-        fprintf(stderr, "%-22s %-17s %4d %3s %6d %7ld %8ld %9.2e %9.2e %9.4f%s%s\n",
-                p->name, solvers[k].name, r->rep.converged,
-                r->verified < 0 ? "-"
-                : r->verified   ? "yes"
-                                : "no",
-                r->rep.iterations, r->rep.gradient_evals, r->rep.hvp_evals,
-                r->rep.gradient_norm, r->error, r->time_median,
-                r->status_ok ? "" : "  error: ", r->message);
+      if (!a->quiet) print_run(p, &solvers[k], r);
     }
     free(ref.x);
   }

@@ -256,6 +256,84 @@ static int parse_joint_model(gen_args *a, const char *v) {
   return 0;
 }
 
+/* opt's value v, a number in (0, hi) (range: how the message writes it). */
+static int parse_below(const char *opt, const char *v, double hi, const char *range,
+                       double *out) {
+  int rc = rn_cli_parse_double("generate", opt, v, 0.0, out);
+  if (!rc && !(*out < hi))
+    rc = rn_cli_usage_error("generate", "%s expects a value in %s, got '%s'", opt, range,
+                            v);
+  return rc;
+}
+
+/* --repeat M,N[,K]. */
+static int parse_repeat(gen_args *a, const char *v) {
+  double r[3];
+  int n = 0, ok = parse_list(v, 3, r, &n) == 0;
+  for (int k = 0; ok && k < n; k++) ok = r[k] == floor(r[k]) && r[k] >= 1 && r[k] <= 1000;
+  if (!ok)
+    return rn_cli_usage_error(
+        "generate", "--repeat expects M,N[,K] with integers in [1, 1000], got '%s'", v);
+  for (int k = 0; k < 3; k++) a->repeat[k] = (int)(k < n ? r[k] : 1);
+  a->nrepeat = n;
+  return 0;
+}
+
+/* Value option number which (of parse_value_option's names) set to v; 0 or
+ * an exit status. */
+static int set_value_option(gen_args *a, int which, const char *v) {
+  int rc = 0;
+  switch (which) {
+  case 0:
+    a->output = v;
+    break;
+  case 1:
+    rc = parse_cells(a, v);
+    break;
+  case 2:
+    rc = rn_cli_parse_double("generate", "--cell-size", v, 0.0, &a->a);
+    break;
+  case 3:
+    rc = rn_cli_parse_int("generate", "--edges-per-rod", v, 1, 100000L,
+                          &a->sc.edges_per_rod);
+    break;
+  case 4:
+    rc = parse_section(a, v);
+    break;
+  case 5:
+    rc = parse_material(a, v);
+    break;
+  case 6:
+    rc = parse_joint_model(a, v);
+    break;
+  case 13:
+    if (strcmp(v, "planar") != 0 && strcmp(v, "3d") != 0)
+      rc = rn_cli_usage_error("generate", "--model expects planar or 3d, got '%s'", v);
+    a->sc.model = v;
+    break;
+  case 8:
+    rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
+    break;
+  case 9:
+    rc = parse_below("--relative-density", v, 1.0, "(0, 1)", &a->density);
+    break;
+  case 10:
+    rc = parse_below("--perturb", v, 0.5, "(0, 0.5)", &a->perturb);
+    break;
+  case 11:
+    rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
+    a->has_seed = 1;
+    break;
+  case 12:
+    rc = parse_repeat(a, v);
+    break;
+  default:
+    rc = parse_load(a, v);
+    break;
+  }
+  return rc;
+}
+
 /* 1 if argv[*i] was a value option (*rc: 0 or an exit status). */
 static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *rc) {
   static const char *const names[] = {"--output",           "--cells",   "--cell-size",
@@ -267,12 +345,8 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
   int m = 0, which = -1;
   if ((m = rn_cli_option_value("generate", argc, argv, i, "--section-scatter", NULL,
                                &v))) {
-    *rc = m < 0
-              ? RN_EXIT_USAGE
-              : rn_cli_parse_double("generate", "--section-scatter", v, 0.0, &a->scatter);
-    if (!*rc && !(a->scatter < 1.0))
-      *rc = rn_cli_usage_error(
-          "generate", "--section-scatter expects a value in [0, 1), got '%s'", v);
+    *rc = m < 0 ? RN_EXIT_USAGE
+                : parse_below("--section-scatter", v, 1.0, "[0, 1)", &a->scatter);
     return 1;
   }
   for (int k = 0; k < 14 && m == 0; k++) {
@@ -282,73 +356,7 @@ static int parse_value_option(int argc, char **argv, int *i, gen_args *a, int *r
   }
   *rc = m < 0 ? RN_EXIT_USAGE : 0;
   if (m <= 0) return m != 0;
-  switch (which) {
-  case 0:
-    a->output = v;
-    break;
-  case 1:
-    *rc = parse_cells(a, v);
-    break;
-  case 2:
-    *rc = rn_cli_parse_double("generate", "--cell-size", v, 0.0, &a->a);
-    break;
-  case 3:
-    *rc = rn_cli_parse_int("generate", "--edges-per-rod", v, 1, 100000L,
-                           &a->sc.edges_per_rod);
-    break;
-  case 4:
-    *rc = parse_section(a, v);
-    break;
-  case 5:
-    *rc = parse_material(a, v);
-    break;
-  case 6:
-    *rc = parse_joint_model(a, v);
-    break;
-  case 13:
-    if (strcmp(v, "planar") != 0 && strcmp(v, "3d") != 0)
-      *rc = rn_cli_usage_error("generate", "--model expects planar or 3d, got '%s'", v);
-    a->sc.model = v;
-    break;
-  case 8:
-    *rc = rn_cli_parse_double("generate", "--slenderness", v, 0.0, &a->slenderness);
-    break;
-  case 9:
-    *rc = rn_cli_parse_double("generate", "--relative-density", v, 0.0, &a->density);
-    if (!*rc && !(a->density < 1.0))
-      *rc = rn_cli_usage_error("generate",
-                               "--relative-density expects a value in (0, 1), "
-                               "got '%s'",
-                               v);
-    break;
-  case 10:
-    *rc = rn_cli_parse_double("generate", "--perturb", v, 0.0, &a->perturb);
-    if (!*rc && !(a->perturb < 0.5))
-      *rc = rn_cli_usage_error("generate",
-                               "--perturb expects a value in (0, 0.5), got '%s'", v);
-    break;
-  case 11:
-    *rc = rn_cli_parse_int("generate", "--seed", v, 0, 2147483647L, &a->seed);
-    a->has_seed = 1;
-    break;
-  case 12: {
-    double r[3];
-    int n = 0, ok = parse_list(v, 3, r, &n) == 0;
-    for (int k = 0; ok && k < n; k++)
-      ok = r[k] == floor(r[k]) && r[k] >= 1 && r[k] <= 1000;
-    if (!ok) {
-      *rc = rn_cli_usage_error(
-          "generate", "--repeat expects M,N[,K] with integers in [1, 1000], got '%s'", v);
-      break;
-    }
-    for (int k = 0; k < 3; k++) a->repeat[k] = (int)(k < n ? r[k] : 1);
-    a->nrepeat = n;
-    break;
-  }
-  default:
-    *rc = parse_load(a, v);
-    break;
-  }
+  *rc = set_value_option(a, which, v);
   return 1;
 }
 
@@ -396,9 +404,8 @@ static int unknown_kind(const char *name) {
   return rn_cli_usage_error("generate", "unknown lattice '%s' (known: %s)", name, list);
 }
 
-static int check_args(gen_args *a) {
-  if (!a->kind_name) return rn_cli_usage_error("generate", "missing the lattice KIND");
-  if (gen_kind_from_name(a) != 0) return unknown_kind(a->kind_name);
+/* The options that need --periodic (or not), and the exclusive ones. */
+static int check_periodic_options(const gen_args *a) {
   if (a->reentrant && !a->periodic)
     return rn_cli_usage_error("generate", "the reentrant lattice needs --periodic");
   if (!a->periodic && (a->slenderness > 0.0 || a->density > 0.0 || a->perturb > 0.0))
@@ -418,6 +425,29 @@ static int check_args(gen_args *a) {
   if ((a->slenderness > 0.0) + (a->density > 0.0) + (a->section != NULL) > 1)
     return rn_cli_usage_error("generate", "give at most one of --section, --slenderness "
                                           "and --relative-density");
+  return 0;
+}
+
+/* Lengths the scene reader can take back (docs/lattices.md): checked in full
+ * on the lattice (check_struts); this first bound keeps the construction
+ * itself finite. */
+static int check_cell_size(const gen_args *a, int dim) {
+  int cmax = a->cells[0] > a->cells[1] ? a->cells[0] : a->cells[1];
+  if (dim == 3 && a->cells[2] > cmax) cmax = a->cells[2];
+  if (!(a->a >= 4 * RN_GEN_MIN_LENGTH) || !(2.0 * a->a * cmax <= RN_GEN_MAX_LENGTH))
+    return rn_cli_usage_error("generate",
+                              "--cell-size %g: the cell size must be at least %g and "
+                              "the lattice (cell size times %d cells, doubled) at most "
+                              "%g",
+                              a->a, 4 * RN_GEN_MIN_LENGTH, cmax, RN_GEN_MAX_LENGTH);
+  return 0;
+}
+
+static int check_args(gen_args *a) {
+  if (!a->kind_name) return rn_cli_usage_error("generate", "missing the lattice KIND");
+  if (gen_kind_from_name(a) != 0) return unknown_kind(a->kind_name);
+  int rc = check_periodic_options(a);
+  if (rc) return rc;
   if (a->periodic && a->ncells == 0) /* one cell unless --cells asks for a supercell */
     a->cells[0] = a->cells[1] = a->cells[2] = 1;
   if (!a->output) return rn_cli_usage_error("generate", "missing -o SCENE.json");
@@ -448,17 +478,7 @@ static int check_args(gen_args *a) {
   if (a->has_seed && !(a->perturb > 0.0) && !(a->scatter > 0.0))
     return rn_cli_usage_error("generate", "--seed applies to --perturb and "
                                           "--section-scatter only");
-  /* lengths the scene reader can take back (docs/lattices.md): checked in full
-   * on the lattice (check_struts); this first bound keeps the construction
-   * itself finite */
-  int cmax = a->cells[0] > a->cells[1] ? a->cells[0] : a->cells[1];
-  if (dim == 3 && a->cells[2] > cmax) cmax = a->cells[2];
-  if (!(a->a >= 4 * RN_GEN_MIN_LENGTH) || !(2.0 * a->a * cmax <= RN_GEN_MAX_LENGTH))
-    return rn_cli_usage_error("generate",
-                              "--cell-size %g: the cell size must be at least %g and "
-                              "the lattice (cell size times %d cells, doubled) at most "
-                              "%g",
-                              a->a, 4 * RN_GEN_MIN_LENGTH, cmax, RN_GEN_MAX_LENGTH);
+  if ((rc = check_cell_size(a, dim))) return rc;
   if (!a->section) a->sc.section[0] = a->user_section[0] = a->a / 50;
   return 0;
 }
@@ -638,6 +658,20 @@ static void section_source(const gen_args *a, char *buf, size_t n) {
              a->periodic ? "--slenderness 0.05" : "circle of radius A/50");
 }
 
+/* The largest admissible value of the option that set the section, the
+ * sections scaled by f (< 1) being the largest admissible, as text. */
+static void admissible_bound(const gen_args *a, int dim, double f, char *bound,
+                             size_t size) {
+  const int p = dim == 2 ? 1 : 2;
+  char x[32];
+  if (a->density > 0.0)
+    snprintf(bound, size, "--relative-density below %s", num(a->density * pow(f, p), x));
+  else if (a->slenderness > 0.0)
+    snprintf(bound, size, "--slenderness below %s", num(a->slenderness * f, x));
+  else
+    snprintf(bound, size, "section dimensions below %s times these", num(f, x));
+}
+
 /* A lattice of rods (docs/lattices.md, "Admissible sections"): the range of
  * what is written (readable back), then relative density below 1 and joint
  * zones that leave every bar a free length.  0 or an exit status (message
@@ -667,7 +701,7 @@ static int check_struts(const gen_args *a, rn_context *ctx, int dim, int nn, int
     fprintf(stderr, "rodnet generate: out of memory\n");
     return RN_EXIT_INTERNAL;
   }
-  char src[160], x[32];
+  char src[160];
   section_source(a, src, sizeof src);
   const char *kind = a->kind_name, *why = a->perturb > 0.0 ? " (--perturb)" : "";
   if (b.zero_bar >= 0)
@@ -680,17 +714,8 @@ static int check_struts(const gen_args *a, rn_context *ctx, int dim, int nn, int
                               "direction%s",
                               a->output, kind, b.coincident_node + 1, why);
   if (b.factor > 1.0) return 0;
-  /* the largest admissible value of the option that set the section */
-  const double f = b.factor;
-  const int p = dim == 2 ? 1 : 2;
   char bound[96];
-  if (a->density > 0.0)
-    snprintf(bound, sizeof bound, "--relative-density below %s",
-             num(a->density * pow(f, p), x));
-  else if (a->slenderness > 0.0)
-    snprintf(bound, sizeof bound, "--slenderness below %s", num(a->slenderness * f, x));
-  else
-    snprintf(bound, sizeof bound, "section dimensions below %s times these", num(f, x));
+  admissible_bound(a, dim, b.factor, bound, sizeof bound);
   if (b.density >= 1.0)
     return rn_cli_usage_error(
         "generate",

@@ -378,12 +378,6 @@ static rn_status write_result_checked(FILE *f, void *user, rn_context *ctx) {
 }
 
 /* python3 SCRIPT RESULT.json PNG; 0 on success. */
-static int run_plot(const char *result, const char *png) {
-  const char *const args[] = {result, png, NULL};
-  return rn_cli_run_script_to("RODNET_PLOT_STIFFNESS", RN_PLOT_STIFFNESS_SCRIPT, args,
-                              png);
-}
-
 static double now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -691,7 +685,8 @@ static int write_and_print(rn_context *ctx, hom_out *o, const hp_path *path,
     return RN_EXIT_INPUT;
   }
   if (!a->quiet) print_cell(o);
-  if (a->plot && run_plot(o->dest, a->plot) != 0) {
+  if (a->plot && rn_cli_plot("RODNET_PLOT_STIFFNESS", RN_PLOT_STIFFNESS_SCRIPT, o->dest,
+                             a->plot) != 0) {
     fprintf(stderr,
             "rodnet homogenize: the plot %s failed (%s %s with matplotlib; "
             "RODNET_PYTHON and RODNET_PLOT_STIFFNESS override them); %s is written\n",

@@ -113,6 +113,23 @@ static int parse_sign(const char *opt, const char *v, double *out) {
   return rn_cli_usage_error("path", "%s: expected +1 or -1, got '%s'", opt, v);
 }
 
+/* --factorization (or --factorisation) NAME; returns 0, a usage exit code, or 1
+ * if argv[*i] is another option. */
+static int parse_factorization(int argc, char **argv, int *i, rn_path_options *o) {
+  const char *v = NULL;
+  int m = rn_cli_option_value("path", argc, argv, i, "--factorisation", NULL, &v);
+  if (m < 0) return RN_EXIT_USAGE;
+  if (!m) m = rn_cli_option_value("path", argc, argv, i, "--factorization", NULL, &v);
+  if (m < 0) return RN_EXIT_USAGE;
+  if (!m) return 1;
+  if (rn_factorization_from_name(v, &o->factorization) != RN_OK)
+    return rn_cli_usage_error("path",
+                              "--factorization: expected auto, banded, sparse or "
+                              "cholmod, got '%s'",
+                              v);
+  return 0;
+}
+
 /* The options with a value; returns 0, a usage exit code, or 1 if not one of
  * them. */
 static int parse_valued(int argc, char **argv, int *i, path_args *a) {
@@ -172,20 +189,62 @@ static int parse_valued(int argc, char **argv, int *i, path_args *a) {
                ? RN_EXIT_USAGE
                : 0;
   }
-  if ((m = rn_cli_option_value("path", argc, argv, i, "--factorisation", NULL, &v)) < 0)
-    return RN_EXIT_USAGE;
-  if (!m) m = rn_cli_option_value("path", argc, argv, i, "--factorization", NULL, &v);
-  if (m < 0) return RN_EXIT_USAGE;
-  if (m) {
-    if (rn_factorization_from_name(v, &o->factorization) != RN_OK)
-      return rn_cli_usage_error("path",
-                                "--factorization: expected auto, banded, sparse or "
-                                "cholmod, got '%s'",
-                                v);
-    return 0;
-  }
 #undef VALUED
-  return 1;
+  return parse_factorization(argc, argv, i, o);
+}
+
+/* The options of the other control mode (or of --branch-switch) would be
+ * ignored: a usage error; 0 otherwise. */
+static int check_modes(const path_args *a) {
+  const int load_control = !a->control || strcmp(a->control, "load") == 0;
+  if (load_control && a->has_load_factor)
+    return rn_cli_usage_error("path",
+                              "--load-factor applies to displacement control "
+                              "(--control vertex:... or joint:...); under load control "
+                              "the path starts at --start");
+  if (!load_control && a->has_start)
+    return rn_cli_usage_error("path",
+                              "--start applies to load control; under displacement "
+                              "control the load factor is fixed by --load-factor");
+  if (!load_control && a->monitor)
+    return rn_cli_usage_error("path", "--monitor applies to --control load only");
+  if (load_control && !isnan(a->opt.target) &&
+      !(a->opt.target >= 0.0 && a->opt.target <= 1.0))
+    return rn_cli_usage_error("path", "--to: the target load factor must be in [0, 1]");
+  if (a->has_branch_sign && !a->opt.branch_switch)
+    return rn_cli_usage_error("path", "--branch-sign applies to --branch-switch only");
+  return 0;
+}
+
+/* The steps: the first (--arclength) at most the largest (--max-arclength);
+ * the one given alone moves the other's default.  0 or a usage error. */
+static int settle_steps(path_args *a) {
+  rn_path_options *o = &a->opt;
+  if (a->has_ds && a->has_ds_max && o->ds_max < o->ds)
+    return rn_cli_usage_error("path",
+                              "--max-arclength %g is below --arclength %g: the largest "
+                              "step must be at least the first",
+                              o->ds_max, o->ds);
+  if (a->has_ds && o->ds_max < o->ds) o->ds_max = o->ds;
+  if (a->has_ds_max && o->ds > o->ds_max) o->ds = o->ds_max;
+  if (o->ds < o->ds_min)
+    return rn_cli_usage_error("path",
+                              "--%sarclength %g is below the smallest step %g (steps "
+                              "shorter than that stop the path)",
+                              a->has_ds ? "" : "max-", o->ds, o->ds_min);
+  return 0;
+}
+
+/* The start's load factors in [0, 1]; branch switching needs the
+ * eigenvalues.  0 or a usage error. */
+static int check_start(const path_args *a) {
+  if (!(a->start >= 0.0 && a->start <= 1.0))
+    return rn_cli_usage_error("path", "--start: the load factor must be in [0, 1]");
+  if (!(a->load_factor >= 0.0 && a->load_factor <= 1.0))
+    return rn_cli_usage_error("path", "--load-factor: must be in [0, 1]");
+  if (a->opt.branch_switch && !a->opt.eigenvalues)
+    return rn_cli_usage_error("path", "--branch-switch needs the eigenvalues");
+  return 0;
 }
 
 static int parse_args(int argc, char **argv, path_args *a) {
@@ -241,45 +300,7 @@ static int parse_args(int argc, char **argv, path_args *a) {
   if (rc) return rc;
   if (!a->scene) return rn_cli_usage_error("path", "missing the scene file");
   if (!a->output) return rn_cli_usage_error("path", "missing -o PATH.csv");
-  /* options of the other control mode would be ignored */
-  const int load_control = !a->control || strcmp(a->control, "load") == 0;
-  if (load_control && a->has_load_factor)
-    return rn_cli_usage_error("path",
-                              "--load-factor applies to displacement control "
-                              "(--control vertex:... or joint:...); under load control "
-                              "the path starts at --start");
-  if (!load_control && a->has_start)
-    return rn_cli_usage_error("path",
-                              "--start applies to load control; under displacement "
-                              "control the load factor is fixed by --load-factor");
-  if (!load_control && a->monitor)
-    return rn_cli_usage_error("path", "--monitor applies to --control load only");
-  if (load_control && !isnan(a->opt.target) &&
-      !(a->opt.target >= 0.0 && a->opt.target <= 1.0))
-    return rn_cli_usage_error("path", "--to: the target load factor must be in [0, 1]");
-  if (a->has_branch_sign && !a->opt.branch_switch)
-    return rn_cli_usage_error("path", "--branch-sign applies to --branch-switch only");
-  /* the steps: the first (--arclength) at most the largest (--max-arclength);
-   * the one given alone moves the other's default */
-  rn_path_options *o = &a->opt;
-  if (a->has_ds && a->has_ds_max && o->ds_max < o->ds)
-    return rn_cli_usage_error("path",
-                              "--max-arclength %g is below --arclength %g: the largest "
-                              "step must be at least the first",
-                              o->ds_max, o->ds);
-  if (a->has_ds && o->ds_max < o->ds) o->ds_max = o->ds;
-  if (a->has_ds_max && o->ds > o->ds_max) o->ds = o->ds_max;
-  if (o->ds < o->ds_min)
-    return rn_cli_usage_error("path",
-                              "--%sarclength %g is below the smallest step %g (steps "
-                              "shorter than that stop the path)",
-                              a->has_ds ? "" : "max-", o->ds, o->ds_min);
-  if (!(a->start >= 0.0 && a->start <= 1.0))
-    return rn_cli_usage_error("path", "--start: the load factor must be in [0, 1]");
-  if (!(a->load_factor >= 0.0 && a->load_factor <= 1.0))
-    return rn_cli_usage_error("path", "--load-factor: must be in [0, 1]");
-  if (a->opt.branch_switch && !a->opt.eigenvalues)
-    return rn_cli_usage_error("path", "--branch-switch needs the eigenvalues");
+  if ((rc = check_modes(a)) || (rc = settle_steps(a)) || (rc = check_start(a))) return rc;
   rn_cli_file files[3];
   return rn_cli_check_files("path", files, path_files(a, files));
 }
@@ -295,6 +316,34 @@ static int find_index(const char *s, int count,
     return v >= 0 && v < count ? (int)v : -1;
   }
   return by_name(scene, s);
+}
+
+/* The coordinate C: x, y, z or 0, 1, 2; -1 if none. */
+static int component_index(const char *c) {
+  if (strcmp(c, "x") == 0 || strcmp(c, "0") == 0) return 0;
+  if (strcmp(c, "y") == 0 || strcmp(c, "1") == 0) return 1;
+  if (strcmp(c, "z") == 0 || strcmp(c, "2") == 0) return 2;
+  return -1;
+}
+
+/* The reduced DOF of coordinate comp of joint (>= 0), else of the vertex of
+ * rod; -1 if it is not a free DOF, -2 out of memory (message printed). */
+static long position_dof(rn_network *net, int comp, int joint, int rod, int vertex) {
+  size_t n = rn_network_num_dofs(net);
+  rn_dof_info *info = malloc((n ? n : 1) * sizeof *info);
+  if (!info || rn_network_dof_info(net, info) != RN_OK) {
+    free(info);
+    fprintf(stderr, "rodnet path: out of memory\n");
+    return -2;
+  }
+  long found = -1;
+  for (size_t i = 0; i < n && found < 0; i++)
+    if (info[i].kind == RN_DOF_POSITION && info[i].component == comp &&
+        (joint >= 0 ? info[i].joint == joint
+                    : (info[i].rod == rod && info[i].index == vertex)))
+      found = (long)i;
+  free(info);
+  return found;
 }
 
 /* The reduced DOF that SPEC (vertex:ROD:I:C, vertex:I:C, joint:J:C) names;
@@ -313,11 +362,7 @@ static long find_dof(const char *file, const char *opt, const char *spec,
     part[np++] = p;
     if (!q) break;
   }
-  const char *comp_s = part[np - 1];
-  int comp = -1;
-  if (strcmp(comp_s, "x") == 0 || strcmp(comp_s, "0") == 0) comp = 0;
-  if (strcmp(comp_s, "y") == 0 || strcmp(comp_s, "1") == 0) comp = 1;
-  if (strcmp(comp_s, "z") == 0 || strcmp(comp_s, "2") == 0) comp = 2;
+  int comp = component_index(part[np - 1]);
   if (comp < 0) goto bad;
   int rod = -1, joint = -1, vertex = 0;
   if (strcmp(part[0], "vertex") == 0 && (np == 3 || np == 4)) {
@@ -349,26 +394,13 @@ static long find_dof(const char *file, const char *opt, const char *spec,
   } else {
     goto bad;
   }
-  size_t n = rn_network_num_dofs(net);
-  rn_dof_info *info = malloc((n ? n : 1) * sizeof *info);
-  if (!info || rn_network_dof_info(net, info) != RN_OK) {
-    free(info);
-    fprintf(stderr, "rodnet path: out of memory\n");
-    return -1;
-  }
-  long found = -1;
-  for (size_t i = 0; i < n && found < 0; i++)
-    if (info[i].kind == RN_DOF_POSITION && info[i].component == comp &&
-        (joint >= 0 ? info[i].joint == joint
-                    : (info[i].rod == rod && info[i].index == vertex)))
-      found = (long)i;
-  free(info);
-  if (found < 0)
+  long found = position_dof(net, comp, joint, rod, vertex);
+  if (found == -1)
     fprintf(stderr,
             "rodnet path: %s: %s %s: that coordinate is not a free DOF (it is fixed by a "
             "support, or the vertex is a rod end at a joint: name the joint)\n",
             file, opt, spec);
-  return found;
+  return found < 0 ? -1 : found;
 bad:
   fprintf(stderr,
           "rodnet path: %s: %s '%s': expected load, vertex:ROD:I:C, vertex:I:C or "
@@ -455,37 +487,38 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
   return RN_OK;
 }
 
-/* python3 SCRIPT PATH.csv PNG; 0 on success. */
-static int run_plot(const char *csv, const char *png) {
-  const char *const args[] = {csv, png, NULL};
-  return rn_cli_run_script_to("RODNET_PLOT_PATH", RN_PLOT_PATH_SCRIPT, args, png);
-}
-
-static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *rows) {
-  rn_network *net = rn_scene_network(scene);
-  rn_path_options opt = a->opt;
+/* The controlled and the monitored DOF of the scene into opt; 0 or the exit
+ * status (message printed). */
+static int control_dofs(const path_args *a, const rn_scene *scene, rn_path_options *opt) {
   if (a->control && strcmp(a->control, "load") != 0) {
     long dof = find_dof(a->scene, "--control", a->control, scene);
     if (dof < 0) return RN_EXIT_INPUT;
-    opt.control = RN_PATH_DOF;
-    opt.dof = (size_t)dof;
-  } else if (!isnan(opt.target) && !(opt.target >= 0.0 && opt.target <= 1.0)) {
+    opt->control = RN_PATH_DOF;
+    opt->dof = (size_t)dof;
+  } else if (!isnan(opt->target) && !(opt->target >= 0.0 && opt->target <= 1.0)) {
     return rn_cli_usage_error("path", "--to: the target load factor must be in [0, 1]");
   }
   if (a->monitor) {
-    if (opt.control == RN_PATH_DOF)
+    if (opt->control == RN_PATH_DOF)
       return rn_cli_usage_error("path", "--monitor applies to --control load only");
     long dof = find_dof(a->scene, "--monitor", a->monitor, scene);
     if (dof < 0) return RN_EXIT_INPUT;
-    opt.monitor = dof;
+    opt->monitor = dof;
   }
-  /* the start: an equilibrium at the starting load factor */
+  return 0;
+}
+
+/* The start: an equilibrium at the starting load factor; 0 or the exit status
+ * (message printed). */
+static int solve_start(const path_args *a, rn_context *ctx, rn_scene *scene,
+                       const rn_path_options *opt) {
+  rn_network *net = rn_scene_network(scene);
   rn_solve_options so;
   rn_solve_options_default(&so);
   rn_scene_apply_solver(scene, &so);
   /* (a scene is read at load factor 1 with its prescribed DOFs where the input
    * puts them: rn_solve steps them from there; set another factor only) */
-  const double lf0 = opt.control == RN_PATH_DOF ? a->load_factor : a->start;
+  const double lf0 = opt->control == RN_PATH_DOF ? a->load_factor : a->start;
   rn_status st =
       lf0 != rn_network_load_factor(net) ? rn_network_set_load_factor(net, lf0) : RN_OK;
   rn_solve_report sr;
@@ -500,10 +533,34 @@ static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *
             a->scene, rn_solve_stop_name(sr.stop));
     return RN_EXIT_NOT_CONVERGED;
   }
+  return 0;
+}
+
+/* The report on stdout. */
+static void print_report(const path_args *a, const rn_path_report *rep) {
+  printf("rodnet path: %s: %d steps, %d points, stop %s, %d limit point(s), %d "
+         "bifurcation(s), %ld corrector iterations, %.3g s\n",
+         a->scene, rep->steps, rep->points, rn_path_stop_name(rep->stop),
+         rep->limit_points, rep->bifurcations, rep->corrector_iterations, rep->time_s);
+  if (rep->limit_points)
+    printf("  first limit point: load factor %.10g, control %.10g, force %.10g\n",
+           rep->limit_load_factor, rep->limit_control, rep->limit_force);
+  if (rep->bifurcations)
+    printf("  first bifurcation: load factor %.10g, control %.10g, force %.10g\n",
+           rep->bifurcation_load_factor, rep->bifurcation_control,
+           rep->bifurcation_force);
+  printf("  wrote %s\n", a->output);
+}
+
+static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *rows) {
+  rn_network *net = rn_scene_network(scene);
+  rn_path_options opt = a->opt;
+  int rc = control_dofs(a, scene, &opt);
+  if (rc || (rc = solve_start(a, ctx, scene, &opt))) return rc;
   opt.callback = on_point;
   opt.user = rows;
   rn_path_report rep;
-  st = rn_path_follow(net, &opt, &rep);
+  rn_status st = rn_path_follow(net, &opt, &rep);
   if (rows->oom) {
     fprintf(stderr, "rodnet path: out of memory\n");
     return RN_EXIT_INTERNAL;
@@ -518,20 +575,9 @@ static int run(const path_args *a, rn_context *ctx, rn_scene *scene, path_rows *
     fprintf(stderr, "rodnet path: %s\n", rn_context_last_error(ctx));
     return RN_EXIT_INPUT;
   }
-  if (!a->quiet) {
-    printf("rodnet path: %s: %d steps, %d points, stop %s, %d limit point(s), %d "
-           "bifurcation(s), %ld corrector iterations, %.3g s\n",
-           a->scene, rep.steps, rep.points, rn_path_stop_name(rep.stop), rep.limit_points,
-           rep.bifurcations, rep.corrector_iterations, rep.time_s);
-    if (rep.limit_points)
-      printf("  first limit point: load factor %.10g, control %.10g, force %.10g\n",
-             rep.limit_load_factor, rep.limit_control, rep.limit_force);
-    if (rep.bifurcations)
-      printf("  first bifurcation: load factor %.10g, control %.10g, force %.10g\n",
-             rep.bifurcation_load_factor, rep.bifurcation_control, rep.bifurcation_force);
-    printf("  wrote %s\n", a->output);
-  }
-  if (a->plot && run_plot(a->output, a->plot) != 0) {
+  if (!a->quiet) print_report(a, &rep);
+  if (a->plot &&
+      rn_cli_plot("RODNET_PLOT_PATH", RN_PLOT_PATH_SCRIPT, a->output, a->plot) != 0) {
     fprintf(stderr,
             "rodnet path: the plot %s failed (%s %s with matplotlib; RODNET_PYTHON and "
             "RODNET_PLOT_PATH override them); %s is written\n",

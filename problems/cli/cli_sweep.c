@@ -183,10 +183,176 @@ static cJSON *point_record(const sweep_spec *s, const point *p) {
   return rec;
 }
 
+/* ---- parse_spec's parts: each reads its keys of the sweep file root into s;
+ * 0 or the error's exit status (message printed).  In the order of the
+ * checks. */
+
+/* Every key is one of the table's, given once. */
+static int check_keys(const char *file, const cJSON *root) {
+  const cJSON *e;
+  cJSON_ArrayForEach(e, root) {
+    int ok = 0;
+    for (int k = 0; k < NKEYS; ++k) ok |= strcmp(e->string, spec_keys[k].name) == 0;
+    if (!ok) return sweep_error(file, "unknown key '%s'", e->string);
+    /* a repeated key: the reader would take the first and ignore the others */
+    for (const cJSON *b = root->child; b != e; b = b->next)
+      if (strcmp(b->string, e->string) == 0)
+        return sweep_error(file, "\"%s\" given more than once: give it once", e->string);
+  }
+  return 0;
+}
+
+static int parse_lattices(const char *file, const cJSON *root, sweep_spec *s) {
+  if (string_list(cJSON_GetObjectItemCaseSensitive(root, "lattice"), s->lat, 16,
+                  &s->nlat))
+    return sweep_error(file, "\"lattice\" must be a lattice name or a list of them");
+  for (int k = 0; k < s->nlat; ++k) {
+    rn_lattice_kind kind;
+    if (strcmp(s->lat[k], "reentrant") &&
+        rn_lattice_kind_from_name(s->lat[k], &kind) != 0)
+      return sweep_error(file, "unknown lattice '%s'", s->lat[k]);
+  }
+  return 0;
+}
+
+static int parse_joint_models(const char *file, const cJSON *root, sweep_spec *s) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "joint_model");
+  char jm[2][32];
+  s->njm = 1;
+  s->jm[0] = RN_JOINT_RIGID;
+  if (!v) return 0;
+  if (string_list(v, jm, 2, &s->njm))
+    return sweep_error(file, "\"joint_model\" must be rigid, elastic or a list");
+  for (int k = 0; k < s->njm; ++k) {
+    if (strcmp(jm[k], "rigid") == 0)
+      s->jm[k] = RN_JOINT_RIGID;
+    else if (strcmp(jm[k], "elastic") == 0)
+      s->jm[k] = RN_JOINT_ELASTIC;
+    else
+      return sweep_error(file, "unknown joint model '%s'", jm[k]);
+  }
+  return 0;
+}
+
+/* "relative_density": a list, or a range {from, to, count, scale}. */
+static int parse_densities(const char *file, const cJSON *root, sweep_spec *s) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "relative_density"), *e;
+  if (cJSON_IsArray(v)) {
+    cJSON_ArrayForEach(e, v) {
+      if (!cJSON_IsNumber(e) || s->nrho >= MAX_LIST || !(e->valuedouble > 0.0) ||
+          !(e->valuedouble < 1.0))
+        return sweep_error(file,
+                           "\"relative_density\"[%d]: the entries must be numbers in "
+                           "(0, 1), at most %d of them",
+                           s->nrho, MAX_LIST);
+      s->rho[s->nrho++] = e->valuedouble;
+    }
+    return 0;
+  }
+  if (!cJSON_IsObject(v))
+    return sweep_error(file, "\"relative_density\" (a list or a range) is required");
+  const cJSON *a = cJSON_GetObjectItemCaseSensitive(v, "from"),
+              *b = cJSON_GetObjectItemCaseSensitive(v, "to"),
+              *n = cJSON_GetObjectItemCaseSensitive(v, "count"),
+              *sc = cJSON_GetObjectItemCaseSensitive(v, "scale");
+  int logs = !sc || (cJSON_IsString(sc) && strcmp(sc->valuestring, "log") == 0);
+  if (!cJSON_IsNumber(a) || !cJSON_IsNumber(b) || !cJSON_IsNumber(n) ||
+      !(a->valuedouble > 0.0) || !(b->valuedouble < 1.0) ||
+      !(a->valuedouble <= b->valuedouble) || n->valuedouble < 1 ||
+      n->valuedouble > MAX_LIST || n->valuedouble != floor(n->valuedouble) ||
+      (sc && !logs && !(cJSON_IsString(sc) && strcmp(sc->valuestring, "linear") == 0)))
+    return sweep_error(file, "%s",
+                       "\"relative_density\" range needs from <= to in (0, 1), count in "
+                       "1 .. 4096, scale log or linear");
+  s->nrho = (int)n->valuedouble;
+  for (int k = 0; k < s->nrho; ++k) {
+    double f = s->nrho > 1 ? (double)k / (s->nrho - 1) : 0.0;
+    s->rho[k] = logs ? a->valuedouble * pow(b->valuedouble / a->valuedouble, f)
+                     : a->valuedouble + f * (b->valuedouble - a->valuedouble);
+  }
+  return 0;
+}
+
+static int parse_seeds(const char *file, const cJSON *root, sweep_spec *s) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "seed"), *e;
+  if (!v) return 0;
+  s->nseed = 0;
+  cJSON_ArrayForEach(e, v) {
+    if (!cJSON_IsNumber(e) || s->nseed >= MAX_LIST || e->valuedouble < 0 ||
+        e->valuedouble != floor(e->valuedouble))
+      return sweep_error(file, "\"seed\"[%d]: the seeds must be integers >= 0", s->nseed);
+    s->seed[s->nseed++] = (long)e->valuedouble;
+  }
+  if (!cJSON_IsArray(v) || s->nseed == 0)
+    return sweep_error(file, "\"seed\" must be a list of integers >= 0");
+  return 0;
+}
+
+/* "perturb" and "edges_per_rod". */
+static int parse_cell_options(const char *file, const cJSON *root, sweep_spec *s) {
+  const cJSON *v;
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "perturb")) &&
+      (!cJSON_IsNumber(v) || !(v->valuedouble >= 0.0) || !(v->valuedouble < 0.5)))
+    return sweep_error(file, "\"perturb\" must be in [0, 0.5)");
+  if (v) s->perturb = v->valuedouble;
+  if ((v = cJSON_GetObjectItemCaseSensitive(root, "edges_per_rod")) &&
+      (!cJSON_IsNumber(v) || v->valuedouble < 1 || v->valuedouble > 10000 ||
+       v->valuedouble != floor(v->valuedouble)))
+    return sweep_error(file, "\"edges_per_rod\" must be an integer in 1 .. 10000");
+  if (v) s->edges = (int)v->valuedouble;
+  return 0;
+}
+
+/* "cells": one count per lattice vector of every lattice swept. */
+static int parse_cells(const char *file, const cJSON *root, sweep_spec *s) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "cells"), *e;
+  int k = 0;
+  if (!v) return 0;
+  cJSON_ArrayForEach(e, v) {
+    if (!cJSON_IsNumber(e) || k >= 3 || e->valuedouble < 1 || e->valuedouble > 1000 ||
+        e->valuedouble != floor(e->valuedouble))
+      return sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
+    s->cells[k++] = (int)e->valuedouble;
+  }
+  if (!cJSON_IsArray(v) || k < 2)
+    return sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
+  /* one count per lattice vector: a third count of a planar lattice (or a
+   * missing one of a 3D lattice) would be ignored (or taken as 1) */
+  for (int j = 0; j < s->nlat; ++j) {
+    rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
+    if (strcmp(s->lat[j], "reentrant")) rn_lattice_kind_from_name(s->lat[j], &kind);
+    int dim = rn_lattice_kind_dimension(kind);
+    if (k != dim)
+      return sweep_error(file,
+                         "\"cells\" has %d counts but the lattice '%s' is %dD: give one "
+                         "count per lattice vector (%d)%s",
+                         k, s->lat[j], dim, dim,
+                         s->nlat > 1 ? "; sweep planar and 3D lattices in separate "
+                                       "files"
+                                     : "");
+  }
+  return 0;
+}
+
+/* "E" and "nu". */
+static int parse_material(const char *file, const cJSON *root, sweep_spec *s) {
+  for (int k = 0; k < 2; ++k) {
+    const char *name = k ? "nu" : "E";
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, name);
+    if (!v) continue;
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) ||
+        (k == 0 && !(v->valuedouble > 0.0)) ||
+        (k == 1 && !(v->valuedouble > -1.0 && v->valuedouble < 0.5)))
+      return sweep_error(file, "\"%s\" must be %s", name,
+                         k ? "Poisson's ratio, a number in (-1, 0.5)"
+                           : "Young's modulus, a finite number > 0");
+    *(k ? &s->nu : &s->E) = v->valuedouble;
+  }
+  return 0;
+}
+
 static int parse_spec(const char *file, const char *text, sweep_spec *s) {
   cJSON *root = cJSON_Parse(text);
-  const cJSON *v, *e;
-  char jm[2][32];
   int rc = 0;
   memset(s, 0, sizeof(*s));
   s->edges = 16;
@@ -198,172 +364,19 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
     cJSON_Delete(root);
     return sweep_error(file, "not a JSON object");
   }
-  cJSON_ArrayForEach(e, root) {
-    int ok = 0;
-    for (int k = 0; k < NKEYS; ++k) ok |= strcmp(e->string, spec_keys[k].name) == 0;
-    if (!ok) {
-      rc = sweep_error(file, "unknown key '%s'", e->string);
-      goto done;
-    }
-    /* a repeated key: the reader would take the first and ignore the others */
-    for (const cJSON *b = root->child; b != e; b = b->next)
-      if (strcmp(b->string, e->string) == 0) {
-        rc = sweep_error(file, "\"%s\" given more than once: give it once", e->string);
-        goto done;
-      }
-  }
-  if (string_list(cJSON_GetObjectItemCaseSensitive(root, "lattice"), s->lat, 16,
-                  &s->nlat)) {
-    rc = sweep_error(file, "\"lattice\" must be a lattice name or a list of them");
-    goto done;
-  }
-  for (int k = 0; k < s->nlat; ++k) {
-    rn_lattice_kind kind;
-    if (strcmp(s->lat[k], "reentrant") &&
-        rn_lattice_kind_from_name(s->lat[k], &kind) != 0) {
-      rc = sweep_error(file, "unknown lattice '%s'", s->lat[k]);
-      goto done;
-    }
-  }
-  s->njm = 1;
-  s->jm[0] = RN_JOINT_RIGID;
-  if ((v = cJSON_GetObjectItemCaseSensitive(root, "joint_model"))) {
-    if (string_list(v, jm, 2, &s->njm)) {
-      rc = sweep_error(file, "\"joint_model\" must be rigid, elastic or a list");
-      goto done;
-    }
-    for (int k = 0; k < s->njm; ++k) {
-      if (strcmp(jm[k], "rigid") == 0)
-        s->jm[k] = RN_JOINT_RIGID;
-      else if (strcmp(jm[k], "elastic") == 0)
-        s->jm[k] = RN_JOINT_ELASTIC;
-      else {
-        rc = sweep_error(file, "unknown joint model '%s'", jm[k]);
-        goto done;
-      }
-    }
-  }
-  v = cJSON_GetObjectItemCaseSensitive(root, "relative_density");
-  if (cJSON_IsArray(v)) {
-    cJSON_ArrayForEach(e, v) {
-      if (!cJSON_IsNumber(e) || s->nrho >= MAX_LIST || !(e->valuedouble > 0.0) ||
-          !(e->valuedouble < 1.0)) {
-        rc = sweep_error(file,
-                         "\"relative_density\"[%d]: the entries must be numbers in "
-                         "(0, 1), at most %d of them",
-                         s->nrho, MAX_LIST);
-        goto done;
-      }
-      s->rho[s->nrho++] = e->valuedouble;
-    }
-  } else if (cJSON_IsObject(v)) {
-    const cJSON *a = cJSON_GetObjectItemCaseSensitive(v, "from"),
-                *b = cJSON_GetObjectItemCaseSensitive(v, "to"),
-                *n = cJSON_GetObjectItemCaseSensitive(v, "count"),
-                *sc = cJSON_GetObjectItemCaseSensitive(v, "scale");
-    int logs = !sc || (cJSON_IsString(sc) && strcmp(sc->valuestring, "log") == 0);
-    if (!cJSON_IsNumber(a) || !cJSON_IsNumber(b) || !cJSON_IsNumber(n) ||
-        !(a->valuedouble > 0.0) || !(b->valuedouble < 1.0) ||
-        !(a->valuedouble <= b->valuedouble) || n->valuedouble < 1 ||
-        n->valuedouble > MAX_LIST || n->valuedouble != floor(n->valuedouble) ||
-        (sc && !logs &&
-         !(cJSON_IsString(sc) && strcmp(sc->valuestring, "linear") == 0))) {
-      rc = sweep_error(file, "%s",
-                       "\"relative_density\" range needs from <= to in (0, 1), count in "
-                       "1 .. 4096, scale log or linear");
-      goto done;
-    }
-    s->nrho = (int)n->valuedouble;
-    for (int k = 0; k < s->nrho; ++k) {
-      double f = s->nrho > 1 ? (double)k / (s->nrho - 1) : 0.0;
-      s->rho[k] = logs ? a->valuedouble * pow(b->valuedouble / a->valuedouble, f)
-                       : a->valuedouble + f * (b->valuedouble - a->valuedouble);
-    }
-  } else {
-    rc = sweep_error(file, "\"relative_density\" (a list or a range) is required");
-    goto done;
-  }
-  if ((v = cJSON_GetObjectItemCaseSensitive(root, "seed"))) {
-    s->nseed = 0;
-    cJSON_ArrayForEach(e, v) {
-      if (!cJSON_IsNumber(e) || s->nseed >= MAX_LIST || e->valuedouble < 0 ||
-          e->valuedouble != floor(e->valuedouble)) {
-        rc = sweep_error(file, "\"seed\"[%d]: the seeds must be integers >= 0", s->nseed);
-        goto done;
-      }
-      s->seed[s->nseed++] = (long)e->valuedouble;
-    }
-    if (!cJSON_IsArray(v) || s->nseed == 0) {
-      rc = sweep_error(file, "\"seed\" must be a list of integers >= 0");
-      goto done;
-    }
-  }
-  if ((v = cJSON_GetObjectItemCaseSensitive(root, "perturb")) &&
-      (!cJSON_IsNumber(v) || !(v->valuedouble >= 0.0) || !(v->valuedouble < 0.5))) {
-    rc = sweep_error(file, "\"perturb\" must be in [0, 0.5)");
-    goto done;
-  }
-  if (v) s->perturb = v->valuedouble;
-  if ((v = cJSON_GetObjectItemCaseSensitive(root, "edges_per_rod")) &&
-      (!cJSON_IsNumber(v) || v->valuedouble < 1 || v->valuedouble > 10000 ||
-       v->valuedouble != floor(v->valuedouble))) {
-    rc = sweep_error(file, "\"edges_per_rod\" must be an integer in 1 .. 10000");
-    goto done;
-  }
-  if (v) s->edges = (int)v->valuedouble;
-  if ((v = cJSON_GetObjectItemCaseSensitive(root, "cells"))) {
-    int k = 0;
-    cJSON_ArrayForEach(e, v) {
-      if (!cJSON_IsNumber(e) || k >= 3 || e->valuedouble < 1 || e->valuedouble > 1000 ||
-          e->valuedouble != floor(e->valuedouble)) {
-        rc = sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
-        goto done;
-      }
-      s->cells[k++] = (int)e->valuedouble;
-    }
-    if (!cJSON_IsArray(v) || k < 2) {
-      rc = sweep_error(file, "\"cells\" must be 2 or 3 integers in 1 .. 1000");
-      goto done;
-    }
-    /* one count per lattice vector: a third count of a planar lattice (or a
-     * missing one of a 3D lattice) would be ignored (or taken as 1) */
-    for (int j = 0; j < s->nlat; ++j) {
-      rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
-      if (strcmp(s->lat[j], "reentrant")) rn_lattice_kind_from_name(s->lat[j], &kind);
-      int dim = rn_lattice_kind_dimension(kind);
-      if (k != dim) {
-        rc = sweep_error(file,
-                         "\"cells\" has %d counts but the lattice '%s' is %dD: give one "
-                         "count per lattice vector (%d)%s",
-                         k, s->lat[j], dim, dim,
-                         s->nlat > 1 ? "; sweep planar and 3D lattices in separate "
-                                       "files"
-                                     : "");
-        goto done;
-      }
-    }
-  }
-  for (int k = 0; k < 2; ++k) {
-    const char *name = k ? "nu" : "E";
-    if ((v = cJSON_GetObjectItemCaseSensitive(root, name))) {
-      if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) ||
-          (k == 0 && !(v->valuedouble > 0.0)) ||
-          (k == 1 && !(v->valuedouble > -1.0 && v->valuedouble < 0.5))) {
-        rc = sweep_error(file, "\"%s\" must be %s", name,
-                         k ? "Poisson's ratio, a number in (-1, 0.5)"
-                           : "Young's modulus, a finite number > 0");
-        goto done;
-      }
-      *(k ? &s->nu : &s->E) = v->valuedouble;
-    }
+  if ((rc = check_keys(file, root)) || (rc = parse_lattices(file, root, s)) ||
+      (rc = parse_joint_models(file, root, s)) || (rc = parse_densities(file, root, s)) ||
+      (rc = parse_seeds(file, root, s)) || (rc = parse_cell_options(file, root, s)) ||
+      (rc = parse_cells(file, root, s)) || (rc = parse_material(file, root, s))) {
+    cJSON_Delete(root);
+    return rc;
   }
   /* the seeds draw the random perturbation only: without one every seed
    * would give the same cell (and the same answer) */
-  if (!rc && cJSON_GetObjectItemCaseSensitive(root, "seed") && !(s->perturb > 0.0))
+  if (cJSON_GetObjectItemCaseSensitive(root, "seed") && !(s->perturb > 0.0))
     rc = sweep_error(file, "\"seed\" draws the random joint perturbation only: give "
                            "\"perturb\" > 0 (with \"perturb\" 0 every seed gives the "
                            "same cell)");
-done:
   cJSON_Delete(root);
   return rc;
 }
@@ -600,11 +613,6 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
   return RN_OK;
 }
 
-static int run_plot(const char *csv, const char *png) {
-  const char *const args[] = {csv, png, NULL};
-  return rn_cli_run_script_to("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, args, png);
-}
-
 static void progress(int done, int total, const point *p, int skipped) {
   char bar[31];
   int fill = total ? 30 * done / total : 30;
@@ -617,46 +625,136 @@ static void progress(int done, int total, const point *p, int skipped) {
   fflush(stderr);
 }
 
-int rn_cli_sweep(int argc, char **argv) {
-  const char *file = NULL, *dir = NULL, *plot = NULL;
-  int quiet = 0, rc = 0, failed = 0;
-  unsigned char *valid = NULL;
+typedef struct sweep_args {
+  const char *file, *dir, *plot;
+  int quiet;
+} sweep_args;
+
+/* The command line into a; 0, -1 after the help, else the usage error's
+ * status (message printed). */
+static int parse_sweep_args(int argc, char **argv, sweep_args *a) {
+  memset(a, 0, sizeof(*a));
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = NULL;
     int m;
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       fputs(sweep_help, stdout);
-      return RN_EXIT_OK;
+      return -1;
     }
     if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
-      quiet = 1;
+      a->quiet = 1;
       continue;
     }
     if ((m = rn_cli_option_value("sweep", argc, argv, &i, "--output", "-o", &v))) {
       if (m < 0) return RN_EXIT_USAGE;
-      dir = v;
+      a->dir = v;
       continue;
     }
     if ((m = rn_cli_option_value("sweep", argc, argv, &i, "--plot", NULL, &v))) {
       if (m < 0) return RN_EXIT_USAGE;
-      plot = v;
+      a->plot = v;
       continue;
     }
     if (s[0] == '-' && s[1] != '\0')
       return rn_cli_usage_error("sweep", "unknown option '%s'", s);
-    if (file) return rn_cli_usage_error("sweep", "more than one sweep file given");
-    file = s;
+    if (a->file) return rn_cli_usage_error("sweep", "more than one sweep file given");
+    a->file = s;
   }
   static const char *const valued[] = {"--output|-o", "--plot", NULL};
-  if ((rc = rn_cli_check_repeats("sweep", argc, argv, valued))) return rc;
-  if (!file) return rn_cli_usage_error("sweep", "missing the sweep file");
-  if (!dir) return rn_cli_usage_error("sweep", "missing -o DIR");
+  int rc = rn_cli_check_repeats("sweep", argc, argv, valued);
+  if (rc) return rc;
+  if (!a->file) return rn_cli_usage_error("sweep", "missing the sweep file");
+  if (!a->dir) return rn_cli_usage_error("sweep", "missing -o DIR");
+  return 0;
+}
+
+/* Point p of the sweep into DIR/point_NNNN.json (skipped if done before);
+ * RN_OK or the failure (message in ctx). *skip: it was done before. */
+static rn_status sweep_point(rn_context *ctx, const sweep_spec *s, const point *p,
+                             const char *dir, int *skip) {
+  char out[4096], scene[4096], hash[32];
+  snprintf(out, sizeof out, "%s/point_%04d.json", dir, p->index);
+  snprintf(scene, sizeof scene, "%s/point_%04d.scene.json", dir, p->index);
+  /* the point's record: its parameters, the version, its cell scene */
+  cJSON *rec = point_record(s, p);
+  char *rec_text = rec ? cJSON_PrintUnformatted(rec) : NULL;
+  rn_status st =
+      rec_text ? RN_OK : rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
+  if (!st) st = write_cell(ctx, s, p, scene);
+  if (!st && scene_hash(ctx, scene, hash)) st = RN_ERR_IO;
+  *skip = !st && point_done(ctx, out, p, rec, hash);
+  if (!st && !*skip) st = run_point(ctx, p, dir, scene, rec_text, hash);
+  cJSON_Delete(rec);
+  cJSON_free(rec_text);
+  return st;
+}
+
+/* Every point of the grid, in the order lattice, joint model, density, seed;
+ * valid[k]: point k succeeded.  0, else RN_EXIT_INPUT (the folder failed: no
+ * point in going on, message printed); *failed counts the failed points. */
+static int sweep_points(rn_context *ctx, const sweep_spec *s, const sweep_args *a,
+                        unsigned char *valid, int *failed) {
+  int total = s->nlat * s->njm * s->nrho * s->nseed, k = 0;
+  for (int i = 0; i < s->nlat; ++i)
+    for (int j = 0; j < s->njm; ++j)
+      for (int c = 0; c < s->nrho; ++c)
+        for (int d = 0; d < s->nseed; ++d, ++k) {
+          point p = {k, s->lat[i], s->jm[j], s->rho[c], s->seed[d]};
+          int skip = 0;
+          rn_status st = sweep_point(ctx, s, &p, a->dir, &skip);
+          valid[k] = !st;
+          if (st) {
+            fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
+                    a->quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
+                    p.seed, rn_context_last_error(ctx));
+            if (st == RN_ERR_IO) return RN_EXIT_INPUT; /* the folder */
+            ++*failed;
+          }
+          if (!a->quiet) progress(k + 1, total, &p, skip);
+        }
+  return 0;
+}
+
+/* The sweep file's points into the folder, then its CSV and the plot. */
+static int run_sweep(rn_context *ctx, const sweep_spec *s, const sweep_args *a) {
+  int total = s->nlat * s->njm * s->nrho * s->nseed, failed = 0, rc;
+  unsigned char *valid = calloc((size_t)total, 1);
+  if (!valid) return RN_EXIT_INTERNAL;
+  if ((rc = sweep_points(ctx, s, a, valid, &failed))) {
+    free(valid);
+    return rc;
+  }
+  char csv[4096];
+  snprintf(csv, sizeof csv, "%s/sweep.csv", a->dir);
+  csv_in in = {a->dir, total, valid};
+  if (rn_file_write_atomic(ctx, csv, write_csv, &in)) {
+    fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
+    free(valid);
+    return RN_EXIT_INPUT;
+  }
+  free(valid);
+  if (!a->quiet)
+    printf("rodnet sweep: %d points (%d failed); wrote %s\n", total, failed, csv);
+  if (failed) rc = RN_EXIT_INTERNAL;
+  if (a->plot &&
+      rn_cli_plot("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, csv, a->plot) != 0) {
+    fprintf(stderr, "rodnet sweep: the plot %s failed (python3 with matplotlib)\n",
+            a->plot);
+    rc = RN_EXIT_INTERNAL;
+  }
+  return rc;
+}
+
+int rn_cli_sweep(int argc, char **argv) {
+  sweep_args a;
+  int rc = parse_sweep_args(argc, argv, &a);
+  if (rc) return rc < 0 ? RN_EXIT_OK : rc;
   /* the files read and written: the folder's point files and CSV, the plot */
-  const rn_cli_file files[] = {{"the sweep file", file, NULL, RN_CLI_IN},
-                               {"-o", dir, NULL, RN_CLI_OUT_DIR},
-                               {"-o", dir, "/point_*.json", RN_CLI_OUT},
-                               {"-o", dir, "/sweep.csv", RN_CLI_OUT},
-                               {"--plot", plot, NULL, RN_CLI_OUT}};
+  const rn_cli_file files[] = {{"the sweep file", a.file, NULL, RN_CLI_IN},
+                               {"-o", a.dir, NULL, RN_CLI_OUT_DIR},
+                               {"-o", a.dir, "/point_*.json", RN_CLI_OUT},
+                               {"-o", a.dir, "/sweep.csv", RN_CLI_OUT},
+                               {"--plot", a.plot, NULL, RN_CLI_OUT}};
   if ((rc = rn_cli_check_files("sweep", files, 5))) return rc;
 #ifndef RN_HAVE_SOLVER
   return rn_cli_no_solver("sweep"); /* rn_homogenize is the solver's */
@@ -670,73 +768,18 @@ int rn_cli_sweep(int argc, char **argv) {
     rn_context_destroy(&ctx);
     return RN_EXIT_INTERNAL;
   }
-  if (rn_text_file_read(ctx, file, 1 << 20, &text, &len)) {
+  if (rn_text_file_read(ctx, a.file, 1 << 20, &text, &len)) {
     fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
     rc = RN_EXIT_INPUT;
-    goto done;
+  } else if (!(rc = parse_spec(a.file, text, s)) &&
+             !(rc = rn_cli_probe_outputs("sweep", files, 5))) {
+    if (mkdir(a.dir, 0777) != 0 && errno != EEXIST) {
+      fprintf(stderr, "rodnet sweep: %s: cannot create the folder: %s\n", a.dir,
+              strerror(errno));
+      rc = RN_EXIT_INPUT;
+    } else
+      rc = run_sweep(ctx, s, &a);
   }
-  if ((rc = parse_spec(file, text, s))) goto done;
-  if ((rc = rn_cli_probe_outputs("sweep", files, 5))) goto done;
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "rodnet sweep: %s: cannot create the folder: %s\n", dir,
-            strerror(errno));
-    rc = RN_EXIT_INPUT;
-    goto done;
-  }
-  int total = s->nlat * s->njm * s->nrho * s->nseed, k = 0;
-  if (!(valid = calloc((size_t)total, 1))) {
-    rc = RN_EXIT_INTERNAL;
-    goto done;
-  }
-  for (int a = 0; a < s->nlat; ++a)
-    for (int b = 0; b < s->njm; ++b)
-      for (int c = 0; c < s->nrho; ++c)
-        for (int d = 0; d < s->nseed; ++d, ++k) {
-          point p = {k, s->lat[a], s->jm[b], s->rho[c], s->seed[d]};
-          char out[4096], scene[4096], hash[32];
-          snprintf(out, sizeof out, "%s/point_%04d.json", dir, k);
-          snprintf(scene, sizeof scene, "%s/point_%04d.scene.json", dir, k);
-          /* the point's record: its parameters, the version, its cell scene */
-          cJSON *rec = point_record(s, &p);
-          char *rec_text = rec ? cJSON_PrintUnformatted(rec) : NULL;
-          rn_status st =
-              rec_text ? RN_OK : rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
-          if (!st) st = write_cell(ctx, s, &p, scene);
-          if (!st && scene_hash(ctx, scene, hash)) st = RN_ERR_IO;
-          int skip = !st && point_done(ctx, out, &p, rec, hash);
-          if (!st && !skip) st = run_point(ctx, &p, dir, scene, rec_text, hash);
-          cJSON_Delete(rec);
-          cJSON_free(rec_text);
-          valid[k] = !st;
-          if (st) {
-            fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
-                    quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
-                    p.seed, rn_context_last_error(ctx));
-            if (st == RN_ERR_IO) { /* the folder: no point in going on */
-              rc = RN_EXIT_INPUT;
-              goto done;
-            }
-            ++failed;
-          }
-          if (!quiet) progress(k + 1, total, &p, skip);
-        }
-  char csv[4096];
-  snprintf(csv, sizeof csv, "%s/sweep.csv", dir);
-  csv_in in = {dir, total, valid};
-  if (rn_file_write_atomic(ctx, csv, write_csv, &in)) {
-    fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
-    rc = RN_EXIT_INPUT;
-    goto done;
-  }
-  if (!quiet)
-    printf("rodnet sweep: %d points (%d failed); wrote %s\n", total, failed, csv);
-  if (failed) rc = RN_EXIT_INTERNAL;
-  if (plot && run_plot(csv, plot) != 0) {
-    fprintf(stderr, "rodnet sweep: the plot %s failed (python3 with matplotlib)\n", plot);
-    rc = RN_EXIT_INTERNAL;
-  }
-done:
-  free(valid);
   free(text);
   free(s);
   rn_context_destroy(&ctx);

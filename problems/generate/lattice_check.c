@@ -28,6 +28,41 @@ void rn_strut_section_size(int dim, const rn_lattice_scene *sec, double *half_wi
   }
 }
 
+/* The joint zone of every node into zone (calloc'd): node n's bar ends are
+ * list[start[n] .. start[n + 1]) (2 e + end), the bars' vectors d, lengths
+ * len, section scales scale (NULL: 1) and half width r0; a node where two
+ * ends leave in one direction has an infinite zone (out->coincident_node). */
+static void joint_zones(int nnodes, const int *start, const int *list, const double *d,
+                        const double *len, const double *scale, double r0, double *zone,
+                        rn_strut_bounds *out) {
+  /* joint zone z_n = r_max cot(theta_min / 2): along a strut of half width r
+   * leaving the node at angle theta from another of half width r, the two
+   * overlap up to the distance r (1 + cos theta) / sin theta = r cot(theta/2)
+   * from the node (the far corner of their rhombus of intersection) */
+  for (int n = 0; n < nnodes && out->zero_bar < 0; n++) {
+    double cmax = -1.0, rmax = 0.0; /* cos of the smallest angle */
+    for (int i = start[n]; i < start[n + 1]; i++) {
+      const int e = list[i] >> 1;
+      const double s = scale ? scale[e] : 1.0;
+      rmax = fmax(rmax, r0 * s);
+      for (int j = start[n]; j < i; j++) {
+        const int f = list[j] >> 1;
+        const double sg = ((list[i] & 1) == (list[j] & 1)) ? 1.0 : -1.0;
+        const double *a = d + 3 * e, *b = d + 3 * f;
+        const double c =
+            sg * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (len[e] * len[f]);
+        cmax = fmax(cmax, c);
+      }
+    }
+    if (cmax >= 1.0 - 1e-12) {
+      if (out->coincident_node < 0) out->coincident_node = n;
+      zone[n] = HUGE_VAL;
+    } else if (cmax > -1.0) {
+      zone[n] = rmax * (1.0 + cmax) / sqrt(1.0 - cmax * cmax);
+    }
+  }
+}
+
 int rn_strut_bounds_compute(int dim, int nnodes, int nbars, const int *uv,
                             const double *d, const double *scale,
                             const rn_lattice_scene *sec, double measure,
@@ -64,32 +99,7 @@ int rn_strut_bounds_compute(int dim, int nnodes, int nbars, const int *uv,
     for (int end = 0; end < 2; end++) list[start[uv[2 * e + end]]++] = 2 * e + end;
   for (int n = nnodes; n > 0; n--) start[n] = start[n - 1]; /* undo the fill */
   start[0] = 0;
-  /* joint zone z_n = r_max cot(theta_min / 2): along a strut of half width r
-   * leaving the node at angle theta from another of half width r, the two
-   * overlap up to the distance r (1 + cos theta) / sin theta = r cot(theta/2)
-   * from the node (the far corner of their rhombus of intersection) */
-  for (int n = 0; n < nnodes && out->zero_bar < 0; n++) {
-    double cmax = -1.0, rmax = 0.0; /* cos of the smallest angle */
-    for (int i = start[n]; i < start[n + 1]; i++) {
-      const int e = list[i] >> 1;
-      const double s = scale ? scale[e] : 1.0;
-      rmax = fmax(rmax, r0 * s);
-      for (int j = start[n]; j < i; j++) {
-        const int f = list[j] >> 1;
-        const double sg = ((list[i] & 1) == (list[j] & 1)) ? 1.0 : -1.0;
-        const double *a = d + 3 * e, *b = d + 3 * f;
-        const double c =
-            sg * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (len[e] * len[f]);
-        cmax = fmax(cmax, c);
-      }
-    }
-    if (cmax >= 1.0 - 1e-12) {
-      if (out->coincident_node < 0) out->coincident_node = n;
-      zone[n] = HUGE_VAL;
-    } else if (cmax > -1.0) {
-      zone[n] = rmax * (1.0 + cmax) / sqrt(1.0 - cmax * cmax);
-    }
-  }
+  joint_zones(nnodes, start, list, d, len, scale, r0, zone, out);
   for (int e = 0; e < nbars && out->zero_bar < 0; e++) {
     const double z = zone[uv[2 * e]] + zone[uv[2 * e + 1]];
     if (z > 0.0 && len[e] / z < out->joint_factor) {

@@ -222,6 +222,17 @@ static void put_components(FILE *f, int mask) {
   fputc(']', f);
 }
 
+/* The pins of the joints n with mask[n] (RN_FIX_* bits) as constraints. */
+static void put_pins(FILE *f, int nn, const int *mask, int *count) {
+  for (int n = 0; n < nn; n++)
+    if (mask[n]) {
+      next_entry(f, count);
+      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"", n + 1);
+      if (mask[n] != RN_FIX_XYZ) put_components(f, mask[n]);
+      fputc('}', f);
+    }
+}
+
 /* stretch (uniaxial, frictionless grips) and grip (gripped faces). */
 static rn_status put_stretch(scene_out *o, rn_context *ctx) {
   FILE *f = o->f;
@@ -235,13 +246,7 @@ static rn_status put_stretch(scene_out *o, rn_context *ctx) {
     if (rn_lattice_face(o->lat, n, axis)) mask[n] = grip ? RN_FIX_XYZ : RN_FIX_X << axis;
   if (!grip) rigid_motion_pins(o->lat, axis, mask);
   fputs(",\n  \"constraints\": [", f);
-  for (int n = 0; n < nn; n++)
-    if (mask[n]) {
-      next_entry(f, &count);
-      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"", n + 1);
-      if (mask[n] != RN_FIX_XYZ) put_components(f, mask[n]);
-      fputc('}', f);
-    }
+  put_pins(f, nn, mask, &count);
   for (int n = 0; n < nn; n++)
     if (rn_lattice_face(o->lat, n, axis) > 0) {
       next_entry(f, &count);
@@ -301,13 +306,7 @@ static rn_status put_planar_load(scene_out *o, rn_context *ctx) {
   }
   planar_load(o, mask, dmask, d);
   fputs(",\n  \"constraints\": [", f);
-  for (int n = 0; n < nn; n++)
-    if (mask[n]) {
-      next_entry(f, &count);
-      fprintf(f, "{\"type\": \"pin\", \"joint\": \"v%d\"", n + 1);
-      if (mask[n] != RN_FIX_XYZ) put_components(f, mask[n]);
-      fputc('}', f);
-    }
+  put_pins(f, nn, mask, &count);
   for (int n = 0; n < nn; n++)
     if (dmask[n]) {
       next_entry(f, &count);

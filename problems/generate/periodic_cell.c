@@ -385,14 +385,12 @@ static void put_vec3(FILE *f, const double *v) {
   fprintf(f, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
 }
 
-static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
-  const pcell_out *o = user;
+/* ---- write_pcell's parts: the scene's objects, in the order written ---- */
+
+/* "periodic": the vectors, the repeat counts, the prescribed strain. */
+static void put_periodic(FILE *f, const pcell_out *o) {
   const rn_pcell *c = o->c;
   const rn_lattice_scene *opt = o->opt;
-  (void)ctx;
-  fputs("{\n  \"description\": ", f);
-  rn_put_json_string(f, opt->description ? opt->description : "rodnet periodic cell");
-  fputs(",\n", f);
   fputs("  \"periodic\": {\"vectors\": [", f);
   for (int m = 0; m < c->dim; m++) {
     if (m) fputs(", ", f);
@@ -420,9 +418,10 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
     fputc(']', f);
   }
   fputs("},\n", f);
-  if (opt->model) fprintf(f, "  \"model\": \"%s\",\n", opt->model);
-  fprintf(f, "  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n", opt->E,
-          opt->nu);
+}
+
+/* "sections": one, or one per bar ("s1", ...) scaled by section_scale. */
+static void put_sections(FILE *f, const rn_pcell *c, const rn_lattice_scene *opt) {
   fputs("  \"sections\": {", f);
   for (int e = 0; e < (c->section_scale ? c->nbars : 1); e++) {
     const double k = c->section_scale ? c->section_scale[e] : 1.0;
@@ -439,7 +438,12 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
       fprintf(f, "{\"shape\": \"ellipse\", \"a\": %.17g, \"b\": %.17g}",
               k * opt->section[0], k * opt->section[1]);
   }
-  fputs("},\n  \"rods\": [\n", f);
+  fputs("},\n", f);
+}
+
+/* "rods": bar e from node x to the image's x + s. */
+static void put_rods(FILE *f, const rn_pcell *c, const rn_lattice_scene *opt) {
+  fputs("  \"rods\": [\n", f);
   for (int e = 0; e < c->nbars; e++) {
     const int *b = c->bar + 5 * e;
     double q[3];
@@ -460,11 +464,17 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
     fprintf(f, ", \"vertices\": %d}%s}%s\n", opt->edges_per_rod + 1,
             c->dim == 2 ? ", \"d1\": [0, 0, 1]" : "", e + 1 < c->nbars ? "," : "");
   }
-  fputs("  ],\n  \"joints\": [\n", f);
+  fputs("  ],\n", f);
+}
+
+/* "joints": node n joins the rod ends at it, those without an image first. */
+static void put_joints(FILE *f, const pcell_out *o) {
+  const rn_pcell *c = o->c;
+  fputs("  \"joints\": [\n", f);
   for (int n = 0; n < c->nnodes; n++) {
     int first = 1;
     fprintf(f, "    {\"name\": \"v%d\", \"model\": \"%s\", \"ends\": [", n + 1,
-            opt->joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
+            o->opt->joint_model == RN_JOINT_RIGID ? "rigid" : "elastic");
     for (int pass = 0; pass < 2; pass++) /* ends without an image first */
       for (int i = o->end_start[n]; i < o->end_start[n + 1]; i++) {
         const int e = o->end_list[i] >> 1, end = o->end_list[i] & 1;
@@ -484,7 +494,24 @@ static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
       }
     fprintf(f, "]}%s\n", n + 1 < c->nnodes ? "," : "");
   }
-  fputs("  ]\n}\n", f);
+  fputs("  ]\n", f);
+}
+
+static rn_status write_pcell(FILE *f, void *user, rn_context *ctx) {
+  const pcell_out *o = user;
+  const rn_lattice_scene *opt = o->opt;
+  (void)ctx;
+  fputs("{\n  \"description\": ", f);
+  rn_put_json_string(f, opt->description ? opt->description : "rodnet periodic cell");
+  fputs(",\n", f);
+  put_periodic(f, o);
+  if (opt->model) fprintf(f, "  \"model\": \"%s\",\n", opt->model);
+  fprintf(f, "  \"materials\": {\"material\": {\"E\": %.17g, \"nu\": %.17g}},\n", opt->E,
+          opt->nu);
+  put_sections(f, o->c, opt);
+  put_rods(f, o->c, opt);
+  put_joints(f, o);
+  fputs("}\n", f);
   return RN_OK;
 }
 

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "io/text_file.h"
+#include "scene/vec3.h"
 
 /* Largest number of vertices or segments accepted (keeps allocations sane). */
 #define RN_OBJ_MAX_ITEMS 50000000
@@ -323,9 +324,7 @@ static rn_status check_duplicates(obj_reader *r) {
 }
 
 static double seg_length(const rn_obj_graph *g, int s) {
-  const double *a = g->vert[g->seg[s].v[0]].x, *b = g->vert[g->seg[s].v[1]].x;
-  double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  return rn_dist3(g->vert[g->seg[s].v[0]].x, g->vert[g->seg[s].v[1]].x);
 }
 
 static rn_status check_lengths(obj_reader *r) {

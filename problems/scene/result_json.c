@@ -118,6 +118,22 @@ static rn_status put_cell(json_out *o, rn_network *net) {
   return RN_OK;
 }
 
+/* "where": {"KEY": value, ...} of six keys, not closed (the caller adds its
+ * own members); the fourth written null when +inf (contact's min_gap: no pair
+ * within reach, a valid result). */
+static void put_fields(json_out *o, const char *where, const char *const keys[6],
+                       const double vals[6]) {
+  fprintf(o->f, "  \"%s\": {", where);
+  o->where = where;
+  for (int k = 0; k < 6; k++) {
+    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
+    if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
+      fputs("null", o->f);
+    else
+      put_num(o, vals[k]);
+  }
+}
+
 /* "contact" of a scene with contact (docs/contact.md): the settings and, at the
  * result, the smallest gap, the active pairs, the barrier energy and force. */
 static rn_status put_contact(json_out *o, rn_network *net) {
@@ -134,15 +150,7 @@ static rn_status put_contact(json_out *o, rn_network *net) {
   const char *keys[6] = {"distance", "stiffness", "radius", "min_gap", "energy", "force"};
   const double vals[6] = {dhat,       kappa,     r,
                           cs.min_gap, cs.energy, cs.force}; /* min_gap: null if inf */
-  fputs("  \"contact\": {", o->f);
-  o->where = "contact";
-  for (int k = 0; k < 6; k++) {
-    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
-    if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
-      fputs("null", o->f); /* no pair within reach: a valid result */
-    else
-      put_num(o, vals[k]);
-  }
+  put_fields(o, "contact", keys, vals);
   fprintf(o->f, ", \"active_pairs\": %zu},\n", cs.active);
   return RN_OK;
 }
@@ -154,15 +162,7 @@ static void put_equilibrium(json_out *o) {
                          "moment_residual", "moment_scale", "moment_tolerance"};
   const double vals[6] = {in->force_residual,  in->force_scale,  in->force_tolerance,
                           in->moment_residual, in->moment_scale, in->moment_tolerance};
-  fputs("  \"equilibrium\": {", o->f);
-  o->where = "equilibrium";
-  for (int k = 0; k < 6; k++) {
-    fprintf(o->f, "%s\"%s\": ", k ? ", " : "", keys[k]);
-    if (k == 3 && isinf(vals[k]) && vals[k] > 0.0)
-      fputs("null", o->f); /* no pair within reach: a valid result */
-    else
-      put_num(o, vals[k]);
-  }
+  put_fields(o, "equilibrium", keys, vals);
   fputs(",\n    \"relative_force_residual\": ", o->f);
   put_num(o, in->force_scale > 0.0 ? in->force_residual / in->force_scale : 0.0);
   fputs(", \"relative_moment_residual\": ", o->f);
@@ -229,16 +229,10 @@ const char *rn_result_model_line(const rn_network *net, char *buf, size_t n) {
   return buf;
 }
 
-static void put_summary(json_out *o, rn_network *net) {
+/* The solver, its factorisation and preconditioner, what it finds. */
+static void put_solver(json_out *o, rn_network *net) {
   const rn_result_info *in = o->info;
   FILE *f = o->f;
-  fprintf(f, "{\n  \"rodnet_version\": \"%s\",\n  \"scene\": ", rn_version_string());
-  rn_put_json_string(f, rn_scene_label(o->scene));
-  fputs(",\n  \"status\": ", f);
-  rn_put_json_string(f, in->status);
-  fprintf(f, ",\n  \"converged\": %s,\n  \"stop_reason\": ",
-          in->converged ? "true" : "false");
-  rn_put_json_string(f, in->stop);
   fputs(",\n  \"solver\": ", f);
   rn_put_json_string(f, in->solver);
   if (in->factorization) {
@@ -257,14 +251,12 @@ static void put_summary(json_out *o, rn_network *net) {
   }
   if (nfixed > 0) /* rodnet_couple.h: the energy leaves out their work */
     fprintf(f, ",\n  \"nonconservative_loads\": %d", nfixed);
-  fputs(",\n", f);
-  put_key_num(o, "energy", in->energy);
-  put_key_num(o, "gradient_norm", in->gradient_norm);
-  put_key_num(o, "initial_gradient_norm", in->initial_gradient_norm);
-  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n  \"predictor_steps\": %d,\n",
-          in->iterations, in->load_steps, in->predictor_steps);
-  put_key_num(o, "load_factor", rn_network_load_factor(net));
-  put_key_num(o, "time_s", in->time_s);
+}
+
+/* "timing" and "evaluations": where the solve spent its time and work. */
+static void put_costs(json_out *o) {
+  const rn_result_info *in = o->info;
+  FILE *f = o->f;
   fputs("  \"timing\": {\"hessian_s\": ", f);
   o->where = "timing";
   put_num(o, in->hessian_s);
@@ -278,11 +270,12 @@ static void put_summary(json_out *o, rn_network *net) {
           "\"hessian\": %ld, \"krylov_iterations\": %ld},\n",
           in->energy_evals, in->gradient_evals, in->hvp_evals, in->hessian_evals,
           in->krylov_iterations);
-  fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
-          rn_scene_num_vertices(o->scene));
-  rn_result_put_model(f, net);
-  put_equilibrium(o);
-  put_stability(o);
+}
+
+/* "partition" of a distributed solve. */
+static void put_partition(json_out *o) {
+  const rn_result_info *in = o->info;
+  FILE *f = o->f;
   if (in->part_ranks > 0) {
     fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", in->part_ranks);
     for (int q = 0; q < in->part_ranks; q++)
@@ -295,6 +288,34 @@ static void put_summary(json_out *o, rn_network *net) {
     put_num(o, in->imbalance);
     fputs("},\n", f);
   }
+}
+
+static void put_summary(json_out *o, rn_network *net) {
+  const rn_result_info *in = o->info;
+  FILE *f = o->f;
+  fprintf(f, "{\n  \"rodnet_version\": \"%s\",\n  \"scene\": ", rn_version_string());
+  rn_put_json_string(f, rn_scene_label(o->scene));
+  fputs(",\n  \"status\": ", f);
+  rn_put_json_string(f, in->status);
+  fprintf(f, ",\n  \"converged\": %s,\n  \"stop_reason\": ",
+          in->converged ? "true" : "false");
+  rn_put_json_string(f, in->stop);
+  put_solver(o, net);
+  fputs(",\n", f);
+  put_key_num(o, "energy", in->energy);
+  put_key_num(o, "gradient_norm", in->gradient_norm);
+  put_key_num(o, "initial_gradient_norm", in->initial_gradient_norm);
+  fprintf(f, "  \"iterations\": %d,\n  \"load_steps\": %d,\n  \"predictor_steps\": %d,\n",
+          in->iterations, in->load_steps, in->predictor_steps);
+  put_key_num(o, "load_factor", rn_network_load_factor(net));
+  put_key_num(o, "time_s", in->time_s);
+  put_costs(o);
+  fprintf(f, "  \"num_dofs\": %zu,\n  \"num_vertices\": %ld,\n", rn_network_num_dofs(net),
+          rn_scene_num_vertices(o->scene));
+  rn_result_put_model(f, net);
+  put_equilibrium(o);
+  put_stability(o);
+  put_partition(o);
 }
 
 static rn_status put_rod(json_out *o, rn_network *net, int rod, double *buf) {

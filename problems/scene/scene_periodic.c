@@ -169,18 +169,13 @@ static int copy_joint(cJSON *j, const int *c, const int *rep, int dim) {
   return 1;
 }
 
-rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **out) {
-  rn_jwalk *w = &p->w;
-  const cJSON *per = rn_jm_get(root, "periodic"), *rv, *vec;
-  int rep[3] = {1, 1, 1}, dim = 0, k = 0;
-  long copies = 1;
-  *out = NULL;
-  if (!cJSON_IsObject(per) || !(rv = rn_jm_get(per, "repeat"))) return RN_OK;
-  vec = rn_jm_get(per, "vectors");
-  dim = cJSON_IsArray(vec) ? cJSON_GetArraySize(vec) : 0;
+/* The "periodic" object's "repeat" (rv) of a cell of dim vectors: the counts
+ * into rep, their product into *copies; the tiled scene's size bounded. */
+static rn_status read_repeat(rn_jwalk *w, const cJSON *root, const cJSON *rv, int dim,
+                             int rep[3], long *copies) {
   size_t mark = rn_jwalk_key(w, "periodic");
   size_t m2 = rn_jwalk_key(w, "repeat");
-  int n = 0;
+  int n = 0, k = 0;
   rn_status st =
       (dim == 2 || dim == 3)
           ? rn_jv_array(w, rv, &n)
@@ -191,33 +186,86 @@ rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **
   for (const cJSON *c = st ? NULL : rv->child; c && !st; c = c->next, k++) {
     size_t m3 = rn_jwalk_index(w, k);
     st = rn_jv_int(w, c, 1, 1000, &rep[k]);
-    copies *= rep[k];
+    *copies *= rep[k];
     rn_jwalk_pop(w, m3);
   }
-  if (!st && copies > 100000)
-    st = rn_jwalk_error(w, "%ld copies of the cell: at most 100000", copies);
+  if (!st && *copies > 100000)
+    st = rn_jwalk_error(w, "%ld copies of the cell: at most 100000", *copies);
   if (!st) { /* the tiled scene's size: at most 2e6 rods and joints */
     const cJSON *ro = rn_jm_get(root, "rods"), *jo = rn_jm_get(root, "joints");
     long items = (cJSON_IsArray(ro) ? cJSON_GetArraySize(ro) : 0) +
                  (cJSON_IsArray(jo) ? cJSON_GetArraySize(jo) : 0);
-    if (items * copies > 2000000L)
+    if (items * *copies > 2000000L)
       st = rn_jwalk_error(w,
                           "%ld copies of %ld rods and joints: at most 2000000 in the "
                           "tiled scene",
-                          copies, items);
+                          *copies, items);
   }
   if (!st && rn_jm_get(root, "graph"))
     st = rn_jwalk_error(w, "\"repeat\" needs explicit \"rods\" and \"joints\" (not a "
                            "\"graph\")");
   rn_jwalk_pop(w, m2);
   rn_jwalk_pop(w, mark);
+  return st;
+}
+
+/* The copy c of the cell's rods and joints (orods, ojoints), shifted by d,
+ * appended to rods and joints; 0 out of memory. */
+static int add_copy(const cJSON *orods, const cJSON *ojoints, const int c[3],
+                    const int rep[3], int dim, const double d[3], cJSON *rods,
+                    cJSON *joints) {
+  char buf[512];
+  int ok = 1;
+  for (const cJSON *o = cJSON_IsArray(orods) ? orods->child : NULL; ok && o;
+       o = o->next) {
+    cJSON *cp = cJSON_Duplicate(o, 1), *nm;
+    ok = cp != NULL;
+    if (ok && cJSON_IsString(nm = cJSON_GetObjectItemCaseSensitive(cp, "name")))
+      ok = copy_name(buf, sizeof buf, nm->valuestring, c, dim) &&
+           cJSON_SetValuestring(nm, buf) != NULL;
+    if (ok) shift_rod(cp, d);
+    if (cp) cJSON_AddItemToArray(rods, cp);
+  }
+  for (const cJSON *o = cJSON_IsArray(ojoints) ? ojoints->child : NULL; ok && o;
+       o = o->next) {
+    cJSON *cp = cJSON_Duplicate(o, 1);
+    ok = cp != NULL && copy_joint(cp, c, rep, dim);
+    if (cp) cJSON_AddItemToArray(joints, cp);
+  }
+  return ok;
+}
+
+/* The supercell's vectors rep[m] a[m] (NULL out of memory). */
+static cJSON *supercell_vectors(double a[3][3], const int rep[3], int dim) {
+  cJSON *nv = cJSON_CreateArray();
+  for (int m = 0; nv && m < dim; m++) {
+    double v3[3] = {rep[m] * a[m][0], rep[m] * a[m][1], rep[m] * a[m][2]};
+    cJSON *x = cJSON_CreateDoubleArray(v3, 3);
+    if (!x) {
+      cJSON_Delete(nv);
+      return NULL;
+    }
+    cJSON_AddItemToArray(nv, x);
+  }
+  return nv;
+}
+
+rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **out) {
+  rn_jwalk *w = &p->w;
+  const cJSON *per = rn_jm_get(root, "periodic"), *rv, *vec;
+  int rep[3] = {1, 1, 1}, dim = 0, k = 0;
+  long copies = 1;
+  *out = NULL;
+  if (!cJSON_IsObject(per) || !(rv = rn_jm_get(per, "repeat"))) return RN_OK;
+  vec = rn_jm_get(per, "vectors");
+  dim = cJSON_IsArray(vec) ? cJSON_GetArraySize(vec) : 0;
+  rn_status st = read_repeat(w, root, rv, dim, rep, &copies);
   if (st) return st;
   cJSON *r = cJSON_Duplicate(root, 1), *rods = cJSON_CreateArray(),
         *joints = cJSON_CreateArray();
   const cJSON *orods = rn_jm_get(root, "rods"), *ojoints = rn_jm_get(root, "joints");
   double a[3][3] = {{0}};
   int ok = r && rods && joints;
-  k = 0;
   for (const cJSON *v = vec->child; v && k < 3; v = v->next, k++) {
     int q = 0;
     for (const cJSON *x = v->child; x && q < 3; x = x->next, q++)
@@ -227,44 +275,19 @@ rn_status rn_scene_expand_repeat(rn_scene_parser *p, const cJSON *root, cJSON **
     int c[3] = {(int)(ci % rep[0]), (int)((ci / rep[0]) % rep[1]),
                 (int)(ci / ((long)rep[0] * rep[1]))};
     double d[3] = {0.0, 0.0, 0.0};
-    char buf[512];
     for (int q = 0; q < 3; q++)
       for (int m = 0; m < dim; m++) d[q] += c[m] * a[m][q];
-    for (const cJSON *o = cJSON_IsArray(orods) ? orods->child : NULL; ok && o;
-         o = o->next) {
-      cJSON *cp = cJSON_Duplicate(o, 1), *nm;
-      ok = cp != NULL;
-      if (ok && cJSON_IsString(nm = cJSON_GetObjectItemCaseSensitive(cp, "name")))
-        ok = copy_name(buf, sizeof buf, nm->valuestring, c, dim) &&
-             cJSON_SetValuestring(nm, buf) != NULL;
-      if (ok) shift_rod(cp, d);
-      if (cp) cJSON_AddItemToArray(rods, cp);
-    }
-    for (const cJSON *o = cJSON_IsArray(ojoints) ? ojoints->child : NULL; ok && o;
-         o = o->next) {
-      cJSON *cp = cJSON_Duplicate(o, 1);
-      ok = cp != NULL && copy_joint(cp, c, rep, dim);
-      if (cp) cJSON_AddItemToArray(joints, cp);
-    }
+    ok = add_copy(orods, ojoints, c, rep, dim, d, rods, joints);
   }
+  cJSON *nv = ok ? supercell_vectors(a, rep, dim) : NULL;
+  ok = ok && nv;
   if (ok) { /* the supercell's vectors, no repeat */
     cJSON *rper = cJSON_GetObjectItemCaseSensitive(r, "periodic");
-    cJSON *nv = cJSON_CreateArray();
-    ok = nv != NULL;
-    for (int m = 0; ok && m < dim; m++) {
-      double v3[3] = {rep[m] * a[m][0], rep[m] * a[m][1], rep[m] * a[m][2]};
-      cJSON *x = cJSON_CreateDoubleArray(v3, 3);
-      ok = x != NULL;
-      if (x) cJSON_AddItemToArray(nv, x);
-    }
-    if (ok) {
-      cJSON_ReplaceItemInObjectCaseSensitive(rper, "vectors", nv);
-      cJSON_DeleteItemFromObjectCaseSensitive(rper, "repeat");
-      if (orods) cJSON_ReplaceItemInObjectCaseSensitive(r, "rods", rods), rods = NULL;
-      if (ojoints)
-        cJSON_ReplaceItemInObjectCaseSensitive(r, "joints", joints), joints = NULL;
-    } else
-      cJSON_Delete(nv);
+    cJSON_ReplaceItemInObjectCaseSensitive(rper, "vectors", nv);
+    cJSON_DeleteItemFromObjectCaseSensitive(rper, "repeat");
+    if (orods) cJSON_ReplaceItemInObjectCaseSensitive(r, "rods", rods), rods = NULL;
+    if (ojoints)
+      cJSON_ReplaceItemInObjectCaseSensitive(r, "joints", joints), joints = NULL;
   }
   cJSON_Delete(rods);
   cJSON_Delete(joints);

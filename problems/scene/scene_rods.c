@@ -7,6 +7,7 @@
 
 #include "rodnet_ring.h"
 #include "scene/scene_internal.h"
+#include "scene/vec3.h"
 
 /* Largest vertex count accepted for one rod (keeps allocations sane). */
 #define RN_SCENE_MAX_VERTICES 100000000L
@@ -16,10 +17,6 @@ static char *dup_string(const char *s) {
   char *d = malloc(n);
   if (d) memcpy(d, s, n);
   return d;
-}
-
-static double dot3(const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* "a, b, c" of the names, truncated to fit. */
@@ -181,14 +178,14 @@ static rn_status check_polyline(rn_jwalk *w, const double *x, int nv, int explic
   for (int i = 0; i + 1 < nv; i++) {
     double e[3] = {x[3 * i + 3] - x[3 * i], x[3 * i + 4] - x[3 * i + 1],
                    x[3 * i + 5] - x[3 * i + 2]};
-    double l = sqrt(dot3(e, e));
+    double l = sqrt(rn_dot3(e, e));
     if (!isfinite(l)) return rn_jwalk_error(w, "edge %d is too long (overflow)", i);
     if (l > lmax) lmax = l;
   }
   for (int i = 0; i + 1 < nv; i++) {
     const double *a = &x[3 * i], *b = &x[3 * i + 3];
     double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double l = sqrt(dot3(e, e));
+    double l = sqrt(rn_dot3(e, e));
     rn_status st = RN_OK;
     size_t mark = explicit_list ? rn_jwalk_index(w, i + 1) : w->len;
     if (!(l > 1e-12 * lmax))
@@ -197,7 +194,7 @@ static rn_status check_polyline(rn_jwalk *w, const double *x, int nv, int explic
     else if (i > 0) {
       const double *z = &x[3 * i - 3];
       double f[3] = {a[0] - z[0], a[1] - z[1], a[2] - z[2]};
-      double c = dot3(e, f) / (l * sqrt(dot3(f, f)));
+      double c = rn_dot3(e, f) / (l * sqrt(rn_dot3(f, f)));
       if (c <= -1 + 1e-12)
         st = rn_jwalk_error(w,
                             "edges %d and %d point in opposite directions (the "
@@ -239,7 +236,7 @@ static rn_status read_d1(rn_jwalk *w, const cJSON *rod, const double *xyz, doubl
   rn_status st = rn_jm_vec(w, rod, "d1", 0, 3, RN_J_ANY, d1, present);
   if (st || !*present) return st;
   double t[3] = {xyz[3] - xyz[0], xyz[4] - xyz[1], xyz[5] - xyz[2]};
-  double tt = dot3(t, t), dd = dot3(d1, d1), dt = dot3(d1, t);
+  double tt = rn_dot3(t, t), dd = rn_dot3(d1, d1), dt = rn_dot3(d1, t);
   size_t mark = rn_jwalk_key(w, "d1");
   if (!(dd > 0))
     st = rn_jwalk_error(w, "the material axis must not be the zero vector");
@@ -252,32 +249,32 @@ static rn_status read_d1(rn_jwalk *w, const cJSON *rod, const double *xyz, doubl
 
 /* ---- properties ---------------------------------------------------------------- */
 
-rn_status rn_scene_material_ref(rn_scene_parser *p, const cJSON *obj, int *m) {
+/* The material or section (what) that obj's key names: its index into *out,
+ * else an error listing the names defined. */
+static rn_status property_ref(rn_scene_parser *p, const cJSON *obj, const char *key,
+                              int (*find)(const rn_scene_parser *, const char *),
+                              const char *const *names, int n, int *out) {
   const char *name = NULL;
-  rn_status st = rn_jm_string(&p->w, obj, "material", 1, &name);
+  rn_status st = rn_jm_string(&p->w, obj, key, 1, &name);
   if (st) return st;
-  *m = rn_scene_parser_material(p, name);
-  if (*m >= 0) return RN_OK;
+  *out = find(p, name);
+  if (*out >= 0) return RN_OK;
   char list[512];
-  name_list(p->mat_names, p->nmat, list, sizeof list);
-  size_t mark = rn_jwalk_key(&p->w, "material");
-  st = rn_jwalk_error(&p->w, "unknown material \"%s\" (defined: %s)", name, list);
+  name_list(names, n, list, sizeof list);
+  size_t mark = rn_jwalk_key(&p->w, key);
+  st = rn_jwalk_error(&p->w, "unknown %s \"%s\" (defined: %s)", key, name, list);
   rn_jwalk_pop(&p->w, mark);
   return st;
 }
 
+rn_status rn_scene_material_ref(rn_scene_parser *p, const cJSON *obj, int *m) {
+  return property_ref(p, obj, "material", rn_scene_parser_material, p->mat_names, p->nmat,
+                      m);
+}
+
 rn_status rn_scene_section_ref(rn_scene_parser *p, const cJSON *obj, int *s) {
-  const char *name = NULL;
-  rn_status st = rn_jm_string(&p->w, obj, "section", 1, &name);
-  if (st) return st;
-  *s = rn_scene_parser_section(p, name);
-  if (*s >= 0) return RN_OK;
-  char list[512];
-  name_list(p->sec_names, p->nsec, list, sizeof list);
-  size_t mark = rn_jwalk_key(&p->w, "section");
-  st = rn_jwalk_error(&p->w, "unknown section \"%s\" (defined: %s)", name, list);
-  rn_jwalk_pop(&p->w, mark);
-  return st;
+  return property_ref(p, obj, "section", rn_scene_parser_section, p->sec_names, p->nsec,
+                      s);
 }
 
 /* Set material m / section s (either may be -1) on edges [first, last]. */
@@ -512,11 +509,6 @@ static rn_status reserve_rods(rn_scene_parser *p, int extra) {
   return RN_OK;
 }
 
-static double dist3(const double *a, const double *b) {
-  double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  return sqrt(dot3(d, d));
-}
-
 rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
                            const double *xyz, const double *d1, int m, int sec,
                            int *rod) {
@@ -545,8 +537,8 @@ rn_status rn_scene_add_rod(rn_scene_parser *p, const char *name, int nv,
   r->nv = nv;
   memcpy(r->end_xyz[RN_START], xyz, 3 * sizeof(double));
   memcpy(r->end_xyz[RN_END], &xyz[3 * (nv - 1)], 3 * sizeof(double));
-  r->end_len[RN_START] = dist3(&xyz[0], &xyz[3]);
-  r->end_len[RN_END] = dist3(&xyz[3 * (nv - 2)], &xyz[3 * (nv - 1)]);
+  r->end_len[RN_START] = rn_dist3(&xyz[0], &xyz[3]);
+  r->end_len[RN_END] = rn_dist3(&xyz[3 * (nv - 2)], &xyz[3 * (nv - 1)]);
   s->nrods++;
   *rod = idx;
   if (rn_name_index_put(&s->rod_names, r->name, idx))

@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/num_format.h"
+#include "scene/vec3.h"
 
 enum { VTK_VERTEX = 1, VTK_LINE = 3, N_WORK = 4, OUT_CAP = 1 << 16 };
 
@@ -101,27 +102,18 @@ typedef struct vtk_field {
 
 /* ---- small vector helpers ------------------------------------------------- */
 
-static double dist3(const double *p, const double *q) {
-  double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-}
-
-static double dot3(const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* u = normalise(a + b - ((a + b) . e) e) (e unit or NULL). */
 static void mean_direction(const double *a, const double *b, const double *e, double *u) {
   double s[3] = {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-  double p = e ? dot3(s, e) : 0.0;
+  double p = e ? rn_dot3(s, e) : 0.0;
   for (int k = 0; k < 3; k++) s[k] -= e ? p * e[k] : 0.0;
-  double n = sqrt(dot3(s, s));
+  double n = sqrt(rn_dot3(s, s));
   for (int k = 0; k < 3; k++) u[k] = n > 0 ? s[k] / n : 0.0;
 }
 
 /* Current Voronoi length of interior vertex i of the polyline x. */
 static double voronoi(const double *x, int i) {
-  return 0.5 * (dist3(&x[3 * i - 3], &x[3 * i]) + dist3(&x[3 * i], &x[3 * i + 3]));
+  return 0.5 * (rn_dist3(&x[3 * i - 3], &x[3 * i]) + rn_dist3(&x[3 * i], &x[3 * i + 3]));
 }
 
 /* ---- point fields ------------------------------------------------------------ */

@@ -9,7 +9,9 @@
 #   shim_cxx/ : c_api + Trilinos/MPI/METIS/LAPACK: no kernel, cJSON or problems/ headers;
 #   problems/ : the public c_api headers (rodnet.h, rodnet_solve.h, rodnet_model.h,
 #               rodnet_contact.h, rodnet_couple.h, rodnet_ring.h, rodnet_registry.h) + cJSON
-#               + libc only.
+#               + libc only;
+# and, inside each layer, the order of its folders (check_folder_order.sh with
+# folder_order.txt beside this script).
 # Prints every violation and exits 1 if there is any.
 set -uo pipefail
 src=$1
@@ -23,18 +25,16 @@ heavy='(^|/)(mpi|mpi_.*|metis|parmetis|lapacke?|cblas|f77blas)\.h$|^(Teuchos|Tpe
 cjson='(^|/)cJSON(_Utils)?\.h$'
 freestanding='^(math|stddef|stdint|string|float|limits|stdbool)\.h$'
 
-# Print "file:line:kind:name" for every #include of the given files.
+# Print "file:line:kind:name" for every #include of the given files (one awk
+# for all: a process per file or per include is slow on a loaded machine).
 includes() {
-  local f
-  for f in "$@"; do
-    awk -v f="$f" '
+  printf '%s\0' "$@" | xargs -0 -r awk '
       /^[ \t]*#[ \t]*include[ \t]*[<"]/ {
         line = $0; sub(/^[ \t]*#[ \t]*include[ \t]*/, "", line)
         kind = substr(line, 1, 1); close_ch = (kind == "<") ? ">" : "\""
         name = substr(line, 2); sub(close_ch ".*", "", name)
-        print f ":" FNR ":" kind ":" name
-      }' "$f"
-  done
+        print FILENAME ":" FNR ":" kind ":" name
+      }'
 }
 sources() { find "$src/$1" -type f \( -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort; }
 # A quoted include "x" of a file resolves to an existing file under one of the
@@ -45,8 +45,8 @@ resolves_in() {
   local dir root
   case $name in *..*) return 1 ;; esac
   for dir in "$@"; do
-    case $(dirname "$from")/ in
-      "$src/$dir"/*) [ -f "$(dirname "$from")/$name" ] && return 0 ;;
+    case ${from%/*}/ in
+      "$src/$dir"/*) [ -f "${from%/*}/$name" ] && return 0 ;;
     esac
     for root in "$src/$dir" "$src/$dir/include"; do
       [ -f "$root/$name" ] && return 0
@@ -55,6 +55,10 @@ resolves_in() {
   return 1
 }
 public_api='^(rodnet|rodnet_solve|rodnet_model|rodnet_contact|rodnet_couple|rodnet_ring|rodnet_registry)\.h$'
+# The names of the headers below problems/ (kernels, c_api, shim_cxx), once.
+declare -A lower_header
+while IFS= read -r h; do lower_header[$h]=1; done < <(
+  find "$src/kernels" "$src/c_api" "$src/shim_cxx" -type f -printf '%f\n' 2>/dev/null)
 
 check_layer() {
   local layer=$1; shift
@@ -63,7 +67,7 @@ check_layer() {
   local rec file line kind name base rel
   while IFS= read -r rec; do
     file=${rec%%:*}; rec=${rec#*:}; line=${rec%%:*}; rec=${rec#*:}
-    kind=${rec%%:*}; name=${rec#*:}; base=$(basename "$name")
+    kind=${rec%%:*}; name=${rec#*:}; base=${name##*/}
     rel=${file#"$src"/}
     case $layer in
       kernels)
@@ -92,7 +96,7 @@ check_layer() {
         elif [ "$kind" = '<' ]; then
           if [[ $base =~ $public_api || $name =~ $cjson ]]; then :
           elif [[ $name != *.h ]]; then violation "$rel:$line: problems is C: <$name> is not a C header"
-          elif [ -n "$(find "$src/kernels" "$src/c_api" "$src/shim_cxx" -name "$base" -print -quit)" ]; then
+          elif [ -n "${lower_header[$base]:-}" ]; then
             violation "$rel:$line: problems may use only the public headers rodnet.h/rodnet_solve.h, not <$name>"
           fi
         else
@@ -107,6 +111,11 @@ check_layer() {
 }
 
 for layer in kernels c_api shim_cxx problems; do check_layer "$layer"; done
+
+# ---- the folders inside each layer ------------------------------------------------
+here=$(dirname "${BASH_SOURCE[0]}")
+bash "$here/check_folder_order.sh" "$src" "$here/folder_order.txt" | sed 's/^/layering: /'
+[ "${PIPESTATUS[0]}" -eq 0 ] || bad=1
 
 # ---- symbols of the kernels archive ----------------------------------------------
 if [ ! -f "$archive" ]; then

@@ -1,0 +1,2 @@
+/* fixture: the higher folder */
+#include "io/low.h"

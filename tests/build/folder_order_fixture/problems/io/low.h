@@ -1,0 +1,2 @@
+/* fixture: an upward include (io below cli) */
+#include "cli/high.h"

@@ -1,0 +1,3 @@
+/* fixture: downward includes */
+#include "factor/f.hpp"
+#include "system/s.hpp"

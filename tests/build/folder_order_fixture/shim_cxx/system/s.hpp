@@ -1,0 +1,2 @@
+/* fixture: an upward include listed as an exception */
+#include "pc/p.hpp"
