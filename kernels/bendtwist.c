@@ -17,7 +17,7 @@ static void bend_from_kappa(jet k[2], const rnk_bend_param *p, jet *E) {
   jet_lin(E, 1.0, E, s * p->B[2], &c);
 }
 
-/* Shared by bend.c, twist.c and the combined kernel. */
+/* The bending energy of the vertex (bendtwist_eval). */
 int rnk_bend_from_frames(const rnk_edge_jet f[2], const rnk_bend_param *p, jet *E) {
   jet k[2];
   int st = rnk_curvature_jet(f, k);

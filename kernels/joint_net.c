@@ -12,8 +12,13 @@
  * the 9 entries of M (Newton iteration for the polar factor, then
  * phi = f(u) axial(P - P^T), P = Q Q0^T, u = (3 - tr P)/2,
  * f(u) = theta / (2 sin theta) = 1/2 + u/6 + u^2/15 + ...) and from the
- * terminal edges' frame jets.  The test oracle of the closed forms
- * (jointq.c): rnk_jet_joint_*. */
+ * terminal edges' frame jets.
+ *
+ * Production code: the stencil size, the polar factor rnk_polar (the elastic
+ * fit of jointq.c) and the joint rotation rnk_joint_rotation (the rotation the C
+ * API reports and takes as a rigid joint's reference).  The jet evaluations
+ * rnk_jet_joint_* are slow: the tests (kernels_joint_closed) and bench_joints
+ * hold the closed forms (jointq.c) to them. */
 #include <math.h>
 #include <string.h>
 
@@ -266,16 +271,9 @@ static int end_index(const rnk_joint *j, int k, int l) {
   return j->rigid ? 3 + (l - 7) : -1;
 }
 
-/* dphi/dY [3][ny] and d2phi/dY2 [3][ny][ny], Y = (e_k, theta_k) per end. */
-static int elastic_phi_derivs(const double *q, const rnk_joint *j, double Q0[9],
-                              double *dphi, double *d2phi) {
-  int v = j->valence, ny = 4 * v;
-  double M[9] = {0};
-  /* frames of the terminal edges as 4-variable jets; M as their combination */
-  rnk_edge_jet fk;
-  /* dM/dY_k [9][4] and d2M/dY_k2 [9][4][4] for each k: store on the stack for
-   * one k at a time; first pass for M's value */
-  for (int k = 0; k < v; ++k) {
+/* M = sum_k F_k Fbar_k^T, F_k the material frame of end k's terminal edge. */
+static int fit_matrix(const double *q, const rnk_joint *j, double M[9]) {
+  for (int k = 0; k < j->valence; ++k) {
     int base = 3 + 4 * k;
     double e[3], F[9];
     end_edge(q, base, j->ends[k].side, e);
@@ -286,47 +284,64 @@ static int elastic_phi_derivs(const double *q, const rnk_joint *j, double Q0[9],
         for (int c = 0; c < 3; ++c)
           M[3 * a + b] += F[3 * c + a] * j->ends[k].cbar[3 * c + b];
   }
+  return RNK_OK;
+}
+
+/* End k's part of M as 4-jets in Y_k = (e_k, theta_k): its columns of dM/dY
+ * (dM [9][ny]) and the term sum_m phi_M_m d2M_m/dY_k2 of d2phi. */
+static int end_fit_jets(const double *q, const rnk_joint *j, int k, const jet phi[3],
+                        double dM[9][4 * 64], double *d2phi) {
+  int ny = 4 * j->valence, base = 3 + 4 * k;
+  double e[3];
+  rnk_edge_jet fk;
+  end_edge(q, base, j->ends[k].side, e);
+  int st = rnk_edge_jet_eval(e, q[base + 3], &j->refs[k], 2, &fk);
+  if (st) return st;
+  const jvec *fr[3] = {&fk.t, &fk.d1, &fk.d2};
+  const double *Fb = j->ends[k].cbar;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      /* M_ab contribution of end k: sum_c F[c][a] Fbar[c][b], as a 4-jet */
+      double g4[4] = {0, 0, 0, 0}, h4[4][4] = {{0}};
+      for (int c = 0; c < 3; ++c) {
+        const jet *x = &fr[c]->c[a];
+        double w = Fb[3 * c + b];
+        for (int i = 0; i < 4; ++i) {
+          g4[i] += w * x->g[i];
+          for (int jj = i; jj < 4; ++jj) h4[i][jj] += w * x->h[i][jj];
+        }
+      }
+      int m = 3 * a + b;
+      for (int i = 0; i < 4; ++i) dM[m][4 * k + i] = g4[i];
+      /* second-derivative term: sum_a phi_a,M_m d2M_m/dY_k2 */
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < 4; ++i)
+          for (int jj = 0; jj < 4; ++jj) {
+            double h = i <= jj ? h4[i][jj] : h4[jj][i];
+            d2phi[((size_t)c * ny + 4 * k + i) * ny + 4 * k + jj] += phi[c].g[m] * h;
+          }
+    }
+  return RNK_OK;
+}
+
+/* dphi/dY [3][ny] and d2phi/dY2 [3][ny][ny], Y = (e_k, theta_k) per end. */
+static int elastic_phi_derivs(const double *q, const rnk_joint *j, double Q0[9],
+                              double *dphi, double *d2phi) {
+  int v = j->valence, ny = 4 * v;
+  double M[9] = {0};
+  /* frames of the terminal edges: a first pass for M's value */
+  int st = fit_matrix(q, j, M);
+  if (st) return st;
   jet phi[3];
-  int st = phi_jets(M, 2, phi, Q0);
+  st = phi_jets(M, 2, phi, Q0);
   if (st) return st;
   memset(dphi, 0, sizeof(double) * 3 * (size_t)ny);
   memset(d2phi, 0, sizeof(double) * 3 * (size_t)ny * (size_t)ny);
   /* dM/dY for all ends: 9 x ny (small) */
   double dM[9][4 * 64];
-  double *dMp = dM[0];
-  (void)dMp;
   if (v > 64) return RNK_DEGENERATE;
-  for (int k = 0; k < v; ++k) {
-    int base = 3 + 4 * k;
-    double e[3];
-    end_edge(q, base, j->ends[k].side, e);
-    st = rnk_edge_jet_eval(e, q[base + 3], &j->refs[k], 2, &fk);
-    if (st) return st;
-    const jvec *fr[3] = {&fk.t, &fk.d1, &fk.d2};
-    const double *Fb = j->ends[k].cbar;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        /* M_ab contribution of end k: sum_c F[c][a] Fbar[c][b], as a 4-jet */
-        double g4[4] = {0, 0, 0, 0}, h4[4][4] = {{0}};
-        for (int c = 0; c < 3; ++c) {
-          const jet *x = &fr[c]->c[a];
-          double w = Fb[3 * c + b];
-          for (int i = 0; i < 4; ++i) {
-            g4[i] += w * x->g[i];
-            for (int jj = i; jj < 4; ++jj) h4[i][jj] += w * x->h[i][jj];
-          }
-        }
-        int m = 3 * a + b;
-        for (int i = 0; i < 4; ++i) dM[m][4 * k + i] = g4[i];
-        /* second-derivative term: sum_a phi_a,M_m d2M_m/dY_k2 */
-        for (int c = 0; c < 3; ++c)
-          for (int i = 0; i < 4; ++i)
-            for (int jj = 0; jj < 4; ++jj) {
-              double h = i <= jj ? h4[i][jj] : h4[jj][i];
-              d2phi[((size_t)c * ny + 4 * k + i) * ny + 4 * k + jj] += phi[c].g[m] * h;
-            }
-      }
-  }
+  for (int k = 0; k < v; ++k)
+    if ((st = end_fit_jets(q, j, k, phi, dM, d2phi))) return st;
   for (int c = 0; c < 3; ++c)
     for (int y = 0; y < ny; ++y) {
       double s = 0;
@@ -349,25 +364,14 @@ static int elastic_phi_derivs(const double *q, const rnk_joint *j, double Q0[9],
   return RNK_OK;
 }
 
-static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work,
-                      double *E, double *g, double *H) {
-  int n = (int)rnk_joint_stencil_size(j), v = j->valence;
-  double Q0[9], w[3] = {0, 0, 0};
-  int st;
-  const double *Qref = j->Qhat;
-  if (j->rigid) {
-    memcpy(w, q + 3, sizeof w);
-  } else {
-    st = joint_rotation(q, j, Q0, NULL);
-    if (st) return st;
-    Qref = Q0;
-  }
-  if (g) memset(g, 0, sizeof(double) * (size_t)n);
-  if (H) memset(H, 0, sizeof(double) * (size_t)n * (size_t)n);
-  double Etot = 0.0, Gw[3] = {0, 0, 0}, Hww[9] = {0};
-  double *C = work; /* cross terms [n][3] for elastic joints */
-  if (!j->rigid && ord >= 2) memset(C, 0, sizeof(double) * 3 * (size_t)n);
-  for (int k = 0; k < v; ++k) {
+/* The ends' energies with their direct derivatives: g and H on the stencil's DOFs,
+ * and for the rotation w (elastic joints: through phi) its gradient Gw, Hessian
+ * Hww [3][3] and the cross terms C [n][3]. */
+static int ends_direct(const double *q, const rnk_joint *j, int ord, const double *Qref,
+                       const double w[3], double *Etot, double *g, double *H, double *C,
+                       double Gw[3], double Hww[9]) {
+  int n = (int)rnk_joint_stencil_size(j), st;
+  for (int k = 0; k < j->valence; ++k) {
     double q10[10], g10[10], H10[100], Ek;
     rnk_joint_end_param p;
     end_setup(q, j, k, Qref, w, q10, &p);
@@ -376,7 +380,7 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
     else
       st = rnk_jet_joint_end_grad(q10, &j->refs[k], &p, &Ek, g10);
     if (st) return st;
-    Etot += Ek;
+    *Etot += Ek;
     if (ord >= 2) {
       st = rnk_jet_joint_end_hess(q10, &j->refs[k], &p, H10);
       if (st) return st;
@@ -401,11 +405,19 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
       }
     }
   }
-  /* couple on the rotation */
+  return RNK_OK;
+}
+
+/* The couple on the rotation: added to the energy, and to the rotation DOFs'
+ * derivatives (rigid) or Gw and Hww (elastic). */
+static int couple_direct(const rnk_joint *j, int ord, const double *Qref,
+                         const double w[3], double *Etot, double *g, double *H,
+                         double Gw[3], double Hww[9]) {
+  int n = (int)rnk_joint_stencil_size(j);
   jet Ec;
-  st = couple_jet(j, Qref, w, ord, &Ec);
+  int st = couple_jet(j, Qref, w, ord, &Ec);
   if (st) return st;
-  Etot += Ec.v;
+  *Etot += Ec.v;
   if (ord >= 1)
     for (int a = 0; a < 3; ++a) {
       if (j->rigid) {
@@ -422,18 +434,13 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
           Hww[3 * a + b] += h;
       }
     }
-  if (E) *E = Etot;
-  if (j->rigid || ord == 0) return RNK_OK;
+  return RNK_OK;
+}
 
-  /* elastic: chain rule through phi(Y(z)) */
-  int ny = 4 * v;
-  double *dphi = work + 3 * (size_t)n, *d2phi = dphi + 3 * (size_t)ny;
-  double *Phi = d2phi + 3 * (size_t)ny * ny; /* [3][n] */
-  double Qc[9];
-  st = elastic_phi_derivs(q, j, Qc, dphi, d2phi);
-  if (st) return st;
-  /* dY/dz: e_k = s_k (x_J - x_n,k): Y index 4k+c <- z index c (+s), 3+4k+c (-s);
-   * theta_k: Y index 4k+3 <- z index 3+4k+3 */
+/* Phi = dphi/dz [3][n] from dphi/dY: e_k = s_k (x_J - x_n,k): Y index 4k+c <- z
+ * index c (+s), 3+4k+c (-s); theta_k: Y index 4k+3 <- z index 3+4k+3. */
+static void phi_on_stencil(const rnk_joint *j, int n, const double *dphi, double *Phi) {
+  int v = j->valence, ny = 4 * v;
   memset(Phi, 0, sizeof(double) * 3 * (size_t)n);
   for (int a = 0; a < 3; ++a)
     for (int k = 0; k < v; ++k) {
@@ -445,22 +452,12 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
       }
       Phi[(size_t)a * n + 3 + 4 * k + 3] += dphi[(size_t)a * ny + 4 * k + 3];
     }
-  if (g)
-    for (int a = 0; a < 3; ++a)
-      for (int z = 0; z < n; ++z) g[z] += Gw[a] * Phi[(size_t)a * n + z];
-  if (ord < 2) return RNK_OK;
-  for (int z1 = 0; z1 < n; ++z1)
-    for (int z2 = 0; z2 < n; ++z2) {
-      double h = 0;
-      for (int a = 0; a < 3; ++a) {
-        h += C[3 * z1 + a] * Phi[(size_t)a * n + z2] +
-             Phi[(size_t)a * n + z1] * C[3 * z2 + a];
-        for (int b = 0; b < 3; ++b)
-          h += Phi[(size_t)a * n + z1] * Hww[3 * a + b] * Phi[(size_t)b * n + z2];
-      }
-      H[(size_t)z1 * n + z2] += h;
-    }
-  /* sum_a G_w,a d2phi_a/dz2 = dY/dz^T (sum_a G_a d2phi_a/dY2) dY/dz */
+}
+
+/* sum_a G_w,a d2phi_a/dz2 = dY/dz^T (sum_a G_a d2phi_a/dY2) dY/dz, added to H. */
+static void add_phi_curvature(const rnk_joint *j, int n, const double Gw[3],
+                              const double *d2phi, double *H) {
+  int v = j->valence, ny = 4 * v;
   for (int k = 0; k < v; ++k)
     for (int i = 0; i < 4; ++i)
       for (int l = 0; l < v; ++l)
@@ -486,6 +483,56 @@ static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work
             for (int t = 0; t < n2; ++t)
               H[(size_t)z1[r] * n + z2[t]] += c1[r] * c2[t] * h;
         }
+}
+
+static int joint_eval(const double *q, const rnk_joint *j, int ord, double *work,
+                      double *E, double *g, double *H) {
+  int n = (int)rnk_joint_stencil_size(j), v = j->valence;
+  double Q0[9], w[3] = {0, 0, 0};
+  int st;
+  const double *Qref = j->Qhat;
+  if (j->rigid) {
+    memcpy(w, q + 3, sizeof w);
+  } else {
+    st = joint_rotation(q, j, Q0, NULL);
+    if (st) return st;
+    Qref = Q0;
+  }
+  if (g) memset(g, 0, sizeof(double) * (size_t)n);
+  if (H) memset(H, 0, sizeof(double) * (size_t)n * (size_t)n);
+  double Etot = 0.0, Gw[3] = {0, 0, 0}, Hww[9] = {0};
+  double *C = work; /* cross terms [n][3] for elastic joints */
+  if (!j->rigid && ord >= 2) memset(C, 0, sizeof(double) * 3 * (size_t)n);
+  if ((st = ends_direct(q, j, ord, Qref, w, &Etot, g, H, C, Gw, Hww))) return st;
+  if ((st = couple_direct(j, ord, Qref, w, &Etot, g, H, Gw, Hww))) return st;
+  if (E) *E = Etot;
+  if (j->rigid || ord == 0) return RNK_OK;
+
+  /* elastic: chain rule through phi(Y(z)) */
+  int ny = 4 * v;
+  double *dphi = work + 3 * (size_t)n, *d2phi = dphi + 3 * (size_t)ny;
+  double *Phi = d2phi + 3 * (size_t)ny * ny; /* [3][n] */
+  double Qc[9];
+  st = elastic_phi_derivs(q, j, Qc, dphi, d2phi);
+  if (st) return st;
+  phi_on_stencil(j, n, dphi, Phi);
+  if (g)
+    for (int a = 0; a < 3; ++a)
+      for (int z = 0; z < n; ++z) g[z] += Gw[a] * Phi[(size_t)a * n + z];
+  if (ord < 2) return RNK_OK;
+  /* C Phi + Phi^T C^T + Phi^T Hww Phi */
+  for (int z1 = 0; z1 < n; ++z1)
+    for (int z2 = 0; z2 < n; ++z2) {
+      double h = 0;
+      for (int a = 0; a < 3; ++a) {
+        h += C[3 * z1 + a] * Phi[(size_t)a * n + z2] +
+             Phi[(size_t)a * n + z1] * C[3 * z2 + a];
+        for (int b = 0; b < 3; ++b)
+          h += Phi[(size_t)a * n + z1] * Hww[3 * a + b] * Phi[(size_t)b * n + z2];
+      }
+      H[(size_t)z1 * n + z2] += h;
+    }
+  add_phi_curvature(j, n, Gw, d2phi, H);
   return RNK_OK;
 }
 

@@ -534,6 +534,173 @@ static int joint_setup(const double *q, const rnk_joint *j, int ord, jq_fit *F, 
   return RNK_OK;
 }
 
+/* One evaluation of a whole joint: the operation, the derivative order, the
+ * stencil size, the rotation P(w) and reference Qref (joint_setup), the direction
+ * (v; dw its rotation part, rigid joints) and the outputs. */
+typedef struct jq_eval {
+  int op, ord, n;
+  const fq_rot *R;
+  const double *Qref, *v, *dw;
+  double *g, *H, *Hv;
+} jq_eval;
+
+/* Pass 1 for end k: its energy and derivatives in (h_T, w), added to *Etot, Gw and
+ * Hww.  Elastic joints keep gamma (and Gamma, G_w) in the end's work for pass 2;
+ * rigid joints put the end's gradient, Hessian block or HVP in the outputs. */
+static int end_pass1(const double *q, const rnk_joint *j, int k, const jq_eval *c,
+                     double *work, double *Etot, double Gw[3], double Hww[3][3]) {
+  jq_end X;
+  double cq[4];
+  int st, base = end_base(j, k), ord = c->ord;
+  end_edge(q, j, k, &X.T, &X.s);
+  connection_quat(c->Qref, j->ends[k].cbar, cq);
+  if ((st = end_eval(&j->ends[k], c->R, cq, ord, &X))) return st;
+  *Etot += X.V.Eb + X.V.Et;
+  if (ord < 1) return RNK_OK;
+  for (int a = 0; a < 3; ++a) Gw[a] += X.gw[a];
+  if (ord >= 2)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) Hww[a][b] += X.Hww[a][b];
+  if (!j->rigid) { /* finished in pass 2, once Lambda is known */
+    double *st1 = work + (size_t)JQ_STORE * k;
+    memcpy(st1, X.gam, 4 * sizeof(double));
+    if (ord >= 2) {
+      memcpy(st1 + 4, X.Gam, 16 * sizeof(double));
+      memcpy(st1 + 20, X.Gw, 12 * sizeof(double));
+    }
+    return RNK_OK;
+  }
+  double J[4][4], gy[4], Hy[4][4], Hyw[4][3];
+  fq_dh_dy(&X.T, J);
+  fq_grad_y(J, X.gam, gy);
+  if (c->op == OP_G) end_out_grad(base, X.s, &X.T, gy, c->g);
+  if (ord < 2) return RNK_OK;
+  fq_hess_y(&X.T, J, X.gam, X.Gam, Hy);
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 3; ++b)
+      Hyw[a][b] = J[a][0] * X.Gw[0][b] + J[a][1] * X.Gw[1][b] + J[a][2] * X.Gw[2][b] +
+                  J[a][3] * X.Gw[3][b];
+  if (c->op == OP_H) {
+    end_block_e(&X.T, gy, Hy);
+    scatter_ee(c->H, c->n, base, X.s, base, X.s, Hy);
+    project_rows(&X.T, Hyw[0], 3);
+    scatter_ew(c->H, c->n, base, X.s, Hyw);
+  } else { /* HVP */
+    const double *dw = c->dw;
+    double de[4], dy[4], hy[4];
+    end_dir(c->v, base, X.s, &X.T, de, dy);
+    for (int a = 0; a < 4; ++a)
+      hy[a] = Hy[a][0] * dy[0] + Hy[a][1] * dy[1] + Hy[a][2] * dy[2] + Hy[a][3] * dy[3] +
+              Hyw[a][0] * dw[0] + Hyw[a][1] * dw[1] + Hyw[a][2] * dw[2];
+    for (int b = 0; b < 3; ++b)
+      c->Hv[3 + b] +=
+          Hyw[0][b] * dy[0] + Hyw[1][b] * dy[1] + Hyw[2][b] * dy[2] + Hyw[3][b] * dy[3];
+    end_out_hvp(base, X.s, &X.T, gy, hy, de, 1, c->Hv);
+  }
+  return RNK_OK;
+}
+
+/* Rigid joints: the rotation DOFs' gradient, Hessian block or HVP (Gw, Hww). */
+static void rigid_rotation_out(const jq_eval *c, const double Gw[3], double Hww[3][3]) {
+  int n = c->n;
+  const double *dw = c->dw;
+  if (c->op == OP_G)
+    for (int a = 0; a < 3; ++a) c->g[3 + a] += Gw[a];
+  if (c->op == OP_H)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) c->H[(3 + a) * n + 3 + b] += Hww[a][b];
+  if (c->op == OP_HV)
+    for (int a = 0; a < 3; ++a)
+      c->Hv[3 + a] += Hww[a][0] * dw[0] + Hww[a][1] * dw[1] + Hww[a][2] * dw[2];
+}
+
+/* Elastic joints, pass 2 for end k: the chain rule through phi (F's Lambda known):
+ * the end's gradient, or its Hessian block or HVP and its factors L_k, R_k of the
+ * coupling through phi (in the end's work; the HVP adds R_k de to rho). */
+static void end_pass2(const double *q, const rnk_joint *j, int k, const jq_eval *c,
+                      const jq_fit *F, double Hww[3][3], double *work, double rho[18]) {
+  double *st1 = work + (size_t)JQ_STORE * k, *Lk = st1 + JQ_P1, *Rk = Lk + JQ_LR;
+  double B[9], Kd[4][4], J[4][4], gam[4], Gam[4][4], Gwk[4][3], gy[4], Hy[4][4];
+  int base = end_base(j, k);
+  const double *cbar = j->ends[k].cbar;
+  rq_edge T;
+  double s;
+  end_edge(q, j, k, &T, &s);
+  memcpy(gam, st1, sizeof gam);
+  /* <Lambda, F_k Fbar_k^T> = <Lambda Fbar_k, F_k> */
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      B[3 * a + b] = F->Lam[3 * a] * cbar[3 * b] + F->Lam[3 * a + 1] * cbar[3 * b + 1] +
+                     F->Lam[3 * a + 2] * cbar[3 * b + 2];
+  fq_davenport(B, Kd);
+  fq_dh_dy(&T, J);
+  if (c->ord < 2) {
+    fq_rayleigh_add(Kd, T.h, gam, NULL);
+    fq_grad_y(J, gam, gy);
+    end_out_grad(base, s, &T, gy, c->g);
+    return;
+  }
+  memcpy(Gam, st1 + 4, sizeof Gam);
+  memcpy(Gwk, st1 + 20, sizeof Gwk);
+  fq_rayleigh_add(Kd, T.h, gam, Gam);
+  fq_grad_y(J, gam, gy);
+  fq_hess_y(&T, J, gam, Gam, Hy);
+  double Hyw[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 3; ++b)
+      Hyw[a][b] = J[a][0] * Gwk[0][b] + J[a][1] * Gwk[1][b] + J[a][2] * Gwk[2][b] +
+                  J[a][3] * Gwk[3][b];
+  end_factors(F, &T, J, cbar, Hyw, Hww, Lk, Rk);
+  project_rows(&T, Lk, 18);
+  project_cols(&T, Rk, 18);
+  if (c->op == OP_H) {
+    end_block_e(&T, gy, Hy);
+    scatter_ee(c->H, c->n, base, s, base, s, Hy);
+  } else {
+    double de[4], dy[4], hy[4];
+    end_dir(c->v, base, s, &T, de, dy);
+    for (int a = 0; a < 4; ++a)
+      hy[a] = Hy[a][0] * dy[0] + Hy[a][1] * dy[1] + Hy[a][2] * dy[2] + Hy[a][3] * dy[3];
+    end_out_hvp(base, s, &T, gy, hy, de, 1, c->Hv);
+    for (int m = 0; m < 18; ++m)
+      rho[m] += Rk[4 * m] * de[0] + Rk[4 * m + 1] * de[1] + Rk[4 * m + 2] * de[2] +
+                Rk[4 * m + 3] * de[3];
+  }
+}
+
+/* Elastic joints, pass 3: the coupling of the ends through phi, in e: the blocks
+ * L_k R_l of the Hessian, or L_k rho of the HVP. */
+static void ends_coupling(const rnk_joint *j, const jq_eval *c, const double *work,
+                          const double rho[18]) {
+  int nv = j->valence;
+  for (int k = 0; k < nv; ++k) {
+    const double *Lk = work + (size_t)JQ_STORE * k + JQ_P1;
+    double sk = j->ends[k].side == 0 ? 1.0 : -1.0;
+    int bk = end_base(j, k);
+    if (c->op == OP_HV) {
+      double he[4];
+      for (int a = 0; a < 4; ++a) {
+        double s = 0.0;
+        for (int m = 0; m < 18; ++m) s += Lk[18 * a + m] * rho[m];
+        he[a] = s;
+      }
+      scatter_grad_e(bk, sk, he, c->Hv);
+      continue;
+    }
+    for (int l = 0; l < nv; ++l) {
+      const double *Rl = work + (size_t)JQ_STORE * l + JQ_P1 + JQ_LR;
+      double sl = j->ends[l].side == 0 ? 1.0 : -1.0, B[4][4];
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+          double s = 0.0;
+          for (int m = 0; m < 18; ++m) s += Lk[18 * a + m] * Rl[4 * m + b];
+          B[a][b] = s;
+        }
+      scatter_ee(c->H, c->n, bk, sk, end_base(j, l), sl, B);
+    }
+  }
+}
+
 static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
                       double *E, double *g, double *H, const double *v, double *Hv,
                       const double *Mfix) {
@@ -543,65 +710,18 @@ static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
   const double *Qref;
   jq_fit F;
   fq_rot R;
-  jq_end X;
   if ((st = joint_setup(q, j, ord, &F, &R, &Qref))) return st;
   if (g) memset(g, 0, sizeof(double) * (size_t)n);
   if (H) memset(H, 0, sizeof(double) * (size_t)n * (size_t)n);
   if (Hv) memset(Hv, 0, sizeof(double) * (size_t)n);
-  const double *dw = j->rigid && v ? v + 3 : NULL;
+  const jq_eval c = {op, ord, n, &R, Qref, v, j->rigid && v ? v + 3 : NULL, g, H, Hv};
   /* pass 1: every end's energy and derivatives in (h_T, w) */
   for (int k = 0; k < nv; ++k) {
-    double cq[4];
-    int base = end_base(j, k);
     if (Mfix) { /* the fixed couple alone: the ends carry no energy */
       if (!j->rigid) memset(work + (size_t)JQ_STORE * k, 0, JQ_P1 * sizeof(double));
       continue;
     }
-    end_edge(q, j, k, &X.T, &X.s);
-    connection_quat(Qref, j->ends[k].cbar, cq);
-    if ((st = end_eval(&j->ends[k], &R, cq, ord, &X))) return st;
-    Etot += X.V.Eb + X.V.Et;
-    if (ord < 1) continue;
-    for (int a = 0; a < 3; ++a) Gw[a] += X.gw[a];
-    if (ord >= 2)
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) Hww[a][b] += X.Hww[a][b];
-    if (!j->rigid) { /* finished in pass 2, once Lambda is known */
-      double *st1 = work + (size_t)JQ_STORE * k;
-      memcpy(st1, X.gam, 4 * sizeof(double));
-      if (ord >= 2) {
-        memcpy(st1 + 4, X.Gam, 16 * sizeof(double));
-        memcpy(st1 + 20, X.Gw, 12 * sizeof(double));
-      }
-      continue;
-    }
-    double J[4][4], gy[4], Hy[4][4], Hyw[4][3];
-    fq_dh_dy(&X.T, J);
-    fq_grad_y(J, X.gam, gy);
-    if (op == OP_G) end_out_grad(base, X.s, &X.T, gy, g);
-    if (ord < 2) continue;
-    fq_hess_y(&X.T, J, X.gam, X.Gam, Hy);
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 3; ++b)
-        Hyw[a][b] = J[a][0] * X.Gw[0][b] + J[a][1] * X.Gw[1][b] + J[a][2] * X.Gw[2][b] +
-                    J[a][3] * X.Gw[3][b];
-    if (op == OP_H) {
-      end_block_e(&X.T, gy, Hy);
-      scatter_ee(H, n, base, X.s, base, X.s, Hy);
-      project_rows(&X.T, Hyw[0], 3);
-      scatter_ew(H, n, base, X.s, Hyw);
-    } else { /* HVP */
-      double de[4], dy[4], hy[4];
-      end_dir(v, base, X.s, &X.T, de, dy);
-      for (int a = 0; a < 4; ++a)
-        hy[a] = Hy[a][0] * dy[0] + Hy[a][1] * dy[1] + Hy[a][2] * dy[2] +
-                Hy[a][3] * dy[3] + Hyw[a][0] * dw[0] + Hyw[a][1] * dw[1] +
-                Hyw[a][2] * dw[2];
-      for (int b = 0; b < 3; ++b)
-        Hv[3 + b] +=
-            Hyw[0][b] * dy[0] + Hyw[1][b] * dy[1] + Hyw[2][b] * dy[2] + Hyw[3][b] * dy[3];
-      end_out_hvp(base, X.s, &X.T, gy, hy, de, 1, Hv);
-    }
+    if ((st = end_pass1(q, j, k, &c, work, &Etot, Gw, Hww))) return st;
   }
   if (Mfix)
     fixed_eval(Mfix, &R, ord, Gw, Hww);
@@ -610,94 +730,16 @@ static int joint_eval(const double *q, const rnk_joint *j, int op, double *work,
   if (E) *E = Etot;
   if (ord < 1) return RNK_OK;
   if (j->rigid) {
-    if (op == OP_G)
-      for (int a = 0; a < 3; ++a) g[3 + a] += Gw[a];
-    if (op == OP_H)
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) H[(3 + a) * n + 3 + b] += Hww[a][b];
-    if (op == OP_HV)
-      for (int a = 0; a < 3; ++a)
-        Hv[3 + a] += Hww[a][0] * dw[0] + Hww[a][1] * dw[1] + Hww[a][2] * dw[2];
+    rigid_rotation_out(&c, Gw, Hww);
     return RNK_OK;
   }
   /* elastic, pass 2: the chain rule through phi */
   fit_lambda(&F, Gw, ord);
   double rho[18] = {0};
-  for (int k = 0; k < nv; ++k) {
-    double *st1 = work + (size_t)JQ_STORE * k, *Lk = st1 + JQ_P1, *Rk = Lk + JQ_LR;
-    double B[9], Kd[4][4], J[4][4], gam[4], Gam[4][4], Gwk[4][3], gy[4], Hy[4][4];
-    int base = end_base(j, k);
-    const double *cbar = j->ends[k].cbar;
-    end_edge(q, j, k, &X.T, &X.s);
-    memcpy(gam, st1, sizeof gam);
-    /* <Lambda, F_k Fbar_k^T> = <Lambda Fbar_k, F_k> */
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        B[3 * a + b] = F.Lam[3 * a] * cbar[3 * b] + F.Lam[3 * a + 1] * cbar[3 * b + 1] +
-                       F.Lam[3 * a + 2] * cbar[3 * b + 2];
-    fq_davenport(B, Kd);
-    fq_dh_dy(&X.T, J);
-    if (ord < 2) {
-      fq_rayleigh_add(Kd, X.T.h, gam, NULL);
-      fq_grad_y(J, gam, gy);
-      end_out_grad(base, X.s, &X.T, gy, g);
-      continue;
-    }
-    memcpy(Gam, st1 + 4, sizeof Gam);
-    memcpy(Gwk, st1 + 20, sizeof Gwk);
-    fq_rayleigh_add(Kd, X.T.h, gam, Gam);
-    fq_grad_y(J, gam, gy);
-    fq_hess_y(&X.T, J, gam, Gam, Hy);
-    double Hyw[4][3];
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 3; ++b)
-        Hyw[a][b] = J[a][0] * Gwk[0][b] + J[a][1] * Gwk[1][b] + J[a][2] * Gwk[2][b] +
-                    J[a][3] * Gwk[3][b];
-    end_factors(&F, &X.T, J, cbar, Hyw, Hww, Lk, Rk);
-    project_rows(&X.T, Lk, 18);
-    project_cols(&X.T, Rk, 18);
-    if (op == OP_H) {
-      end_block_e(&X.T, gy, Hy);
-      scatter_ee(H, n, base, X.s, base, X.s, Hy);
-    } else {
-      double de[4], dy[4], hy[4];
-      end_dir(v, base, X.s, &X.T, de, dy);
-      for (int a = 0; a < 4; ++a)
-        hy[a] = Hy[a][0] * dy[0] + Hy[a][1] * dy[1] + Hy[a][2] * dy[2] + Hy[a][3] * dy[3];
-      end_out_hvp(base, X.s, &X.T, gy, hy, de, 1, Hv);
-      for (int c = 0; c < 18; ++c)
-        rho[c] += Rk[4 * c] * de[0] + Rk[4 * c + 1] * de[1] + Rk[4 * c + 2] * de[2] +
-                  Rk[4 * c + 3] * de[3];
-    }
-  }
+  for (int k = 0; k < nv; ++k) end_pass2(q, j, k, &c, &F, Hww, work, rho);
   if (ord < 2) return RNK_OK;
   /* pass 3: the coupling of the ends through phi, in e */
-  for (int k = 0; k < nv; ++k) {
-    const double *Lk = work + (size_t)JQ_STORE * k + JQ_P1;
-    double sk = j->ends[k].side == 0 ? 1.0 : -1.0;
-    int bk = end_base(j, k);
-    if (op == OP_HV) {
-      double he[4];
-      for (int a = 0; a < 4; ++a) {
-        double s = 0.0;
-        for (int c = 0; c < 18; ++c) s += Lk[18 * a + c] * rho[c];
-        he[a] = s;
-      }
-      scatter_grad_e(bk, sk, he, Hv);
-      continue;
-    }
-    for (int l = 0; l < nv; ++l) {
-      const double *Rl = work + (size_t)JQ_STORE * l + JQ_P1 + JQ_LR;
-      double sl = j->ends[l].side == 0 ? 1.0 : -1.0, B[4][4];
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b) {
-          double s = 0.0;
-          for (int c = 0; c < 18; ++c) s += Lk[18 * a + c] * Rl[4 * c + b];
-          B[a][b] = s;
-        }
-      scatter_ee(H, n, bk, sk, end_base(j, l), sl, B);
-    }
-  }
+  ends_coupling(j, &c, work, rho);
   return RNK_OK;
 }
 

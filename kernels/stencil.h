@@ -33,7 +33,7 @@ int rnk_curvature_jet(const rnk_edge_jet f[2], jet kappa[2]);
 /* Twist tau = theta1 - theta0 + m_prev + increment (8-variable jet). */
 void rnk_twist_jet(const rnk_edge_jet f[2], const double q[11], double m_prev, jet *tau);
 
-/* Energies from the frames (shared by bend.c, twist.c, bendtwist.c). */
+/* Energies from the frames (bendtwist.c). */
 int rnk_bend_from_frames(const rnk_edge_jet f[2], const rnk_bend_param *p, jet *E);
 void rnk_twist_from_frames(const rnk_edge_jet f[2], const double q[11],
                            const rnk_twist_param *p, jet *E);

@@ -40,6 +40,7 @@
 #include "base/runtime.hpp"
 #include "base/shim_error.hpp"
 #include "base/snapshot.hpp"
+#include "eigen/stability.hpp"
 #include "factor/spd_factor.hpp"
 
 namespace rodnet {
@@ -104,6 +105,16 @@ public:
   long corrector_iterations() const { return corrector_its_; }
 
 private:
+  void check_control();
+  void set_weights();
+  void check_target(double mu0) const;
+  void choose_monitor();
+  void start(Point &cur);
+  bool next_point(const Point &cur, double ds, double target, Point &next, double &taken,
+                  bool &last, rn_path_report &rep);
+  bool land_on(Point &next, double mu_end, double *extra);
+  bool switch_branch(Point &ev, const Point &cur, double target, double ds, Point &br,
+                     double *dsb);
   double weighted_dot(const std::vector<double> &a, double amu,
                       const std::vector<double> &b, double bmu) const;
   void set_parameter(double mu, std::vector<double> &x);
@@ -535,7 +546,8 @@ std::vector<double> PathFollower::other_branch(Point &ev, const Point &in,
   return t;
 }
 
-void PathFollower::run(rn_path_report &rep) {
+// The controlled DOF: in range and a position, an angle or a rotation (kind_ set).
+void PathFollower::check_control() {
   if (n_ == 0) throw Error(RN_ERR_ARG, "rn_path_follow: the network has no free DOFs");
   if (dof_ >= static_cast<long>(n_))
     throw Error(RN_ERR_ARG, "rn_path_follow: the controlled DOF " + std::to_string(dof_) +
@@ -547,7 +559,12 @@ void PathFollower::run(rn_path_report &rep) {
       kind_[static_cast<size_t>(dof_)] != RN_DOF_THETA &&
       kind_[static_cast<size_t>(dof_)] != RN_DOF_ROTATION)
     throw Error(RN_ERR_ARG, "rn_path_follow: the controlled DOF is a strain");
-  // weights: 1/L^2 on positions, L the bounding-box diagonal of the DOFs' points
+}
+
+// The arclength weights: 1/L^2 on positions, L the bounding-box diagonal of the DOFs'
+// points; the RMS over the DOFs of a kind: positions / L and angles, each kind
+// counted once (w_, w_mu_, size_ = L).
+void PathFollower::set_weights() {
   std::vector<double> pts(3 * n_);
   std::vector<int32_t> blocks(n_);
   check_status(rn_network_dof_blocks(net_, blocks.data(), pts.data(), nullptr),
@@ -562,7 +579,6 @@ void PathFollower::run(rn_path_report &rep) {
   for (int k = 0; k < 3; ++k) L2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
   if (!(L2 > 0.0)) L2 = 1.0;
   size_ = std::sqrt(L2);
-  // RMS over the DOFs of a kind: positions / L and angles, each kind counted once
   size_t npos = 0;
   for (size_t i = 0; i < n_; ++i) npos += kind_[i] == RN_DOF_POSITION;
   const size_t nang = n_ - npos;
@@ -574,51 +590,61 @@ void PathFollower::run(rn_path_report &rep) {
     w_mu_ = 1.0 / L2;                    // the controlled coordinate / L
     w_[static_cast<size_t>(dof_)] = 0.0; // counted once, as mu
   }
-  const double target = dof_ < 0 ? (std::isnan(o_.target) ? 1.0 : o_.target) : o_.target;
+}
 
-  // the start: corrected at fixed mu (border e_mu)
-  Point cur;
+// A target given at or behind the start mu0 (against the direction of the first
+// step) is never met by a path that sets out away from it.
+void PathFollower::check_target(double mu0) const {
+  if (std::isnan(o_.target)) return;
+  const double dir = o_.direction < 0 ? -1.0 : 1.0;
+  if (!((o_.target - mu0) * dir > 0.0)) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "rn_path_follow: the target %.10g lies %s the start %.10g (the "
+                  "path sets out with direction %+g)%s",
+                  o_.target, o_.target == mu0 ? "at" : "behind", mu0, dir,
+                  o_.target == mu0 ? ": nothing to follow"
+                                   : ": give the other direction to head for it");
+    throw Error(RN_ERR_ARG, buf);
+  }
+}
+
+// The DOF reported as control and force: the controlled one; under load control the
+// option's, or the position most sensitive to the load (|dr/dmu|, after linearise).
+void PathFollower::choose_monitor() {
+  if (dof_ >= 0) {
+    monitor_ = static_cast<size_t>(dof_);
+    return;
+  }
+  monitor_ = 0;
+  if (o_.monitor >= 0) {
+    if (o_.monitor >= static_cast<long>(n_))
+      throw Error(RN_ERR_ARG, "rn_path_follow: the monitored DOF is out of range");
+    monitor_ = static_cast<size_t>(o_.monitor);
+  } else {
+    double bmax = -1.0;
+    for (size_t i = 0; i < n_; ++i)
+      if (kind_[i] == RN_DOF_POSITION && std::fabs(b_[i]) > bmax) {
+        bmax = std::fabs(b_[i]);
+        monitor_ = i;
+      }
+  }
+}
+
+// The start: the network's state corrected at fixed mu (border e_mu), accepted, with
+// its tangent and eigenvalues.
+void PathFollower::start(Point &cur) {
   cur.x.assign(n_, 0.0);
   check_status(rn_network_get_dofs(net_, cur.x.data()), "rn_network_get_dofs");
   cur.mu = dof_ < 0 ? rn_network_load_factor(net_) : cur.x[static_cast<size_t>(dof_)];
-  // a target given at or behind the start (against the direction of the first
-  // step) is never met by a path that sets out away from it
-  if (!std::isnan(o_.target)) {
-    const double dir = o_.direction < 0 ? -1.0 : 1.0;
-    if (!((o_.target - cur.mu) * dir > 0.0)) {
-      char buf[320];
-      std::snprintf(buf, sizeof buf,
-                    "rn_path_follow: the target %.10g lies %s the start %.10g (the "
-                    "path sets out with direction %+g)%s",
-                    o_.target, o_.target == cur.mu ? "at" : "behind", cur.mu, dir,
-                    o_.target == cur.mu ? ": nothing to follow"
-                                        : ": give the other direction to head for it");
-      throw Error(RN_ERR_ARG, buf);
-    }
-  }
+  check_target(cur.mu);
   {
     std::vector<double> r(n_);
     if (residual(cur.x, cur.mu, r, nullptr, nullptr) != RN_OK)
       throw Error(RN_ERR_GEOMETRY, "rn_path_follow: the starting state is degenerate");
     linearise(cur.x, cur.mu);
   }
-  if (dof_ < 0) {
-    monitor_ = 0;
-    if (o_.monitor >= 0) {
-      if (o_.monitor >= static_cast<long>(n_))
-        throw Error(RN_ERR_ARG, "rn_path_follow: the monitored DOF is out of range");
-      monitor_ = static_cast<size_t>(o_.monitor);
-    } else {
-      double bmax = -1.0;
-      for (size_t i = 0; i < n_; ++i)
-        if (kind_[i] == RN_DOF_POSITION && std::fabs(b_[i]) > bmax) {
-          bmax = std::fabs(b_[i]);
-          monitor_ = i;
-        }
-    }
-  } else {
-    monitor_ = static_cast<size_t>(dof_);
-  }
+  choose_monitor();
   {
     const std::vector<double> ax(n_, 0.0);
     if (!correct(cur, ax, w_mu_, w_mu_ * cur.mu))
@@ -627,13 +653,114 @@ void PathFollower::run(rn_path_report &rep) {
   }
   base_force_ = force_scale_;
   base_moment_ = moment_scale_;
-  Snapshot snap;
   p_.accept(cur.x.data());
   start_monitor_ = cur.x[monitor_];
   if (!tangent(cur, {}, 0.0))
     throw Error(RN_ERR_SOLVER, "rn_path_follow: no tangent at the start (MINRES did "
                                "not converge: a singular Hessian?)");
   eigen(cur, nullptr);
+}
+
+// The last step at fixed mu = mu_end from next (close to it): next moved along its
+// tangent to mu_end and corrected there; true (next replaced, *extra the
+// arclength of the move) if that converges and has a tangent.
+bool PathFollower::land_on(Point &next, double mu_end, double *extra) {
+  Point end = next;
+  const double frac = (mu_end - next.mu) / next.tmu;
+  for (size_t i = 0; i < n_; ++i) end.x[i] += frac * next.tx[i];
+  end.mu = mu_end;
+  if (dof_ >= 0) end.x[static_cast<size_t>(dof_)] = mu_end;
+  const std::vector<double> ax(n_, 0.0);
+  if (!(correct(end, ax, w_mu_, w_mu_ * mu_end) && tangent(end, next.tx, next.tmu)))
+    return false;
+  *extra =
+      std::fabs(frac) * std::sqrt(weighted_dot(next.tx, next.tmu, next.tx, next.tmu));
+  next = end;
+  return true;
+}
+
+// The next point of the path from cur with step ds (halved until the corrector
+// converges: taken), stopping at the target (or the load factor's range end) on the
+// way: then last and rep.stop are set.  False (rep.stop = STEP_MIN) if the step
+// falls below ds_min.
+bool PathFollower::next_point(const Point &cur, double ds, double target, Point &next,
+                              double &taken, bool &last, rn_path_report &rep) {
+  bool ok = false;
+  taken = ds;
+  while (!ok) {
+    // does this step pass the target (or leave [0, 1] for the load factor)?
+    const double mu_pred = cur.mu + taken * cur.tmu;
+    const bool past_target =
+        !std::isnan(target) && (cur.mu - target) * (mu_pred - target) < 0.0;
+    const bool out_of_range = dof_ < 0 && (mu_pred < 0.0 || mu_pred > 1.0);
+    if (past_target || out_of_range) {
+      // towards the target (or the range end): a pseudo-arclength step of the
+      // length that reaches it to first order (the path may bend: then this is a
+      // regular point and the next step tries again), and a last step at fixed mu
+      // once the remaining distance is small
+      const double mu_end = past_target ? target : (mu_pred < 0.0 ? 0.0 : 1.0);
+      const double reach = (mu_end - cur.mu) / cur.tmu;
+      ok = step_from(cur, reach, cur.tx, cur.tmu, next);
+      if (ok) {
+        taken = reach;
+        double extra = 0.0;
+        if (std::fabs(next.mu - mu_end) <= 1e-2 * std::fabs(mu_end - cur.mu) &&
+            land_on(next, mu_end, &extra)) {
+          taken = reach + extra;
+          last = true;
+          rep.stop = past_target ? RN_PATH_STOP_TARGET : RN_PATH_STOP_RANGE;
+        }
+        break;
+      }
+    } else {
+      ok = step_from(cur, taken, cur.tx, cur.tmu, next);
+    }
+    if (!ok) {
+      taken *= 0.5;
+      if (taken < o_.ds_min) {
+        rep.stop = RN_PATH_STOP_STEP_MIN;
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Onto the other branch through the bifurcation point ev: along the critical
+// eigenvector if the path came along the regular direction, else along the regular
+// one; the first point br (step *dsb, halved from ds as needed) with its tangent
+// oriented away from ev and its eigenvalues.  False if no step down to ds_min
+// converges.
+bool PathFollower::switch_branch(Point &ev, const Point &cur, double target, double ds,
+                                 Point &br, double *dsb) {
+  const std::vector<double> tb = other_branch(ev, cur, target);
+  std::vector<double> phi(tb.begin(), tb.end() - 1);
+  const double phimu = tb.back();
+  bool bok = false;
+  *dsb = ds;
+  while (!bok && *dsb >= o_.ds_min) {
+    bok = step_from(ev, *dsb, phi, phimu, br, false);
+    if (!bok) *dsb *= 0.5;
+  }
+  if (!bok) return false;
+  // orient the new tangent away from the bifurcation point
+  std::vector<double> d(n_);
+  for (size_t i = 0; i < n_; ++i) d[i] = br.x[i] - ev.x[i];
+  if (weighted_dot(br.tx, br.tmu, d, br.mu - ev.mu) < 0.0) {
+    for (double &e : br.tx) e = -e;
+    br.tmu = -br.tmu;
+  }
+  eigen(br, nullptr);
+  return true;
+}
+
+void PathFollower::run(rn_path_report &rep) {
+  check_control();
+  set_weights();
+  const double target = dof_ < 0 ? (std::isnan(o_.target) ? 1.0 : o_.target) : o_.target;
+  Point cur;
+  start(cur);
+  Snapshot snap;
   snap.save(net_);
   double arclength = 0.0;
   rep.stop = RN_PATH_STOP_MAX_STEPS;
@@ -656,56 +783,12 @@ void PathFollower::run(rn_path_report &rep) {
   double ds = o_.ds;
   for (int step = 1; step <= o_.max_steps; ++step) {
     Point next;
-    bool ok = false;
     bool last = false;
     double taken = ds;
-    while (!ok) {
-      // does this step pass the target (or leave [0, 1] for the load factor)?
-      const double mu_pred = cur.mu + taken * cur.tmu;
-      const bool past_target =
-          !std::isnan(target) && (cur.mu - target) * (mu_pred - target) < 0.0;
-      const bool out_of_range = dof_ < 0 && (mu_pred < 0.0 || mu_pred > 1.0);
-      if (past_target || out_of_range) {
-        // towards the target (or the range end): a pseudo-arclength step of the
-        // length that reaches it to first order (the path may bend: then this is a
-        // regular point and the next step tries again), and a last step at fixed mu
-        // once the remaining distance is small
-        const double mu_end = past_target ? target : (mu_pred < 0.0 ? 0.0 : 1.0);
-        const double reach = (mu_end - cur.mu) / cur.tmu;
-        ok = step_from(cur, reach, cur.tx, cur.tmu, next);
-        if (ok) {
-          taken = reach;
-          if (std::fabs(next.mu - mu_end) <= 1e-2 * std::fabs(mu_end - cur.mu)) {
-            Point end = next;
-            const double frac = (mu_end - next.mu) / next.tmu;
-            for (size_t i = 0; i < n_; ++i) end.x[i] += frac * next.tx[i];
-            end.mu = mu_end;
-            if (dof_ >= 0) end.x[static_cast<size_t>(dof_)] = mu_end;
-            const std::vector<double> ax(n_, 0.0);
-            if (correct(end, ax, w_mu_, w_mu_ * mu_end) &&
-                tangent(end, next.tx, next.tmu)) {
-              taken = reach +
-                      std::fabs(frac) *
-                          std::sqrt(weighted_dot(next.tx, next.tmu, next.tx, next.tmu));
-              next = end;
-              last = true;
-              rep.stop = past_target ? RN_PATH_STOP_TARGET : RN_PATH_STOP_RANGE;
-            }
-          }
-          break;
-        }
-      } else {
-        ok = step_from(cur, taken, cur.tx, cur.tmu, next);
-      }
-      if (!ok) {
-        taken *= 0.5;
-        if (taken < o_.ds_min) {
-          rep.stop = RN_PATH_STOP_STEP_MIN;
-          snap.restore(net_);
-          rep.steps = step - 1;
-          return;
-        }
-      }
+    if (!next_point(cur, ds, target, next, taken, last, rep)) {
+      snap.restore(net_);
+      rep.steps = step - 1;
+      return;
     }
     eigen(next, nullptr);
     // an event between cur and next?
@@ -728,31 +811,11 @@ void PathFollower::run(rn_path_report &rep) {
           rep.steps = step;
           return;
         }
-        if (!limit && o_.branch_switch) {
-          // onto the other branch through ev: along the critical eigenvector if the
-          // path came along the regular direction, else along the regular one
-          const std::vector<double> tb = other_branch(ev, cur, target);
-          std::vector<double> phi(tb.begin(), tb.end() - 1);
-          const double phimu = tb.back();
-          Point br;
-          double dsb = ds;
-          bool bok = false;
-          while (!bok && dsb >= o_.ds_min) {
-            bok = step_from(ev, dsb, phi, phimu, br, false);
-            if (!bok) dsb *= 0.5;
-          }
-          if (bok) {
-            // orient the new tangent away from the bifurcation point
-            std::vector<double> d(n_);
-            for (size_t i = 0; i < n_; ++i) d[i] = br.x[i] - ev.x[i];
-            if (weighted_dot(br.tx, br.tmu, d, br.mu - ev.mu) < 0.0) {
-              for (double &e : br.tx) e = -e;
-              br.tmu = -br.tmu;
-            }
-            eigen(br, nullptr);
-            if (advance(br, dsb, step, RN_PATH_BRANCH_SWITCH)) return;
-            continue;
-          }
+        Point br;
+        double dsb = ds;
+        if (!limit && o_.branch_switch && switch_branch(ev, cur, target, ds, br, &dsb)) {
+          if (advance(br, dsb, step, RN_PATH_BRANCH_SWITCH)) return;
+          continue;
         }
       }
       // back to next's linearisation (locate moved it)
@@ -763,7 +826,7 @@ void PathFollower::run(rn_path_report &rep) {
     }
     if (advance(next, taken, step, RN_PATH_POINT)) return;
     if (last) break;
-    if (ok && taken == ds) {
+    if (taken == ds) { // (a full step)
       if (cur.iterations <= 3)
         ds = std::min(o_.ds_max, 1.5 * ds);
       else if (cur.iterations >= 7)

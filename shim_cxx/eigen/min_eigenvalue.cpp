@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/shim_error.hpp"
+#include "eigen/stability.hpp"
 #include "factor/spd_factor.hpp"
 
 namespace rodnet {

@@ -154,48 +154,34 @@ int orthonormalize_drop(const std::vector<double> &d, int k, std::vector<double>
 // tilts a rigid motion's image by about its size; a rigid motion that a support
 // blocks, or that turns a loaded structure, is not one).
 // Returns a D-orthonormal basis (n x m, column-major); m = columns.
-std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, double scale,
-                                   int *m_out) {
-  const size_t n = p.size();
-  rn_network *net = p.network();
-  *m_out = 0;
-  std::vector<rn_dof_info> info(n);
-  if (n == 0 || rn_network_dof_info(net, info.data()) != RN_OK) return {};
+// The vertices of every rod (xyz[r], 3 per vertex) and their centroid c; false if
+// the network does not give them.
+bool rod_points(rn_network *net, std::vector<std::vector<double>> &xyz, double c[3]) {
   const int nrods = rn_network_num_rods(net);
-  std::vector<std::vector<double>> xyz(static_cast<size_t>(nrods));
-  double c[3] = {0.0, 0.0, 0.0};
+  xyz.assign(static_cast<size_t>(nrods), {});
   size_t count = 0;
   for (int r = 0; r < nrods; ++r) {
     const int nv = rn_network_rod_num_vertices(net, r);
     xyz[static_cast<size_t>(r)].resize(3 * static_cast<size_t>(nv > 0 ? nv : 0));
     if (nv <= 0 || rn_network_rod_vertices(net, r, xyz[static_cast<size_t>(r)].data()))
-      return {};
+      return false;
     for (int v = 0; v < nv; ++v, ++count)
       for (int k = 0; k < 3; ++k) c[k] += xyz[static_cast<size_t>(r)][3 * v + k];
   }
-  for (double &e : c) e /= static_cast<double>(count ? count : 1);
-  // the rotations no constraint blocks (rn_network_free_motions: a rotation blocked
-  // at one end of a long rod, restricted to the free DOFs, is nearly a null vector:
-  // its Rayleigh quotient falls like N^-3), about the centroid: Rayleigh-Ritz with
-  // the translations finds the axis through the supports
-  rn_free_motions fm{};
-  if (rn_network_free_motions(net, &fm) != RN_OK) return {};
+  for (int k = 0; k < 3; ++k) c[k] /= static_cast<double>(count ? count : 1);
+  return true;
+}
+
+// The candidate motions' columns of V (n x k, column-major): the translations (0-2),
+// the free rotations fm about c (3 ..), the spins of the first `spins` rods' material
+// frames, and the rotation components of the joints with a slot in jslot (njrot of
+// them); false if a joint's position is not known.
+bool candidate_motions(rn_network *net, const std::vector<rn_dof_info> &info,
+                       const std::vector<std::vector<double>> &xyz, const double c[3],
+                       const rn_free_motions &fm, int spins,
+                       const std::vector<int> &jslot, int njrot, std::vector<double> &V) {
+  const size_t n = info.size();
   const int nrot = fm.num_rotations;
-  const int spins = nrods <= kMaxSpinRods ? nrods : 0;
-  // the joints with a rotation (rigid joints): a spin of the rods meeting at one
-  // turns it about their common tangent (a ring rolling about its centre line), so
-  // each rotation component is a candidate too, for as many joints as spins
-  std::vector<int> jslot(static_cast<size_t>(std::max(rn_network_num_joints(net), 0)),
-                         -1);
-  int njrot = 0;
-  for (size_t i = 0; i < n && spins; ++i)
-    if (info[i].kind == RN_DOF_ROTATION && info[i].joint >= 0 &&
-        static_cast<size_t>(info[i].joint) < jslot.size() &&
-        jslot[static_cast<size_t>(info[i].joint)] < 0)
-      jslot[static_cast<size_t>(info[i].joint)] = njrot++;
-  if (njrot > kMaxSpinRods) njrot = 0;
-  int k = 3 + nrot + spins + 3 * njrot;
-  std::vector<double> V(n * static_cast<size_t>(k), 0.0);
   auto col = [&](int j) { return V.data() + static_cast<size_t>(j) * n; };
   for (size_t i = 0; i < n; ++i) {
     const rn_dof_info &f = info[i];
@@ -205,7 +191,7 @@ std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, dou
         for (int a = 0; a < 3; ++a)
           pos[a] = xyz[static_cast<size_t>(f.rod)][3 * static_cast<size_t>(f.index) + a];
       } else if (rn_network_joint_position(net, f.joint, pos) != RN_OK) {
-        return {};
+        return false;
       }
       const double r[3] = {pos[0] - c[0], pos[1] - c[1], pos[2] - c[2]};
       col(f.component)[i] = 1.0;
@@ -236,8 +222,16 @@ std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, dou
             1.0;
     }
   }
-  k = orthonormalize_drop(d, k, V);
-  if (k == 0) return {};
+  return true;
+}
+
+// Rayleigh-Ritz on the k D-orthonormal columns of V: keeps (first in V) the Ritz
+// vectors in the zero band whose residual ||H v - mu D v||_{D^-1} is at most
+// kSymmetryTol scale; returns their number.
+int keep_symmetries(Problem &p, const std::vector<double> &d, double scale, int k,
+                    std::vector<double> &V) {
+  const size_t n = p.size();
+  auto col = [&](int j) { return V.data() + static_cast<size_t>(j) * n; };
   std::vector<double> W(V.size()), G(static_cast<size_t>(k * k)), mu;
   for (int j = 0; j < k; ++j)
     p.hessian_apply(col(j), W.data() + static_cast<size_t>(j) * n);
@@ -264,6 +258,46 @@ std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, dou
     if (m != j) std::copy(v, v + n, col(m));
     ++m;
   }
+  return m;
+}
+
+std::vector<double> symmetry_basis(Problem &p, const std::vector<double> &d, double scale,
+                                   int *m_out) {
+  const size_t n = p.size();
+  rn_network *net = p.network();
+  *m_out = 0;
+  std::vector<rn_dof_info> info(n);
+  if (n == 0 || rn_network_dof_info(net, info.data()) != RN_OK) return {};
+  const int nrods = rn_network_num_rods(net);
+  std::vector<std::vector<double>> xyz;
+  double c[3] = {0.0, 0.0, 0.0};
+  if (!rod_points(net, xyz, c)) return {};
+  // the rotations no constraint blocks (rn_network_free_motions: a rotation blocked
+  // at one end of a long rod, restricted to the free DOFs, is nearly a null vector:
+  // its Rayleigh quotient falls like N^-3), about the centroid: Rayleigh-Ritz with
+  // the translations finds the axis through the supports
+  rn_free_motions fm{};
+  if (rn_network_free_motions(net, &fm) != RN_OK) return {};
+  const int nrot = fm.num_rotations;
+  const int spins = nrods <= kMaxSpinRods ? nrods : 0;
+  // the joints with a rotation (rigid joints): a spin of the rods meeting at one
+  // turns it about their common tangent (a ring rolling about its centre line), so
+  // each rotation component is a candidate too, for as many joints as spins
+  std::vector<int> jslot(static_cast<size_t>(std::max(rn_network_num_joints(net), 0)),
+                         -1);
+  int njrot = 0;
+  for (size_t i = 0; i < n && spins; ++i)
+    if (info[i].kind == RN_DOF_ROTATION && info[i].joint >= 0 &&
+        static_cast<size_t>(info[i].joint) < jslot.size() &&
+        jslot[static_cast<size_t>(info[i].joint)] < 0)
+      jslot[static_cast<size_t>(info[i].joint)] = njrot++;
+  if (njrot > kMaxSpinRods) njrot = 0;
+  int k = 3 + nrot + spins + 3 * njrot;
+  std::vector<double> V(n * static_cast<size_t>(k), 0.0);
+  if (!candidate_motions(net, info, xyz, c, fm, spins, jslot, njrot, V)) return {};
+  k = orthonormalize_drop(d, k, V);
+  if (k == 0) return {};
+  const int m = keep_symmetries(p, d, scale, k, V);
   V.resize(static_cast<size_t>(m) * n);
   *m_out = m;
   return V;
@@ -285,6 +319,39 @@ struct RitzPairs {
   std::vector<double> mu, residual; // ascending Ritz values, ||H x - mu x||
   bool converged = false;           // every pair the verdict needs has converged
 };
+
+// rp.residual: ||H x - mu D x|| in the D^{-1} norm of the k Ritz pairs (mu in rp,
+// x in X, H x in W).
+void ritz_residuals(const std::vector<double> &d, int k, const std::vector<double> &X,
+                    const std::vector<double> &W, RitzPairs &rp) {
+  const size_t n = d.size();
+  rp.residual.assign(static_cast<size_t>(k), 0.0);
+  for (int j = 0; j < k; ++j) {
+    const double *x = X.data() + static_cast<size_t>(j) * n,
+                 *w = W.data() + static_cast<size_t>(j) * n;
+    double s = 0.0;
+    for (size_t r = 0; r < n; ++r) {
+      const double e = w[r] - rp.mu[static_cast<size_t>(j)] * d[r] * x[r];
+      s += e * e / d[r];
+    }
+    rp.residual[static_cast<size_t>(j)] = std::sqrt(s);
+  }
+}
+
+// Whether the pairs the verdict needs have converged: through the first Ritz value
+// outside the zero band [-delta, delta] (only the first if it is below -delta).
+bool ritz_converged(const RitzPairs &rp, int k, double delta, double scale) {
+  int need = 0;
+  while (need < k && std::fabs(rp.mu[static_cast<size_t>(need)]) <= delta) ++need;
+  need = std::min(need + 1, k);
+  if (rp.mu[0] < -delta) need = 1;
+  for (int j = 0; j < need; ++j)
+    if (rp.residual[static_cast<size_t>(j)] >
+        std::max(kResidualRel * std::fabs(rp.mu[static_cast<size_t>(j)]),
+                 kResidualAbs * scale))
+      return false;
+  return true;
+}
 
 // Subspace iteration with the factorisation f of H + s D (positive definite): the
 // lowest Ritz pairs of the pencil (H, D).  Stops once the pairs up to the first one
@@ -328,33 +395,55 @@ RitzPairs subspace_iteration(Problem &p, const SpdFactor &f, const std::vector<d
     small_eigen(k, G, rp.mu);
     rotate(n, k, X, G);
     rotate(n, k, W, G);
-    rp.residual.assign(static_cast<size_t>(k), 0.0);
-    for (int j = 0; j < k; ++j) {
-      const double *x = X.data() + static_cast<size_t>(j) * n,
-                   *w = W.data() + static_cast<size_t>(j) * n;
-      double s = 0.0; // ||H x - mu D x|| in the D^{-1} norm
-      for (size_t r = 0; r < n; ++r) {
-        const double e = w[r] - rp.mu[static_cast<size_t>(j)] * d[r] * x[r];
-        s += e * e / d[r];
-      }
-      rp.residual[static_cast<size_t>(j)] = std::sqrt(s);
-    }
-    // the pairs the verdict needs: through the first Ritz value outside the zero band
-    int need = 0;
-    while (need < k && std::fabs(rp.mu[static_cast<size_t>(need)]) <= delta) ++need;
-    need = std::min(need + 1, k);
-    if (rp.mu[0] < -delta) need = 1;
-    rp.converged = static_cast<size_t>(k + m) == n; // the whole space: exact
-    if (!rp.converged) {
-      rp.converged = true;
-      for (int j = 0; j < need; ++j)
-        if (rp.residual[static_cast<size_t>(j)] >
-            std::max(kResidualRel * std::fabs(rp.mu[static_cast<size_t>(j)]),
-                     kResidualAbs * scale))
-          rp.converged = false;
-    }
+    ritz_residuals(d, k, X, W, rp);
+    rp.converged = static_cast<size_t>(k + m) == n || // the whole space: exact
+                   ritz_converged(rp, k, delta, scale);
   }
   return rp;
+}
+
+// The largest Ritz value theta of A^{-1} D by Lanczos, A factored in f (from the
+// fixed start 7): 1 / theta bounds the lowest eigenvalue of the pencil (A, D) from
+// above.
+double inverse_lanczos(const SpdFactor &f, const std::vector<double> &d) {
+  std::vector<double> v(d.size());
+  fill_start(d.size(), 7, v.data());
+  const LanczosResult lr =
+      lanczos_largest([&f](double *x) { f.solve(x); }, d, kLanczosSteps, 1e-6, v);
+  return lr.theta;
+}
+
+// The verdict from the Ritz pairs rp of subspace_iteration (m symmetries): the
+// lowest eigenvalue, the soft modes (|mu| <= delta outside the symmetries), whether
+// they are positive (inertia of H itself, f refactored, when there are no
+// symmetries; otherwise each soft Ritz value beyond its residual) and whether the
+// state is a verified minimum.
+void classify_soft_modes(Problem &p, SpdFactor &f, const std::vector<double> &d,
+                         const std::vector<double> &dvals, double delta, int m,
+                         const RitzPairs &rp, rn_stability &st) {
+  size_t j = 0;
+  while (j < rp.mu.size() && std::fabs(rp.mu[j]) <= delta) ++j;
+  st.lowest_eigenvalue = rp.mu[0];
+  if (rp.mu[0] < -delta) { // unstable
+    for (double mu : rp.mu) st.soft_modes += std::fabs(mu) <= delta;
+    return;
+  }
+  st.soft_modes = static_cast<int>(j);
+  bool positive = j == 0;
+  if (!positive && m == 0 && rp.mu[0] > 0.0 && f.factor(p, 0.0, dvals.data())) {
+    // H itself factors: the soft modes are positive eigenvalues below delta
+    // (inertia); the lowest by shift-and-invert Lanczos on H^{-1} D
+    st.lowest_eigenvalue = 1.0 / inverse_lanczos(f, d);
+    positive = true;
+  } else if (!positive && m > 0) {
+    // on the complement of the symmetries: every soft Ritz value positive
+    // beyond its residual (an eigenvalue within the residual of each)
+    positive = true;
+    for (size_t i = 0; i < j; ++i) positive = positive && rp.mu[i] > rp.residual[i];
+  }
+  if (positive) st.soft_positive = st.soft_modes;
+  st.verified_minimum =
+      rp.converged && positive && (j < rp.mu.size() ? rp.mu[j] > delta : true);
 }
 
 } // namespace
@@ -386,10 +475,7 @@ rn_stability hessian_stability(Problem &p, rn_factorization kind) {
       // every eigenvalue above delta: the lowest by shift-and-invert Lanczos on
       // (H - delta D)^{-1} D, whose Ritz value bounds 1 / (lambda_min - delta) from
       // below
-      std::vector<double> v(n);
-      fill_start(n, 7, v.data());
-      const LanczosResult lr = lanczos_largest(*f, d, kLanczosSteps, 1e-6, v);
-      st.lowest_eigenvalue = 1.0 / lr.theta + delta;
+      st.lowest_eigenvalue = 1.0 / inverse_lanczos(*f, d) + delta;
       st.verified_minimum = 1;
     } else if (static_cast<size_t>(m) >= n) { // every mode a symmetry
       st.verified_minimum = 1;
@@ -403,32 +489,7 @@ rn_stability hessian_stability(Problem &p, rn_factorization kind) {
         factor_shifted(*f, p, 0.0, scaled.data(), false);
       }
       const RitzPairs rp = subspace_iteration(p, *f, d, delta, st.scale, S, m);
-      size_t j = 0; // the soft modes: |mu| <= delta outside the symmetries
-      while (j < rp.mu.size() && std::fabs(rp.mu[j]) <= delta) ++j;
-      st.lowest_eigenvalue = rp.mu[0];
-      if (rp.mu[0] < -delta) { // unstable
-        for (double mu : rp.mu) st.soft_modes += std::fabs(mu) <= delta;
-      } else {
-        st.soft_modes = static_cast<int>(j);
-        bool positive = j == 0;
-        if (!positive && m == 0 && rp.mu[0] > 0.0 && f->factor(p, 0.0, dvals.data())) {
-          // H itself factors: the soft modes are positive eigenvalues below delta
-          // (inertia); the lowest by shift-and-invert Lanczos on H^{-1} D
-          std::vector<double> v(n);
-          fill_start(n, 7, v.data());
-          const LanczosResult lr = lanczos_largest(*f, d, kLanczosSteps, 1e-6, v);
-          st.lowest_eigenvalue = 1.0 / lr.theta;
-          positive = true;
-        } else if (!positive && m > 0) {
-          // on the complement of the symmetries: every soft Ritz value positive
-          // beyond its residual (an eigenvalue within the residual of each)
-          positive = true;
-          for (size_t i = 0; i < j; ++i) positive = positive && rp.mu[i] > rp.residual[i];
-        }
-        if (positive) st.soft_positive = st.soft_modes;
-        st.verified_minimum =
-            rp.converged && positive && (j < rp.mu.size() ? rp.mu[j] > delta : true);
-      }
+      classify_soft_modes(p, *f, d, dvals, delta, m, rp, st);
     }
     st.zero_modes = st.symmetries + st.soft_modes - st.soft_positive;
   }

@@ -75,6 +75,10 @@ class Preconditioner;
 rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
                               Preconditioner *prec = nullptr, int symmetries = -1);
 
+// Smallest eigenvalue of the assembled Hessian by bisection on the inertia (sparse
+// Cholesky of H - sigma I) and inverse iteration (min_eigenvalue.cpp).  Throws Error.
+double sparse_min_eigenvalue(Problem &p);
+
 // The number of symmetries at the state p's Hessian holds (hessian_stability's
 // basis; one process, assemble_hessian first).  Throws Error.
 int count_symmetries(Problem &p);

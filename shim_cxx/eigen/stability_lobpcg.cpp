@@ -116,6 +116,79 @@ void start_block(TMV &X) {
     }
 }
 
+// The scalings of the metric d: w = d^{-1/2} and winv = d^{1/2}.
+void scaling(const TVec &d, TVec &w, TVec &winv) {
+  auto dv = d.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto wv = w.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  auto iv = winv.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (size_t i = 0; i < dv.extent(0); ++i) {
+    wv(i, 0) = 1.0 / std::sqrt(dv(i, 0));
+    iv(i, 0) = std::sqrt(dv(i, 0));
+  }
+}
+
+// Anasazi LOBPCG's parameters: the block's smallest real eigenvalues to an absolute
+// residual kLobpcgResidual scale, locking, full orthogonalisation, no output.
+Teuchos::ParameterList lobpcg_parameters(int block, double scale) {
+  Teuchos::ParameterList pl;
+  pl.set("Which", std::string("SR"));
+  pl.set("Block Size", block);
+  pl.set("Maximum Iterations", kLobpcgMaxIterations);
+  pl.set("Convergence Tolerance", kLobpcgResidual * scale);
+  pl.set("Relative Convergence Tolerance", false);
+  pl.set("Use Locking", true);
+  pl.set("Locking Tolerance", 0.1 * kLobpcgResidual * scale);
+  pl.set("Relative Locking Tolerance", false);
+  pl.set("Full Ortho", true);
+  // library code prints nothing: Anasazi's messages (errors included) go to a sink
+  pl.set("Verbosity", static_cast<int>(Anasazi::Errors));
+  pl.set("Output Stream",
+         Teuchos::getFancyOStream(Teuchos::rcp(new Teuchos::oblackholestream)));
+  return pl;
+}
+
+// The verdict from the ascending Ritz values mu when the zero modes are not
+// separated (distributed): every value in the zero band [-delta, delta] a zero mode.
+void zero_band_verdict(const std::vector<double> &mu, double delta, bool converged,
+                       rn_stability &st) {
+  size_t j = 0;
+  while (j < mu.size() && std::fabs(mu[j]) <= delta) ++j;
+  if (mu[0] < -delta) {
+    st.lowest_eigenvalue = mu[0];
+    for (double m : mu) st.zero_modes += std::fabs(m) <= delta;
+  } else {
+    st.zero_modes = static_cast<int>(j);
+    if (j < mu.size()) {
+      st.lowest_eigenvalue = mu[j];
+      st.verified_minimum = converged && mu[j] > delta;
+    }
+  }
+}
+
+// The verdict with the number of symmetries known: the `symmetries` Ritz values in
+// the zero band nearest 0 are the symmetries; the other ones in the band are soft
+// modes, whose sign LOBPCG's residuals (1e-10 scale) cannot resolve: no verified
+// minimum with any.
+void symmetry_verdict(const std::vector<double> &mu, double delta, int symmetries,
+                      bool converged, rn_stability &st) {
+  std::vector<size_t> band;
+  for (size_t i = 0; i < mu.size(); ++i)
+    if (std::fabs(mu[i]) <= delta) band.push_back(i);
+  std::sort(band.begin(), band.end(),
+            [&](size_t a, size_t b) { return std::fabs(mu[a]) < std::fabs(mu[b]); });
+  std::vector<char> sym(mu.size(), 0);
+  st.symmetries = std::min(symmetries, static_cast<int>(band.size()));
+  for (int i = 0; i < st.symmetries; ++i) sym[band[static_cast<size_t>(i)]] = 1;
+  st.soft_modes = static_cast<int>(band.size()) - st.symmetries;
+  st.zero_modes = static_cast<int>(band.size());
+  size_t lo = 0;
+  while (lo < mu.size() && sym[lo]) ++lo;
+  if (lo < mu.size()) {
+    st.lowest_eigenvalue = mu[lo];
+    st.verified_minimum = converged && st.soft_modes == 0 && mu[lo] > delta;
+  }
+}
+
 } // namespace
 
 rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
@@ -130,15 +203,7 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
   const Teuchos::RCP<TVec> d = metric(*H);
   auto w = Teuchos::rcp(new TVec(d->getMap())),
        winv = Teuchos::rcp(new TVec(d->getMap()));
-  {
-    auto dv = d->getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto wv = w->getLocalViewHost(Tpetra::Access::OverwriteAll);
-    auto iv = winv->getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t i = 0; i < dv.extent(0); ++i) {
-      wv(i, 0) = 1.0 / std::sqrt(dv(i, 0));
-      iv(i, 0) = std::sqrt(dv(i, 0));
-    }
-  }
+  scaling(*d, *w, *winv);
   st.scale = scaled_norm_inf(*H, *w);
   if (!std::isfinite(st.scale))
     throw Error(RN_ERR_NOT_FINITE, "stability: non-finite Hessian");
@@ -172,20 +237,7 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
     problem->setPrec(P);
     if (!problem->setProblem())
       throw Error(RN_ERR_INTERNAL, "stability: Anasazi rejected the eigenproblem");
-    Teuchos::ParameterList pl;
-    pl.set("Which", std::string("SR"));
-    pl.set("Block Size", block);
-    pl.set("Maximum Iterations", kLobpcgMaxIterations);
-    pl.set("Convergence Tolerance", kLobpcgResidual * st.scale);
-    pl.set("Relative Convergence Tolerance", false);
-    pl.set("Use Locking", true);
-    pl.set("Locking Tolerance", 0.1 * kLobpcgResidual * st.scale);
-    pl.set("Relative Locking Tolerance", false);
-    pl.set("Full Ortho", true);
-    // library code prints nothing: Anasazi's messages (errors included) go to a sink
-    pl.set("Verbosity", static_cast<int>(Anasazi::Errors));
-    pl.set("Output Stream",
-           Teuchos::getFancyOStream(Teuchos::rcp(new Teuchos::oblackholestream)));
+    Teuchos::ParameterList pl = lobpcg_parameters(block, st.scale);
     Anasazi::LOBPCGSolMgr<double, TMV, TOp> solver(problem, pl);
     Anasazi::ReturnType ret = Anasazi::Unconverged;
     try {
@@ -206,41 +258,11 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
     // no Ritz pair came out (LOBPCG broke down or converged none): the check did
     // not happen, which is not the same as a lowest eigenvalue of 0
     if (mu.empty()) st.checked = 0;
-    if (st.checked && !mu.empty() && symmetries < 0) { // zero modes not separated
-      size_t j = 0;
-      while (j < mu.size() && std::fabs(mu[j]) <= delta) ++j;
-      if (mu[0] < -delta) {
-        st.lowest_eigenvalue = mu[0];
-        for (double m : mu) st.zero_modes += std::fabs(m) <= delta;
-      } else {
-        st.zero_modes = static_cast<int>(j);
-        if (j < mu.size()) {
-          st.lowest_eigenvalue = mu[j];
-          st.verified_minimum = ret == Anasazi::Converged && mu[j] > delta;
-        }
-      }
-    } else if (st.checked && !mu.empty()) {
-      // the `symmetries` Ritz values in the zero band nearest 0 are the symmetries;
-      // the other ones in the band are soft modes, whose sign LOBPCG's residuals
-      // (1e-10 scale) cannot resolve: no verified minimum with any
-      std::vector<size_t> band;
-      for (size_t i = 0; i < mu.size(); ++i)
-        if (std::fabs(mu[i]) <= delta) band.push_back(i);
-      std::sort(band.begin(), band.end(),
-                [&](size_t a, size_t b) { return std::fabs(mu[a]) < std::fabs(mu[b]); });
-      std::vector<char> sym(mu.size(), 0);
-      st.symmetries = std::min(symmetries, static_cast<int>(band.size()));
-      for (int i = 0; i < st.symmetries; ++i) sym[band[static_cast<size_t>(i)]] = 1;
-      st.soft_modes = static_cast<int>(band.size()) - st.symmetries;
-      st.zero_modes = static_cast<int>(band.size());
-      size_t lo = 0;
-      while (lo < mu.size() && sym[lo]) ++lo;
-      if (lo < mu.size()) {
-        st.lowest_eigenvalue = mu[lo];
-        st.verified_minimum =
-            ret == Anasazi::Converged && st.soft_modes == 0 && mu[lo] > delta;
-      }
-    }
+    const bool converged = ret == Anasazi::Converged;
+    if (st.checked && !mu.empty() && symmetries < 0) // zero modes not separated
+      zero_band_verdict(mu, delta, converged, st);
+    else if (st.checked && !mu.empty())
+      symmetry_verdict(mu, delta, symmetries, converged, st);
   }
   st.time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

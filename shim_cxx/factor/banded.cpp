@@ -36,7 +36,7 @@ int lapack_int(size_t v, const char *what) {
 
 // Lower band storage: A(i, j), j <= i <= j + kd, at ab[(i - j) + j * (kd + 1)].
 // A = H + shift M with M given by CSR values m on the Hessian's pattern (or NULL).
-void load_band(const Problem &p, double shift, const double *m, size_t kd,
+void load_band(const CsrMatrix &p, double shift, const double *m, size_t kd,
                std::vector<double> &ab) {
   const size_t n = p.size(), ld = kd + 1;
   ab.assign(n * ld, 0.0);
@@ -57,13 +57,13 @@ BandedSpd::BandedSpd(size_t n, size_t kd) : n_(n), kd_(kd) {
   ab_.assign(n * (kd + 1), 0.0);
 }
 
-bool BandedSpd::factor(const Problem &p, double shift, const double *m) {
-  if (p.bandwidth() != kd_) { // a new pattern (contact, Problem::pattern_version)
+bool BandedSpd::factor(const CsrMatrix &p, double shift, const double *m) {
+  if (p.bandwidth() != kd_) { // a new pattern (contact, CsrMatrix::pattern_version)
     lapack_int((p.bandwidth() + 1) * (n_ > 0 ? n_ : 1), "band storage");
     kd_ = p.bandwidth();
     ab_.assign(n_ * (kd_ + 1), 0.0);
   }
-  ++p.counters.factorizations;
+  p.count_factorization();
   load_band(p, shift, m, kd_, ab_);
   const int n = static_cast<int>(n_), kd = static_cast<int>(kd_), ld = kd + 1;
   int info = 0;
@@ -80,7 +80,7 @@ void BandedSpd::solve(double *x) const {
   if (info != 0) throw Error(RN_ERR_LAPACK, "rn_solve: dpbtrs failed");
 }
 
-double banded_min_eigenvalue(const Problem &p) {
+double banded_min_eigenvalue(const CsrMatrix &p) {
   const size_t n = p.size(), kd = p.bandwidth();
   if (n == 0) throw Error(RN_ERR_ARG, "rn_hessian_min_eigenvalue: no free DOFs");
   const int ni = lapack_int(n, "number of DOFs"), kdi = lapack_int(kd, "bandwidth");

@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "system/problem.hpp"
+#include "factor/csr_matrix.hpp"
 #include "factor/spd_factor.hpp"
 
 namespace rodnet {
@@ -20,7 +20,7 @@ public:
 
   // Load H + shift M (band of the assembled Hessian; m: CSR values of M on its
   // pattern, NULL: H alone) and factor it; true if positive definite.
-  bool factor(const Problem &p, double shift, const double *m) override;
+  bool factor(const CsrMatrix &p, double shift, const double *m) override;
   // x <- A^{-1} x with the factorisation (requires a successful factor()).
   void solve(double *x) const override;
   bool factored() const override { return factored_; }
@@ -31,9 +31,9 @@ private:
   bool factored_ = false;
 };
 
-// Smallest eigenvalue of the assembled Hessian (LAPACK dsbevx on the band, exact
-// up to round-off).  Throws Error on failure.
-double banded_min_eigenvalue(const Problem &p);
+// Smallest eigenvalue of the symmetric matrix p, e.g. the assembled Hessian (LAPACK
+// dsbevx on the band, exact up to round-off).  Throws Error on failure.
+double banded_min_eigenvalue(const CsrMatrix &p);
 
 } // namespace rodnet
 

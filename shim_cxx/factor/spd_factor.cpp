@@ -14,30 +14,31 @@ namespace rodnet {
 
 namespace {
 
-// The Problem's symbolic analysis for a sparse Cholesky class.
-std::shared_ptr<const SparseAnalysis> analysis_for(const Problem &p, SparseCholesky *) {
+// The matrix's symbolic analysis for a sparse Cholesky class.
+std::shared_ptr<const SparseAnalysis> analysis_for(const CsrMatrix &p, SparseCholesky *) {
   return p.sparse_analysis();
 }
-std::shared_ptr<const CholmodAnalysis> analysis_for(const Problem &p, CholmodCholesky *) {
+std::shared_ptr<const CholmodAnalysis> analysis_for(const CsrMatrix &p,
+                                                    CholmodCholesky *) {
   return p.cholmod_analysis();
 }
 
 // SpdFactor on a sparse Cholesky class (SparseCholesky, CholmodCholesky) whose
-// symbolic analysis the Problem computes once per pattern and shares; a new pattern
-// (contact: Problem::pattern_version) takes the new analysis.
+// symbolic analysis the CsrMatrix computes once per pattern and shares; a new pattern
+// (contact: CsrMatrix::pattern_version) takes the new analysis.
 template <class Cholesky>
 class SparseSpd : public SpdFactor {
 public:
-  explicit SparseSpd(const Problem &p)
+  explicit SparseSpd(const CsrMatrix &p)
       : chol_(new Cholesky(analysis_for(p, static_cast<Cholesky *>(nullptr)))),
         version_(p.pattern_version()) {}
-  bool factor(const Problem &p, double shift, const double *m) override {
+  bool factor(const CsrMatrix &p, double shift, const double *m) override {
     if (p.pattern_version() != version_) {
       chol_.reset(); // (the old factor first: one in memory at a time)
       chol_.reset(new Cholesky(analysis_for(p, static_cast<Cholesky *>(nullptr))));
       version_ = p.pattern_version();
     }
-    ++p.counters.factorizations;
+    p.count_factorization();
     return chol_->factor(p.values(), shift, m);
   }
   void solve(double *x) const override { chol_->solve(x); }
@@ -50,15 +51,16 @@ private:
 
 } // namespace
 
-rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested) {
+rn_factorization choose_factor_kind(const CsrMatrix &p, rn_factorization requested) {
   if (requested == RN_FACTOR_BANDED || requested == RN_FACTOR_SPARSE ||
       requested == RN_FACTOR_CHOLMOD)
     return requested;
-  if (p.has_contact()) return RN_FACTOR_SPARSE; // its pattern, and band, may change
+  if (p.pattern_varies()) return RN_FACTOR_SPARSE; // its pattern, and band, may change
   return p.bandwidth() <= kBandedMaxBandwidth ? RN_FACTOR_BANDED : RN_FACTOR_SPARSE;
 }
 
-std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested) {
+std::unique_ptr<SpdFactor> make_spd_factor(const CsrMatrix &p,
+                                           rn_factorization requested) {
   const rn_factorization kind = choose_factor_kind(p, requested);
   if (kind == RN_FACTOR_SPARSE) return std::make_unique<SparseSpd<SparseCholesky>>(p);
   if (kind == RN_FACTOR_CHOLMOD) return std::make_unique<SparseSpd<CholmodCholesky>>(p);
@@ -78,7 +80,7 @@ namespace {
 // A + sigma M is strictly diagonally dominant in the scaling D^-1/2 (so positive
 // definite) for every sigma > max_i (sum_{j != i} |A_ij| / sqrt(d_i d_j) - A_ii / d_i).
 // NaN if an entry of A is not finite or M has a diagonal entry that is not positive.
-double gershgorin_shift(const Problem &p, double shift, const double *m) {
+double gershgorin_shift(const CsrMatrix &p, double shift, const double *m) {
   const size_t n = p.size();
   const int64_t *rp = p.rowptr();
   const int32_t *col = p.col();
@@ -108,7 +110,7 @@ double gershgorin_shift(const Problem &p, double shift, const double *m) {
 
 } // namespace
 
-double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m,
+double factor_shifted(SpdFactor &f, const CsrMatrix &p, double shift, const double *m,
                       bool try_zero) {
   if (try_zero && f.factor(p, shift, m)) return 0.0;
   // Smallest k >= -10 with H + (shift + 10^k) M positive definite: bisection on k

@@ -9,7 +9,7 @@
 //  - SparseSpd: supernodal multifrontal Cholesky with a METIS nested-dissection
 //    ordering (sparse_cholesky.hpp) for networks with joints, whose joint DOFs come
 //    after all rods (half bandwidth ~ n).  The symbolic analysis is done once per
-//    Problem and shared by every factorisation;
+//    pattern (CsrMatrix) and shared by every factorisation;
 //  - CholmodSpd (RN_FACTOR_CHOLMOD only): SuiteSparse CHOLMOD's supernodal
 //    Cholesky with METIS ordering (cholmod_factor.hpp), the library reference for
 //    SparseSpd (about 2x slower on lattices, docs/solvers.md); analysis shared too.
@@ -20,7 +20,7 @@
 #include <cstddef>
 #include <memory>
 
-#include "system/problem.hpp"
+#include "factor/csr_matrix.hpp"
 #include "rodnet_solve.h"
 
 namespace rodnet {
@@ -28,9 +28,10 @@ namespace rodnet {
 class SpdFactor {
 public:
   virtual ~SpdFactor() = default;
-  // Factor H + shift M (m: CSR values of M on the Hessian's pattern, NULL: H alone);
-  // true if the matrix is positive definite.  Counted in p.counters.factorizations.
-  virtual bool factor(const Problem &p, double shift, const double *m) = 0;
+  // Factor H + shift M (m: CSR values of M on H's pattern, NULL: H alone); true if
+  // the matrix is positive definite.  Counted by H.count_factorization() (a
+  // Problem's counters.factorizations).
+  virtual bool factor(const CsrMatrix &H, double shift, const double *m) = 0;
   // x <- A^{-1} x with the last successful factorisation (throws Error otherwise).
   virtual void solve(double *x) const = 0;
   virtual bool factored() const = 0;
@@ -40,24 +41,21 @@ public:
 constexpr size_t kBandedMaxBandwidth = 64;
 
 // RN_FACTOR_AUTO: banded if the half bandwidth is at most kBandedMaxBandwidth and
-// the network has no contact, sparse otherwise; the other values (banded, sparse,
-// cholmod) force one.
-rn_factorization choose_factor_kind(const Problem &p, rn_factorization requested);
+// the pattern cannot change (no contact), sparse otherwise; the other values
+// (banded, sparse, cholmod) force one.
+rn_factorization choose_factor_kind(const CsrMatrix &H, rn_factorization requested);
 // A factorisation of the chosen kind.  Throws Error (RN_ERR_ARG) for a forced banded
 // factorisation whose band would need more than 4 GiB.
-std::unique_ptr<SpdFactor> make_spd_factor(Problem &p, rn_factorization requested);
+std::unique_ptr<SpdFactor> make_spd_factor(const CsrMatrix &H,
+                                           rn_factorization requested);
 
 // Factor H + (shift + sigma) M with the smallest sigma in {0, 1e-10, ..., 10^K} that
 // gives a positive definite matrix, K = max(10, 1 + log10 of the Gershgorin bound of
 // the shift) (bisection on the exponent: 7 factorisations while K = 10); returns
 // sigma.  Throws Error (RN_ERR_LAPACK) on non-finite entries or a non-positive M_ii.
 // try_zero = false: the caller knows that sigma = 0 fails (skips that factorisation).
-double factor_shifted(SpdFactor &f, const Problem &p, double shift, const double *m,
+double factor_shifted(SpdFactor &f, const CsrMatrix &H, double shift, const double *m,
                       bool try_zero = true);
-
-// Smallest eigenvalue of the assembled Hessian by bisection on the inertia (sparse
-// Cholesky of H - sigma I) and inverse iteration (min_eigenvalue.cpp).  Throws Error.
-double sparse_min_eigenvalue(Problem &p);
 
 } // namespace rodnet
 

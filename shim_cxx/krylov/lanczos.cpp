@@ -41,8 +41,9 @@ double tridiagonal_largest(const std::vector<double> &alpha,
 
 } // namespace
 
-LanczosResult lanczos_largest(const SpdFactor &A, const std::vector<double> &d,
-                              int max_steps, double rel_tol, std::vector<double> &v) {
+LanczosResult lanczos_largest(const std::function<void(double *)> &solve_A,
+                              const std::vector<double> &d, int max_steps, double rel_tol,
+                              std::vector<double> &v) {
   const size_t n = d.size();
   const int m =
       static_cast<int>(std::min<size_t>(n, static_cast<size_t>(std::max(1, max_steps))));
@@ -55,7 +56,7 @@ LanczosResult lanczos_largest(const SpdFactor &A, const std::vector<double> &d,
   for (int j = 0; j < m; ++j) {
     const std::vector<double> &q = Q[static_cast<size_t>(j)];
     for (size_t i = 0; i < n; ++i) w[i] = d[i] * q[i];
-    A.solve(w.data());
+    solve_A(w.data());
     alpha.push_back(mdot(d, q.data(), w.data()));
     for (int pass = 0; pass < 2; ++pass) // full reorthogonalisation, twice
       for (const std::vector<double> &qi : Q) {

@@ -1,7 +1,8 @@
 // lanczos.hpp - the largest eigenpair of T = A^{-1} M by the Lanczos process in the
 // M inner product, with full reorthogonalisation (no Trilinos here).
 //
-// A is SPD and given by its factorisation (SpdFactor), M = diag(d), d > 0.  T is
+// A is SPD and given by its inverse (x <- A^{-1} x, e.g. SpdFactor::solve), M =
+// diag(d), d > 0.  T is
 // self-adjoint in <a, b>_M = a' M b, and its largest eigenvalue theta is
 // 1 / (lambda_1 + sigma) for A = H + sigma M, lambda_1 the lowest eigenvalue of the
 // pencil (H, M): shift-and-invert Lanczos for the trust region's negative curvature.
@@ -10,9 +11,8 @@
 #define RODNET_SHIM_LANCZOS_HPP
 
 #include <cstddef>
+#include <functional>
 #include <vector>
-
-#include "factor/spd_factor.hpp"
 
 namespace rodnet {
 
@@ -22,12 +22,14 @@ struct LanczosResult {
   bool converged = false;
 };
 
-// At most max_steps steps (<= n), from the start vector v (overwritten with the Ritz
+// solve_A(x): x <- A^{-1} x (length n = d.size()).  At most max_steps steps (<= n),
+// from the start vector v (overwritten with the Ritz
 // vector, ||v||_M = 1); stops when the Ritz residual estimate |beta_j y_j| falls below
 // rel_tol theta.  Memory: max_steps vectors of length n.  Throws Error if LAPACK's
 // tridiagonal eigensolver fails.
-LanczosResult lanczos_largest(const SpdFactor &A, const std::vector<double> &d,
-                              int max_steps, double rel_tol, std::vector<double> &v);
+LanczosResult lanczos_largest(const std::function<void(double *)> &solve_A,
+                              const std::vector<double> &d, int max_steps, double rel_tol,
+                              std::vector<double> &v);
 
 } // namespace rodnet
 

@@ -312,19 +312,10 @@ const rn_network *network_of(System &sys) {
   return nullptr;
 }
 
-} // namespace
-
-void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
-             const rn_solve_options &opt) {
-  auto model = Teuchos::rcp(new GradientModel(sys, prec));
-  // A couple fixed in space (rodnet_couple.h) makes the residual's Jacobian
-  // nonsymmetric: restarted GMRES instead of MINRES, the same preconditioner (built
-  // from the assembled Jacobian; it stays a preconditioner, GMRES does not need it
-  // symmetric).
-  const bool nonsymmetric =
-      rn_network_fixed_couples(network_of(sys), nullptr, nullptr) > 0;
-
-  Stratimikos::DefaultLinearSolverBuilder builder;
+// Stratimikos' parameters of the linear solves: Belos MINRES (restarted GMRES for a
+// nonsymmetric Jacobian) to krylov_tol, preconditioned by the model's W_prec.
+Teuchos::RCP<Teuchos::ParameterList> linear_solver_parameters(const rn_solve_options &opt,
+                                                              bool nonsymmetric) {
   auto lsp = Teuchos::rcp(new Teuchos::ParameterList);
   lsp->set("Linear Solver Type", "Belos");
   auto &belos = lsp->sublist("Linear Solver Types").sublist("Belos");
@@ -335,18 +326,13 @@ void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
   minres.set("Maximum Iterations", opt.krylov_max_iterations);
   if (nonsymmetric) minres.set("Num Blocks", std::min(opt.krylov_max_iterations, 200));
   lsp->set("Preconditioner Type", "None"); // the model's W_prec
-  builder.setParameterList(lsp);
-  auto lows = builder.createLinearSolveStrategy("");
+  return lsp;
+}
 
-  auto x0 = ::Thyra::createMember(model->get_x_space());
-  ::Thyra::V_V(x0.ptr(), *model->getNominalValues().get_x());
-  NOX::Thyra::Vector nx0(x0);
-  auto W = model->create_W_op();
-  auto M = model->create_W_prec();
-  auto group = Teuchos::rcp(
-      new NOX::Thyra::Group(nx0, model, W, lows, M,
-                            Teuchos::RCP<::Thyra::PreconditionerFactoryBase<double>>()));
-
+// NOX's parameters: full Newton steps with inexact-Newton forcing terms, the
+// observer that accepts every iterate into sys, no printing.
+Teuchos::RCP<Teuchos::ParameterList> newton_parameters(const rn_solve_options &opt,
+                                                       System &sys) {
   auto params = Teuchos::rcp(new Teuchos::ParameterList);
   params->set("Nonlinear Solver", "Line Search Based");
   params->sublist("Line Search").set("Method", "Full Step");
@@ -368,6 +354,35 @@ void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
       .set<Teuchos::RCP<NOX::Observer>>("Observer",
                                         Teuchos::rcp(new AcceptObserver(sys)));
   params->sublist("Solver Options").set("Status Test Check Type", "Minimal");
+  return params;
+}
+
+} // namespace
+
+void run_nox(System &sys, Preconditioner &prec, Monitor &mon,
+             const rn_solve_options &opt) {
+  auto model = Teuchos::rcp(new GradientModel(sys, prec));
+  // A couple fixed in space (rodnet_couple.h) makes the residual's Jacobian
+  // nonsymmetric: restarted GMRES instead of MINRES, the same preconditioner (built
+  // from the assembled Jacobian; it stays a preconditioner, GMRES does not need it
+  // symmetric).
+  const bool nonsymmetric =
+      rn_network_fixed_couples(network_of(sys), nullptr, nullptr) > 0;
+
+  Stratimikos::DefaultLinearSolverBuilder builder;
+  builder.setParameterList(linear_solver_parameters(opt, nonsymmetric));
+  auto lows = builder.createLinearSolveStrategy("");
+
+  auto x0 = ::Thyra::createMember(model->get_x_space());
+  ::Thyra::V_V(x0.ptr(), *model->getNominalValues().get_x());
+  NOX::Thyra::Vector nx0(x0);
+  auto W = model->create_W_op();
+  auto M = model->create_W_prec();
+  auto group = Teuchos::rcp(
+      new NOX::Thyra::Group(nx0, model, W, lows, M,
+                            Teuchos::RCP<::Thyra::PreconditionerFactoryBase<double>>()));
+
+  auto params = newton_parameters(opt, sys);
 
   auto monitor_test = Teuchos::rcp(new MonitorTest(sys, mon, *model));
   auto tests = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));

@@ -10,9 +10,10 @@
 //     trust-region norm ||s||_M = sqrt(s' M s)).  If M had to modify an indefinite
 //     piece (stats().shifted), or if the stopping test is about to pass with a
 //     preconditioner that cannot certify positive definiteness, Lanczos on the pencil
-//     (H, M) (preconditioned, M-orthonormal, full reorthogonalisation, at most
-//     kLanczosSteps) gives the lowest Ritz pair (mu, v): mu < -kCurvTol means negative
-//     curvature, and no convergence test passes (a saddle is never reported).
+//     (H, M) (pencil_lanczos.hpp: preconditioned, M-orthonormal, full
+//     reorthogonalisation, at most 30 steps) gives the lowest Ritz pair (mu, v):
+//     mu < -kCurvTol means negative curvature, and no convergence test passes (a
+//     saddle is never reported).
 //  2. The step: preconditioned MINRES (Paige-Saunders) on H s = -g from s = 0, with
 //     the trust region folded in (the MINRES analogue of Steihaug-Toint):
 //       - its iterates grow monotonically in the M-norm while the Lanczos matrix T_k
@@ -78,16 +79,12 @@
 #include "factor/spd_factor.hpp"
 #include "system/system_serial.hpp"
 
-extern "C" void dstev_(const char *jobz, const int *n, double *d, double *e, double *z,
-                       const int *ldz, double *work, int *info, size_t jobz_len);
-
 namespace rodnet {
 
 namespace {
 
 constexpr double kAccept = 1e-4;               // accept a step if rho > kAccept
 constexpr double kCurvTol = 1e3 * DBL_EPSILON; // significant negative curvature
-constexpr int kLanczosSteps = 30;
 // Negative curvature that marks a saddle for the round-off acceptance rule (run());
 // above it, e.g. a zero mode's Ritz value at round-off, the gradient decides.
 constexpr double kNoiseCurv = 1e-8;
@@ -255,73 +252,26 @@ private:
   double beta1_ = 0.0;
 };
 
-// Lowest eigenpair of the pencil (H, M) by preconditioned Lanczos (M-orthonormal
-// basis, full reorthogonalisation) from a fixed pseudo-random start; v is returned
-// M-normalised with M v in Mv, mu = v' H v.  H and M^{-1} are operators on map (the
-// System's Hessian and the preconditioner, or the DD's coarse pencil).
-class PencilLanczos {
-public:
-  PencilLanczos(const Tpetra::Operator<> &H, const Tpetra::Operator<> &Minv,
-                const Teuchos::RCP<const TMap> &map)
-      : H_(H), Minv_(Minv), map_(map), z_(map_, 1), y_(map_, 1) {}
+// The watchdog (step 3 at the top, as tr_minres.cpp): the point the tentative steps
+// started from, and what going back to it needs.
+struct Anchor {
+  bool active = false;  // tentative steps from the anchor are being taken
+  bool blocked = false; // went back to it: no new anchor before a step is accepted
+  int steps = 0;        // tentative steps taken
+  double energy = 0.0, pred = 0.0, radius = 0.0, step = 0.0; // E, pred, radius, ||s||_M
+};
 
-  double lowest(Vec &v, Vec &Mv, int *steps) {
-    std::vector<Vec> V, Z; // Lanczos vectors and M times them
-    std::vector<double> alpha, beta;
-    // start: z = pseudo-random (unpreconditioned space), y = M^{-1} z
-    const size_t nloc = z_.getLocalLength();
-    const GO base = map_->getMinGlobalIndex();
-    {
-      auto zv = z_.getLocalViewHost(Tpetra::Access::OverwriteAll);
-      for (size_t i = 0; i < nloc; ++i)
-        zv(i, 0) =
-            1.0 +
-            0.5 * std::sin(0.7 * static_cast<double>(base + static_cast<GO>(i)) + 0.3);
-    }
-    Minv_.apply(z_, y_);
-    double b = std::sqrt(std::max(dot(z_, y_), 0.0));
-    for (int k = 0; k < kLanczosSteps && b > 0.0; ++k) {
-      V.emplace_back(map_, 1);
-      Z.emplace_back(map_, 1);
-      V.back().update(1.0 / b, y_, 0.0);
-      Z.back().update(1.0 / b, z_, 0.0);
-      if (k > 0) beta.push_back(b);
-      H_.apply(V.back(), z_); // z = H v_k (unpreconditioned)
-      const double a = dot(V.back(), z_);
-      alpha.push_back(a);
-      // z -= a M v_k + b M v_{k-1}; then full reorthogonalisation in the M-inner
-      // product: z -= sum (v_j' z) M v_j
-      z_.update(-a, Z.back(), 1.0);
-      if (k > 0) z_.update(-b, Z[Z.size() - 2], 1.0);
-      for (size_t j = 0; j < V.size(); ++j) z_.update(-dot(V[j], z_), Z[j], 1.0);
-      Minv_.apply(z_, y_);
-      b = std::sqrt(std::max(dot(z_, y_), 0.0));
-      if (b <= 1e-12 * std::fabs(a)) break;
-    }
-    const int m = static_cast<int>(alpha.size());
-    *steps = m;
-    std::vector<double> d(alpha), e(beta), zz(static_cast<size_t>(m) * m),
-        work(static_cast<size_t>(std::max(1, 2 * m - 2)));
-    e.resize(static_cast<size_t>(std::max(m - 1, 1)));
-    int info = 0;
-    dstev_("V", &m, d.data(), e.data(), zz.data(), &m, work.data(), &info, 1);
-    if (info != 0) throw Error(RN_ERR_LAPACK, "rn_solve: Lanczos eigenvalues (dstev)");
-    v.putScalar(0.0);
-    Mv.putScalar(0.0);
-    for (int j = 0; j < m; ++j) { // eigenvector of the lowest Ritz value (column 0)
-      v.update(zz[static_cast<size_t>(j)], V[static_cast<size_t>(j)], 1.0);
-      Mv.update(zz[static_cast<size_t>(j)], Z[static_cast<size_t>(j)], 1.0);
-    }
-    H_.apply(v, y_);
-    const double vv = dot(v, Mv);
-    return vv > 0.0 ? dot(v, y_) / vv : d[0];
-  }
+// What becomes of a trial step.
+enum class Move { Reject, Accept, Tentative, Back };
 
-private:
-  const Tpetra::Operator<> &H_;
-  const Tpetra::Operator<> &Minv_;
-  Teuchos::RCP<const TMap> map_;
-  Vec z_, y_;
+// A trial step s and the trial point x + s.
+struct Trial {
+  double snorm = 0.0;   // ||s||_M
+  bool limited = false; // the step was computed with the trust radius
+  double pred = 0.0;    // the model's decrease
+  double ftrial = 0.0;  // the energy at the trial point (+inf if undefined)
+  double rho = 0.0;     // actual over predicted decrease
+  double safe = 0.0;    // the energy's round-off level
 };
 
 class TrustRegionKrylov {
@@ -335,6 +285,13 @@ public:
   void run();
 
 private:
+  void set_up();
+  double forcing() const;
+  Trial solve_step(double eta, KrylovStep &st);
+  void evaluate_trial(const KrylovStep &st, Trial &t);
+  bool noise_move(const Trial &t, Move *move);
+  Move watchdog_move(const Trial &t);
+  bool apply_move(Move move, const Trial &t, const KrylovStep &st, bool noise);
   void analyse(const IterationView &it);
   double model(const Vec &s) { // g's + s'Hs/2
     apply_h(sys_, s, hs_);
@@ -361,6 +318,10 @@ private:
   Vec x_, g_, gt_, xt_, xa_, hs_, v_, Mv_, sig_, f_, q_, xc_;
   double energy_ = 0.0, mu_ = 0.0;
   bool negcurv_ = false, have_v_ = false;
+  // the state of run()
+  double radius_ = 0.0, beta1_prev_ = 0.0; // trust radius; beta1 of the last step
+  Anchor anchor_;
+  std::unique_ptr<TrustMinres> minres_;
 };
 
 // Negative curvature at x (step 1): Lanczos on (H, M) when the preconditioner had to
@@ -387,7 +348,7 @@ void TrustRegionKrylov::analyse(const IterationView &it) {
     sys_.counters.krylov += steps;
     if (mu_s > kCurvTol) return; // S, hence H, positive definite
   }
-  mu_ = PencilLanczos(*sys_.hessian(), *prec_.inverse(), map_).lowest(v_, Mv_, &steps);
+  mu_ = pencil_lowest(*sys_.hessian(), *prec_.inverse(), map_, v_, Mv_, &steps);
   sys_.counters.krylov += steps;
   have_v_ = true;
   negcurv_ = mu_ < -kCurvTol;
@@ -443,30 +404,181 @@ bool TrustRegionKrylov::correct_step(const KrylovStep &st, Vec &xc) {
   return true;
 }
 
+// At a new iterate: assemble H, set up the preconditioner M and give MINRES the new
+// M^{-1} (its work vectors for the whole run: page faults of large ones).
+void TrustRegionKrylov::set_up() {
+  sys_.assemble_hessian(x_);
+  prec_.setup(sys_);
+  if (minres_)
+    minres_->rebind(*prec_.inverse());
+  else
+    minres_.reset(new TrustMinres(sys_, *prec_.inverse(), opt_.krylov_max_iterations));
+}
+
+// The inexact-Newton forcing term: Eisenstat-Walker choice 2 from the second step on;
+// the first step of a solve (no ratio yet) to kForcingFirst (see the top).
+double TrustRegionKrylov::forcing() const {
+  double eta = kForcingFirst;
+  if (beta1_prev_ > 0.0 && minres_->beta1() > 0.0) {
+    const double ratio = minres_->beta1() / beta1_prev_;
+    eta = std::min(0.1, 0.9 * ratio * ratio);
+  }
+  return std::max(eta, opt_.krylov_tol);
+}
+
+// The step (step 2 at the top) in st.  Automatic first radius: the Newton step, or
+// ||M^{-1} g||_M (a preconditioned gradient step) where the curvature is negative.
+// The watchdog's tentative steps are not limited either (Newton steps that repair
+// the stretch of the anchor's step): the M-norm changes with H, and the anchor's
+// radius, measured with the anchor's M, means little at a stretched point whose M is
+// much stiffer.
+Trial TrustRegionKrylov::solve_step(double eta, KrylovStep &st) {
+  const bool automatic = !(radius_ > 0.0), unlimited = automatic || anchor_.active;
+  const double floor_radius = automatic ? 1e-8 : radius_;
+  double rad = unlimited ? std::numeric_limits<double>::max() : radius_;
+  if (unlimited && negcurv_) rad = std::max(gradient_radius(), floor_radius);
+  minres_->solve(g_, rad, eta, st);
+  if (unlimited && st.negative && !negcurv_) { // met in the Krylov space only
+    rad = std::max(gradient_radius(), floor_radius);
+    minres_->solve(g_, rad, eta, st);
+  }
+  if (negcurv_ && have_v_ && !st.negative && !st.boundary)
+    add_curvature_direction(rad, st);
+  Trial t;
+  t.snorm = std::sqrt(std::max(dot(st.s, st.Ms), 0.0));
+  if (automatic) radius_ = std::max(std::min(rad, t.snorm), 1e-300);
+  t.limited = rad == radius_; // the step was computed with the radius
+  return t;
+}
+
+// The trial point x + s in xt_, its energy and the ratio rho; the second-order
+// correction of a rejected step (step 3a at the top): x + s + c replaces x + s if its
+// energy is lower.  Not at the round-off level (noise_move).
+void TrustRegionKrylov::evaluate_trial(const KrylovStep &st, Trial &t) {
+  t.pred = -model(st.s);
+  xt_.assign(x_);
+  xt_.update(1.0, st.s, 1.0);
+  t.ftrial = std::numeric_limits<double>::infinity();
+  if (sys_.energy(xt_, &t.ftrial) != RN_OK)
+    t.ftrial = std::numeric_limits<double>::infinity();
+  t.safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(energy_));
+  const auto ratio = [&](double f) {
+    return std::isfinite(f) ? (energy_ - f + t.safe) / (t.pred + t.safe)
+                            : -std::numeric_limits<double>::infinity();
+  };
+  t.rho = ratio(t.ftrial);
+  if (!(t.rho > kAccept) && std::isfinite(t.ftrial) && !(t.pred < t.safe) &&
+      correct_step(st, xc_)) {
+    double fc = std::numeric_limits<double>::infinity();
+    if (sys_.energy(xc_, &fc) == RN_OK && std::isfinite(fc) && fc < t.ftrial) {
+      xt_.assign(xc_);
+      t.ftrial = fc;
+      t.rho = ratio(fc);
+    }
+  }
+}
+
+// At the energy's round-off level (the model's decrease below safe) rho is noise and
+// would accept steps that raise E by up to safe: repeated, they random-walk along
+// soft or zero modes and the residual grows (loop_joint.json: 1800 iterations
+// hovering between |g| 1e-12 and 1e-7).  There the gradient decides: the step is kept
+// iff it lowers ||g||_{M^-1}, the norm MINRES reduces (no watchdog).  Not at a saddle
+// (Lanczos curvature below -kNoiseCurv): leaving it raises |g|.  True if this rule
+// decided *move.
+bool TrustRegionKrylov::noise_move(const Trial &t, Move *move) {
+  const bool round_off = !anchor_.active && !(negcurv_ && mu_ < -kNoiseCurv) &&
+                         std::isfinite(t.ftrial) && t.pred < t.safe &&
+                         minres_->beta1() > 0.0;
+  if (!round_off) return false;
+  double Et = 0.0;
+  if (sys_.gradient(xt_, &Et, gt_) != RN_OK) return false;
+  prec_.inverse()->apply(gt_, hs_);
+  const double gt_norm = std::sqrt(std::max(dot(gt_, hs_), 0.0));
+  *move = gt_norm < minres_->beta1() ? Move::Accept : Move::Reject;
+  return true;
+}
+
+// The ratio test with the watchdog (step 3 at the top): from an anchor, accept what
+// lowers the anchor's energy enough, take up to kWatchdogSteps tentative steps, then
+// go back; otherwise a rejected step with a finite energy becomes the first
+// tentative step from a new anchor (x), where the System can save its state.
+Move TrustRegionKrylov::watchdog_move(const Trial &t) {
+  Anchor &a = anchor_;
+  if (a.active) {
+    if (std::isfinite(t.ftrial) && t.ftrial <= a.energy - kAccept * a.pred)
+      return Move::Accept;
+    if (a.steps < kWatchdogSteps && t.rho > kAccept) return Move::Tentative;
+    return Move::Back;
+  }
+  if (t.rho > kAccept) return Move::Accept;
+  if (!a.blocked && std::isfinite(t.ftrial) && sys_.save_state()) {
+    a.active = true;
+    a.steps = 0;
+    xa_.assign(x_);
+    a.energy = energy_;
+    a.pred = t.pred;
+    a.radius = radius_;
+    a.step = t.snorm;
+    return Move::Tentative;
+  }
+  return Move::Reject;
+}
+
+// Carries out the move: the iterate, the radius and the watchdog's state.  True if
+// the iterate changed (H and M are set up again).
+bool TrustRegionKrylov::apply_move(Move move, const Trial &t, const KrylovStep &st,
+                                   bool noise) {
+  switch (move) {
+  case Move::Accept:
+    if (anchor_.active)
+      anchor_.active = false;
+    else
+      anchor_.blocked = false;
+    if (t.rho < 0.25)
+      radius_ = 0.25 * std::min(radius_, t.snorm);
+    else if (t.rho > 0.75 && st.boundary && t.limited)
+      radius_ *= 2.0;
+    beta1_prev_ = minres_->beta1();
+    take(xt_);
+    return true;
+  case Move::Tentative:
+    ++anchor_.steps;
+    beta1_prev_ = minres_->beta1();
+    take(xt_);
+    return true;
+  case Move::Back:
+    sys_.restore_state();
+    x_.assign(xa_);
+    if (sys_.gradient(x_, &energy_, g_) != RN_OK)
+      throw Error(RN_ERR_SOLVER, "rn_solve: gradient at the anchor is degenerate");
+    radius_ = 0.25 * std::min(anchor_.radius, anchor_.step);
+    anchor_.active = false;
+    anchor_.blocked = true;
+    return true;
+  case Move::Reject:
+    if (t.rho < 0.25 || noise) radius_ = 0.25 * std::min(radius_, t.snorm);
+    return false;
+  }
+  return false;
+}
+
 void TrustRegionKrylov::run() {
   sys_.get_state(x_);
   if (sys_.gradient(x_, &energy_, g_) != RN_OK)
     throw Error(RN_ERR_GEOMETRY, "rn_solve: the starting state is degenerate");
-  double radius = opt_.initial_radius, anchor_energy = 0.0, anchor_pred = 0.0,
-         anchor_radius = 0.0, anchor_step = 0.0, beta1_prev = 0.0;
-  bool fresh = true, check = true, anchor = false, blocked = false;
-  int anchor_steps = 0, iteration = 0;
+  radius_ = opt_.initial_radius;
+  beta1_prev_ = 0.0;
+  anchor_ = Anchor();
+  bool fresh = true, check = true;
+  int iteration = 0;
   IterationView it;
   KrylovStep st(map_);
-  std::unique_ptr<TrustMinres> minres;
   for (;;) {
-    if (fresh) {
-      sys_.assemble_hessian(x_);
-      prec_.setup(sys_);
-      if (minres) // its work vectors for the whole run (page faults of large ones)
-        minres->rebind(*prec_.inverse());
-      else
-        minres.reset(new TrustMinres(sys_, *prec_.inverse(), opt_.krylov_max_iterations));
-    }
+    if (fresh) set_up();
     it.iteration = iteration;
     it.energy = energy_;
     it.gnorm = g_.getVector(0)->norm2();
-    it.radius = radius;
+    it.radius = radius_;
     it.x_norm = x_.getVector(0)->norm2();
     it.eq = sys_.equilibrium(x_, g_);
     if (fresh) analyse(it);
@@ -474,138 +586,21 @@ void TrustRegionKrylov::run() {
     it.negative_curvature = negcurv_;
     if (check && mon_.check(it)) break;
     check = true;
-    // inexact-Newton forcing term: Eisenstat-Walker choice 2 from the second step on;
-    // the first step of a solve (no ratio yet) to kForcingFirst (see the top)
-    double eta = kForcingFirst;
-    if (beta1_prev > 0.0 && minres->beta1() > 0.0) {
-      const double ratio = minres->beta1() / beta1_prev;
-      eta = std::min(0.1, 0.9 * ratio * ratio);
-    }
-    eta = std::max(eta, opt_.krylov_tol);
-    // Automatic first radius: the Newton step, or ||M^{-1} g||_M (a preconditioned
-    // gradient step) where the curvature is negative.  The watchdog's tentative steps
-    // are not limited either (Newton steps that repair the stretch of the anchor's
-    // step): the M-norm changes with H, and the anchor's radius, measured with the
-    // anchor's M, means little at a stretched point whose M is much stiffer.
-    const bool automatic = !(radius > 0.0), unlimited = automatic || anchor;
-    const double floor_radius = automatic ? 1e-8 : radius;
-    double rad = unlimited ? std::numeric_limits<double>::max() : radius;
-    if (unlimited && negcurv_) rad = std::max(gradient_radius(), floor_radius);
-    minres->solve(g_, rad, eta, st);
-    if (unlimited && st.negative && !negcurv_) { // met in the Krylov space only
-      rad = std::max(gradient_radius(), floor_radius);
-      minres->solve(g_, rad, eta, st);
-    }
-    if (negcurv_ && have_v_ && !st.negative && !st.boundary)
-      add_curvature_direction(rad, st);
-    const double snorm = std::sqrt(std::max(dot(st.s, st.Ms), 0.0));
-    if (automatic) radius = std::max(std::min(rad, snorm), 1e-300);
-    const bool limited = rad == radius; // the step was computed with the radius
-    const double pred = -model(st.s);
-    xt_.assign(x_);
-    xt_.update(1.0, st.s, 1.0);
-    double ftrial = std::numeric_limits<double>::infinity();
-    if (sys_.energy(xt_, &ftrial) != RN_OK)
-      ftrial = std::numeric_limits<double>::infinity();
-    const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(energy_));
-    const auto ratio = [&](double f) {
-      return std::isfinite(f) ? (energy_ - f + safe) / (pred + safe)
-                              : -std::numeric_limits<double>::infinity();
-    };
-    double rho = ratio(ftrial);
-    // Second-order correction of a rejected step (step 3a at the top): x + s + c
-    // replaces x + s if its energy is lower.  Not at the round-off level (below).
-    if (!(rho > kAccept) && std::isfinite(ftrial) && !(pred < safe) &&
-        correct_step(st, xc_)) {
-      double fc = std::numeric_limits<double>::infinity();
-      if (sys_.energy(xc_, &fc) == RN_OK && std::isfinite(fc) && fc < ftrial) {
-        xt_.assign(xc_);
-        ftrial = fc;
-        rho = ratio(fc);
-      }
-    }
+    Trial t = solve_step(forcing(), st);
+    evaluate_trial(st, t);
     ++iteration;
-    enum class Move { Reject, Accept, Tentative, Back } move = Move::Reject;
-    // At the energy's round-off level (the model's decrease below safe) rho is noise
-    // and would accept steps that raise E by up to safe: repeated, they random-walk
-    // along soft or zero modes and the residual grows (loop_joint.json: 1800
-    // iterations hovering between |g| 1e-12 and 1e-7).  There the gradient decides: the
-    // step is kept iff it lowers ||g||_{M^-1}, the norm MINRES reduces (no watchdog).
-    // Not at a saddle (Lanczos curvature below -kNoiseCurv): leaving it raises |g|.
-    bool noise = false;
-    if (!anchor && !(negcurv_ && mu_ < -kNoiseCurv) && std::isfinite(ftrial) &&
-        pred < safe && minres->beta1() > 0.0) {
-      double Et = 0.0;
-      noise = sys_.gradient(xt_, &Et, gt_) == RN_OK;
-      if (noise) {
-        prec_.inverse()->apply(gt_, hs_);
-        const double gt_norm = std::sqrt(std::max(dot(gt_, hs_), 0.0));
-        move = gt_norm < minres->beta1() ? Move::Accept : Move::Reject;
-      }
-    }
-    if (noise) {
-    } else if (anchor) {
-      if (std::isfinite(ftrial) && ftrial <= anchor_energy - kAccept * anchor_pred)
-        move = Move::Accept;
-      else if (anchor_steps < kWatchdogSteps && rho > kAccept)
-        move = Move::Tentative;
-      else
-        move = Move::Back;
-    } else if (rho > kAccept) {
-      move = Move::Accept;
-    } else if (!blocked && std::isfinite(ftrial) && sys_.save_state()) {
-      move = Move::Tentative;
-      anchor = true;
-      anchor_steps = 0;
-      xa_.assign(x_);
-      anchor_energy = energy_;
-      anchor_pred = pred;
-      anchor_radius = radius;
-      anchor_step = snorm;
-    }
+    Move move = Move::Reject;
+    const bool noise = noise_move(t, &move);
+    if (!noise) move = watchdog_move(t);
     it.krylov = st.iterations;
     it.accepted = move == Move::Accept || move == Move::Tentative;
-    it.unconstrained = !st.boundary && move == Move::Accept && !anchor;
+    it.unconstrained = !st.boundary && move == Move::Accept && !anchor_.active;
     it.step_norm = st.s.getVector(0)->norm2();
-    it.energy_change = it.accepted ? ftrial - energy_ : 0.0;
+    it.energy_change = it.accepted ? t.ftrial - energy_ : 0.0;
     it.radius_collapsed =
         move == Move::Reject && it.step_norm <= 10.0 * DBL_EPSILON * (1.0 + it.x_norm);
-    switch (move) {
-    case Move::Accept:
-      if (anchor)
-        anchor = false;
-      else
-        blocked = false;
-      if (rho < 0.25)
-        radius = 0.25 * std::min(radius, snorm);
-      else if (rho > 0.75 && st.boundary && limited)
-        radius *= 2.0;
-      beta1_prev = minres->beta1();
-      take(xt_);
-      fresh = true;
-      break;
-    case Move::Tentative:
-      ++anchor_steps;
-      beta1_prev = minres->beta1();
-      take(xt_);
-      fresh = true;
-      break;
-    case Move::Back:
-      sys_.restore_state();
-      x_.assign(xa_);
-      if (sys_.gradient(x_, &energy_, g_) != RN_OK)
-        throw Error(RN_ERR_SOLVER, "rn_solve: gradient at the anchor is degenerate");
-      radius = 0.25 * std::min(anchor_radius, anchor_step);
-      anchor = false;
-      blocked = true;
-      fresh = true;
-      check = false;
-      it.accepted = false;
-      break;
-    case Move::Reject:
-      if (rho < 0.25 || noise) radius = 0.25 * std::min(radius, snorm);
-      break;
-    }
+    fresh = apply_move(move, t, st, noise);
+    if (move == Move::Back) check = false; // (no stopping test at the anchor again)
   }
 }
 
@@ -620,11 +615,6 @@ private:
 };
 
 } // namespace
-
-double pencil_lowest(const Tpetra::Operator<> &H, const Tpetra::Operator<> &Minv, TMV &v,
-                     TMV &Mv, int *steps) {
-  return PencilLanczos(H, Minv, H.getDomainMap()).lowest(v, Mv, steps);
-}
 
 std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
                                                     const rn_solve_options &opt,

@@ -181,6 +181,15 @@ private:
     ~Anchor() { rn_state_destroy(&snapshot); }
   };
 
+  // What becomes of a trial point: accepted (for good), taken tentatively
+  // (watchdog), rejected, or the watchdog given up and the anchor taken back.
+  enum class Move { Reject, Accept, Tentative, Back };
+
+  double trial_energy(RolVector &x, RolVector &xtrial, RolVector &xcorr,
+                      ROL::Objective<double> &obj, const Step &st, double pred,
+                      double tol, double *rho);
+  Move choose_move(const double *x, double ftrial, double rho, double pred, double radius,
+                   double snorm);
   void analyse_hessian(const double *x);
   void lowest_eigenpair();
   Step solve_subproblem(const double *g, double radius);
@@ -217,6 +226,9 @@ private:
   Equilibrium equilibrium_;
   MV rhs_, sol_;
   std::vector<double> w_, q_, hs_, ms_, sigma_;
+  // the watchdog of run()
+  Anchor anchor_;
+  bool watchdog_blocked_ = false; // after a failed watchdog, until a monotone accept
 };
 
 // Hessian analysis at the accepted x: positive definiteness and, if H is not, the
@@ -262,7 +274,7 @@ void TrustRegionMinres::lowest_eigenpair() {
   v_.assign(n_, 0.0);
   for (size_t i = 0; i < n_; ++i)
     v_[i] = (1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 0.3)) / std::sqrt(d_[i]);
-  lanczos_largest(*f0_, d_, kLanczosSteps, 1e-8, v_);
+  lanczos_largest([this](double *x) { f0_->solve(x); }, d_, kLanczosSteps, 1e-8, v_);
   p_.hessian_apply(v_.data(), hs_.data());
   mu_ = dot(n_, v_.data(), hs_.data()); // ||v||_M = 1
 }
@@ -479,6 +491,64 @@ bool TrustRegionMinres::correct_step(const double *x, const Step &st, RolVector 
   return true;
 }
 
+// The energy at the trial point x + s (xtrial; obj updated there) and the ratio *rho
+// of the actual to the predicted decrease pred; the second-order correction of the
+// stretching (step 5 at the top) of a rejected step: x + s + c replaces x + s if its
+// energy is lower.
+double TrustRegionMinres::trial_energy(RolVector &x, RolVector &xtrial, RolVector &xcorr,
+                                       ROL::Objective<double> &obj, const Step &st,
+                                       double pred, double tol, double *rho) {
+  obj.update(xtrial, ROL::UpdateType::Trial, state_->iter);
+  double ftrial = obj.value(xtrial, tol);
+  state_->nfval++;
+  const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(state_->value));
+  const auto ratio = [&](double f) {
+    return std::isfinite(f) ? (state_->value - f + safe) / (pred + safe)
+                            : -std::numeric_limits<double>::infinity();
+  };
+  *rho = ratio(ftrial);
+  if (!(*rho > kAccept) && std::isfinite(ftrial) &&
+      correct_step(host_data(x), st, xcorr)) {
+    const double fc = obj.value(xcorr, tol);
+    state_->nfval++;
+    if (std::isfinite(fc) && fc < ftrial) {
+      xtrial.set(xcorr);
+      ftrial = fc;
+      *rho = ratio(fc);
+    }
+  }
+  return ftrial;
+}
+
+// The ratio test with the watchdog (step 5a at the top): from an anchor, accept what
+// lowers the anchor's energy enough, take up to kWatchdogSteps tentative steps, then
+// go back; otherwise a rejected step with a finite energy becomes the first
+// tentative step from a new anchor at x (its state saved).
+TrustRegionMinres::Move TrustRegionMinres::choose_move(const double *x, double ftrial,
+                                                       double rho, double pred,
+                                                       double radius, double snorm) {
+  Anchor &anchor = anchor_;
+  if (anchor.active) {
+    if (std::isfinite(ftrial) && ftrial <= anchor.energy - kAccept * anchor.pred)
+      return Move::Accept;
+    if (anchor.steps < kWatchdogSteps && rho > kAccept) return Move::Tentative;
+    return Move::Back;
+  }
+  if (rho > kAccept) return Move::Accept;
+  if (watchdog_blocked_ || !std::isfinite(ftrial)) return Move::Reject;
+  anchor.active = true;
+  anchor.steps = 0;
+  anchor.x.assign(x, x + n_);
+  anchor.energy = state_->value;
+  anchor.pred = pred;
+  anchor.radius = radius;
+  anchor.step = snorm;
+  rn_state_destroy(&anchor.snapshot);
+  check_status(rn_network_state_save(p_.network(), &anchor.snapshot),
+               "rn_network_state_save");
+  return Move::Tentative;
+}
+
 void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<double> &obj,
                             std::ostream & /*out*/) {
   double tol = std::sqrt(ROL::ROL_EPSILON<double>());
@@ -498,8 +568,8 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
   double radius = opt_.initial_radius;
   IterationView it;
   bool fresh = true, check = true;
-  Anchor anchor;
-  bool watchdog_blocked = false; // after a failed watchdog, until a monotone accept
+  Anchor &anchor = anchor_;
+  bool &watchdog_blocked = watchdog_blocked_;
   for (;;) {
     const double *xp = host_data(x);
     if (fresh) analyse_hessian(xp);
@@ -527,53 +597,11 @@ void TrustRegionMinres::run(RolVector &x, const RolVector &g, ROL::Objective<dou
     std::copy(st.s.begin(), st.s.end(), sp);
     xtrial->set(x);
     xtrial->plus(*state_->stepVec);
-    obj.update(*xtrial, ROL::UpdateType::Trial, state_->iter);
-    double ftrial = obj.value(*xtrial, tol);
-    state_->nfval++;
-    const double safe = 10.0 * DBL_EPSILON * std::max(1.0, std::fabs(state_->value));
-    const auto ratio = [&](double f) {
-      return std::isfinite(f) ? (state_->value - f + safe) / (pred + safe)
-                              : -std::numeric_limits<double>::infinity();
-    };
-    double rho = ratio(ftrial);
-    // Second-order correction of the stretching (step 5 at the top) of a rejected
-    // step: x + s + c replaces x + s if its energy is lower.
-    if (!(rho > kAccept) && std::isfinite(ftrial) && correct_step(xp, st, *xcorr)) {
-      const double fc = obj.value(*xcorr, tol);
-      state_->nfval++;
-      if (std::isfinite(fc) && fc < ftrial) {
-        xtrial->set(*xcorr);
-        ftrial = fc;
-        rho = ratio(fc);
-      }
-    }
+    double rho = 0.0;
+    const double ftrial = trial_energy(x, *xtrial, *xcorr, obj, st, pred, tol, &rho);
     state_->iter++;
     state_->snorm = norm2(n_, st.s.data());
-    // What to do with the trial point: accept it (for good), take it tentatively
-    // (watchdog), reject it, or give up the watchdog and go back to the anchor.
-    enum class Move { Reject, Accept, Tentative, Back } move = Move::Reject;
-    if (anchor.active) {
-      if (std::isfinite(ftrial) && ftrial <= anchor.energy - kAccept * anchor.pred)
-        move = Move::Accept;
-      else if (anchor.steps < kWatchdogSteps && rho > kAccept)
-        move = Move::Tentative;
-      else
-        move = Move::Back;
-    } else if (rho > kAccept) {
-      move = Move::Accept;
-    } else if (!watchdog_blocked && std::isfinite(ftrial)) {
-      move = Move::Tentative;
-      anchor.active = true;
-      anchor.steps = 0;
-      anchor.x.assign(xp, xp + n_);
-      anchor.energy = state_->value;
-      anchor.pred = pred;
-      anchor.radius = radius;
-      anchor.step = snorm;
-      rn_state_destroy(&anchor.snapshot);
-      check_status(rn_network_state_save(p_.network(), &anchor.snapshot),
-                   "rn_network_state_save");
-    }
+    const Move move = choose_move(xp, ftrial, rho, pred, radius, snorm);
     it.krylov = st.krylov;
     it.accepted = move == Move::Accept || move == Move::Tentative;
     // The step and energy tests only after a monotone interior (Newton) step.

@@ -43,6 +43,85 @@ std::string last_error(rn_network *net) {
   return (m && *m) ? m : "unknown error";
 }
 
+// The global ids of the ghost DOFs n_owned .. n_local - 1 of this part (gids),
+// asked from their owners by key (offset: this rank's first owned id); the bytes
+// sent are added to *bytes.  RN_ERR_INTERNAL if an owner does not know a key.
+rn_status ghost_ids(rn_network *net, MPI_Comm c, int size, size_t n_owned, size_t n_local,
+                    long long offset, std::vector<GO> &gids, double *bytes) {
+  rn_status st = RN_OK;
+  const int64_t *keys = nullptr;
+  const int *owners = nullptr;
+  check_status(rn_network_part_dofs(net, nullptr, &keys, &owners),
+               "rn_network_part_dofs");
+  // requests: ghost keys grouped by owner
+  std::vector<int> scount(static_cast<size_t>(size), 0),
+      rcount(static_cast<size_t>(size));
+  for (size_t i = n_owned; i < n_local; ++i) ++scount[static_cast<size_t>(owners[i])];
+  MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, c);
+  std::vector<int> sdisp(static_cast<size_t>(size) + 1, 0),
+      rdisp(static_cast<size_t>(size) + 1, 0);
+  for (int q = 0; q < size; ++q) {
+    sdisp[static_cast<size_t>(q) + 1] =
+        sdisp[static_cast<size_t>(q)] + scount[static_cast<size_t>(q)];
+    rdisp[static_cast<size_t>(q) + 1] =
+        rdisp[static_cast<size_t>(q)] + rcount[static_cast<size_t>(q)];
+  }
+  std::vector<long long> sk(static_cast<size_t>(sdisp[static_cast<size_t>(size)]));
+  std::vector<size_t> slot(sk.size());
+  std::vector<int> fill(sdisp.begin(), sdisp.end() - 1);
+  for (size_t i = n_owned; i < n_local; ++i) {
+    const int q = owners[i];
+    slot[static_cast<size_t>(fill[static_cast<size_t>(q)])] = i;
+    sk[static_cast<size_t>(fill[static_cast<size_t>(q)]++)] = keys[i];
+  }
+  std::vector<long long> rk(static_cast<size_t>(rdisp[static_cast<size_t>(size)]));
+  MPI_Alltoallv(sk.data(), scount.data(), sdisp.data(), MPI_LONG_LONG, rk.data(),
+                rcount.data(), rdisp.data(), MPI_LONG_LONG, c);
+  // answers: owned keys are increasing in the part's order
+  for (long long &k : rk) {
+    const int64_t *e = keys + n_owned,
+                  *p = std::lower_bound(keys, e, static_cast<int64_t>(k));
+    if (p == e || *p != k) {
+      st = RN_ERR_INTERNAL;
+      k = -1;
+    } else {
+      k = offset + (p - keys);
+    }
+  }
+  std::vector<long long> ans(sk.size());
+  MPI_Alltoallv(rk.data(), rcount.data(), rdisp.data(), MPI_LONG_LONG, ans.data(),
+                scount.data(), sdisp.data(), MPI_LONG_LONG, c);
+  for (size_t a = 0; a < ans.size(); ++a) {
+    if (ans[a] < 0) st = RN_ERR_INTERNAL;
+    gids[slot[a]] = static_cast<GO>(ans[a]);
+  }
+  *bytes += 16.0 * static_cast<double>(sk.size() + rk.size());
+  return st;
+}
+
+// The diagonal of the structure's bounding box (the initial vertices of the rods of
+// every part).
+double structure_size(rn_network *net, MPI_Comm c) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL},
+         hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (int r = 0; r < rn_network_num_rods(net); ++r) {
+    if (!rn_network_rod_is_local(net, r)) continue;
+    std::vector<double> xyz(3 * static_cast<size_t>(rn_network_rod_num_vertices(net, r)));
+    if (rn_network_rod_initial_vertices(net, r, xyz.data()) != RN_OK) continue;
+    for (size_t i = 0; i < xyz.size(); ++i) {
+      lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+      hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+    }
+  }
+  double glo[3], ghi[3];
+  allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, c);
+  allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, c);
+  double size = 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (ghi[k] >= glo[k]) size += (ghi[k] - glo[k]) * (ghi[k] - glo[k]);
+  return std::sqrt(size);
+}
+
 } // namespace
 
 rn_status DistSystem::agree(rn_status local, const std::string &msg) const {
@@ -128,55 +207,8 @@ void DistSystem::build_maps() {
   for (size_t i = 0; i < n_owned_; ++i)
     gids[i] = static_cast<GO>(offset + static_cast<long long>(i));
   rn_status st = RN_OK;
-  if (c != MPI_COMM_NULL && (n_local_ > n_owned_ || size > 1)) {
-    const int64_t *keys = nullptr;
-    const int *owners = nullptr;
-    check_status(rn_network_part_dofs(net_, nullptr, &keys, &owners),
-                 "rn_network_part_dofs");
-    // requests: ghost keys grouped by owner
-    std::vector<int> scount(static_cast<size_t>(size), 0),
-        rcount(static_cast<size_t>(size));
-    for (size_t i = n_owned_; i < n_local_; ++i) ++scount[static_cast<size_t>(owners[i])];
-    MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, c);
-    std::vector<int> sdisp(static_cast<size_t>(size) + 1, 0),
-        rdisp(static_cast<size_t>(size) + 1, 0);
-    for (int q = 0; q < size; ++q) {
-      sdisp[static_cast<size_t>(q) + 1] =
-          sdisp[static_cast<size_t>(q)] + scount[static_cast<size_t>(q)];
-      rdisp[static_cast<size_t>(q) + 1] =
-          rdisp[static_cast<size_t>(q)] + rcount[static_cast<size_t>(q)];
-    }
-    std::vector<long long> sk(static_cast<size_t>(sdisp[static_cast<size_t>(size)]));
-    std::vector<size_t> slot(sk.size());
-    std::vector<int> fill(sdisp.begin(), sdisp.end() - 1);
-    for (size_t i = n_owned_; i < n_local_; ++i) {
-      const int q = owners[i];
-      slot[static_cast<size_t>(fill[static_cast<size_t>(q)])] = i;
-      sk[static_cast<size_t>(fill[static_cast<size_t>(q)]++)] = keys[i];
-    }
-    std::vector<long long> rk(static_cast<size_t>(rdisp[static_cast<size_t>(size)]));
-    MPI_Alltoallv(sk.data(), scount.data(), sdisp.data(), MPI_LONG_LONG, rk.data(),
-                  rcount.data(), rdisp.data(), MPI_LONG_LONG, c);
-    // answers: owned keys are increasing in the part's order
-    for (long long &k : rk) {
-      const int64_t *e = keys + n_owned_,
-                    *p = std::lower_bound(keys, e, static_cast<int64_t>(k));
-      if (p == e || *p != k) {
-        st = RN_ERR_INTERNAL;
-        k = -1;
-      } else {
-        k = offset + (p - keys);
-      }
-    }
-    std::vector<long long> ans(sk.size());
-    MPI_Alltoallv(rk.data(), rcount.data(), rdisp.data(), MPI_LONG_LONG, ans.data(),
-                  scount.data(), sdisp.data(), MPI_LONG_LONG, c);
-    for (size_t a = 0; a < ans.size(); ++a) {
-      if (ans[a] < 0) st = RN_ERR_INTERNAL;
-      gids[slot[a]] = static_cast<GO>(ans[a]);
-    }
-    stats_.bytes_sent += 16.0 * static_cast<double>(sk.size() + rk.size());
-  }
+  if (c != MPI_COMM_NULL && (n_local_ > n_owned_ || size > 1))
+    st = ghost_ids(net_, c, size, n_owned_, n_local_, offset, gids, &stats_.bytes_sent);
   agree(st, "rn_solve: the parts of the network do not agree on their DOFs (a ghost "
             "DOF is not owned by the part its key names)");
   const Tpetra::global_size_t any =
@@ -468,25 +500,7 @@ EquilibriumView DistSystem::equilibrium(const TMV &x, const TMV &g) {
       agree(rn_network_dof_kinds(net_, kind_.data()));
     else
       agree(RN_OK);
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL},
-           hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (int r = 0; r < rn_network_num_rods(net_); ++r) {
-      if (!rn_network_rod_is_local(net_, r)) continue;
-      std::vector<double> xyz(3 *
-                              static_cast<size_t>(rn_network_rod_num_vertices(net_, r)));
-      if (rn_network_rod_initial_vertices(net_, r, xyz.data()) != RN_OK) continue;
-      for (size_t i = 0; i < xyz.size(); ++i) {
-        lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-        hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-      }
-    }
-    double glo[3], ghi[3];
-    allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, c);
-    allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, c);
-    size_ = 0.0;
-    for (int k = 0; k < 3; ++k)
-      if (ghi[k] >= glo[k]) size_ += (ghi[k] - glo[k]) * (ghi[k] - glo[k]);
-    size_ = std::sqrt(size_);
+    size_ = structure_size(net_, c);
   }
   EquilibriumView v = last_eq_;
   auto gd = g.getData(0), xd = x.getData(0);

@@ -7,32 +7,25 @@
 
 #include <algorithm>
 
-#include "factor/cholmod_factor.hpp"
 #include "base/shim_error.hpp"
-#include "factor/sparse_cholesky.hpp"
 
 namespace rodnet {
 
 Problem::Problem(rn_network *net) : net_(net) {
   if (!net) throw Error(RN_ERR_ARG, "rn_solve: network is NULL");
-  n_ = rn_network_num_dofs(net);
   contact_ = rn_network_get_contact(net, nullptr, nullptr, nullptr) == 1;
   take_pattern();
 }
 
 void Problem::take_pattern() {
+  size_t nnz = 0;
   const int64_t *rowptr = nullptr;
   const int32_t *col = nullptr;
-  check_status(rn_network_hessian_pattern(net_, &nnz_, &rowptr, &col),
+  check_status(rn_network_hessian_pattern(net_, &nnz, &rowptr, &col),
                "rn_network_hessian_pattern");
-  version_ = rn_network_pattern_version(net_);
-  kd_ = rn_network_hessian_bandwidth(net_);
-  rowptr_.assign(rowptr, rowptr + n_ + 1);
-  col_.assign(col, col + nnz_);
-  if (col_.empty()) col_.push_back(0); // (data() never NULL)
-  vals_.assign(nnz_, 0.0);
-  analysis_.reset();
-  cholmod_analysis_.reset();
+  set_pattern(rn_network_num_dofs(net_), nnz, rowptr, col,
+              rn_network_hessian_bandwidth(net_), rn_network_pattern_version(net_),
+              contact_);
 }
 
 rn_status Problem::energy(const double *x, double *E) {
@@ -61,9 +54,9 @@ double seconds_since_steady(double t0) { return steady_now() - t0; }
 
 void Problem::assemble_hessian(const double *x) {
   ++counters.hessian;
-  if (rn_network_pattern_version(net_) != version_) take_pattern();
+  if (rn_network_pattern_version(net_) != pattern_version()) take_pattern();
   const double t0 = steady_now();
-  const rn_status st = check_status(rn_network_hessian_values(net_, x, vals_.data()),
+  const rn_status st = check_status(rn_network_hessian_values(net_, x, mutable_values()),
                                     "rn_network_hessian_values");
   counters.hessian_seconds += seconds_since_steady(t0);
   if (st != RN_OK) throw Error(RN_ERR_SOLVER, "rn_solve: Hessian at a degenerate state");
@@ -71,37 +64,31 @@ void Problem::assemble_hessian(const double *x) {
 
 void Problem::hessian_apply(const double *v, double *y, double shift, const double *m) {
   ++counters.hvp;
-  for (size_t i = 0; i < n_; ++i) {
+  const size_t n = size();
+  const int64_t *rowptr = this->rowptr();
+  const int32_t *col = this->col();
+  const double *vals = values();
+  for (size_t i = 0; i < n; ++i) {
     double s = 0.0;
     if (m) {
-      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-        s += (vals_[k] + shift * m[k]) * v[col_[k]];
+      for (int64_t k = rowptr[i]; k < rowptr[i + 1]; ++k)
+        s += (vals[k] + shift * m[k]) * v[col[k]];
     } else {
-      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += vals_[k] * v[col_[k]];
+      for (int64_t k = rowptr[i]; k < rowptr[i + 1]; ++k) s += vals[k] * v[col[k]];
     }
     y[i] = s;
   }
 }
 
 void Problem::pattern_apply(const double *m, const double *v, double *y) const {
-  for (size_t i = 0; i < n_; ++i) {
+  const size_t n = size();
+  const int64_t *rowptr = this->rowptr();
+  const int32_t *col = this->col();
+  for (size_t i = 0; i < n; ++i) {
     double s = 0.0;
-    for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k) s += m[k] * v[col_[k]];
+    for (int64_t k = rowptr[i]; k < rowptr[i + 1]; ++k) s += m[k] * v[col[k]];
     y[i] = s;
   }
-}
-
-std::shared_ptr<const SparseAnalysis> Problem::sparse_analysis() const {
-  if (!analysis_)
-    analysis_ = std::make_shared<SparseAnalysis>(n_, rowptr_.data(), col_.data());
-  return analysis_;
-}
-
-std::shared_ptr<const CholmodAnalysis> Problem::cholmod_analysis() const {
-  if (!cholmod_analysis_)
-    cholmod_analysis_ =
-        std::make_shared<CholmodAnalysis>(n_, rowptr_.data(), col_.data());
-  return cholmod_analysis_;
 }
 
 void Problem::accept(double *x) {

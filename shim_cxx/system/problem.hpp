@@ -13,12 +13,10 @@
 #include <memory>
 #include <vector>
 
+#include "factor/csr_matrix.hpp"
 #include "rodnet.h"
 
 namespace rodnet {
-
-class SparseAnalysis;
-class CholmodAnalysis;
 
 struct Counters {
   long energy = 0, gradient = 0, hvp = 0, hessian = 0, krylov = 0;
@@ -33,22 +31,21 @@ double seconds_since_steady(double t0);
 // The steady clock now, in seconds.
 double steady_now();
 
-class Problem {
+// The assembled Hessian is the CsrMatrix (factor/csr_matrix.hpp) the SPD
+// factorisations take: size(), bandwidth(), pattern_version(), rowptr(), col(),
+// values(), mutable_values() and the shared symbolic analyses come from there.
+class Problem : public CsrMatrix {
 public:
   explicit Problem(rn_network *net); // throws Error if the network is not finalized
 
   rn_network *network() const { return net_; }
-  size_t size() const { return n_; }
-  size_t bandwidth() const { return kd_; }
   // Whether the network has contact (its Hessian pattern may change, see below).
   bool has_contact() const { return contact_; }
-  // The version of the Hessian pattern held here (rn_network_pattern_version when it
-  // was last taken).  With contact a new accepted state may rebuild the network's
-  // pattern; assemble_hessian() takes the new one (a copy: rowptr(), col() and the
-  // values stay consistent until then), resizes the values and drops the symbolic
-  // analyses.  Whatever is built on the pattern (factorisations, metrics on the
-  // pattern, Tpetra graphs) is rebuilt when this changes.
-  unsigned long pattern_version() const { return version_; }
+  // pattern_version(): the version of the Hessian pattern held here
+  // (rn_network_pattern_version when it was last taken).  With contact a new
+  // accepted state may rebuild the network's pattern; assemble_hessian() takes the
+  // new one (a copy: rowptr(), col() and the values stay consistent until then),
+  // resizes the values and drops the symbolic analyses.
 
   // Pure evaluations.  Return RN_OK or a positive, recoverable status (RN_DEGENERATE,
   // RN_OVERFLOW: a trial point to reject); throw Error on any error status.  E may be
@@ -65,24 +62,13 @@ public:
                      const double *m = nullptr);
   // y = M v for CSR values m on the Hessian's pattern (not counted).
   void pattern_apply(const double *m, const double *v, double *y) const;
-  // Entry (i, j) of the assembled Hessian in CSR form.
-  const int64_t *rowptr() const { return rowptr_.data(); }
-  const int32_t *col() const { return col_.data(); }
-  const double *values() const { return vals_.data(); }
-  // The assembled values, to be modified in place (e.g. a constrained Hessian for
-  // path following: path.cpp); hessian_apply and the factorisations use them.
-  double *mutable_values() { return vals_.data(); }
-
-  // Symbolic analysis of the Hessian's pattern for the sparse Cholesky factorisation
-  // (sparse_cholesky.hpp), computed on first use and shared by every factorisation.
-  // (Of the pattern of pattern_version().)
-  std::shared_ptr<const SparseAnalysis> sparse_analysis() const;
-  // The same for CHOLMOD (cholmod_factor.hpp).
-  std::shared_ptr<const CholmodAnalysis> cholmod_analysis() const;
 
   // Accept x as the new state (explicit reference update).  x is updated in place
   // (rigid-joint rotation DOFs move into the reference; the energy is unchanged).
   void accept(double *x);
+
+  // Every numeric factorisation of the Hessian (SpdFactor::factor).
+  void count_factorization() const override { ++counters.factorizations; }
 
   mutable Counters counters; // counted by const users too (factorisations)
 
@@ -90,14 +76,7 @@ private:
   void take_pattern(); // the network's pattern, its version and bandwidth
 
   rn_network *net_;
-  size_t n_ = 0, nnz_ = 0, kd_ = 0;
   bool contact_ = false;
-  unsigned long version_ = 0;
-  std::vector<int64_t> rowptr_;
-  std::vector<int32_t> col_;
-  std::vector<double> vals_;
-  mutable std::shared_ptr<const SparseAnalysis> analysis_;
-  mutable std::shared_ptr<const CholmodAnalysis> cholmod_analysis_;
 };
 
 // Small dense vector helpers on host arrays of length n.

@@ -67,8 +67,13 @@ ReplicatedSystem::ReplicatedSystem(rn_network *net,
   full_.assign(n, 0.0);
   gfull_.assign(n, 0.0);
 
-  // Blocks: owned rods renumbered 0, 1, ... in rod order; kinds, points and axes of
-  // the owned DOFs for rigid_body_modes().
+  take_owned_dofs(dofs);
+  build_hessian();
+}
+
+// Blocks: owned rods renumbered 0, 1, ... in rod order; kinds, points and axes of the
+// owned DOFs for rigid_body_modes().
+void ReplicatedSystem::take_owned_dofs(const NetworkDofs &dofs) {
   blocks_ = make_dof_blocks(dofs, owned_);
   for (GO g : owned_) {
     const size_t i = static_cast<size_t>(g);
@@ -77,8 +82,11 @@ ReplicatedSystem::ReplicatedSystem(rn_network *net,
                   dofs.point.begin() + 3 * i + 3);
     axis_.insert(axis_.end(), dofs.axis.begin() + 3 * i, dofs.axis.begin() + 3 * i + 3);
   }
+}
 
-  // Hessian of the owned rows on the network's pattern.
+// The Hessian of the owned rows on the network's pattern, and the position of each
+// owned CSR entry in the local matrix (rows sorted by local column).
+void ReplicatedSystem::build_hessian() {
   const int64_t *rp = problem_.rowptr();
   const int32_t *col = problem_.col();
   std::vector<size_t> counts(owned_.size());
@@ -96,7 +104,6 @@ ReplicatedSystem::ReplicatedSystem(rn_network *net,
                            Teuchos::ArrayView<const double>(zeros.data(), zeros.size()));
   }
   H_->fillComplete(map_, map_);
-  // Position of each owned CSR entry in the local matrix (rows sorted by local column).
   auto lcl = H_->getLocalMatrixHost();
   auto colmap = H_->getColMap();
   for (size_t l = 0; l < owned_.size(); ++l) {

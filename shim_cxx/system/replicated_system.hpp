@@ -24,6 +24,8 @@
 
 namespace rodnet {
 
+struct NetworkDofs;
+
 class ReplicatedSystem : public System {
 public:
   // net: finalized (borrowed; must outlive the System).  Throws Error.
@@ -53,6 +55,8 @@ public:
 private:
   void gather(const TMV &x, std::vector<double> &full) const;
   void scatter(const std::vector<double> &full, TMV &x) const;
+  void take_owned_dofs(const NetworkDofs &dofs);
+  void build_hessian();
 
   Problem problem_;
   Teuchos::RCP<const TMap> map_, all_;
