@@ -4,43 +4,32 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <map>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
 #include <Tpetra_CrsGraph.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 
-#include "pc/alt_preconditioners.hpp"
+#include "base/clock.hpp"
+#include "base/lapack.hpp"
+#include "pc/spd_guard.hpp"
+#include "system/rigid_body_modes.hpp"
 #include "system/dof_blocks.hpp"
 #include "base/shim_error.hpp"
 #include "factor/sparse_cholesky.hpp"
-
-extern "C" {
-void dpbtrf_(const char *uplo, const int *n, const int *kd, double *ab, const int *ldab,
-             int *info, size_t uplo_len);
-void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k,
-            const double *alpha, const double *a, const int *lda, const double *beta,
-            double *c, const int *ldc, size_t uplo_len, size_t trans_len);
-}
 
 namespace rodnet {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 // A rod coupled to at least this many interface DOFs forms its Schur block by BLAS
 // (dsyrk) instead of sparse-aware loops (the usual 6 to 24 at joints).
 constexpr int kSyrkMin = 48;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 using Comm = Teuchos::Comm<int>;
 
@@ -281,32 +270,6 @@ std::vector<int> coarse_nodes(const DofBlocks &blk, std::vector<double> &points)
 }
 
 } // namespace
-
-bool mpi_backed(const Teuchos::Comm<int> &comm) {
-  return dynamic_cast<const Teuchos::MpiComm<int> *>(&comm) != nullptr;
-}
-
-Teuchos::RCP<TMV> rigid_body_modes(const Teuchos::RCP<const TMap> &map, const int *kind,
-                                   const double *point, const double *axis) {
-  auto modes = Teuchos::rcp(new TMV(map, 6));
-  auto v = modes->getLocalViewHost(Tpetra::Access::OverwriteAll);
-  for (size_t k = 0; k < v.extent(0); ++k) {
-    const double *p = point + 3 * k;
-    for (size_t c = 0; c < 6; ++c) v(k, c) = 0.0;
-    if (kind[k] < kDofRotation) { // t + w x p, component a
-      const size_t a = static_cast<size_t>(kind[k]);
-      const double wxp[3][3] = {
-          {0.0, -p[2], p[1]}, {p[2], 0.0, -p[0]}, {-p[1], p[0], 0.0}};
-      v(k, a) = 1.0;
-      for (size_t c = 0; c < 3; ++c) v(k, 3 + c) = wxp[c][a];
-    } else if (kind[k] < kDofAngle) { // w
-      v(k, static_cast<size_t>(kind[k])) = 1.0;
-    } else { // w . axis
-      for (size_t c = 0; c < 3; ++c) v(k, 3 + c) = axis[3 * k + c];
-    }
-  }
-  return modes;
-}
 
 // ---- the direct coarse solve ---------------------------------------------------------
 namespace {

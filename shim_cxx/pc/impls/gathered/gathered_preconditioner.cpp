@@ -3,52 +3,16 @@
 #include "pc/impls/gathered/gathered_preconditioner.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include "base/clock.hpp"
 #include "base/shim_error.hpp"
 #include "factor/sparse_cholesky.hpp"
+#include "pc/stats_operator.hpp"
 
 namespace rodnet {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// y = alpha M^{-1} x + beta y: x gathered on rank 0, solved there, scattered back.
-class GatheredInverse : public Tpetra::Operator<> {
-public:
-  GatheredInverse(const Teuchos::RCP<const TMap> &map,
-                  const Teuchos::RCP<const TMap> &root,
-                  const Teuchos::RCP<const Tpetra::Import<>> &gather,
-                  const SparseCholesky *const &f, PreconditionerStats &stats)
-      : map_(map), gather_(gather), f_(f), stats_(stats), xg_(root, 1), tmp_(map, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp /*symmetric*/, double alpha,
-             double beta) const override {
-    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
-      throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
-    const Clock::time_point t0 = Clock::now();
-    xg_.doImport(X, *gather_, Tpetra::INSERT);
-    if (xg_.getLocalLength()) f_->solve(xg_.getDataNonConst(0).getRawPtr());
-    tmp_.doExport(xg_, *gather_, Tpetra::INSERT);
-    Y.update(alpha, tmp_, beta);
-    ++stats_.applies;
-    stats_.apply_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  }
-
-private:
-  Teuchos::RCP<const TMap> map_;
-  Teuchos::RCP<const Tpetra::Import<>> gather_;
-  const SparseCholesky *const &f_;
-  PreconditionerStats &stats_;
-  mutable TMV xg_, tmp_;
-};
-
-} // namespace
 
 GatheredPreconditioner::GatheredPreconditioner() = default;
 GatheredPreconditioner::~GatheredPreconditioner() = default;
@@ -130,12 +94,26 @@ void GatheredPreconditioner::setup(System &sys) {
   if (failed)
     throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes the gathered Hessian "
                                "positive definite (non-finite Hessian?)");
-  if (op_.is_null())
-    op_ = Teuchos::rcp(new GatheredInverse(sys.map(), root_, gather_, chol_ptr_, stats_));
+  if (op_.is_null()) {
+    // x gathered on rank 0, solved there, scattered back
+    const SparseCholesky *const *f = &chol_ptr_;
+    Teuchos::RCP<const Tpetra::Import<>> gather = gather_;
+    Teuchos::RCP<TMV> xg = Teuchos::rcp(new TMV(root_, 1));
+    op_ = stats_operator(
+        sys.map(),
+        [f, gather, xg](const TMV &x, TMV &y) {
+          if (x.getNumVectors() != 1 || y.getNumVectors() != 1)
+            throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
+          xg->doImport(x, *gather, Tpetra::INSERT);
+          if (xg->getLocalLength()) (*f)->solve(xg->getDataNonConst(0).getRawPtr());
+          y.doExport(*xg, *gather, Tpetra::INSERT);
+        },
+        &stats_);
+  }
   ++stats_.setups;
   stats_.shifted = shifted != 0;
   stats_.bytes = 8.0 * static_cast<double>(vals_.size() + m_.size());
-  stats_.setup_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.setup_seconds += seconds_since(t0);
 }
 
 } // namespace rodnet

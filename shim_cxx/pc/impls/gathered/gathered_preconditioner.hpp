@@ -43,7 +43,7 @@ private:
   std::unique_ptr<SparseCholesky> chol_;
   const SparseCholesky *chol_ptr_ = nullptr;
   bool metric_done_ = false;
-  Teuchos::RCP<Tpetra::Operator<>> op_;
+  Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
 } // namespace rodnet

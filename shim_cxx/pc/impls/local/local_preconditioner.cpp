@@ -3,52 +3,17 @@
 #include "pc/impls/local/local_preconditioner.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include "base/clock.hpp"
 #include "base/shim_error.hpp"
 #include "factor/sparse_cholesky.hpp"
+#include "pc/stats_operator.hpp"
 
 namespace rodnet {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// y = alpha M^{-1} x + beta y, M^{-1} the rank's factorisation (no communication).
-class LocalInverse : public Tpetra::Operator<> {
-public:
-  LocalInverse(const Teuchos::RCP<const TMap> &map, const SparseCholesky *const &f,
-               PreconditionerStats &stats)
-      : map_(map), f_(f), stats_(stats), tmp_(map, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp /*symmetric*/, double alpha,
-             double beta) const override {
-    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
-      throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
-    const Clock::time_point t0 = Clock::now();
-    const size_t n = X.getLocalLength();
-    auto in = X.getData(0);
-    auto out = tmp_.getDataNonConst(0);
-    for (size_t i = 0; i < n; ++i) out[static_cast<LO>(i)] = in[static_cast<LO>(i)];
-    if (n) f_->solve(out.getRawPtr());
-    Y.update(alpha, tmp_, beta);
-    ++stats_.applies;
-    stats_.apply_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  }
-
-private:
-  Teuchos::RCP<const TMap> map_;
-  const SparseCholesky *const &f_; // the preconditioner's current factor
-  PreconditionerStats &stats_;
-  mutable TMV tmp_;
-};
-
-} // namespace
 
 LocalPreconditioner::LocalPreconditioner() = default;
 LocalPreconditioner::~LocalPreconditioner() = default;
@@ -127,12 +92,23 @@ void LocalPreconditioner::setup(System &sys) {
   if (any_failed)
     throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes a rank's block of the "
                                "Hessian positive definite (non-finite Hessian?)");
-  if (op_.is_null()) op_ = Teuchos::rcp(new LocalInverse(sys.map(), chol_ptr_, stats_));
+  if (op_.is_null()) {
+    const SparseCholesky *const *f = &chol_ptr_; // the current factor (set below)
+    op_ = stats_operator(
+        sys.map(),
+        [f](const TMV &x, TMV &y) { // M^{-1} the rank's factorisation (no communication)
+          if (x.getNumVectors() != 1 || y.getNumVectors() != 1)
+            throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
+          y.assign(x);
+          if (y.getLocalLength()) (*f)->solve(y.getDataNonConst(0).getRawPtr());
+        },
+        &stats_);
+  }
   chol_ptr_ = chol_.get();
   ++stats_.setups;
   stats_.shifted = any_shifted != 0;
   stats_.bytes = 8.0 * static_cast<double>(vals_.size() + m_.size());
-  stats_.setup_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.setup_seconds += seconds_since(t0);
 }
 
 } // namespace rodnet
