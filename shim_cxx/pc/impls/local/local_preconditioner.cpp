@@ -11,6 +11,7 @@
 #include "base/clock.hpp"
 #include "base/shim_error.hpp"
 #include "factor/sparse_cholesky.hpp"
+#include "pc/shifted_cholesky.hpp"
 #include "pc/stats_operator.hpp"
 
 namespace rodnet {
@@ -55,36 +56,18 @@ void LocalPreconditioner::setup(System &sys) {
   for (size_t k = 0; k < vals_.size(); ++k) vals_[k] = values(src_[k]);
   if (!metric_done_) {   // D = |diag H|, floored at 1e-8 of its largest entry (all ranks)
     metric_done_ = true; // (on every rank, also one that owns nothing: collective)
-    m_.assign(vals_.size(), 0.0);
-    double local = 0.0, dmax = 0.0;
-    for (size_t i = 0; i < n_; ++i)
-      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-        if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i)
-          local = std::max(local, std::fabs(vals_[static_cast<size_t>(k)]));
+    const double local = max_abs_diagonal(n_, rowptr_.data(), col_.data(), vals_.data());
+    double dmax = 0.0;
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &local, &dmax);
-    const bool flat = !(dmax > 0.0) || !std::isfinite(dmax);
-    for (size_t i = 0; i < n_; ++i)
-      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-        if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i) {
-          const double d = std::fabs(vals_[static_cast<size_t>(k)]);
-          m_[static_cast<size_t>(k)] = flat ? 1.0 : std::max(d, 1e-8 * dmax);
-        }
+    m_ = floored_diagonal(n_, rowptr_.data(), col_.data(), vals_.data(), dmax);
   }
   if (!chol_ && n_) chol_ = std::make_unique<SparseCholesky>(analysis_);
-  // smallest sigma in {0, 1e-10, ..., 1e10} that factors (bisection on the exponent)
   int failed = 0;
   sigma_ = 0.0;
-  if (n_ && !chol_->factor(vals_.data(), 0.0, m_.data())) {
-    int lo = -11, hi = 11;
-    bool holds_hi = false;
-    while (hi - lo > 1) {
-      const int mid = lo + (hi - lo) / 2;
-      holds_hi = chol_->factor(vals_.data(), std::pow(10.0, mid), m_.data());
-      (holds_hi ? hi : lo) = mid;
-    }
-    sigma_ = std::pow(10.0, hi);
-    if (hi > 10 || (!holds_hi && !chol_->factor(vals_.data(), sigma_, m_.data())))
-      failed = 1;
+  if (n_) {
+    const double s = factor_smallest_shift(*chol_, vals_.data(), m_.data());
+    failed = s < 0.0;
+    if (!failed) sigma_ = s;
   }
   int any_failed = 0, shifted = sigma_ > 0.0, any_shifted = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &failed, &any_failed);
