@@ -36,7 +36,11 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 
-#include "pc/alt_preconditioners.hpp"
+#include "pc/impls/dd/dd_preconditioner.hpp"
+#include "pc/impls/frosch/frosch.hpp"
+#include "pc/impls/ifpack2/ifpack2.hpp"
+#include "pc/impls/muelu/muelu.hpp"
+#include "bench_config.h"
 #include "krylov/minres.hpp"
 #include "system/replicated_system.hpp"
 #include "base/shim_error.hpp"
@@ -270,8 +274,12 @@ std::unique_ptr<Preconditioner> make_prec(ReplicatedSystem &sys, const std::stri
   std::unique_ptr<Preconditioner> P;
   if (name == "factor") {
     P.reset(new FactorPrec(sys));
-  } else if (name == "muelu" || name == "frosch") {
-    P = make_preconditioner(name, sys.rigid_body_modes());
+  } else if (name == "muelu") {
+    P.reset(new MueluPreconditioner(sys.rigid_body_modes()));
+  } else if (name == "frosch") {
+    P.reset(new FroschPreconditioner(sys.rigid_body_modes()));
+  } else if (name == "ifpack2") {
+    P.reset(new SchwarzPreconditioner);
   } else if (name.compare(0, 2, "dd") == 0) {
     DdOptions d;
     d.coarse = name == "dd" ? DdOptions::Coarse::Auto
@@ -279,8 +287,6 @@ std::unique_ptr<Preconditioner> make_prec(ReplicatedSystem &sys, const std::stri
                                                 : DdOptions::Coarse::Direct);
     d.amg_xml = o.amg_xml;
     P.reset(new DdPreconditioner(d));
-  } else {
-    P = make_preconditioner(name);
   }
   if (!P) throw Error(RN_ERR_ARG, "bench_precond: unknown preconditioner " + name);
   return P;

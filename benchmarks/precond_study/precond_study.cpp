@@ -31,7 +31,6 @@
 #include <mpi.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -46,21 +45,11 @@
 #include <Tpetra_Core.hpp>
 #include <Tpetra_CrsMatrix.hpp>
 
+#include "base/clock.hpp"
+#include "base/lapack.hpp"
 #include "krylov/minres.hpp"
 #include "factor/cholmod_factor.hpp"
 #include "factor/sparse_cholesky.hpp"
-
-extern "C" {
-void dpbtrf_(const char *uplo, const int *n, const int *kd, double *ab, const int *ldab,
-             int *info, size_t);
-void dpbtrs_(const char *uplo, const int *n, const int *kd, const int *nrhs,
-             const double *ab, const int *ldab, double *b, const int *ldb, int *info,
-             size_t);
-void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info,
-             size_t);
-void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a,
-             const int *lda, double *b, const int *ldb, int *info, size_t);
-}
 
 namespace {
 
@@ -136,12 +125,7 @@ std::vector<double> on_pattern(const System &p, const std::vector<double> &d) {
       if (static_cast<size_t>(p.col()[k]) == i) m[static_cast<size_t>(k)] = d[i];
   return m;
 }
-using Clock = std::chrono::steady_clock;
 using CRS = Tpetra::CrsMatrix<>;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 struct Row {
   std::string method, note;

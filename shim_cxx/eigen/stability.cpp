@@ -8,16 +8,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/lapack.hpp"
 #include "krylov/lanczos.hpp"
 #include "rodnet.h"
 #include "base/shim_error.hpp"
 #include "factor/spd_factor.hpp"
-
-extern "C" {
-void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
-            double *w, double *work, const int *lwork, int *info, size_t jobz_len,
-            size_t uplo_len);
-}
 
 namespace rodnet {
 

@@ -5,15 +5,11 @@
 #include <cmath>
 #include <string>
 
+#include "base/lapack.hpp"
 #include "base/shim_error.hpp"
 
 extern "C" {
 // LAPACK (Fortran) with the hidden character-length arguments of gfortran.
-void dpbtrf_(const char *uplo, const int *n, const int *kd, double *ab, const int *ldab,
-             int *info, size_t uplo_len);
-void dpbtrs_(const char *uplo, const int *n, const int *kd, const int *nrhs,
-             const double *ab, const int *ldab, double *b, const int *ldb, int *info,
-             size_t uplo_len);
 void dsbevx_(const char *jobz, const char *range, const char *uplo, const int *n,
              const int *kd, double *ab, const int *ldab, double *q, const int *ldq,
              const double *vl, const double *vu, const int *il, const int *iu,

@@ -14,18 +14,14 @@
 #include <cmath>
 #include <string>
 
+#include "base/lapack.hpp"
 #include "base/shim_error.hpp"
 
 extern "C" {
 // LAPACK / BLAS (Fortran) with gfortran's hidden character-length arguments.
-void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info,
-             size_t uplo_len);
 void dtrsm_(const char *side, const char *uplo, const char *transa, const char *diag,
             const int *m, const int *n, const double *alpha, const double *a,
             const int *lda, double *b, const int *ldb, size_t, size_t, size_t, size_t);
-void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k,
-            const double *alpha, const double *a, const int *lda, const double *beta,
-            double *c, const int *ldc, size_t, size_t);
 void dgemv_(const char *trans, const int *m, const int *n, const double *alpha,
             const double *a, const int *lda, const double *x, const int *incx,
             const double *beta, double *y, const int *incy, size_t);

@@ -5,12 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/lapack.hpp"
 #include "base/shim_error.hpp"
-
-extern "C" {
-void dstev_(const char *jobz, const int *n, double *d, double *e, double *z,
-            const int *ldz, double *work, int *info, size_t jobz_len);
-}
 
 namespace rodnet {
 

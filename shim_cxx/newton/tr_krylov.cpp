@@ -64,20 +64,15 @@
 
 #include <Teuchos_Array.hpp>
 
-#include "pc/alt_preconditioners.hpp"
-#include "system/dof_blocks.hpp"
-#include "pc/impls/factor/factor_preconditioner.hpp"
-#include "krylov/minres.hpp"
-#include "pc/impls/gathered/gathered_preconditioner.hpp"
-#include "pc/impls/local/local_preconditioner.hpp"
-#include "newton/monitor.hpp"
-#include "krylov/pencil_lanczos.hpp"
-#include "newton/predictor.hpp"
-#include "pc/preconditioner.hpp"
+#include "base/lapack.hpp"
 #include "base/shim_error.hpp"
+#include "krylov/minres.hpp"
+#include "krylov/pencil_lanczos.hpp"
+#include "newton/monitor.hpp"
+#include "newton/predictor.hpp"
 #include "newton/solvers.hpp"
-#include "factor/spd_factor.hpp"
-#include "system/system_serial.hpp"
+#include "pc/preconditioner.hpp"
+#include "system/system.hpp"
 
 namespace rodnet {
 
@@ -326,23 +321,22 @@ private:
 
 // Negative curvature at x (step 1): Lanczos on (H, M) when the preconditioner had to
 // modify an indefinite piece, or when the stopping test is about to pass and the
-// preconditioner cannot certify positive definiteness ("factor" can: it is the
-// Cholesky factorisation of H itself when unshifted; so can "dd" with unshifted rod
-// blocks and an unshifted direct coarse solve, an exact block factorisation of H).
-// "dd" with unshifted rod blocks and the multigrid coarse solve certifies by Lanczos
-// on its coarse pencil (S, A) instead (DdPreconditioner::coarse_pencil: H is
+// preconditioner cannot certify positive definiteness (Preconditioner::exact: "factor"
+// can, the Cholesky factorisation of H itself when unshifted; so can "dd" with
+// unshifted rod blocks and an unshifted direct coarse solve, an exact block
+// factorisation of H).  A preconditioner with a coarse pencil (S, A) whose
+// definiteness is H's certifies by Lanczos on it instead (Preconditioner::
+// coarse_pencil: "dd" with unshifted rod blocks and the multigrid coarse solve, H
 // positive definite iff its Schur complement S is), the whole pencil only if that
 // finds S's lowest Ritz value below kCurvTol.
 void TrustRegionKrylov::analyse(const IterationView &it) {
   negcurv_ = have_v_ = false;
   mu_ = 0.0;
-  const auto *dd = dynamic_cast<const DdPreconditioner *>(&prec_);
-  const bool certified =
-      !prec_.stats().shifted && (prec_.name() == "factor" || (dd && dd->exact()));
+  const bool certified = !prec_.stats().shifted && prec_.exact();
   if (!prec_.stats().shifted && (certified || !mon_.equilibrium_passes(it))) return;
   int steps = 0;
   Teuchos::RCP<const Tpetra::Operator<>> S, Ainv;
-  if (!prec_.stats().shifted && dd && dd->coarse_pencil(S, Ainv)) {
+  if (!prec_.stats().shifted && prec_.coarse_pencil(S, Ainv)) {
     Vec sv(S->getDomainMap(), 1), Msv(S->getDomainMap(), 1);
     const double mu_s = pencil_lowest(*S, *Ainv, sv, Msv, &steps);
     sys_.counters.krylov += steps;
@@ -616,60 +610,6 @@ private:
 
 } // namespace
 
-std::unique_ptr<Preconditioner> make_preconditioner(const System &sys,
-                                                    const rn_solve_options &opt,
-                                                    rn_preconditioner *used) {
-  const auto *serial = dynamic_cast<const SerialSystem *>(&sys);
-  rn_preconditioner kind = opt.preconditioner;
-  // auto: the rod-level domain decomposition (docs/solvers.md, "Preconditioners for
-  // networks")
-  if (kind == RN_PRECOND_AUTO) kind = RN_PRECOND_DD;
-  if (kind == RN_PRECOND_FACTOR && !serial)
-    throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
-                            "use dd or local (docs/parallel.md)");
-  *used = kind;
-  switch (kind) {
-  case RN_PRECOND_GATHERED:
-    return std::make_unique<GatheredPreconditioner>();
-  case RN_PRECOND_LOCAL:
-    return std::make_unique<LocalPreconditioner>();
-  case RN_PRECOND_DD:
-  case RN_PRECOND_DD_AMG:
-  case RN_PRECOND_MUELU:
-  case RN_PRECOND_IFPACK2:
-  case RN_PRECOND_FROSCH: {
-    // MueLu's near-null space, FROSch's coarse space (whole network only)
-    Teuchos::RCP<const TMV> modes;
-    if ((kind == RN_PRECOND_MUELU || kind == RN_PRECOND_FROSCH) && serial) {
-      const NetworkDofs d =
-          network_dofs(const_cast<SerialSystem *>(serial)->problem().network());
-      modes = rigid_body_modes(sys.map(), d.kind.data(), d.point.data(), d.axis.data());
-    }
-    return make_preconditioner(rn_preconditioner_name(kind), modes);
-  }
-  default:
-    return std::make_unique<FactorPreconditioner>(opt.factorization);
-  }
-}
-
-KrylovWorkspace::KrylovWorkspace(Problem &p, System *system, const rn_solve_options &opt)
-    : sys_(system) {
-  if (!sys_) {
-    own_ = std::make_unique<SerialSystem>(p);
-    sys_ = own_.get();
-  }
-  prec_ = make_preconditioner(*sys_, opt, &kind_);
-}
-
-KrylovWorkspace::~KrylovWorkspace() = default;
-
-void KrylovWorkspace::account() {
-  const PreconditionerStats &st = prec_->stats();
-  sys_->add_preconditioner_time(st.setup_seconds - setup_seen_,
-                                st.apply_seconds - apply_seen_);
-  setup_seen_ = st.setup_seconds;
-  apply_seen_ = st.apply_seconds;
-}
 
 rn_preconditioner run_tr_krylov(KrylovWorkspace &ws, Monitor &mon,
                                 const rn_solve_options &opt) {

@@ -37,6 +37,19 @@ public:
   virtual Teuchos::RCP<const Tpetra::Operator<>> inverse() const = 0;
   // Name as the user selects it ("factor", "dd", ...).
   virtual std::string name() const = 0;
+  // True if the last setup made M = H exactly (an unshifted exact factorisation, e.g.
+  // "factor", or "dd" with unshifted pieces and the direct coarse solve): M then
+  // proves H positive definite, and the trust region needs no Lanczos test of it.
+  virtual bool exact() const { return false; }
+  // A pencil (S, A) whose definiteness is H's, smaller than (H, M), for the trust
+  // region's Lanczos test (tr_krylov.cpp): S and an operator applying A^-1 (SPD),
+  // valid until the next setup; false where the preconditioner has none (the
+  // default) or the last setup gives none.  The DD's coarse pencil
+  // (DdPreconditioner::coarse_pencil).
+  virtual bool coarse_pencil(Teuchos::RCP<const Tpetra::Operator<>> & /*S*/,
+                             Teuchos::RCP<const Tpetra::Operator<>> & /*Ainv*/) const {
+    return false;
+  }
   const PreconditionerStats &stats() const { return stats_; }
 
 protected:

@@ -1,19 +1,29 @@
 // spd_guard.hpp - shared by the Trilinos preconditioners that must be symmetric
-// positive definite for MINRES (multigrid.cpp: MueLu, Ifpack2; frosch.cpp: FROSch):
-// the shift of an indefinite Hessian until a CG probe meets no nonpositive
-// curvature, and an operator wrapper that counts applications.
+// positive definite for MINRES (pc/impls/: muelu, ifpack2, frosch; the DD's AMG coarse
+// solve): the shift of an indefinite Hessian until a CG probe meets no nonpositive
+// curvature, an operator wrapper that counts applications, and the test of the MPI
+// runtime they need (spd_guard.cpp).
 #ifndef RODNET_SHIM_SPD_GUARD_HPP
 #define RODNET_SHIM_SPD_GUARD_HPP
 
-#include <chrono>
+#include <memory>
 #include <string>
 #include <utility>
 
-#include "pc/preconditioner.hpp"
+#include "base/clock.hpp"
 #include "base/shim_error.hpp"
+#include "pc/preconditioner.hpp"
+#include "pc/stats_operator.hpp"
 #include "system/system.hpp"
 
 namespace rodnet {
+
+// MueLu and Ifpack2's additive Schwarz (Trilinos 13.2) need maps over a
+// Teuchos::MpiComm and MPI initialised: MueLu's Hierarchy setup casts the
+// communicator to an MpiComm unconditionally (a null dereference for the SerialComm
+// of rodnet's serial runtime, runtime.hpp), and Ifpack2's Schwarz calls
+// MPI_Comm_size (an abort before MPI_Init).  True if comm is an MpiComm.
+bool mpi_backed(const Teuchos::Comm<int> &comm);
 
 // A copy of S with t D added to the diagonal (D = |diag S| floored at 1e-8 max).
 Teuchos::RCP<TCrs> shifted_copy(const TCrs &S, double t);
@@ -53,43 +63,40 @@ struct SpdGuard {
   }
 };
 
-// Applies a CoarseSolver-like callable as a Tpetra operator, counting in stats.
-template <class Apply>
-class StatsOperator : public Tpetra::Operator<> {
+// A Preconditioner that applies an SpdGuard's P (ifpack2, frosch): the derived
+// setup() builds it from the System's Hessian (guarded_setup); inverse() applies it,
+// counting in stats(); shift() is the guard's t.
+class GuardedPreconditioner : public Preconditioner {
 public:
-  StatsOperator(Teuchos::RCP<const TMap> map, Apply apply, PreconditionerStats *stats)
-      : map_(std::move(map)), apply_(std::move(apply)), stats_(stats), tmp_(map_, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp, double alpha,
-             double beta) const override {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (alpha == 1.0 && beta == 0.0) {
-      apply_(X, Y);
-    } else {
-      if (tmp_.getNumVectors() != X.getNumVectors()) tmp_ = TMV(map_, X.getNumVectors());
-      apply_(X, tmp_);
-      Y.update(alpha, tmp_, beta);
+  Teuchos::RCP<const Tpetra::Operator<>> inverse() const override {
+    if (op_.is_null()) { // one operator for the preconditioner's life (callers keep it)
+      std::shared_ptr<SpdGuard> guard = guard_;
+      op_ = stats_operator(
+          map_, [guard](const TMV &x, TMV &y) { guard->P->apply(x, y); }, &stats_);
     }
-    stats_->applies++;
-    stats_->apply_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return op_;
+  }
+  double shift() const { return guard_->shift; } // t of H + t |diag H| in the last setup
+
+protected:
+  // The guard's setup on sys's Hessian with build (SpdGuard::setup), then the stats
+  // of a setup that began at t0 (memory: the shifted copy of the matrix and the
+  // subdomain factors, estimated at twice the matrix).
+  template <class Build>
+  void guarded_setup(System &sys, Build &&build, const char *what, Clock::time_point t0) {
+    map_ = sys.map();
+    guard_->setup(*sys.hessian(), std::forward<Build>(build), what);
+    stats_.setups++;
+    stats_.setup_seconds += seconds_since(t0);
+    stats_.bytes = 12.0 * static_cast<double>(guard_->A->getNodeNumEntries()) * 2.0;
+    stats_.shifted = guard_->shift > 0.0;
   }
 
 private:
+  std::shared_ptr<SpdGuard> guard_ = std::make_shared<SpdGuard>();
   Teuchos::RCP<const TMap> map_;
-  Apply apply_;
-  PreconditionerStats *stats_;
-  mutable TMV tmp_;
+  mutable Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
-
-template <class Apply>
-Teuchos::RCP<const Tpetra::Operator<>> stats_operator(Teuchos::RCP<const TMap> map,
-                                                      Apply apply,
-                                                      const PreconditionerStats *stats) {
-  return Teuchos::rcp(new StatsOperator<Apply>(std::move(map), std::move(apply),
-                                               const_cast<PreconditionerStats *>(stats)));
-}
 
 } // namespace rodnet
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "base/lapack.hpp"
 #include "periodic/homogenize.hpp"
 #include "base/nonconservative.hpp"
 #include "system/problem.hpp"
@@ -31,12 +32,6 @@ void zheevr_(const char *jobz, const char *range, const char *uplo, const int *n
 void dsysv_(const char *uplo, const int *n, const int *nrhs, double *a, const int *lda,
             int *ipiv, double *b, const int *ldb, double *work, const int *lwork,
             int *info, size_t);
-void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info,
-             size_t);
-void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a,
-             const int *lda, double *b, const int *ldb, int *info, size_t);
-void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
-            double *w, double *work, const int *lwork, int *info, size_t, size_t);
 }
 
 namespace rodnet {

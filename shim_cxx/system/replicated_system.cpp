@@ -6,7 +6,7 @@
 
 #include <Teuchos_OrdinalTraits.hpp>
 
-#include "pc/alt_preconditioners.hpp"
+#include "system/rigid_body_modes.hpp"
 #include "system/dof_blocks.hpp"
 #include "base/shim_error.hpp"
 

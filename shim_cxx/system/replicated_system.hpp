@@ -49,7 +49,7 @@ public:
   void set_load_factor(double t);
   // dg = rn_network_load_increment at x from load factor t0 to t1.
   void load_increment(const TMV &x, double t0, double t1, TMV &dg);
-  // Rigid-body modes of every owned DOF (alt_preconditioners.hpp, rigid_body_modes).
+  // Rigid-body modes of every owned DOF (rigid_body_modes.hpp).
   Teuchos::RCP<TMV> rigid_body_modes() const;
 
 private:

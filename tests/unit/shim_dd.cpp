@@ -39,8 +39,10 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
 
-#include "pc/alt_preconditioners.hpp"
 #include "pc/impls/dd/dd_preconditioner.hpp"
+#include "pc/impls/ifpack2/ifpack2.hpp"
+#include "pc/impls/muelu/muelu.hpp"
+#include "pc/registry.hpp"
 #include "system/dof_blocks.hpp"
 #include "krylov/minres.hpp"
 #include "krylov/pencil_lanczos.hpp"
@@ -438,7 +440,7 @@ void check_coarse_pencil(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) 
   rn_scene_destroy(&scene);
 }
 
-// The alternatives measured against the DD (alt_preconditioners.hpp): SPD, and
+// The alternatives measured against the DD (pc/impls/muelu, ifpack2): SPD, and
 // MINRES reaches the tolerance with a true residual to match, on 1 and 2 ranks
 // (Ifpack2's subdomain solves are rank-local Amesos2 KLU2 factorisations).
 void check_alternatives(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
@@ -449,8 +451,12 @@ void check_alternatives(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
     sys.get_state(x);
     sys.assemble_hessian(x);
     for (const char *name : {"muelu", "ifpack2"}) {
-      auto P = make_preconditioner(name, sys.rigid_body_modes());
-      CHECK(P != nullptr);
+      std::unique_ptr<Preconditioner> P;
+      if (std::string(name) == "muelu")
+        P.reset(new MueluPreconditioner(sys.rigid_body_modes()));
+      else
+        P.reset(new SchwarzPreconditioner);
+      CHECK(P != nullptr && P->name() == name);
       P->setup(sys);
       if (g_rank == 0)
         std::printf("%s, honeycomb 6x6 %s:\n", name,
@@ -460,7 +466,14 @@ void check_alternatives(rn_context *ctx, const Teuchos::RCP<const Comm> &comm) {
     }
     rn_scene_destroy(&scene);
   }
-  CHECK(make_preconditioner("no-such-preconditioner") == nullptr);
+  // The registry (pc/registry.hpp): a row for every preconditioner of the enum, none
+  // for auto or a value outside it.
+  for (int k = RN_PRECOND_FACTOR; k <= RN_PRECOND_DD_AMG; ++k)
+    CHECK(find_preconditioner(static_cast<rn_preconditioner>(k)) != nullptr &&
+          find_preconditioner(static_cast<rn_preconditioner>(k))->kind == k);
+  CHECK(find_preconditioner(RN_PRECOND_AUTO) == nullptr);
+  CHECK(find_preconditioner(static_cast<rn_preconditioner>(RN_PRECOND_DD_AMG + 1)) ==
+        nullptr);
 }
 
 } // namespace

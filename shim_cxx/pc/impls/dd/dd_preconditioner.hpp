@@ -28,66 +28,10 @@
 #include <memory>
 #include <string>
 
+#include "pc/coarse_solver.hpp"
 #include "pc/preconditioner.hpp"
 
 namespace rodnet {
-
-// Solver of the SPD-made coarse matrix.  Collective over the matrix's communicator.
-class CoarseSolver {
-public:
-  virtual ~CoarseSolver() = default;
-  // S: fill-complete, on a one-to-one row map equal to its domain and range maps.
-  // nullspace (may be null): near-null-space vectors on the same map.  Makes S SPD
-  // when it is not (a diagonal shift, reported by shift()).  Throws Error on every
-  // rank if it cannot.
-  virtual void setup(const Teuchos::RCP<const TCrs> &S,
-                     const Teuchos::RCP<const TMV> &nullspace) = 0;
-  // y = A^-1 b for an SPD A close to S (exact inverse for the direct solver).
-  virtual void solve(const TMV &b, TMV &y) const = 0;
-  virtual double shift() const = 0; // t of S + t D_S in the last setup (0: none)
-  virtual double bytes() const = 0; // memory held on this rank after setup
-  virtual std::string name() const = 0;
-  // True if the last setup declined to solve (the direct solver when its
-  // factorisation would cost more than the limit it was made with): use another.
-  virtual bool declined() const { return false; }
-  // Floating-point operations of one factorisation (direct solver; 0 otherwise).
-  virtual double flops() const { return 0.0; }
-  // Rows of the reduced (inter-rank separator) matrix of the direct solver (0 on one
-  // rank and for the other solvers).
-  virtual long long separator_rows() const { return 0; }
-  // Strict: the next setup tries S itself (no shift) and reports failure by failed()
-  // instead of shifting (the direct solver; the others ignore it and never fail).
-  virtual void set_strict(bool) {}
-  virtual bool failed() const { return false; }
-};
-
-// Exact solve of the coarse matrix by rodnet's sparse Cholesky (METIS ordering),
-// substructured over the ranks: a coarse row is on the inter-rank separator if S
-// couples it to a higher rank's row; each rank factors its other rows (a partial
-// factorisation leaving their Schur complement on the separator rows they touch),
-// and the reduced separator matrix is gathered to rank 0 and factored there (never
-// a distributed direct solve: Amesos2 is wrong on several ranks, see TRILINOS.md).
-// One rank: the Cholesky of S.  Indefinite S: S + t D_S with the smallest t in
-// {1e-10, ..., 1e10} (the same t on any number of ranks).  max_flops > 0: decline
-// (declined()) when the factorisations (the ranks' and rank 0's) would take more
-// floating-point operations (symbolic analysis only, once per structure).
-std::unique_ptr<CoarseSolver> make_direct_coarse_solver(double max_flops = 0.0);
-// One MueLu V-cycle (smoothed aggregation, Chebyshev smoothing, rigid-body
-// near-null space; coarsest level: direct on one rank, relaxation on several),
-// multigrid.cpp.  Indefinite S (detected by a short preconditioned CG probe, see
-// there): S + t D_S, t raised by decades.
-// The coarse matrix's rows come in nodes of 6 (6 n .. 6 n + 5), padded with
-// decoupled dummy rows.  xml: a MueLu parameter file whose entries override the
-// defaults (empty: none).
-std::unique_ptr<CoarseSolver>
-make_amg_coarse_solver(const std::string &xml = std::string());
-
-// MueLu and Ifpack2's additive Schwarz (Trilinos 13.2) need maps over a
-// Teuchos::MpiComm and MPI initialised: MueLu's Hierarchy setup casts the
-// communicator to an MpiComm unconditionally (a null dereference for the SerialComm
-// of rodnet's serial runtime, runtime.hpp), and Ifpack2's Schwarz calls
-// MPI_Comm_size (an abort before MPI_Init).  True if comm is an MpiComm.
-bool mpi_backed(const Teuchos::Comm<int> &comm);
 
 struct DdOptions {
   enum class Coarse { Auto, Direct, Amg };
@@ -132,7 +76,7 @@ public:
   // The last setup was an exact block factorisation of H (no rod block nor the coarse
   // matrix shifted, the coarse solve direct): M = H, which proves H positive definite
   // (the inertia of H is that of the rod blocks plus that of the Schur complement).
-  bool exact() const;
+  bool exact() const override;
   // The pencil (S, A) of the last setup's coarse matrix S (the Schur complement of
   // the rod interiors, its decoupled padding rows positive) and the coarse solver's
   // SPD approximation A (an operator applying A^-1), on the coarse map; false where
@@ -143,7 +87,7 @@ public:
   // (H, M) (tr_krylov.cpp).  The operators share the preconditioner's state: valid
   // until its next setup.
   bool coarse_pencil(Teuchos::RCP<const Tpetra::Operator<>> &S,
-                     Teuchos::RCP<const Tpetra::Operator<>> &Ainv) const;
+                     Teuchos::RCP<const Tpetra::Operator<>> &Ainv) const override;
 
   struct Impl;
 

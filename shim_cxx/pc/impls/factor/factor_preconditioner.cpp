@@ -2,50 +2,21 @@
 // preconditioner (factor_preconditioner.hpp).
 #include "pc/impls/factor/factor_preconditioner.hpp"
 
-#include <algorithm>
-#include <chrono>
-
-#include "krylov/minres.hpp"
+#include "base/clock.hpp"
 #include "base/shim_error.hpp"
+#include "krylov/minres.hpp"
+#include "pc/stats_operator.hpp"
 #include "system/system_serial.hpp"
 
 namespace rodnet {
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// y = alpha M^{-1} x + beta y with the factorisation.
-class FactorInverse : public Tpetra::Operator<> {
-public:
-  FactorInverse(const Teuchos::RCP<const TMap> &map, const SpdFactor &f,
-                PreconditionerStats &stats)
-      : map_(map), f_(f), stats_(stats), tmp_(map, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp /*symmetric*/, double alpha,
-             double beta) const override {
-    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
-      throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
-    const Clock::time_point t0 = Clock::now();
-    const size_t n = X.getLocalLength();
-    const double *in = host_data(X);
-    double *out = host_data(tmp_);
-    std::copy(in, in + n, out);
-    f_.solve(out);
-    Y.update(alpha, tmp_, beta);
-    ++stats_.applies;
-    stats_.apply_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  }
-
-private:
-  Teuchos::RCP<const TMap> map_;
-  const SpdFactor &f_;
-  PreconditionerStats &stats_;
-  mutable TMV tmp_;
-};
-
-} // namespace
+std::unique_ptr<Preconditioner> make_factor_preconditioner(const System &sys,
+                                                           rn_factorization kind) {
+  if (!dynamic_cast<const SerialSystem *>(&sys))
+    throw Error(RN_ERR_ARG, "rn_solve: the factor preconditioner works on one rank only; "
+                            "use dd or local (docs/parallel.md)");
+  return std::make_unique<FactorPreconditioner>(kind);
+}
 
 void FactorPreconditioner::setup(System &sys) {
   auto *serial = dynamic_cast<SerialSystem *>(&sys);
@@ -60,10 +31,21 @@ void FactorPreconditioner::setup(System &sys) {
     metric_version_ = p.pattern_version();
   }
   sigma_ = factor_shifted(*factor_, p, 0.0, metric_.data());
-  if (op_.is_null()) op_ = Teuchos::rcp(new FactorInverse(sys.map(), *factor_, stats_));
+  if (op_.is_null()) {
+    const SpdFactor *f = factor_.get(); // made once
+    op_ = stats_operator(
+        sys.map(),
+        [f](const TMV &x, TMV &y) {
+          if (x.getNumVectors() != 1 || y.getNumVectors() != 1)
+            throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
+          y.assign(x);
+          f->solve(host_data(y));
+        },
+        &stats_);
+  }
   ++stats_.setups;
   stats_.shifted = sigma_ > 0.0;
-  stats_.setup_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.setup_seconds += seconds_since(t0);
 }
 
 } // namespace rodnet

@@ -25,7 +25,8 @@ public:
   void setup(System &sys) override;
   Teuchos::RCP<const Tpetra::Operator<>> inverse() const override { return op_; }
   std::string name() const override { return "factor"; }
-  double shift() const { return sigma_; } // sigma of the last setup
+  bool exact() const override { return sigma_ == 0.0; } // M = H: H positive definite
+  double shift() const { return sigma_; }               // sigma of the last setup
 
 private:
   rn_factorization kind_;
@@ -34,8 +35,13 @@ private:
   std::vector<double> metric_d_;     // D itself
   unsigned long metric_version_ = 0; // of the pattern metric_ is on
   double sigma_ = 0.0;
-  Teuchos::RCP<Tpetra::Operator<>> op_;
+  Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
+
+// The factor preconditioner of sys with the factorisation kind; throws Error
+// (RN_ERR_ARG) unless sys is one whole network on one rank (a SerialSystem).
+std::unique_ptr<Preconditioner> make_factor_preconditioner(const System &sys,
+                                                           rn_factorization kind);
 
 } // namespace rodnet
 

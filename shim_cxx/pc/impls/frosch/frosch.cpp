@@ -1,6 +1,6 @@
 // frosch.cpp - FROSch (Trilinos ShyLU-DD) two-level overlapping Schwarz as an
 // alternative preconditioner measured against the rod-level domain decomposition
-// (alt_preconditioners.hpp, docs/solvers.md).  The only translation unit with FROSch
+// (frosch.hpp, docs/solvers.md).  The only translation unit with FROSch
 // and Xpetra headers (they compile slowly).
 //
 // FROSch is used algebraically: one subdomain per rank (the rank's rows of the
@@ -20,7 +20,6 @@
 #define FROSCH_WARNING(CLASS, VERBOSE, OUTPUT)
 #define FROSCH_NOTIFICATION(CLASS, VERBOSE, OUTPUT)
 
-#include <chrono>
 #include <iostream>
 #include <streambuf>
 #include <string>
@@ -40,8 +39,9 @@
 #include <FROSch_Tools_def.hpp>
 #include <FROSch_TwoLevelPreconditioner_def.hpp>
 
-#include "pc/alt_preconditioners.hpp"
-#include "pc/spd_guard.hpp"
+#include "base/clock.hpp"
+#include "base/shim_error.hpp"
+#include "pc/impls/frosch/frosch.hpp"
 
 namespace rodnet {
 
@@ -145,61 +145,27 @@ private:
   Teuchos::RCP<Frosch> prec_;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 } // namespace
 
-struct FroschPreconditioner::Impl {
-  SpdGuard guard;
-  Teuchos::RCP<const TMap> map;
-  Teuchos::RCP<const TMV> nullspace;
-};
-
-FroschPreconditioner::FroschPreconditioner(const Teuchos::RCP<const TMV> &nullspace)
-    : impl_(new Impl) {
-  impl_->nullspace = nullspace;
-}
-FroschPreconditioner::~FroschPreconditioner() = default;
-
 void FroschPreconditioner::setup(System &sys) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Clock::time_point t0 = Clock::now();
   if (!mpi_backed(*sys.map()->getComm()))
     throw Error(RN_ERR_TRILINOS,
                 "FROSch needs the MPI runtime in Trilinos 13.2: run under mpirun or "
                 "with RODNET_MPI=1 (docs/solvers.md)");
-  impl_->map = sys.map();
-  const Teuchos::RCP<const TMV> nullspace = impl_->nullspace;
+  const Teuchos::RCP<const TMV> nullspace = nullspace_;
   try {
-    impl_->guard.setup(
-        *sys.hessian(),
+    guarded_setup(
+        sys,
         [&](const Teuchos::RCP<TCrs> &A) -> Teuchos::RCP<Tpetra::Operator<>> {
           return Teuchos::rcp(new FroschOperator(A, nullspace));
         },
-        "frosch preconditioner");
+        "frosch preconditioner", t0);
   } catch (const Error &) {
     throw;
   } catch (const std::exception &e) {
     throw Error(RN_ERR_TRILINOS, std::string("FROSch: ") + e.what());
   }
-  stats_.setups++;
-  stats_.setup_seconds += seconds_since(t0);
-  // matrix copy plus the overlapping subdomain factors (estimate, as for ifpack2)
-  stats_.bytes = 12.0 * static_cast<double>(impl_->guard.A->getNodeNumEntries()) * 2.0;
-  stats_.shifted = impl_->guard.shift > 0.0;
 }
-
-Teuchos::RCP<const Tpetra::Operator<>> FroschPreconditioner::inverse() const {
-  if (op_.is_null()) { // one operator for the preconditioner's life (callers keep it)
-    std::shared_ptr<Impl> impl = impl_;
-    op_ = stats_operator(
-        impl_->map, [impl](const TMV &x, TMV &y) { impl->guard.P->apply(x, y); },
-        &stats_);
-  }
-  return op_;
-}
-
-double FroschPreconditioner::shift() const { return impl_->guard.shift; }
 
 } // namespace rodnet

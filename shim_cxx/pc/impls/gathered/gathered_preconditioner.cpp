@@ -3,55 +3,58 @@
 #include "pc/impls/gathered/gathered_preconditioner.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include "base/clock.hpp"
 #include "base/shim_error.hpp"
 #include "factor/sparse_cholesky.hpp"
+#include "pc/shifted_cholesky.hpp"
+#include "pc/stats_operator.hpp"
 
 namespace rodnet {
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// y = alpha M^{-1} x + beta y: x gathered on rank 0, solved there, scattered back.
-class GatheredInverse : public Tpetra::Operator<> {
-public:
-  GatheredInverse(const Teuchos::RCP<const TMap> &map,
-                  const Teuchos::RCP<const TMap> &root,
-                  const Teuchos::RCP<const Tpetra::Import<>> &gather,
-                  const SparseCholesky *const &f, PreconditionerStats &stats)
-      : map_(map), gather_(gather), f_(f), stats_(stats), xg_(root, 1), tmp_(map, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp /*symmetric*/, double alpha,
-             double beta) const override {
-    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
-      throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
-    const Clock::time_point t0 = Clock::now();
-    xg_.doImport(X, *gather_, Tpetra::INSERT);
-    if (xg_.getLocalLength()) f_->solve(xg_.getDataNonConst(0).getRawPtr());
-    tmp_.doExport(xg_, *gather_, Tpetra::INSERT);
-    Y.update(alpha, tmp_, beta);
-    ++stats_.applies;
-    stats_.apply_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  }
-
-private:
-  Teuchos::RCP<const TMap> map_;
-  Teuchos::RCP<const Tpetra::Import<>> gather_;
-  const SparseCholesky *const &f_;
-  PreconditionerStats &stats_;
-  mutable TMV xg_, tmp_;
-};
-
-} // namespace
-
 GatheredPreconditioner::GatheredPreconditioner() = default;
 GatheredPreconditioner::~GatheredPreconditioner() = default;
+
+// The values of the gathered Hessian Hg on rank 0 in CSR (sorted rows); at the first
+// call its pattern, the symbolic analysis and the metric D = |diag H| floored at 1e-8
+// of its largest entry.
+void GatheredPreconditioner::gather_values(const TCrs &Hg) {
+  const size_t nl = root_->getNodeNumElements();
+  auto lcl = Hg.getLocalMatrixHost();
+  auto cols = Hg.getColMap();
+  std::vector<std::pair<int32_t, double>> row;
+  const bool first = rowptr_.empty();
+  if (first) rowptr_.assign(nl + 1, 0);
+  vals_.clear();
+  for (size_t i = 0; i < nl; ++i) {
+    row.clear();
+    for (size_t k = lcl.graph.row_map(i); k < lcl.graph.row_map(i + 1); ++k)
+      row.emplace_back(static_cast<int32_t>(cols->getGlobalElement(lcl.graph.entries(k))),
+                       lcl.values(k));
+    std::sort(row.begin(), row.end());
+    for (const auto &e : row) {
+      if (first) col_.push_back(e.first);
+      vals_.push_back(e.second);
+    }
+    if (first) rowptr_[i + 1] = static_cast<int64_t>(col_.size());
+  }
+  if (vals_.size() != col_.size())
+    throw Error(RN_ERR_INTERNAL, "rn_solve: the gathered Hessian changed its pattern");
+  if (first) {
+    analysis_ = std::make_shared<SparseAnalysis>(nl, rowptr_.data(), col_.data());
+    chol_ = std::make_unique<SparseCholesky>(analysis_);
+    chol_ptr_ = chol_.get();
+  }
+  if (!metric_done_) {
+    metric_done_ = true;
+    m_ =
+        floored_diagonal(nl, rowptr_.data(), col_.data(), vals_.data(),
+                         max_abs_diagonal(nl, rowptr_.data(), col_.data(), vals_.data()));
+  }
+}
 
 void GatheredPreconditioner::setup(System &sys) {
   const Clock::time_point t0 = Clock::now();
@@ -66,76 +69,37 @@ void GatheredPreconditioner::setup(System &sys) {
   Hg.doImport(*H, *gather_, Tpetra::INSERT);
   Hg.fillComplete(sys.map(), sys.map());
   int failed = 0, shifted = 0;
-  const size_t nl = root_->getNodeNumElements(); // n on rank 0, 0 elsewhere
-  if (nl) {
-    auto lcl = Hg.getLocalMatrixHost();
-    auto cols = Hg.getColMap();
-    std::vector<std::pair<int32_t, double>> row;
-    const bool first = rowptr_.empty();
-    if (first) rowptr_.assign(nl + 1, 0);
-    vals_.clear();
-    for (size_t i = 0; i < nl; ++i) {
-      row.clear();
-      for (size_t k = lcl.graph.row_map(i); k < lcl.graph.row_map(i + 1); ++k)
-        row.emplace_back(
-            static_cast<int32_t>(cols->getGlobalElement(lcl.graph.entries(k))),
-            lcl.values(k));
-      std::sort(row.begin(), row.end());
-      for (const auto &e : row) {
-        if (first) col_.push_back(e.first);
-        vals_.push_back(e.second);
-      }
-      if (first) rowptr_[i + 1] = static_cast<int64_t>(col_.size());
-    }
-    if (vals_.size() != col_.size())
-      throw Error(RN_ERR_INTERNAL, "rn_solve: the gathered Hessian changed its pattern");
-    if (first) {
-      analysis_ = std::make_shared<SparseAnalysis>(nl, rowptr_.data(), col_.data());
-      chol_ = std::make_unique<SparseCholesky>(analysis_);
-      chol_ptr_ = chol_.get();
-    }
-    if (!metric_done_) { // D = |diag H| floored at 1e-8 of its largest entry
-      metric_done_ = true;
-      m_.assign(vals_.size(), 0.0);
-      double dmax = 0.0;
-      for (size_t i = 0; i < nl; ++i)
-        for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-          if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i)
-            dmax = std::max(dmax, std::fabs(vals_[static_cast<size_t>(k)]));
-      const bool flat = !(dmax > 0.0) || !std::isfinite(dmax);
-      for (size_t i = 0; i < nl; ++i)
-        for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-          if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i)
-            m_[static_cast<size_t>(k)] =
-                flat ? 1.0
-                     : std::max(std::fabs(vals_[static_cast<size_t>(k)]), 1e-8 * dmax);
-    }
-    // smallest sigma in {0, 1e-10, ..., 1e10} that factors (as factor_shifted)
-    if (!chol_->factor(vals_.data(), 0.0, m_.data())) {
-      int lo = -11, hi = 11;
-      bool holds_hi = false;
-      while (hi - lo > 1) {
-        const int mid = lo + (hi - lo) / 2;
-        holds_hi = chol_->factor(vals_.data(), std::pow(10.0, mid), m_.data());
-        (holds_hi ? hi : lo) = mid;
-      }
-      shifted = 1;
-      if (hi > 10 ||
-          (!holds_hi && !chol_->factor(vals_.data(), std::pow(10.0, hi), m_.data())))
-        failed = 1;
-    }
+  if (root_->getNodeNumElements()) { // rank 0
+    gather_values(Hg);
+    const double sigma = factor_smallest_shift(*chol_, vals_.data(), m_.data());
+    shifted = sigma != 0.0;
+    failed = sigma < 0.0;
   }
   Teuchos::broadcast(*comm, 0, &failed);
   Teuchos::broadcast(*comm, 0, &shifted);
   if (failed)
     throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes the gathered Hessian "
                                "positive definite (non-finite Hessian?)");
-  if (op_.is_null())
-    op_ = Teuchos::rcp(new GatheredInverse(sys.map(), root_, gather_, chol_ptr_, stats_));
+  if (op_.is_null()) {
+    // x gathered on rank 0, solved there, scattered back
+    const SparseCholesky *const *f = &chol_ptr_;
+    Teuchos::RCP<const Tpetra::Import<>> gather = gather_;
+    Teuchos::RCP<TMV> xg = Teuchos::rcp(new TMV(root_, 1));
+    op_ = stats_operator(
+        sys.map(),
+        [f, gather, xg](const TMV &x, TMV &y) {
+          if (x.getNumVectors() != 1 || y.getNumVectors() != 1)
+            throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
+          xg->doImport(x, *gather, Tpetra::INSERT);
+          if (xg->getLocalLength()) (*f)->solve(xg->getDataNonConst(0).getRawPtr());
+          y.doExport(*xg, *gather, Tpetra::INSERT);
+        },
+        &stats_);
+  }
   ++stats_.setups;
   stats_.shifted = shifted != 0;
   stats_.bytes = 8.0 * static_cast<double>(vals_.size() + m_.size());
-  stats_.setup_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.setup_seconds += seconds_since(t0);
 }
 
 } // namespace rodnet

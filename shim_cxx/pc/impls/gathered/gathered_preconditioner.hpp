@@ -34,6 +34,8 @@ public:
   std::string name() const override { return "gathered"; }
 
 private:
+  void gather_values(const TCrs &Hg);
+
   Teuchos::RCP<const TMap> root_;               // every DOF on rank 0
   Teuchos::RCP<const Tpetra::Import<>> gather_; // owned -> root
   std::vector<int64_t> rowptr_;                 // rank 0: the whole pattern
@@ -43,7 +45,7 @@ private:
   std::unique_ptr<SparseCholesky> chol_;
   const SparseCholesky *chol_ptr_ = nullptr;
   bool metric_done_ = false;
-  Teuchos::RCP<Tpetra::Operator<>> op_;
+  Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
 } // namespace rodnet

@@ -3,52 +3,18 @@
 #include "pc/impls/local/local_preconditioner.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include "base/clock.hpp"
 #include "base/shim_error.hpp"
 #include "factor/sparse_cholesky.hpp"
+#include "pc/shifted_cholesky.hpp"
+#include "pc/stats_operator.hpp"
 
 namespace rodnet {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// y = alpha M^{-1} x + beta y, M^{-1} the rank's factorisation (no communication).
-class LocalInverse : public Tpetra::Operator<> {
-public:
-  LocalInverse(const Teuchos::RCP<const TMap> &map, const SparseCholesky *const &f,
-               PreconditionerStats &stats)
-      : map_(map), f_(f), stats_(stats), tmp_(map, 1) {}
-  Teuchos::RCP<const TMap> getDomainMap() const override { return map_; }
-  Teuchos::RCP<const TMap> getRangeMap() const override { return map_; }
-  void apply(const TMV &X, TMV &Y, Teuchos::ETransp /*symmetric*/, double alpha,
-             double beta) const override {
-    if (X.getNumVectors() != 1 || Y.getNumVectors() != 1)
-      throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
-    const Clock::time_point t0 = Clock::now();
-    const size_t n = X.getLocalLength();
-    auto in = X.getData(0);
-    auto out = tmp_.getDataNonConst(0);
-    for (size_t i = 0; i < n; ++i) out[static_cast<LO>(i)] = in[static_cast<LO>(i)];
-    if (n) f_->solve(out.getRawPtr());
-    Y.update(alpha, tmp_, beta);
-    ++stats_.applies;
-    stats_.apply_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  }
-
-private:
-  Teuchos::RCP<const TMap> map_;
-  const SparseCholesky *const &f_; // the preconditioner's current factor
-  PreconditionerStats &stats_;
-  mutable TMV tmp_;
-};
-
-} // namespace
 
 LocalPreconditioner::LocalPreconditioner() = default;
 LocalPreconditioner::~LocalPreconditioner() = default;
@@ -90,36 +56,18 @@ void LocalPreconditioner::setup(System &sys) {
   for (size_t k = 0; k < vals_.size(); ++k) vals_[k] = values(src_[k]);
   if (!metric_done_) {   // D = |diag H|, floored at 1e-8 of its largest entry (all ranks)
     metric_done_ = true; // (on every rank, also one that owns nothing: collective)
-    m_.assign(vals_.size(), 0.0);
-    double local = 0.0, dmax = 0.0;
-    for (size_t i = 0; i < n_; ++i)
-      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-        if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i)
-          local = std::max(local, std::fabs(vals_[static_cast<size_t>(k)]));
+    const double local = max_abs_diagonal(n_, rowptr_.data(), col_.data(), vals_.data());
+    double dmax = 0.0;
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &local, &dmax);
-    const bool flat = !(dmax > 0.0) || !std::isfinite(dmax);
-    for (size_t i = 0; i < n_; ++i)
-      for (int64_t k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
-        if (static_cast<size_t>(col_[static_cast<size_t>(k)]) == i) {
-          const double d = std::fabs(vals_[static_cast<size_t>(k)]);
-          m_[static_cast<size_t>(k)] = flat ? 1.0 : std::max(d, 1e-8 * dmax);
-        }
+    m_ = floored_diagonal(n_, rowptr_.data(), col_.data(), vals_.data(), dmax);
   }
   if (!chol_ && n_) chol_ = std::make_unique<SparseCholesky>(analysis_);
-  // smallest sigma in {0, 1e-10, ..., 1e10} that factors (bisection on the exponent)
   int failed = 0;
   sigma_ = 0.0;
-  if (n_ && !chol_->factor(vals_.data(), 0.0, m_.data())) {
-    int lo = -11, hi = 11;
-    bool holds_hi = false;
-    while (hi - lo > 1) {
-      const int mid = lo + (hi - lo) / 2;
-      holds_hi = chol_->factor(vals_.data(), std::pow(10.0, mid), m_.data());
-      (holds_hi ? hi : lo) = mid;
-    }
-    sigma_ = std::pow(10.0, hi);
-    if (hi > 10 || (!holds_hi && !chol_->factor(vals_.data(), sigma_, m_.data())))
-      failed = 1;
+  if (n_) {
+    const double s = factor_smallest_shift(*chol_, vals_.data(), m_.data());
+    failed = s < 0.0;
+    if (!failed) sigma_ = s;
   }
   int any_failed = 0, shifted = sigma_ > 0.0, any_shifted = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &failed, &any_failed);
@@ -127,12 +75,23 @@ void LocalPreconditioner::setup(System &sys) {
   if (any_failed)
     throw Error(RN_ERR_LAPACK, "rn_solve: no diagonal shift makes a rank's block of the "
                                "Hessian positive definite (non-finite Hessian?)");
-  if (op_.is_null()) op_ = Teuchos::rcp(new LocalInverse(sys.map(), chol_ptr_, stats_));
+  if (op_.is_null()) {
+    const SparseCholesky *const *f = &chol_ptr_; // the current factor (set below)
+    op_ = stats_operator(
+        sys.map(),
+        [f](const TMV &x, TMV &y) { // M^{-1} the rank's factorisation (no communication)
+          if (x.getNumVectors() != 1 || y.getNumVectors() != 1)
+            throw Error(RN_ERR_INTERNAL, "rn_solve: preconditioner applied to a block");
+          y.assign(x);
+          if (y.getLocalLength()) (*f)->solve(y.getDataNonConst(0).getRawPtr());
+        },
+        &stats_);
+  }
   chol_ptr_ = chol_.get();
   ++stats_.setups;
   stats_.shifted = any_shifted != 0;
   stats_.bytes = 8.0 * static_cast<double>(vals_.size() + m_.size());
-  stats_.setup_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.setup_seconds += seconds_since(t0);
 }
 
 } // namespace rodnet

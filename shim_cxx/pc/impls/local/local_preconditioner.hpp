@@ -46,7 +46,7 @@ private:
   std::unique_ptr<SparseCholesky> chol_;
   const SparseCholesky *chol_ptr_ = nullptr; // what the inverse operator applies
   double sigma_ = 0.0;
-  Teuchos::RCP<Tpetra::Operator<>> op_;
+  Teuchos::RCP<const Tpetra::Operator<>> op_;
 };
 
 } // namespace rodnet
