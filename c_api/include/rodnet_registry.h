@@ -9,9 +9,10 @@
  *
  * Adding a preconditioner: its enum value in rodnet_solve.h (values are ABI: never
  * renumber), one row of RN_PRECONDITIONER_LIST below (in enum order: the library
- * does not compile otherwise), its folder shim_cxx/pc/impls/<name>/ (its sources in
- * shim_cxx/CMakeLists.txt) and its factory row in shim_cxx/pc/registry.cpp; a row
- * in the docs' tables (docs/solvers.md, docs/cli.md, docs/scene-format.md: the test
+ * does not compile otherwise) and its folder shim_cxx/pc/impls/<name>/ with the
+ * factory make_<enum value> in its register.cpp (the sources in
+ * shim_cxx/CMakeLists.txt; shim_cxx/pc/registry.cpp makes its table from this list);
+ * a row in the docs' tables (docs/solvers.md, docs/cli.md, docs/scene-format.md: the test
  * names what is missing).  The scene reader, the command, rodnet bench
  * (tr-krylov-<name>, nox-<name>) and the conformance suite (shim_dd_solve,
  * mpi_conformance) take it from the row.  A solver kind likewise: its enum value,

@@ -610,7 +610,6 @@ private:
 
 } // namespace
 
-
 rn_preconditioner run_tr_krylov(KrylovWorkspace &ws, Monitor &mon,
                                 const rn_solve_options &opt) {
   struct Account { // the preconditioner's time, also when the run throws
