@@ -132,6 +132,7 @@ typedef struct rn_joint {
   int link;                         /* smooth joints: full turns of twist added */
   int has_total_twist;              /* ring joints: total twist given */
   double total_twist;               /* (rn_network_set_ring_total_twist) */
+  double turns; /* smooth joints: whole turns in the reference twist (finalize) */
   int *image;   /* periodic cells: lattice shift (3 ints) of each end's
                    joint copy [3 valence]; NULL: no image ends */
   int32_t *img; /* built at finalize: image record of each kernel stencil

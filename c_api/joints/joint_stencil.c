@@ -230,7 +230,36 @@ static rn_status build_smooth(const rn_network *net, rn_joint *J) {
     e0->twist.taubar -= rem * e0->twist.vlen / len;
   }
   e0->twist.ref_twist = e1->twist.ref_twist = h + 2.0 * RN_PI * turns;
+  J->turns = turns;
   return RN_OK;
+}
+
+/* A ring's stored whole turns start evenly spread: the closing vertex's
+ * reference twist holds 2 pi k, so with every material angle at its input the
+ * whole k turns would sit at that one vertex (a state far from any equilibrium
+ * whose path may pass the ring through itself). Edge j's initial angle turns by
+ * 2 pi k (s_j - s_o) / L (s_j the Voronoi length of the vertices between edge 0
+ * and edge j, L the ring's, o the origin edge), which gives every vertex 2 pi k
+ * times its share of L and leaves the total twist, the link and the energy's
+ * minimisers unchanged. The origin is the ring's fixed angle if it has one (its
+ * value stays the user's), edge 0 otherwise; with two or more fixed angles the
+ * input angles are kept. */
+static void spread_ring_turns(rn_network *net, const rn_joint *J) {
+  const rn_rod *r = &net->rods[J->rod[0]];
+  double len = J->ends[0].twist.vlen, s = 0.0, so = 0.0;
+  int nfixed = 0;
+  if (J->turns == 0.0 || J->rod[0] != J->rod[1] || !r->closed) return;
+  for (int i = 0; i < r->nv - 2; ++i) len += r->tp[i].vlen;
+  for (int j = 0; j < r->ne; ++j) {
+    if (r->theta_fixed[j]) so = s, ++nfixed;
+    if (j < r->nv - 2) s += r->tp[j].vlen;
+  }
+  if (nfixed > 1) return;
+  s = 0.0;
+  for (int j = 0; j < r->ne; ++j) {
+    net->xfull[rn_dof_theta(r->off, j)] += 2.0 * RN_PI * J->turns * (s - so) / len;
+    if (j < r->nv - 2) s += r->tp[j].vlen;
+  }
 }
 
 static void build_indices(const rn_network *net, rn_joint *J) {
@@ -267,6 +296,7 @@ rn_status rn_joints_build(rn_network *net) {
                      "joint %d ('%s'): the smooth joint's rods point in opposite "
                      "directions at the joint (a 180 degree kink)",
                      J->gid, J->name ? J->name : "");
+    if (J->model == RN_JOINT_SMOOTH && J->valence == 2) spread_ring_turns(net, J);
     if (J->model != RN_JOINT_SMOOTH) rest_frames(J);
     build_indices(net, J);
   }

@@ -174,7 +174,12 @@ static void test_two_rods(rn_context *ctx) {
   double fr[3 * N];
   rn_network *closed = ring(ctx, N, xyz, 0.3, 1, 0.05, 1, &joint), *loop = NULL;
   CHECK_STATUS(rn_network_finalize(closed), RN_OK);
-  /* rod b starts with the ring's material axis at edge H (the same frames) */
+  /* rod b starts with the ring's material axis at edge H (the same frames): at
+   * theta = 0 (the ring's initial angles spread its stored turn) the material
+   * frames are the reference frames */
+  CHECK_STATUS(rn_network_get_dofs(closed, xc), RN_OK);
+  for (int j = 0; j < N; ++j) xc[tdof(j)] = 0.0;
+  CHECK_STATUS(rn_network_set_dofs(closed, xc), RN_OK);
   CHECK_STATUS(rn_network_rod_frames(closed, 0, fr, NULL), RN_OK);
   memcpy(a, xyz, 3 * (H + 1) * sizeof(double));
   memcpy(b, xyz + 3 * H, 3 * H * sizeof(double));

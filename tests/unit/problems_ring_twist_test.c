@@ -12,6 +12,8 @@
  *    times cos^2(pi k / N) for k whole turns: the material curvature takes the
  *    mean of the two edges' material frames, which differ by the geometric twist
  *    2 pi k / N (a naturally curved ring would also bend as its frame turns);
+ *  - a ring's whole turns start evenly spread over its vertices (link n: the
+ *    evenly twisted polygon at the input state, issue 22 section 4);
  *  - errors: both keys, a non-finite or non-numeric total, an open rod (scene
  *    and C API), a NaN total (C API). */
 #include <math.h>
@@ -175,6 +177,42 @@ static void fractional_total(rn_context *ctx) {
   }
 }
 
+/* A ring's whole turns start evenly spread (issue 22 section 4): at the input
+ * state of a naturally straight planar isotropic ring with link n the twisting
+ * energy is GJ (2 pi n)^2 / (2 L), not the N times larger energy of the whole
+ * turns at the closing vertex, and the state is the evenly twisted polygon
+ * (bending N B (2 tan(pi/N))^2 / (2 l) cos^2(pi n / N), gradient zero). */
+static void link_starts_spread(rn_context *ctx) {
+  for (int n = -2; n <= 2; ++n) {
+    char twist[64];
+    snprintf(twist, sizeof twist, "{'link': %d}", n);
+    rn_scene *s = ring(ctx, twist, 1);
+    rn_network *net = rn_scene_network(s);
+    size_t nd = rn_network_num_dofs(net);
+    double *x = malloc(nd * sizeof(double)), *g = malloc(nd * sizeof(double)), En = 0;
+    double Et[RN_TERM_COUNT], gmax = 0.0;
+    CHECK_STATUS(rn_network_get_dofs(net, x), RN_OK);
+    CHECK_STATUS(rn_network_gradient(net, x, &En, g), RN_OK);
+    CHECK_STATUS(rn_network_energy_terms(net, x, Et), RN_OK);
+    const double G = E / (2 * (1 + NU)), J = PI * pow(RAD, 4) / 2,
+                 B = E * PI * pow(RAD, 4) / 4;
+    const double l = 2 * sin(PI / N), L = N * l, kb = 2 * tan(PI / N);
+    const double etw = G * J * pow(2 * PI * n, 2) / (2 * L),
+                 bend = N * B * kb * kb / (2 * l) * pow(cos(PI * n / N), 2);
+    for (size_t i = 0; i < nd; ++i) gmax = fmax(gmax, fabs(g[i]));
+    printf("link %+d at the input state: twisting energy %.15e, GJ (2 pi n)^2/(2L) "
+           "%.15e; bending %.15e (polygon %.15e); largest gradient %.1e\n",
+           n, Et[RN_TERM_TWIST], etw, Et[RN_TERM_BEND], bend, gmax);
+    CHECK_NEAR(Et[RN_TERM_TWIST], etw, 1e-12 * (etw + bend));
+    CHECK_REL(Et[RN_TERM_BEND], bend, 1e-12);
+    CHECK(gmax <= 1e-12 * B * kb / (l * l));
+    CHECK_NEAR(total_twist(net), 2 * PI * n, 1e-12);
+    free(x);
+    free(g);
+    rn_scene_destroy(&s);
+  }
+}
+
 static void expect_error(rn_context *ctx, const char *twist, int closed,
                          const char *where, const char *reason) {
   char *text = ring_json(twist, 0);
@@ -229,6 +267,7 @@ int main(void) {
   rn_context *ctx = NULL;
   CHECK_STATUS(rn_context_create(&ctx), RN_OK);
   link_equals_total(ctx);
+  link_starts_spread(ctx);
   fractional_total(ctx);
   errors(ctx);
   rn_context_destroy(&ctx);
