@@ -563,6 +563,12 @@ if(RN_WITH_TRILINOS)
   rn_cli_test(problems_cli_sweep_bad 3 "sweep_bad.json: unknown key 'density'"
               ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_bad.json
                    -o ${gen}/sweep_bad)
+  # A point whose struts overlap at the joints (the re-entrant honeycomb at relative
+  # density 0.95; its bound is 0.888889) refuses the sweep file before any point.
+  rn_cli_test(problems_cli_sweep_dense_overlap 3
+              "\"relative_density\" 0.95: .*overlap at the joints.*keep it below 0.88"
+              ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_reentrant_dense.json
+                   -o ${gen}/sweep_dense)
   # rodnet solve of a stress-controlled cell: RESULT.json "cell"
   rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
               REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress

@@ -759,27 +759,17 @@ static int check_pcell(const gen_args *a, rn_context *ctx, const rn_pcell *c) {
   if (rc) return rc;
   size_t nb1 = (size_t)(c->nbars ? c->nbars : 1);
   int *uv = malloc(2 * nb1 * sizeof(int));
-  double *d = malloc(3 * nb1 * sizeof(double)), L, V, extent = 0.0, span = 0.0;
+  double *d = malloc(3 * nb1 * sizeof(double)), L, V, extent;
   if (!uv || !d) {
     free(uv);
     free(d);
     fprintf(stderr, "rodnet generate: out of memory\n");
     return RN_EXIT_INTERNAL;
   }
-  for (int e = 0; e < c->nbars; e++) {
-    const int *o = c->bar + 5 * e;
-    uv[2 * e] = o[0];
-    uv[2 * e + 1] = o[1];
-    for (int k = 0; k < 3; k++) {
-      d[3 * e + k] = c->xyz[3 * o[1] + k] - c->xyz[3 * o[0] + k];
-      for (int m = 0; m < c->dim; m++) d[3 * e + k] += o[2 + m] * c->vec[3 * m + k];
-    }
-  }
-  for (int k = 0; k < 3 * c->nnodes; k++) extent = fmax(extent, fabs(c->xyz[k]));
-  for (int k = 0; k < 9; k++) span += fabs(c->vec[k]); /* image ends reach x + a_m */
+  extent = rn_pcell_bar_vectors(c, uv, d);
   rn_pcell_measures(c, &L, &V);
   rc = check_struts(a, ctx, c->dim, c->nnodes, c->nbars, uv, d, c->section_scale, V,
-                    extent + span);
+                    extent);
   free(uv);
   free(d);
   return rc;

@@ -23,6 +23,7 @@
 #include "cli/cli.h"
 #include "io/num_format.h"
 #include "cli/homog_path.h"
+#include "generate/lattice_check.h"
 #include "generate/periodic_cell.h"
 #include "rodnet_solve.h"
 #include "scene/scene.h"
@@ -381,34 +382,84 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
   return rc;
 }
 
-/* The point's cell as a scene file at path. */
-static rn_status write_cell(rn_context *ctx, const sweep_spec *s, const point *p,
-                            const char *path) {
-  rn_pcell c;
+/* The point's cell and section (rn_pcell_free(c) after a success). */
+static rn_status make_cell(rn_context *ctx, const sweep_spec *s, const point *p,
+                           rn_pcell *c, rn_lattice_scene *sc) {
   rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
   rn_status st;
   int reentrant = strcmp(p->lattice, "reentrant") == 0;
   if (!reentrant) rn_lattice_kind_from_name(p->lattice, &kind);
-  st = reentrant ? rn_pcell_reentrant(ctx, s->cells, 1.0, &c)
-                 : rn_pcell_from_lattice(ctx, kind, s->cells, 1.0, &c);
+  st = reentrant ? rn_pcell_reentrant(ctx, s->cells, 1.0, c)
+                 : rn_pcell_from_lattice(ctx, kind, s->cells, 1.0, c);
   if (st) return st;
-  if (s->perturb > 0.0) rn_pcell_perturb(&c, s->perturb, (unsigned long)p->seed);
-  rn_lattice_scene sc = {"rodnet sweep",
-                         s->edges,
-                         p->joint_model,
-                         s->E,
-                         s->nu,
-                         RN_LSEC_RECTANGLE,
-                         {0.0, 0.0},
-                         RN_LLOAD_NONE,
-                         0,
-                         0.0,
-                         0.0,
-                         NULL};
-  rn_pcell_section_for_density(&c, p->rho, &sc);
+  if (s->perturb > 0.0) rn_pcell_perturb(c, s->perturb, (unsigned long)p->seed);
+  const rn_lattice_scene sc0 = {"rodnet sweep",
+                                s->edges,
+                                p->joint_model,
+                                s->E,
+                                s->nu,
+                                RN_LSEC_RECTANGLE,
+                                {0.0, 0.0},
+                                RN_LLOAD_NONE,
+                                0,
+                                0.0,
+                                0.0,
+                                NULL};
+  *sc = sc0;
+  rn_pcell_section_for_density(c, p->rho, sc);
+  return RN_OK;
+}
+
+/* The point's cell as a scene file at path. */
+static rn_status write_cell(rn_context *ctx, const sweep_spec *s, const point *p,
+                            const char *path) {
+  rn_pcell c;
+  rn_lattice_scene sc;
+  rn_status st = make_cell(ctx, s, p, &c, &sc);
+  if (st) return st;
   st = rn_pcell_write_scene(ctx, path, &c, &sc, NULL);
   rn_pcell_free(&c);
   return st;
+}
+
+/* Every point's cell is a lattice of rods (docs/lattices.md, "Admissible
+ * sections"; the bounds of `rodnet generate --periodic`): the section that
+ * gives the relative density must leave every bar a free length between its
+ * joint zones.  Checked before any point is computed: 0, or RN_EXIT_INPUT with
+ * the point named (the density itself is below 1 by the sweep file's rules). */
+static int check_cells(rn_context *ctx, const sweep_spec *s, const char *file) {
+  int k = 0;
+  for (int i = 0; i < s->nlat; ++i)
+    for (int j = 0; j < s->njm; ++j)
+      for (int c = 0; c < s->nrho; ++c)
+        for (int d = 0; d < (s->perturb > 0.0 ? s->nseed : 1); ++d, ++k) {
+          point p = {k, s->lat[i], s->jm[j], s->rho[c], s->seed[d]};
+          rn_pcell cell;
+          rn_lattice_scene sc;
+          rn_strut_bounds b;
+          if (make_cell(ctx, s, &p, &cell, &sc))
+            return sweep_error(file, "the %s cell: %s", p.lattice,
+                               rn_context_last_error(ctx));
+          int rc = rn_pcell_strut_bounds(&cell, &sc, &b, NULL);
+          const double pw = cell.dim == 2 ? 1.0 : 2.0; /* density ~ size^pw */
+          rn_pcell_free(&cell);
+          if (rc) return sweep_error(file, "out of memory");
+          if (b.zero_bar >= 0 || b.coincident_node >= 0)
+            return sweep_error(file,
+                               "the %s cell%s has a bar of zero length or two bars "
+                               "leaving a joint in one direction (\"perturb\" %g)",
+                               p.lattice, s->perturb > 0.0 ? " (perturbed)" : "",
+                               s->perturb);
+          if (!(b.factor > 1.0))
+            return sweep_error(
+                file,
+                "\"relative_density\" %g: the section that gives it to the %s cell%s "
+                "makes its struts overlap at the joints (the joint zones cover all of "
+                "bar e%d): not a lattice of rods; keep it below %.6g (docs/lattices.md)",
+                p.rho, p.lattice, s->perturb > 0.0 ? " (perturbed)" : "", b.joint_bar + 1,
+                p.rho * pow(b.factor, pw));
+        }
+  return 0;
 }
 
 typedef struct point_out {
@@ -720,7 +771,8 @@ static int run_sweep(rn_context *ctx, const sweep_spec *s, const sweep_args *a) 
   int total = s->nlat * s->njm * s->nrho * s->nseed, failed = 0, rc;
   unsigned char *valid = calloc((size_t)total, 1);
   if (!valid) return RN_EXIT_INTERNAL;
-  if ((rc = sweep_points(ctx, s, a, valid, &failed))) {
+  if ((rc = check_cells(ctx, s, a->file)) ||
+      (rc = sweep_points(ctx, s, a, valid, &failed))) {
     free(valid);
     return rc;
   }

@@ -181,3 +181,37 @@ int rn_lattice_scene_finite(const rn_lattice_scene *opt, rn_num_check *chk) {
   rn_num_checked(chk, "the load value", opt->load_value2);
   return !chk->bad;
 }
+
+double rn_pcell_bar_vectors(const rn_pcell *c, int *uv, double *d) {
+  double ext = 0.0, span = 0.0;
+  for (int e = 0; e < c->nbars; e++) {
+    const int *o = c->bar + 5 * e;
+    uv[2 * e] = o[0];
+    uv[2 * e + 1] = o[1];
+    for (int k = 0; k < 3; k++) {
+      d[3 * e + k] = c->xyz[3 * o[1] + k] - c->xyz[3 * o[0] + k];
+      for (int m = 0; m < c->dim; m++) d[3 * e + k] += o[2 + m] * c->vec[3 * m + k];
+    }
+  }
+  for (int k = 0; k < 3 * c->nnodes; k++) ext = fmax(ext, fabs(c->xyz[k]));
+  for (int k = 0; k < 9; k++) span += fabs(c->vec[k]); /* image ends reach x + a_m */
+  return ext + span;
+}
+
+int rn_pcell_strut_bounds(const rn_pcell *c, const rn_lattice_scene *sec,
+                          rn_strut_bounds *out, double *extent) {
+  size_t nb1 = (size_t)(c->nbars ? c->nbars : 1);
+  int *uv = malloc(2 * nb1 * sizeof(int));
+  double *d = malloc(3 * nb1 * sizeof(double)), L, V;
+  int rc = -1;
+  if (uv && d) {
+    double ext = rn_pcell_bar_vectors(c, uv, d);
+    rn_pcell_measures(c, &L, &V);
+    rc = rn_strut_bounds_compute(c->dim, c->nnodes, c->nbars, uv, d, c->section_scale,
+                                 sec, V, out);
+    if (extent) *extent = ext;
+  }
+  free(uv);
+  free(d);
+  return rc;
+}

@@ -11,6 +11,7 @@
 #define RN_LATTICE_CHECK_H
 
 #include "generate/lattice_scene.h"
+#include "generate/periodic_cell.h"
 #include "io/num_format.h"
 #include "rodnet.h"
 
@@ -44,6 +45,19 @@ int rn_strut_bounds_compute(int dim, int nnodes, int nbars, const int *uv,
                             const double *d, const double *scale,
                             const rn_lattice_scene *sec, double measure,
                             rn_strut_bounds *out);
+
+/* The bars of a periodic cell c as a strut graph: uv[2 nbars] their end nodes,
+ * d[3 nbars] their vectors to the image ends; returns the largest coordinate a
+ * node or image end reaches. */
+double rn_pcell_bar_vectors(const rn_pcell *c, int *uv, double *d);
+
+/* rn_strut_bounds_compute on a periodic cell c with the section sec (the bar
+ * vectors reach the image ends; the measure is the cell's); *extent (may be
+ * NULL): the largest coordinate a node or image end reaches.  Returns 0, or -1
+ * if out of memory.  `rodnet generate --periodic` and `rodnet sweep` both
+ * check their cells with it. */
+int rn_pcell_strut_bounds(const rn_pcell *c, const rn_lattice_scene *sec,
+                          rn_strut_bounds *out, double *extent);
 
 /* The numeric range of a generated scene: RN_OK, or RN_ERR_RANGE with a
  * message naming what is out of range: a length (a bar, the extent, the cell
