@@ -26,7 +26,7 @@ packages=(
   libtrilinos-zoltan-dev libtrilinos-zoltan2-dev libtrilinos-galeri-dev
   libtrilinos-isorropia-dev libtrilinos-shards-dev libtrilinos-sacado-dev
   pkg-config libblas-dev binutils git
-  python3 python3-vtk9 python3-numpy python3-matplotlib
+  python3 python3-vtk9 python3-numpy python3-matplotlib python3-scipy python3-pytest
   clang libclang-rt-14-dev clang-format
 )
 

@@ -73,6 +73,18 @@ const char *rn_status_message(rn_status s);
 const char *rn_version_string(void);
 void rn_version(int *major, int *minor, int *patch);
 
+/* Layout of the public structs for bindings that mirror them without a
+ * compiler (c_api/abi/abi.c; the Python package checks its ctypes structures
+ * against these at import, docs/python.md): sizeof(type) (0 for a type not in
+ * the table), offsetof(type, field) (-1 for an unknown type or field) and the
+ * number of fields the table lists for type.  The types: rn_material,
+ * rn_section, rn_reaction, and in rodnet_solve.h rn_iteration_info,
+ * rn_solve_options, rn_stability, rn_solve_report, rn_homogenization and the
+ * rn_cell_path_* structs. */
+size_t rn_abi_sizeof(const char *type);
+long rn_abi_offsetof(const char *type, const char *field);
+int rn_abi_num_fields(const char *type);
+
 /* ---- context ------------------------------------------------------------ */
 typedef struct rn_context rn_context;
 

@@ -168,15 +168,18 @@ typedef struct rn_stability {
 
 /* Why a solve stopped. */
 typedef enum rn_solve_stop {
-  RN_STOP_GRADIENT = 0, /* equilibrium: force and moment residuals within their
-                           tolerances on the physical scale (and ||g|| <= gtol_abs
-                           if set) */
-  RN_STOP_STEP = 1,     /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
-  RN_STOP_ENERGY = 2,   /* |dE| <= energy_tol * (1 + |E|) on an accepted step
-                           (off by default) */
-  RN_STOP_MAX_ITER = 3, /* iteration limit: not converged */
-  RN_STOP_RADIUS = 4,   /* trust radius collapsed: not converged */
-  RN_STOP_FAILED = 5    /* error (see status / context) */
+  RN_STOP_GRADIENT = 0,   /* equilibrium: force and moment residuals within their
+                             tolerances on the physical scale (and ||g|| <= gtol_abs
+                             if set) */
+  RN_STOP_STEP = 1,       /* ||s|| <= step_tol * (1 + ||x||) after an accepted step */
+  RN_STOP_ENERGY = 2,     /* |dE| <= energy_tol * (1 + |E|) on an accepted step
+                             (off by default) */
+  RN_STOP_MAX_ITER = 3,   /* iteration limit: not converged */
+  RN_STOP_RADIUS = 4,     /* trust radius collapsed: not converged */
+  RN_STOP_FAILED = 5,     /* error (see status / context) */
+  RN_STOP_INTERRUPTED = 6 /* rn_solve_options.interrupt was set: stopped at the
+                             next iteration check, not converged (no load cut,
+                             no stability check) */
 } rn_solve_stop;
 
 /* Per-iteration progress (passed to the callback once per Newton iteration). */
@@ -232,6 +235,11 @@ typedef struct rn_solve_options {
    * force one (CHOLESKY on a part of a distributed network: not checked,
    * stability.checked = 0; rodnet solve then checks the gathered network). */
   int stability_method;
+  /* NULL (default), or a flag the caller may set (from a signal handler or
+   * another thread) to stop the solve: it is read at every iteration check
+   * (once per Newton iteration, after progress), and a non-zero value stops
+   * the solve there with RN_STOP_INTERRUPTED, the network at that iterate. */
+  const volatile int *interrupt;
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);
@@ -276,8 +284,8 @@ typedef struct rn_solve_report {
 } rn_solve_report;
 
 /* Name of a stop reason ("gradient", "step", "energy", "max_iterations", "radius",
- * "failed"); name of a solver kind (rodnet_registry.h: "tr-minres", "rol-tr-tcg",
- * "rol-ls-newton", "tr-krylov", "nox", "rol-lbfgs"); parse a solver name
+ * "failed", "interrupted"); name of a solver kind (rodnet_registry.h: "tr-minres",
+ * "rol-tr-tcg", "rol-ls-newton", "tr-krylov", "nox", "rol-lbfgs"); parse a solver name
  * (RN_ERR_ARG if unknown). */
 const char *rn_solve_stop_name(rn_solve_stop s);
 const char *rn_solver_name(rn_solver_kind k);

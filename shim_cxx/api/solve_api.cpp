@@ -402,6 +402,7 @@ void automatic_stepping(Problem &p, const rn_solve_options &opt, double target,
       done.save(p.network());
       inc *= 2.0;
     } else {
+      if (tot.stop == RN_STOP_INTERRUPTED) return; // the caller stops: no load cut
       if (cuts >= opt.max_load_cuts || target <= 0.0 || load_free) return;
       ++cuts;
       inc *= 0.5;
@@ -515,8 +516,9 @@ void solve(rn_network *net, const rn_solve_options &opt, rn_solve_report *rep) {
   if (rep) {
     fill_report(p, tot, force_scale,
                 std::chrono::duration<double>(Clock::now() - start).count(), rep);
-    // the stability of the returned state (LOBPCG on a part: collective)
-    if (opt.stability) {
+    // the stability of the returned state (LOBPCG on a part: collective); none
+    // after an interrupt (the caller asked to stop)
+    if (opt.stability && tot.stop != RN_STOP_INTERRUPTED) {
       if (!dist) {
         check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
         p.assemble_hessian(x.data());
@@ -578,6 +580,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->preconditioner = RN_PRECOND_AUTO;
   opt->stability = 1;
   opt->stability_method = RN_STABILITY_AUTO;
+  opt->interrupt = nullptr;
 }
 
 const char *rn_solve_stop_name(rn_solve_stop s) {
@@ -594,6 +597,8 @@ const char *rn_solve_stop_name(rn_solve_stop s) {
     return "radius";
   case RN_STOP_FAILED:
     return "failed";
+  case RN_STOP_INTERRUPTED:
+    return "interrupted";
   }
   return "unknown";
 }

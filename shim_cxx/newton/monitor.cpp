@@ -87,6 +87,8 @@ bool Monitor::check(const IterationView &it) {
   const bool newton_step = it.iteration > 0 && it.accepted && it.unconstrained;
   if (!std::isfinite(it.energy) || !std::isfinite(it.gnorm)) {
     reason_ = RN_STOP_FAILED;
+  } else if (opt_.interrupt && *opt_.interrupt) { // the caller asked to stop
+    reason_ = RN_STOP_INTERRUPTED;
   } else if (small_gradient && !it.negative_curvature) {
     reason_ = RN_STOP_GRADIENT;
   } else if (newton_step && !it.negative_curvature &&

@@ -77,4 +77,21 @@ if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
     fail "build the scene consumer with pkg-config"
   "$work/consumer-scene-pc" "$scene" "$work/out-pc" || fail "run the pkg-config scene consumer"
 fi
+# The Python package beside the library (docs/python.md): imported from the prefix
+# alone (no build tree, no RODNET_LIBRARY), it loads the installed libraries.
+if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
+  init=$(find "$prefix" -path '*/dist-packages/rodnet/__init__.py' | head -n1)
+  [ -n "$init" ] || fail "the Python package rodnet is not installed"
+  pydir=$(dirname "$(dirname "$init")")
+  echo "check_install: Python package in ${pydir#"$prefix"/}"
+  (cd "$work" && env -u RODNET_LIBRARY -u RODNET_SCENE_LIBRARY PYTHONPATH="$pydir" \
+     /usr/bin/python3 -c "
+import sys, rodnet
+assert rodnet.lib_path.startswith('$prefix'), rodnet.lib_path
+assert rodnet.scene_lib_path.startswith('$prefix'), rodnet.scene_lib_path
+r = rodnet.solve(rodnet.load_scene('$scene'))
+assert r.converged and r.stability['verified_minimum'], r
+print('check_install: python3 -c \'import rodnet\' from the prefix:', rodnet.lib_path, r)
+") || fail "import rodnet from the installed prefix"
+fi
 echo "check_install: ok"

@@ -86,6 +86,8 @@ static void test_names_and_options(rn_context *ctx) {
   CHECK(strcmp(rn_solve_stop_name(RN_STOP_MAX_ITER), "max_iterations") == 0);
   CHECK(strcmp(rn_solve_stop_name(RN_STOP_RADIUS), "radius") == 0);
   CHECK(strcmp(rn_solve_stop_name(RN_STOP_FAILED), "failed") == 0);
+  CHECK(strcmp(rn_solve_stop_name(RN_STOP_INTERRUPTED), "interrupted") == 0);
+  CHECK(opt.interrupt == NULL);
 
   CHECK_STATUS(rn_solve(NULL, &opt, &rep), RN_ERR_ARG);
   CHECK(rep.status == RN_ERR_ARG && rep.converged == 0);
@@ -141,6 +143,76 @@ static void test_names_and_options(rn_context *ctx) {
     rn_network_destroy(&big);
   }
   rn_network_destroy(&net);
+}
+
+/* rn_solve_options.interrupt: a flag set by the progress callback at iteration
+ * stop_at stops every solver kind there (RN_STOP_INTERRUPTED, not converged, no
+ * load cut, no stability check); a flag set before the solve stops it at its
+ * first check.  The Python package's Ctrl-C rests on it. */
+typedef struct interrupt_log {
+  volatile int flag;
+  int stop_at, calls;
+} interrupt_log;
+
+static void interrupt_at(void *user, const rn_iteration_info *info) {
+  interrupt_log *log = user;
+  log->calls++;
+  if (info->iteration >= log->stop_at) log->flag = 1;
+}
+
+static void test_interrupt(rn_context *ctx) {
+  const rn_solver_kind kinds[] = {RN_SOLVER_TR_MINRES,     RN_SOLVER_ROL_TR_TCG,
+                                  RN_SOLVER_ROL_LS_NEWTON, RN_SOLVER_TR_KRYLOV,
+                                  RN_SOLVER_NOX,           RN_SOLVER_ROL_LBFGS};
+  for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; ++k) {
+    rn_network *net = shim_cantilever(ctx, 0.5);
+    rn_solve_options opt;
+    rn_solve_report rep;
+    interrupt_log log = {0, 2, 0};
+    rn_solve_options_default(&opt);
+    opt.solver = kinds[k];
+    opt.progress = interrupt_at;
+    opt.progress_user = &log;
+    opt.interrupt = &log.flag;
+    CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+    CHECK(rep.stop == RN_STOP_INTERRUPTED && rep.converged == 0);
+    CHECK(rep.load_steps == 1 && rep.stability.checked == 0);
+    CHECK(rep.iterations >= 1 && rep.iterations <= 3);
+    if (rep.stop != RN_STOP_INTERRUPTED)
+      fprintf(stderr, "  interrupt: %s stopped on %s after %d iterations\n",
+              rn_solver_name(kinds[k]), rn_solve_stop_name(rep.stop), rep.iterations);
+    rn_network_destroy(&net);
+  }
+  {
+    rn_network *net = shim_cantilever(ctx, 0.5);
+    rn_solve_options opt;
+    rn_solve_report rep;
+    const volatile int set = 1;
+    rn_solve_options_default(&opt);
+    opt.interrupt = &set;
+    CHECK_STATUS(rn_solve(net, &opt, &rep), RN_OK);
+    CHECK(rep.stop == RN_STOP_INTERRUPTED && rep.iterations == 0 && !rep.converged);
+    rn_network_destroy(&net);
+  }
+}
+
+/* The layout table of bindings (rn_abi_*): every field of the table at its
+ * offset, unknown names refused. */
+static void test_abi_table(void) {
+  CHECK(rn_abi_sizeof("rn_solve_options") == sizeof(rn_solve_options));
+  CHECK(rn_abi_sizeof("rn_solve_report") == sizeof(rn_solve_report));
+  CHECK(rn_abi_sizeof("rn_cell_path_result") == sizeof(rn_cell_path_result));
+  CHECK(rn_abi_sizeof("no_such_struct") == 0 && rn_abi_sizeof(NULL) == 0);
+  CHECK(rn_abi_offsetof("rn_solve_options", "interrupt") ==
+        (long)offsetof(rn_solve_options, interrupt));
+  CHECK(rn_abi_offsetof("rn_solve_report", "stability") ==
+        (long)offsetof(rn_solve_report, stability));
+  CHECK(rn_abi_offsetof("rn_cell_path_result", "inst") ==
+        (long)offsetof(rn_cell_path_result, inst));
+  CHECK(rn_abi_offsetof("rn_solve_options", "nonsense") == -1);
+  CHECK(rn_abi_offsetof(NULL, "x") == -1);
+  CHECK(rn_abi_num_fields("rn_material") == 3 && rn_abi_num_fields("rn_section") == 5);
+  CHECK(rn_abi_num_fields("rn_solve_options") == 19);
 }
 
 /* Small-load cantilever against the discrete linear solution; returns
@@ -287,6 +359,8 @@ int main(int argc, char **argv) {
   test_linear_cantilever(ctx);
   test_solver_agreement(ctx);
   test_min_eigenvalue(ctx);
+  test_interrupt(ctx);
+  test_abi_table();
   rn_context_destroy(&ctx);
   rn_runtime_finalize();
   return rn_test_finish("shim_solve");
