@@ -79,7 +79,11 @@ if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
 fi
 # The Python package beside the library (docs/python.md): imported from the prefix
 # alone (no build tree, no RODNET_LIBRARY), it loads the installed libraries.
-if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
+# (not under a sanitizer: its runtime cannot be loaded into an uninstrumented python3)
+if [ -f "$libdir/pkgconfig/rodnet-scene.pc" ] &&
+   ldd "$libdir/librodnet.so" | grep -Eq 'lib(asan|ubsan|tsan)'; then
+  echo "check_install: Python import skipped: the library is built with a sanitizer"
+elif [ -f "$libdir/pkgconfig/rodnet-scene.pc" ]; then
   init=$(find "$prefix" -path '*/dist-packages/rodnet/__init__.py' | head -n1)
   [ -n "$init" ] || fail "the Python package rodnet is not installed"
   pydir=$(dirname "$(dirname "$init")")
