@@ -77,7 +77,7 @@ for p in problems:
         try:
             res = so.minimize(o.value, o.x0, jac=o.gradient, method=m,
                               options={"maxiter": args.max_iter}, **kw)
-            x, ok, nit, stop = res.x, bool(res.success), int(res.nit), "scipy"
+            x, ok, nit = res.x, bool(res.success), int(res.nit)
             stop = "gradient" if ok else ("max_iterations" if nit >= args.max_iter
                                           else "failed")
         except rodnet.Error as e:  # a degenerate point the method did not reject

@@ -24,10 +24,7 @@ def _f64(a, shape=None, what="array"):
     except (TypeError, ValueError) as e:
         raise Error("%s: not an array of numbers (%s)" % (what, e)) from None
     if shape is not None and out.shape != shape:
-        if out.size == int(np.prod(shape)) and out.ndim == 1 and len(shape) == 1:
-            pass
-        else:
-            raise Error("%s: expected shape %s, got %s" % (what, shape, out.shape))
+        raise Error("%s: expected shape %s, got %s" % (what, shape, out.shape))
     return out
 
 
@@ -193,7 +190,9 @@ class _Model:
 
     def energy(self):
         """Total energy at the current state."""
-        return self.objective().value(self.dofs())
+        E = ctypes.c_double()
+        self._call(fn.rn_network_energy, self._handle(), ptr(self.dofs()), ctypes.byref(E))
+        return E.value
 
     def energy_terms(self):
         """The energy by term at the current state: stretch, bend, twist, load."""
@@ -540,6 +539,7 @@ _OPTION_FIELDS = {"gtol": "gtol_rel", "gtol_rel": "gtol_rel", "gtol_abs": "gtol_
                   "krylov_tol": "krylov_tol", "initial_radius": "initial_radius",
                   "load_steps": "load_steps", "max_load_cuts": "max_load_cuts",
                   "predictor": "predictor", "stability": "stability"}
+_OPTION_TYPES = dict(_ffi.SolveOptions._fields_)
 _OPTION_WORDS = ("solver", "preconditioner", "factorization", "factorisation",
                  "stability_method", "progress")
 
@@ -567,9 +567,8 @@ def solve_options(model=None, solver=None, **options):
             o.stability_method = _STAB_METHODS[v]
         elif k in _OPTION_FIELDS:
             field = _OPTION_FIELDS[k]
-            kind = dict(SolveOptions_fields())[field]
             try:
-                setattr(o, field, int(v) if kind is ctypes.c_int else float(v))
+                setattr(o, field, int(v) if _OPTION_TYPES[field] is ctypes.c_int else float(v))
             except (TypeError, ValueError):
                 raise Error("option %s: %r is not a number" % (k, v)) from None
         elif k == "progress":
@@ -578,10 +577,6 @@ def solve_options(model=None, solver=None, **options):
             raise Error("unknown option %r; known: %s" % (
                 k, ", ".join(sorted(set(_OPTION_FIELDS) | set(_OPTION_WORDS)))))
     return o
-
-
-def SolveOptions_fields():
-    return _ffi.SolveOptions._fields_
 
 
 class Result:
@@ -723,10 +718,7 @@ class Objective:
         self._pattern = None
 
     def _x(self, x, what="x"):
-        x = _f64(x, (self.n,), what)
-        if x.ndim != 1 or x.shape[0] != self.n:
-            raise Error("%s: expected %d values, got shape %s" % (what, self.n, x.shape))
-        return x
+        return _f64(x, (self.n,), what)
 
     def _status(self, st, where):
         return self.model._ctx.check(st, where)

@@ -10,6 +10,7 @@ solvers in the same performance profiles (benchmarks/bench_profiles.py).
 """
 import csv
 import datetime
+import functools
 import json
 import math
 import os
@@ -54,6 +55,7 @@ class Problem:
         self.klass = entry.get("class", "")
         self.scene_path = os.path.normpath(os.path.join(base, entry["scene"]))
         self.suite = suite
+        self._start = None  # the start's vertices, read once by error()
         self.reference = None
         if entry.get("reference"):
             ref = os.path.normpath(os.path.join(base, entry["reference"]))
@@ -76,7 +78,11 @@ class Problem:
         if self.reference is None:
             return math.nan
         x = _vertices(model)
-        x0 = _vertices(self.load()) if start is None else start
+        if start is None:
+            if self._start is None:
+                self._start = _vertices(self.load())
+            start = self._start
+        x0 = start
         if x.shape != self.reference.shape:
             return math.nan
         err = np.max(np.linalg.norm(x - self.reference, axis=1))
@@ -107,14 +113,15 @@ def problems(suite="quick", manifest=None):
             if suite in e.get("suites", [])]
 
 
+@functools.lru_cache(maxsize=None)
 def provenance():
     """The machine and build columns of a row (commit, compiler, flags, cpu, cores,
-    blas, host, date) for a run from Python."""
+    blas, host, date) for a run from Python; found once per process (the date is
+    the first call's)."""
     commit = ""
     try:
-        here = os.path.dirname(os.path.abspath(__file__))
         from . import _config
-        src = getattr(_config, "source_dir", here)
+        src = _config.source_dir
         commit = subprocess.run(["git", "-C", src, "describe", "--always", "--dirty",
                                  "--abbrev=12"], capture_output=True, text=True,
                                 timeout=10).stdout.strip()
@@ -148,7 +155,7 @@ def row(problem, solver, **fields):
     the suite and provenance are filled in."""
     r = {"problem": problem.name, "class": problem.klass, "solver": solver,
          "suite": problem.suite}
-    r.update(provenance())
+    r.update(provenance())  # (cached: one git call per process)
     for k, v in fields.items():
         if k not in COLUMNS:
             raise Error("row: unknown column %r (columns: %s)" % (k, ", ".join(COLUMNS)))

@@ -324,9 +324,14 @@ def test_errors(tmp_path, scenes, hc8):
 
 
 def test_layout_checked_against_the_library():
+    import ctypes
     from rodnet import _ffi
     for name, cls in _ffi._MIRRORED.items():
-        assert _ffi.fn.rn_abi_sizeof(name.encode()) == __import__("ctypes").sizeof(cls)
+        assert _ffi.fn.rn_abi_sizeof(name.encode()) == ctypes.sizeof(cls)
+        assert _ffi.fn.rn_abi_num_fields(name.encode()) == len(cls._fields_)
+        for f in cls._fields_:
+            assert _ffi.fn.rn_abi_offsetof(name.encode(), f[0].encode()) == \
+                getattr(cls, f[0]).offset
 
 
 # ---- the benchmark suite's problems ----------------------------------------------------
