@@ -585,6 +585,13 @@ if(RN_WITH_TRILINOS)
   rn_add_test(problems_cell_path SOURCES unit/problems_cell_path_test.c
               LIBS rodnet_problems m LABELS unit TIMEOUT 120
               ARGS ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/hc_stress.json)
+  # Past the first instability through the library's C entries, without the
+  # command (rn_cell_post_buckling, rn_cell_pattern_state, rn_scene_load_supercell;
+  # issue 23): the bifurcated branch of the honeycomb's 2 x 2 supercell.
+  rn_add_test(problems_cell_post SOURCES unit/problems_cell_post_test.c
+              LIBS rodnet_problems m LABELS unit TIMEOUT 120
+              ARGS ${gen}/hom_hc8.json)
+  set_tests_properties(problems_cell_post PROPERTIES FIXTURES_REQUIRED problems_hom_hc8)
   # docs/homog_sweep.py (the sweep figure of the docs): a smoke run of 3 points
   add_test(NAME problems_homog_sweep
            COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/docs/homog_sweep.py ${RN_CLI}

@@ -795,6 +795,97 @@ rn_status rn_cell_path_run(rn_network *net, int nseg, const rn_cell_path_segment
 /* Frees what rn_cell_path_run allocated in res (NULL-safe; res is left empty). */
 void rn_cell_path_result_free(rn_cell_path_result *res);
 
+/* ---- past the first instability: the bifurcated branch in a supercell
+ * (docs/homogenization.md, "Post-buckling") ---- */
+/* The supercell (cells per direction, rep[dim]; rep[2] = 1 in 2D) of a local
+ * instability: the least common multiple of the periods of its wave vector and
+ * of the wave vectors equivalent to it (each period the smallest m <= 12 with
+ * m xi an integer to 1e-3), so that it holds every critical mode and their
+ * combinations.  1, or 0 if one is not commensurate with at most 12 cells per
+ * direction (or in is not a local instability).  Needs no network. */
+int rn_cell_instability_supercell(const rn_cell_path_instability *in, int dim,
+                                  int rep[3]);
+
+/* The state drawn for a pattern: the principal (cell-periodic) branch of the
+ * supercell network net (at rest, every strain component a DOF; e.g. rep of
+ * rn_cell_instability_supercell copies of the cell of a path) at the critical
+ * strain of in, reached by rn_cell_relax in 10 proportional load steps, plus its
+ * critical mode (the lowest Bloch mode at xi = 0 of the supercell in modes)
+ * scaled so that its largest fluctuation entry is amplitude_fraction of the
+ * cell size (the supercell's measure per copy to the power 1/dim).  Sets
+ * *eigenvalue (that mode's eigenvalue), *amplitude (the displacement drawn) and
+ * *converged (the last relaxation).  Serial; prints nothing. */
+rn_status rn_cell_pattern_state(rn_network *net, const rn_cell_path_instability *in,
+                                int copies, rn_bloch_modes modes,
+                                double amplitude_fraction, double *eigenvalue,
+                                double *amplitude, int *converged);
+
+/* One step past the critical strain, on both branches. */
+typedef struct rn_cell_post_step {
+  double t, strain[6];       /* path parameter, prescribed macroscopic strain */
+  double stress[6], energy;  /* bifurcated branch: stress, elastic energy per cell */
+  double amplitude;          /* largest |x - x_principal| over rod vertices */
+  int converged, iterations; /* rn_cell_minimize */
+  int verified;              /* rn_network_stability: a verified minimum */
+  double lowest;             /* its lowest (scaled) eigenvalue */
+  double principal_stress[6], principal_energy; /* principal branch (rn_cell_relax) */
+  int principal_converged, principal_verified;
+  double principal_lowest;
+} rn_cell_post_step;
+
+#define RN_CELL_POST_MAX_HARMONICS 64
+typedef struct rn_cell_post_result rn_cell_post_result;
+/* Called after each step (res->done: the steps recorded so far). */
+typedef void (*rn_cell_post_progress)(void *user, const rn_cell_post_result *res);
+
+typedef struct rn_cell_post_options {
+  int steps;            /* steps from the critical strain to the path's end (>= 1) */
+  rn_bloch_modes modes; /* the Bloch modes of the critical mode */
+  int rep[3];           /* the supercell: copies of the cell per direction */
+  /* For the harmonics (NULL: none computed): rod_base[r] the index of the rod of
+   * copy (0, 0, 0) that rod r of the supercell copies (r itself in that copy),
+   * rod_cell[3 r .. 3 r + 2] the copy's cell coordinates. */
+  const int *rod_base, *rod_cell;
+  rn_cell_post_progress progress; /* may be NULL */
+  void *user;                     /* progress's first argument */
+} rn_cell_post_options;
+void rn_cell_post_options_default(rn_cell_post_options *opt);
+
+struct rn_cell_post_result {
+  int rep[3], copies;
+  double mode_eigenvalue; /* lowest Bloch eigenvalue (xi = 0) of the supercell at the
+                             critical strain */
+  double perturbation;    /* the critical mode's amplitude added (1e-3 of the cell
+                             size at its largest entry) */
+  int steps, done;        /* steps asked for; recorded (step[0 .. done - 1]) */
+  rn_cell_post_step *step;
+  /* the last bifurcated displacement from the principal state over the
+   * supercell's harmonics xi = (p / rep[0], q / rep[1](, s / rep[2])) (components
+   * folded into (-1/2, 1/2]): the share of sum over base vertices of
+   * |sum_copies d exp(-2 pi i xi . c)|^2; nharm 0 without rod_base or past
+   * RN_CELL_POST_MAX_HARMONICS harmonics */
+  int nharm;
+  double harm_xi[RN_CELL_POST_MAX_HARMONICS][3], harm[RN_CELL_POST_MAX_HARMONICS];
+};
+
+/* After rn_cell_path_run found a local instability (path->inst) on a cell:
+ * the supercell network net (opt->rep copies of that cell, at rest, every strain
+ * component a DOF) follows the principal branch through the path's steps to the
+ * critical strain (rn_cell_relax), takes the critical mode there, then opt->steps
+ * steps of the path past the critical strain to its end, on both branches:
+ * principal by rn_cell_relax from the previous principal state, bifurcated by
+ * rn_cell_minimize from the previous bifurcated state (first: the principal
+ * state plus the critical mode), each checked by rn_network_stability.  Stops
+ * after a step whose bifurcated minimisation did not converge.  Leaves the last
+ * bifurcated state as net's current state.  Fills res (free it with
+ * rn_cell_post_result_free, also after an error).  RN_ERR_ARG for a path
+ * without a local instability or bad options.  Serial; prints nothing. */
+rn_status rn_cell_post_buckling(rn_network *net, const rn_cell_path_result *path,
+                                const rn_cell_post_options *opt,
+                                rn_cell_post_result *res);
+/* Frees what rn_cell_post_buckling allocated in res (NULL-safe; res left empty). */
+void rn_cell_post_result_free(rn_cell_post_result *res);
+
 #ifdef __cplusplus
 }
 #endif

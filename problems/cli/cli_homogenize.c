@@ -384,57 +384,10 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The pattern's state on the supercell network net: the principal
- * (cell-periodic) branch at the critical strain, in 10 load steps, plus its
- * critical mode (the lowest Bloch mode at xi = 0 of the supercell, in the modes
- * examined) scaled to 5 % of the cell size at its largest displacement. */
-static rn_status pattern_state(rn_context *ctx, const hp_path *path, rn_network *net,
-                               hp_pattern *pat) {
-  const rn_cell_path_instability *in = &path->r.inst;
-  rn_cell_relax_report rep;
-  double eps[6], vmax = 0.0, measure = 0.0, *x = NULL, *vec = NULL;
-  size_t nd = rn_network_num_dofs(net), nb = 0;
-  rn_status st;
-  for (int k = 1; k <= 10; ++k) {
-    for (int v = 0; v < path->ns; ++v) eps[v] = 0.1 * k * in->strain[v];
-    if ((st = rn_cell_relax(net, eps, &rep))) return st;
-  }
-  pat->converged = rep.converged;
-  if ((st = rn_network_bloch_dofs(net, &nb, NULL, NULL))) return st;
-  x = malloc(nd * sizeof(double));
-  vec = malloc(2 * nb * sizeof(double));
-  if (!x || !vec) {
-    st = rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
-    goto done;
-  }
-  const double zero[3] = {0.0, 0.0, 0.0};
-  if ((st = rn_cell_bloch_eigen(net, zero, path->modes, 1, &pat->eigenvalue, vec)) ||
-      (st = rn_network_get_dofs(net, x)))
-    goto done;
-  rn_network_cell_info(net, NULL, NULL, &measure, NULL);
-  /* display amplitude: 5 % of the cell size at the largest displacement */
-  pat->amplitude =
-      0.05 *
-      pow(measure / (pat->rep[0] * pat->rep[1] * (path->dim == 3 ? pat->rep[2] : 1)),
-          1.0 / path->dim);
-  size_t nfl = nd - (size_t)path->ns; /* the strain DOFs are the last */
-  for (size_t i = 0; i < nfl; ++i) vmax = fmax(vmax, fabs(vec[2 * i]));
-  if (!(vmax > 0.0)) {
-    st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the critical mode has no real part");
-    goto done;
-  }
-  for (size_t i = 0; i < nfl; ++i) x[i] += pat->amplitude * vec[2 * i] / vmax;
-  st = rn_network_set_dofs(net, x);
-done:
-  free(x);
-  free(vec);
-  return st;
-}
-
 /* --pattern: the supercell of the critical wave vector on the principal
  * (cell-periodic) branch at the critical strain plus its critical mode
- * (pattern_state), written as P.vtu and drawn to P.png.  (The post-buckled
- * branch is not computed: see docs.)  Fills pat. */
+ * (rn_cell_pattern_state, 5 % of the cell size), written as P.vtu and drawn to P.png.
+ * (The post-buckled branch is not computed: see docs.)  Fills pat. */
 static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path,
                          hp_pattern *pat) {
   const rn_cell_path_instability *in = &path->r.inst;
@@ -448,15 +401,17 @@ static int write_pattern(rn_context *ctx, const hom_args *a, const hp_path *path
                        : "the path stays stable: no pattern");
     return RN_EXIT_OK;
   }
-  if (!hp_instability_supercell(in, path->dim, pat->rep))
+  if (!rn_cell_instability_supercell(in, path->dim, pat->rep))
     snprintf(pat->why_not, sizeof pat->why_not, "%s",
              "the wave vector is not commensurate with a supercell of at most 12 cells "
              "per direction");
-  else if ((st = hp_supercell(ctx, a->scene, pat->rep, path->dim, 0, &sc)))
+  else if ((st = rn_scene_load_supercell(ctx, a->scene, path->dim, pat->rep, 0, &sc)))
     snprintf(pat->why_not, sizeof pat->why_not, "%s",
              st == RN_ERR_ARG ? "needs a scene without \"repeat\""
                               : rn_context_last_error(ctx));
-  else if (pattern_state(ctx, path, rn_scene_network(sc), pat) ||
+  else if (rn_cell_pattern_state(
+               rn_scene_network(sc), in, pat->rep[0] * pat->rep[1] * pat->rep[2],
+               path->modes, 0.05, &pat->eigenvalue, &pat->amplitude, &pat->converged) ||
            hp_write_pattern_files(ctx, sc, a->pattern, a->quiet, &pat->written,
                                   &pat->png))
     snprintf(pat->why_not, sizeof pat->why_not, "%s", rn_context_last_error(ctx));
@@ -593,12 +548,13 @@ static void print_path(const hom_args *a, const hp_path *path, const hp_post *po
 
 /* The summary of the post-buckled branch's last step on stdout. */
 static void print_post(const hom_args *a, const hp_path *path, const hp_post *post) {
-  const hp_post_step *ls = &post->step[post->done - 1];
+  const rn_cell_post_result *r = &post->r;
+  const rn_cell_post_step *ls = &r->step[r->done - 1];
   char third[16] = "";
-  if (path->dim == 3) snprintf(third, sizeof third, " x %d", post->rep[2]);
+  if (path->dim == 3) snprintf(third, sizeof third, " x %d", r->rep[2]);
   printf("rodnet homogenize: post-buckling: %d x %d%s supercell, %d steps past the "
          "critical strain; at load factor %.4g stress ",
-         post->rep[0], post->rep[1], third, post->done, ls->t);
+         r->rep[0], r->rep[1], third, r->done, ls->t);
   hp_print_vec(stdout, path->ns, ls->stress, 6, 0);
   fputs(" (principal ", stdout);
   hp_print_vec(stdout, path->ns, ls->principal_stress, 6, 0);
@@ -679,7 +635,7 @@ static int write_and_print(rn_context *ctx, hom_out *o, const hp_path *path,
             a->scene, path->r.done + 1, path->r.stopped, o->dest, a->output);
     rc = RN_EXIT_INTERNAL;
   }
-  if (!st && post->done && !a->quiet) print_post(a, path, post);
+  if (!st && post->r.done && !a->quiet) print_post(a, path, post);
   if (st) {
     fprintf(stderr, "rodnet homogenize: %s\n", rn_context_last_error(ctx));
     return RN_EXIT_INPUT;

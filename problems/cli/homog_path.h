@@ -34,40 +34,14 @@ typedef struct hp_path {
   hp_pattern pattern;    /* --pattern (cli_homogenize.c) */
 } hp_path;
 
-/* --post-buckling (homog_post.c): the bifurcated branch in the supercell. */
-typedef struct hp_post_step {
-  double t, strain[6];       /* path parameter, prescribed macroscopic strain */
-  double stress[6], energy;  /* bifurcated branch: stress, elastic energy per cell */
-  double amplitude;          /* largest |x - x_principal| over rod vertices */
-  int converged, iterations; /* rn_cell_minimize */
-  int verified;              /* rn_network_stability: verified minimum */
-  double lowest;             /* its lowest (scaled) eigenvalue */
-  double principal_stress[6], principal_energy;
-  int principal_converged, principal_verified;
-  double principal_lowest;
-} hp_post_step;
-
-#define HP_MAX_HARMONICS 64
+/* --post-buckling (homog_post.c): the bifurcated branch in the supercell
+ * (rn_cell_post_buckling). */
 typedef struct hp_post {
-  int requested, nsteps, done, pinned, written, png;
-  int rep[3];
-  double mode_eigenvalue, perturbation;
-  hp_post_step *step; /* [nsteps] */
-  int nharm;
-  double harm_xi[HP_MAX_HARMONICS][3], harm[HP_MAX_HARMONICS];
-  const char *failed; /* why it was not computed (NULL if it was) */
+  int requested, nsteps, pinned, written, png;
+  rn_cell_post_result r; /* owned (hp_post_free) */
+  const char *failed;    /* why it was not computed (NULL if it was) */
 } hp_post;
 
-/* The smallest m <= 12 with m xi an integer (to 1e-3); 0 if none. */
-int hp_period_of(double xi);
-/* The supercell (cells per direction, rep[dim]) of a local instability: the least
- * common multiple of the periods of its wave vector and of the wave vectors
- * equivalent to it, so that it holds every critical mode and their combinations.
- * 0 if one is not commensurate with at most 12 cells per direction. */
-int hp_instability_supercell(const rn_cell_path_instability *in, int dim, int rep[3]);
-/* The supercell rep[dim] of the periodic scene file (without "repeat"), every
- * strain component a DOF, no applied stress; pin_out_of_plane: z of every joint
- * and interior vertex and every material angle pinned, the first joint fully. */
 /* The pattern files of a supercell scene sc at its current state: BASE.vtu
  * (rn_vtk_write; its status, recorded in ctx) and BASE.png drawn from it by
  * docs/render_vtu.py (view xy, coloured by the bending moment; --quiet if
@@ -77,15 +51,13 @@ int hp_instability_supercell(const rn_cell_path_instability *in, int dim, int re
 rn_status hp_write_pattern_files(rn_context *ctx, rn_scene *sc, const char *base,
                                  int quiet, int *vtu_written, int *png_written);
 
-rn_status hp_supercell(rn_context *ctx, const char *scene, const int *rep, int dim,
-                       int pin_out_of_plane, rn_scene **out);
-/* After hp_run found a local instability: the supercell of its wave vector, the
- * principal branch to the critical strain, the critical mode, then po->nsteps
- * steps of the path past the critical strain on both branches (principal:
- * rn_cell_relax; bifurcated: rn_cell_minimize from the principal state plus the
- * critical mode), each checked by rn_network_stability; the last bifurcated
- * state written to out_base.vtu and drawn to out_base.png.  po->failed says why
- * nothing was computed (RN_OK then). */
+/* After hp_run found a local instability: the supercell scene of its wave
+ * vector (rn_cell_instability_supercell; rn_scene_load_supercell, out-of-plane pins for
+ * in-plane modes of a 2D cell), the library's continuation past the critical
+ * strain on it (rn_cell_post_buckling, po->nsteps steps; progress lines on
+ * stderr unless p->quiet) into po->r; the last bifurcated state written to
+ * out_base.vtu and drawn to out_base.png.  po->failed says why nothing was
+ * computed (RN_OK then). */
 rn_status hp_post_buckling(rn_context *ctx, const char *scene, const hp_path *p,
                            const char *out_base, hp_post *po);
 void hp_post_write_json(FILE *f, const hp_path *p, const hp_post *po);

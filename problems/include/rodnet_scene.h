@@ -54,6 +54,24 @@ rn_status rn_scene_joint_initial_position(const rn_scene *s, int joint, double x
 /* Total number of vertices over all rods. */
 long rn_scene_num_vertices(const rn_scene *s);
 
+/* The supercell of the periodic cell scene in the file at path: rep[0 .. dim - 1]
+ * copies of the cell per direction ("periodic": {"repeat"}, docs/homogenization.md,
+ * "Supercells"; dim the cell's dimension, 2 or 3), at rest, the cell's "strain" and
+ * "stress" control dropped (every strain component a DOF), and with
+ * pin_out_of_plane (2D only) z of every joint and interior vertex and every
+ * material angle pinned, the first joint fully (an in-plane study, as
+ * `rodnet homogenize --post-buckling` with --modes in-plane).  RN_ERR_ARG for a
+ * scene that is not periodic or already has "repeat", the reader's status for a
+ * file it refuses; *out is NULL on error. */
+rn_status rn_scene_load_supercell(rn_context *ctx, const char *path, int dim,
+                                  const int rep[3], int pin_out_of_plane, rn_scene **out);
+/* For each rod r of a supercell scene (rn_scene_load_supercell): rod_base[r] the
+ * rod of copy (0, 0(, 0)) it copies (r itself there), rod_cell[3 r .. 3 r + 2] the
+ * copy's cell coordinates (from the copies' names NAME@i,j(,k)); arrays of
+ * rn_network_num_rods and 3 times that.  The rod_base and rod_cell of
+ * rn_cell_post_options.  RN_ERR_ARG for a NULL argument. */
+rn_status rn_scene_supercell_copies(const rn_scene *s, int *rod_base, int *rod_cell);
+
 /* Override the fields of opt that the scene's "solver" block sets (call
  * rn_solve_options_default first, then this, then command-line options). */
 void rn_scene_apply_solver(const rn_scene *s, rn_solve_options *opt);
