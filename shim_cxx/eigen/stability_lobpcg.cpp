@@ -50,7 +50,7 @@ public:
       b_ = Teuchos::rcp(new TMV(w_->getMap(), k));
     }
     a_->elementWiseMultiply(1.0, *w_, x, 0.0);
-    if (by_column_) // (the gathered and local preconditioners take one vector)
+    if (by_column_) // (Preconditioner::takes_blocks: the gathered and local take one)
       for (size_t j = 0; j < k; ++j)
         op_->apply(*a_->getVector(j), *b_->getVectorNonConst(j));
     else
@@ -226,7 +226,8 @@ rn_stability lobpcg_stability(System &sys, const rn_solve_options &opt,
       prec = own.get();
     }
     auto A = Teuchos::rcp(new ScaledOperator(H, w, false));
-    auto P = Teuchos::rcp(new ScaledOperator(prec->inverse(), winv, true));
+    auto P =
+        Teuchos::rcp(new ScaledOperator(prec->inverse(), winv, !prec->takes_blocks()));
     const int block = static_cast<int>(std::min<GO>(n, kStabilityBlock));
     const int nev = std::max(1, std::min(block, kStabilityBlock - 2));
     auto X0 = Teuchos::rcp(new TMV(sys.map(), static_cast<size_t>(block)));

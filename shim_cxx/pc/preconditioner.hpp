@@ -50,6 +50,10 @@ public:
                              Teuchos::RCP<const Tpetra::Operator<>> & /*Ainv*/) const {
     return false;
   }
+  // True if inverse() takes a block of several columns in one call, with the messages
+  // of one vector (the DD: one halo exchange and one coarse solve for the block); the
+  // stability check's LOBPCG then applies it to the whole block, else column by column.
+  virtual bool takes_blocks() const { return false; }
   const PreconditionerStats &stats() const { return stats_; }
 
 protected:

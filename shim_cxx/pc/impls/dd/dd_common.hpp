@@ -1,6 +1,6 @@
 // dd_common.hpp - helpers shared by the files of the rod-level domain decomposition
-// (pc/impls/dd/): reductions over the ranks, the ladder of diagonal shifts, entry
-// lookup in a fill-complete matrix.
+// (pc/impls/dd/): reductions over the ranks, the ladder of diagonal shifts, block
+// work vectors, entry lookup in a fill-complete matrix.
 #ifndef RODNET_SHIM_DD_COMMON_HPP
 #define RODNET_SHIM_DD_COMMON_HPP
 
@@ -61,6 +61,14 @@ double smallest_shift(F &&try_factor, bool zero_failed = false, int hint = 99) {
   const double s = std::pow(10.0, hi);
   if (!last_hi) try_factor(s); // leave the factorisation of the returned shift
   return s;
+}
+
+// v with k columns on map, made anew where it has another column count (the work
+// vectors of a block application: one halo exchange and one coarse solve for all the
+// block's columns instead of one per column).
+inline void ensure_columns(Teuchos::RCP<TMV> &v, const Teuchos::RCP<const TMap> &map,
+                           size_t k) {
+  if (v.is_null() || v->getNumVectors() != k) v = Teuchos::rcp(new TMV(map, k));
 }
 
 // Position of local column lc in row row of a fill-complete local matrix (sorted rows).

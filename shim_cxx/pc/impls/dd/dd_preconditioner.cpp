@@ -505,68 +505,79 @@ void DdPreconditioner::Impl::sum_coarse_matrix() {
   S->fillComplete(cmap, cmap);
 }
 
+// The block at once: the rod solves column by column, then one export of the
+// interface right-hand sides, one coarse solve and one import for all the columns
+// (a block of LOBPCG costs the messages of one vector).
 void DdPreconditioner::Impl::apply(const TMV &X, TMV &Y, double alpha,
                                    double beta) const {
-  const size_t nloc = map->getNodeNumElements();
+  const size_t nloc = map->getNodeNumElements(), nc = X.getNumVectors();
   w.resize(nloc);
-  for (size_t j = 0; j < X.getNumVectors(); ++j) {
-    auto xv = X.getVector(j);
-    auto x = xv->getLocalViewHost(Tpetra::Access::ReadOnly);
-    // 1. z_r = H_rr^-1 x_r, into t.
+  t.resize(nloc * nc);
+  auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+  // 1. z_r = H_rr^-1 x_r, into t (column j at t + j nloc).
+  for (size_t j = 0; j < nc; ++j) {
+    double *tj = t.data() + j * nloc;
     for (const Rod &r : rods) {
       if (r.n() == 0) continue;
       double *z = w.data();
       for (int i = 0; i < r.n(); ++i)
-        z[i] = x(static_cast<size_t>(r.rows[static_cast<size_t>(i)]), 0);
+        z[i] = x(static_cast<size_t>(r.rows[static_cast<size_t>(i)]), j);
       solve_rod(r, z, 1);
       for (int i = 0; i < r.n(); ++i)
-        t[static_cast<size_t>(r.rows[static_cast<size_t>(i)])] = z[i];
+        tj[static_cast<size_t>(r.rows[static_cast<size_t>(i)])] = z[i];
     }
-    if (coarse_rows > 0) {
-      // 2. b_G = x_G - sum_r H_Gr z_r (exported to the owners).
-      {
-        auto bv = bov->getLocalViewHost(Tpetra::Access::OverwriteAll);
-        for (size_t l = 0; l < bv.extent(0); ++l) bv(l, 0) = 0.0;
+  }
+  if (coarse_rows > 0) {
+    ensure_columns(bov, cov, nc);
+    ensure_columns(yov, cov, nc);
+    ensure_columns(b, cmap, nc);
+    ensure_columns(y, cmap, nc);
+    // 2. b_G = x_G - sum_r H_Gr z_r (exported to the owners).
+    {
+      auto bv = bov->getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (size_t j = 0; j < nc; ++j) {
+        const double *tj = t.data() + j * nloc;
+        for (size_t l = 0; l < bv.extent(0); ++l) bv(l, j) = 0.0;
         for (size_t k = 0; k < iface_rows.size(); ++k)
-          if (iface_rows[k] >= 0) bv(k, 0) = x(static_cast<size_t>(iface_rows[k]), 0);
+          if (iface_rows[k] >= 0) bv(k, j) = x(static_cast<size_t>(iface_rows[k]), j);
         for (const Rod &r : rods)
           for (size_t e = 0; e < r.b_val.size(); ++e)
-            bv(static_cast<size_t>(r.coarse[static_cast<size_t>(r.b_col[e])]), 0) -=
+            bv(static_cast<size_t>(r.coarse[static_cast<size_t>(r.b_col[e])]), j) -=
                 r.b_val[e] *
-                t[static_cast<size_t>(r.rows[static_cast<size_t>(r.b_row[e])])];
+                tj[static_cast<size_t>(r.rows[static_cast<size_t>(r.b_row[e])])];
       }
-      b->putScalar(0.0);
-      b->doExport(*bov, *exporter, Tpetra::ADD);
-      // 3. coarse solve; 4. y_G to the ranks of the rods that touch it.
-      coarse->solve(*b, *y);
-      yov->doImport(*y, *importer, Tpetra::INSERT);
     }
-    // 5. y_r = H_rr^-1 (x_r - H_rG y_G); interface rows y_G.
-    auto yv = Y.getVectorNonConst(j);
-    auto out = yv->getLocalViewHost(Tpetra::Access::ReadWrite);
+    b->putScalar(0.0);
+    b->doExport(*bov, *exporter, Tpetra::ADD);
+    // 3. coarse solve; 4. y_G to the ranks of the rods that touch it.
+    coarse->solve(*b, *y);
+    yov->doImport(*y, *importer, Tpetra::INSERT);
+  }
+  // 5. y_r = H_rr^-1 (x_r - H_rG y_G); interface rows y_G.
+  auto out = Y.getLocalViewHost(Tpetra::Access::ReadWrite);
+  auto yo = yov->getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto yc = y->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t j = 0; j < nc; ++j) {
     auto put = [&](size_t row, double v) {
-      out(row, 0) = beta == 0.0 ? alpha * v : beta * out(row, 0) + alpha * v;
+      out(row, j) = beta == 0.0 ? alpha * v : beta * out(row, j) + alpha * v;
     };
-    auto yo = yov->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (const Rod &r : rods) {
       if (r.n() == 0) continue;
       double *z = w.data();
       for (int i = 0; i < r.n(); ++i)
-        z[i] = x(static_cast<size_t>(r.rows[static_cast<size_t>(i)]), 0);
+        z[i] = x(static_cast<size_t>(r.rows[static_cast<size_t>(i)]), j);
       if (coarse_rows > 0)
         for (size_t e = 0; e < r.b_val.size(); ++e)
           z[r.b_row[e]] -=
               r.b_val[e] *
-              yo(static_cast<size_t>(r.coarse[static_cast<size_t>(r.b_col[e])]), 0);
+              yo(static_cast<size_t>(r.coarse[static_cast<size_t>(r.b_col[e])]), j);
       solve_rod(r, z, 1);
       for (int i = 0; i < r.n(); ++i)
         put(static_cast<size_t>(r.rows[static_cast<size_t>(i)]), z[i]);
     }
-    if (coarse_rows > 0) {
-      auto yc = y->getLocalViewHost(Tpetra::Access::ReadOnly);
+    if (coarse_rows > 0)
       for (size_t k = 0; k < iface_rows.size(); ++k)
-        if (iface_rows[k] >= 0) put(static_cast<size_t>(iface_rows[k]), yc(k, 0));
-    }
+        if (iface_rows[k] >= 0) put(static_cast<size_t>(iface_rows[k]), yc(k, j));
   }
 }
 

@@ -59,6 +59,9 @@ public:
   void setup(System &sys) override;
   Teuchos::RCP<const Tpetra::Operator<>> inverse() const override;
   std::string name() const override { return "dd"; }
+  // A block in one application: the rod solves per column, one export, coarse solve
+  // and import for all columns.
+  bool takes_blocks() const override { return true; }
 
   // Of the last setup: global rows of the coarse matrix, rods (on all ranks) whose
   // interior block had to be shifted, the coarse shift, the coarse solver's name

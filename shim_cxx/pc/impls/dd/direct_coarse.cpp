@@ -134,19 +134,21 @@ bool GatheredCholesky::setup(const Teuchos::RCP<const TCrs> &R) {
   return sh[0] != 0.0;
 }
 
+// All of b's columns at once: one gather to rank 0, one scatter back.
 void GatheredCholesky::solve(const TMV &b, TMV &y) const {
-  for (size_t j = 0; j < b.getNumVectors(); ++j) {
-    auto bj = b.getVector(j);
-    auto yj = y.getVectorNonConst(j);
-    b0_->doImport(*bj, *imp0_, Tpetra::INSERT);
-    if (map0_->getNodeNumElements() > 0) {
-      auto v = b0_->getLocalViewHost(Tpetra::Access::ReadOnly);
-      auto w = y0_->getLocalViewHost(Tpetra::Access::OverwriteAll);
-      for (size_t i = 0; i < v.extent(0); ++i) w(i, 0) = v(i, 0);
-      chol_->solve(w.data());
+  const size_t nc = b.getNumVectors();
+  dd::ensure_columns(b0_, map0_, nc);
+  dd::ensure_columns(y0_, map0_, nc);
+  b0_->doImport(b, *imp0_, Tpetra::INSERT);
+  if (map0_->getNodeNumElements() > 0) {
+    auto v = b0_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto w = y0_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (size_t j = 0; j < nc; ++j) {
+      for (size_t i = 0; i < v.extent(0); ++i) w(i, j) = v(i, j);
+      chol_->solve(&w(0, j));
     }
-    yj->doExport(*y0_, *imp0_, Tpetra::INSERT);
   }
+  y.doExport(*y0_, *imp0_, Tpetra::INSERT);
 }
 
 // The direct coarse solve, exact and balanced over the ranks by a second static
@@ -224,6 +226,7 @@ private:
   std::unique_ptr<GatheredCholesky> root_;
   mutable Teuchos::RCP<TMV> bov_, yov_, br_, yr_;
   mutable std::vector<double> x_;
+  mutable std::vector<double> xb_; // solve(): x_ per column of a block
   double shift_ = 0.0, bytes_ = 0.0, max_flops_ = 0.0, flops_ = 0.0;
   bool strict_ = false, failed_ = false;
   bool declined_ = false;
@@ -586,38 +589,50 @@ void SubstructuredCoarse::assemble_reduced(const TCrs &S, double t,
   R_->fillComplete(gmap_, gmap_);
 }
 
+// All of b's columns at once: one export onto Γ, one solve of R with them, one
+// import back (the messages of a block are those of one vector).
 void SubstructuredCoarse::solve(const TMV &b, TMV &y) const {
-  const size_t ni = irows_.size(), n = x_.size();
-  for (size_t j = 0; j < b.getNumVectors(); ++j) {
-    auto bj = b.getVector(j);
-    auto bv = bj->getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto yj = y.getVectorNonConst(j);
-    auto yv = yj->getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t a = 0; a < ni; ++a) x_[a] = bv(static_cast<size_t>(irows_[a]), 0);
-    std::fill(x_.begin() + static_cast<std::ptrdiff_t>(ni), x_.end(), 0.0);
-    if (n > 0) chol_->forward(x_.data());
-    if (nred_ > 0) {
-      // b_Γ - sum_p S_ΓI_p S_I_pI_p^-1 b_I_p onto Γ; R's solve; x_Γ back.
-      {
-        auto v = bov_->getLocalViewHost(Tpetra::Access::OverwriteAll);
-        for (size_t l = 0; l < v.extent(0); ++l) v(l, 0) = 0.0;
+  const size_t ni = irows_.size(), n = x_.size(), nc = b.getNumVectors();
+  xb_.assign(n * nc, 0.0);
+  auto bv = b.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t j = 0; j < nc; ++j) {
+    double *x = xb_.data() + j * n;
+    for (size_t a = 0; a < ni; ++a) x[a] = bv(static_cast<size_t>(irows_[a]), j);
+    if (n > 0) chol_->forward(x);
+  }
+  auto yv = y.getLocalViewHost(Tpetra::Access::ReadWrite);
+  if (nred_ > 0) {
+    // b_Γ - sum_p S_ΓI_p S_I_pI_p^-1 b_I_p onto Γ; R's solve; x_Γ back.
+    dd::ensure_columns(bov_, gov_, nc);
+    dd::ensure_columns(yov_, gov_, nc);
+    dd::ensure_columns(br_, gmap_, nc);
+    dd::ensure_columns(yr_, gmap_, nc);
+    {
+      auto v = bov_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (size_t j = 0; j < nc; ++j) {
+        for (size_t l = 0; l < v.extent(0); ++l) v(l, j) = 0.0;
         for (size_t k = 0; k < gam_rows_.size(); ++k)
-          v(k, 0) = bv(static_cast<size_t>(gam_rows_[k]), 0);
+          v(k, j) = bv(static_cast<size_t>(gam_rows_[k]), j);
         for (size_t k = 0; k < sep_ov_.size(); ++k)
-          v(static_cast<size_t>(sep_ov_[k]), 0) += x_[ni + k];
+          v(static_cast<size_t>(sep_ov_[k]), j) += xb_[j * n + ni + k];
       }
-      br_->putScalar(0.0);
-      br_->doExport(*bov_, *exporter_, Tpetra::ADD);
-      root_->solve(*br_, *yr_);
-      yov_->doImport(*yr_, *importer_, Tpetra::INSERT);
-      auto v = yov_->getLocalViewHost(Tpetra::Access::ReadOnly);
-      for (size_t k = 0; k < sep_ov_.size(); ++k)
-        x_[ni + k] = v(static_cast<size_t>(sep_ov_[k]), 0);
-      for (size_t k = 0; k < gam_rows_.size(); ++k)
-        yv(static_cast<size_t>(gam_rows_[k]), 0) = v(k, 0);
     }
-    if (n > 0) chol_->backward(x_.data());
-    for (size_t a = 0; a < ni; ++a) yv(static_cast<size_t>(irows_[a]), 0) = x_[a];
+    br_->putScalar(0.0);
+    br_->doExport(*bov_, *exporter_, Tpetra::ADD);
+    root_->solve(*br_, *yr_);
+    yov_->doImport(*yr_, *importer_, Tpetra::INSERT);
+    auto v = yov_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t j = 0; j < nc; ++j) {
+      for (size_t k = 0; k < sep_ov_.size(); ++k)
+        xb_[j * n + ni + k] = v(static_cast<size_t>(sep_ov_[k]), j);
+      for (size_t k = 0; k < gam_rows_.size(); ++k)
+        yv(static_cast<size_t>(gam_rows_[k]), j) = v(k, j);
+    }
+  }
+  for (size_t j = 0; j < nc; ++j) {
+    double *x = xb_.data() + j * n;
+    if (n > 0) chol_->backward(x);
+    for (size_t a = 0; a < ni; ++a) yv(static_cast<size_t>(irows_[a]), j) = x[a];
   }
 }
 
