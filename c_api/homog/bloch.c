@@ -125,10 +125,17 @@ static void record_phases(const rn_cell *c, const double *k, double *ph) {
     ph[r] = k[0] * c->img[r].s[0] + k[1] * c->img[r].s[1] + k[2] * c->img[r].s[2];
 }
 
-/* Assembles into b (re, im zeroed here) with the phase sets of k1, k2. */
+/* The triplets of the sparse mode. */
+typedef struct bloch_triplets {
+  rn_bloch_trip *trip;
+  size_t ntrip, n;
+} bloch_triplets;
+
+/* Assembles into b (re, im zeroed here) with the phase sets of k1, k2; re NULL: the
+ * sparse mode, its triplets into *trip (the caller frees trip->trip). */
 static rn_status bloch_assemble(const rn_network *net, const double *x, const double *k1,
                                 const double *k2, int recip, double *re, double *im,
-                                const char *where) {
+                                bloch_triplets *trip, const char *where) {
   const rn_cell *c = net->cell;
   rn_bloch_acc b;
   rn_status st;
@@ -153,11 +160,19 @@ static rn_status bloch_assemble(const rn_network *net, const double *x, const do
   b.order = (k1 != NULL) + (k2 != NULL);
   b.re = re;
   b.im = im;
-  memset(re, 0, n * n * sizeof(double));
-  if (im) memset(im, 0, n * n * sizeof(double));
+  if (re) memset(re, 0, n * n * sizeof(double));
+  if (re && im) memset(im, 0, n * n * sizeof(double));
   st = rn_eval_bloch(net, x, &b, where);
+  if (!st && b.trip_failed) st = rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   free(ph);
   free(bidx);
+  if (trip && !st) {
+    trip->trip = b.trip;
+    trip->ntrip = b.ntrip;
+    trip->n = n;
+  } else {
+    free(b.trip);
+  }
   return st;
 }
 
@@ -172,16 +187,22 @@ static rn_status check_bloch_args(const rn_network *net, const double *x, const 
   return RN_OK;
 }
 
+/* A wave vector xi[dim]: given and finite. */
+static rn_status check_wave(const rn_network *net, const double *xi, const char *where) {
+  if (!xi) return rn_fail(net->ctx, RN_ERR_ARG, where, "xi is NULL");
+  if (!rn_all_finite((size_t)net->cell->dim, xi))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "xi is not finite");
+  return RN_OK;
+}
+
 rn_status rn_network_bloch_hessian(const rn_network *net, const double *x,
                                    const double *xi, double *re, double *im) {
   static const char *where = "rn_network_bloch_hessian";
   rn_status st;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_bloch_args(net, x, re, im, where))) return st;
-  if (!xi) return rn_fail(net->ctx, RN_ERR_ARG, where, "xi is NULL");
-  if (!rn_all_finite((size_t)net->cell->dim, xi))
-    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "xi is not finite");
-  return bloch_assemble(net, x, xi, NULL, 1, re, im, where);
+  if ((st = check_bloch_args(net, x, re, im, where)) || (st = check_wave(net, xi, where)))
+    return st;
+  return bloch_assemble(net, x, xi, NULL, 1, re, im, NULL, where);
 }
 
 rn_status rn_network_bloch_moment(const rn_network *net, const double *x,
@@ -193,5 +214,89 @@ rn_status rn_network_bloch_moment(const rn_network *net, const double *x,
   if (!k1 && k2) return rn_fail(net->ctx, RN_ERR_ARG, where, "k2 without k1");
   if ((k1 && !rn_all_finite(3, k1)) || (k2 && !rn_all_finite(3, k2)))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "k1 or k2 is not finite");
-  return bloch_assemble(net, x, k1, k2, 0, out, NULL, where);
+  return bloch_assemble(net, x, k1, k2, 0, out, NULL, NULL, where);
+}
+
+/* Stable merge sort of t[0 .. m - 1] by column (scratch w of m). */
+static void sort_row(rn_bloch_trip *t, rn_bloch_trip *w, size_t m) {
+  for (size_t width = 1; width < m; width *= 2) {
+    for (size_t lo = 0; lo < m; lo += 2 * width) {
+      size_t mid = lo + width < m ? lo + width : m;
+      size_t hi = lo + 2 * width < m ? lo + 2 * width : m, i = lo, j = mid, k = lo;
+      while (i < mid && j < hi) w[k++] = t[j].c < t[i].c ? t[j++] : t[i++];
+      while (i < mid) w[k++] = t[i++];
+      while (j < hi) w[k++] = t[j++];
+    }
+    memcpy(t, w, m * sizeof *t);
+  }
+}
+
+/* Triplets to CSR: a counting sort by row, each row by column (both stable: the
+ * duplicates of an entry stay in assembly order and are summed in it, as the dense
+ * matrix sums them).  Fills rowptr[n + 1] and *nnz; with col (and re, im) the
+ * entries (cap: the arrays' length).  0, or -1 out of memory. */
+static int triplets_to_csr(const bloch_triplets *tr, size_t cap, size_t *nnz,
+                           int64_t *rowptr, int64_t *col, double *re, double *im) {
+  const size_t n = tr->n, m = tr->ntrip;
+  size_t *start = calloc(n + 1, sizeof(size_t));
+  rn_bloch_trip *s = malloc((m ? m : 1) * sizeof *s),
+                *w = malloc((m ? m : 1) * sizeof *w);
+  if (!start || !s || !w) {
+    free(start), free(s), free(w);
+    return -1;
+  }
+  for (size_t q = 0; q < m; ++q) ++start[tr->trip[q].r + 1];
+  for (size_t r = 0; r < n; ++r) start[r + 1] += start[r];
+  for (size_t q = 0; q < m; ++q) s[start[tr->trip[q].r]++] = tr->trip[q];
+  for (size_t r = n; r > 0; --r) start[r] = start[r - 1]; /* back to the row starts */
+  start[0] = 0;
+  size_t count = 0;
+  for (size_t r = 0; r < n; ++r) {
+    rn_bloch_trip *t = s + start[r];
+    size_t len = start[r + 1] - start[r];
+    sort_row(t, w, len);
+    if (rowptr) rowptr[r] = (int64_t)count;
+    for (size_t q = 0; q < len; ++q) {
+      if (q > 0 && t[q].c == t[q - 1].c) {
+        if (col && count <= cap) re[count - 1] += t[q].re, im[count - 1] += t[q].im;
+        continue;
+      }
+      if (col && count < cap) {
+        col[count] = t[q].c;
+        re[count] = 0.0 + t[q].re;
+        im[count] = 0.0 + t[q].im;
+      }
+      ++count;
+    }
+  }
+  if (rowptr) rowptr[n] = (int64_t)count;
+  *nnz = count;
+  free(start), free(s), free(w);
+  return 0;
+}
+
+rn_status rn_network_bloch_hessian_csr(const rn_network *net, const double *x,
+                                       const double *xi, size_t *nnz, int64_t *rowptr,
+                                       int64_t *col, double *re, double *im) {
+  static const char *where = "rn_network_bloch_hessian_csr";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_bloch_args(net, x, nnz, nnz, where)) ||
+      (st = check_wave(net, xi, where)))
+    return st;
+  if (col && (!rowptr || !re || !im))
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "col without rowptr, re or im");
+  bloch_triplets tr = {NULL, 0, 0};
+  if ((st = bloch_assemble(net, x, xi, NULL, 1, NULL, NULL, &tr, where))) return st;
+  size_t cap = col ? *nnz : 0, count = 0;
+  if (triplets_to_csr(&tr, cap, &count, rowptr, col, re, im)) {
+    free(tr.trip);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  free(tr.trip);
+  *nnz = count;
+  if (col && count > cap)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "the arrays hold %zu entries, the matrix has %zu", cap, count);
+  return RN_OK;
 }

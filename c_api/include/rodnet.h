@@ -594,6 +594,17 @@ rn_status rn_network_bloch_dofs(const rn_network *net, size_t *n, int *kind,
  * conj(H(xi)).  Dense: memory 16 n^2 bytes. */
 rn_status rn_network_bloch_hessian(const rn_network *net, const double *x,
                                    const double *xi, double *re, double *im);
+/* The same matrix in compressed sparse rows (memory linear in the cell, for cells
+ * beyond the dense one's reach): the entries the stencils give at x (an entry
+ * whose phases cancel may be kept as a zero), columns ascending in each row, both
+ * triangles; the values those of rn_network_bloch_hessian (summed in the same
+ * order).  With col NULL: *nnz (and rowptr[n + 1] if not NULL) only; with col:
+ * caller arrays rowptr[n + 1], col, re, im of *nnz entries on entry (RN_ERR_RANGE
+ * and the count needed in *nnz if that is short).  Each call assembles the
+ * stencils' Hessians (linear in the cell). */
+rn_status rn_network_bloch_hessian_csr(const rn_network *net, const double *x,
+                                       const double *xi, size_t *nnz, int64_t *rowptr,
+                                       int64_t *col, double *re, double *im);
 /* Real moments of the phase expansion of the Bloch Hessian for Cartesian wave
  * vectors: out[n * n] = sum over stencils s and entries k, l of
  * H_s,kl d1 (k2 NULL) or H_s,kl d1 d2, d = q . (s_l - s_k) the phase difference

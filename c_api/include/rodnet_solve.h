@@ -687,6 +687,21 @@ rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
  * the modes examined). */
 rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes modes,
                               int neig, double *eig, double *vec);
+/* The lowest Bloch eigenvalue at xi (as rn_cell_bloch_eigen with neig 1) without a
+ * dense matrix, at any cell size: the sparse Bloch Hessian
+ * (rn_network_bloch_hessian_csr) on the examined DOFs in its real symmetric form
+ * [A -B; B A] (each eigenvalue twice), the sparse Cholesky factor of it plus
+ * sigma I (sigma 0 where it is positive definite, else the smallest decade of its
+ * largest diagonal entry that makes it so), and the largest eigenvalue of the
+ * inverse by Lanczos with full reorthogonalisation (Ritz residual 1e-12 of it).
+ * *eig the eigenvalue, vec (may be NULL) its eigenvector as for
+ * rn_cell_bloch_eigen (unit norm); *steps (may be NULL) the Lanczos steps (each
+ * one solve), *shift (may be NULL) sigma.  rn_cell_bloch_eigen takes this route by
+ * itself for neig 1 on cells of more than 4000 Bloch DOFs.  RN_ERR_SOLVER if
+ * Lanczos does not converge in 400 steps.  Serial. */
+rn_status rn_cell_bloch_lowest_sparse(rn_network *net, const double *xi,
+                                      rn_bloch_modes modes, double *eig, double *vec,
+                                      int *steps, double *shift);
 
 /* ---- macroscopic load paths of periodic cells (docs/homogenization.md, "Strain
  * paths and stability", "Stress and mixed paths") ---- */

@@ -1,8 +1,10 @@
 /* bloch_acc.c - the accumulator of stencil Hessian blocks onto the dense Bloch
- * matrix of a periodic cell (homog/bloch.c; docs/homogenization.md,
- * "Stability"): each entry (k, l) of a stencil adds H_kl w(phi_l - phi_k) at the
- * Bloch DOFs of its entries, phi the phase of the entry's image record. */
+ * matrix of a periodic cell, or onto triplets for its sparse form (homog/bloch.c;
+ * docs/homogenization.md, "Stability"): each entry (k, l) of a stencil adds H_kl w(phi_l
+ * - phi_k) at the Bloch DOFs of its entries, phi the phase of the entry's image record.
+ */
 #include <math.h>
+#include <stdlib.h>
 
 #include "periodic/periodic.h"
 
@@ -39,8 +41,28 @@ static int64_t entry(const rn_network *net, const rn_bloch_acc *b, size_t s,
   return b->bidx[c->img[sl / 3].base + (size_t)(sl % 3)];
 }
 
+/* Sparse mode: the triplet appended (the array doubled when full). */
+static void add_triplet(rn_bloch_acc *b, int64_t r, int64_t col, double re, double im) {
+  if (b->trip_failed) return;
+  if (b->ntrip == b->cap_trip) {
+    size_t cap = b->cap_trip ? 2 * b->cap_trip : 1024;
+    rn_bloch_trip *t = realloc(b->trip, cap * sizeof *t);
+    if (!t) {
+      b->trip_failed = 1;
+      return;
+    }
+    b->trip = t;
+    b->cap_trip = cap;
+  }
+  b->trip[b->ntrip++] = (rn_bloch_trip){r, col, re, im};
+}
+
 static void add_entry(rn_bloch_acc *b, int64_t r, int64_t col, double h, double d1,
                       double d2) {
+  if (!b->re) {
+    add_triplet(b, r, col, h * cos(d1), h * sin(d1));
+    return;
+  }
   size_t at = (size_t)r * b->n + (size_t)col;
   if (b->im) {
     b->re[at] += h * cos(d1);

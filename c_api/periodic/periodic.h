@@ -54,7 +54,16 @@ typedef struct rn_bloch_acc {
   double k1[3], k2[3]; /* the Cartesian wave vectors of ph1, ph2 */
   int order;           /* real mode: 0, 1 or 2 */
   double *re, *im;     /* output; im NULL: real mode */
+  /* sparse mode (re NULL): every entry appended as a triplet (row, column, re, im)
+   * in assembly order; trip_failed set if the array could not grow */
+  struct rn_bloch_trip *trip;
+  size_t ntrip, cap_trip;
+  int trip_failed;
 } rn_bloch_acc;
+typedef struct rn_bloch_trip {
+  int64_t r, c;
+  double re, im;
+} rn_bloch_trip;
 /* A block of n entries at full index s, or by index list idx (a joint stencil:
  * J given, whose ends at images carry their rod's DOFs from another cell). */
 void rn_bloch_add_block(const rn_network *net, rn_bloch_acc *b, size_t s,

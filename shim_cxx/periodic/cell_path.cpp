@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "base/lapack.hpp"
+#include "periodic/bloch_sparse.hpp"
 #include "periodic/homogenize.hpp"
 #include "base/nonconservative.hpp"
 #include "system/problem.hpp"
@@ -380,16 +381,20 @@ struct AcousticTensor;
 
 class Bloch {
 public:
-  Bloch(rn_network *net, rn_bloch_modes modes) : net_(net) {
+  // sparse: 0 dense only (cells up to kMaxDense Bloch DOFs), 1 sparse beyond that
+  // (the lowest eigenvalue only), 2 sparse at any size (SparseBloch)
+  Bloch(rn_network *net, rn_bloch_modes modes, int sparse = 0) : net_(net) {
     check_status(rn_network_cell_info(net, &dim_, nullptr, &measure_, nullptr),
                  "rn_network_cell_info");
     if (dim_ == 0) throw Error(RN_ERR_ARG, "rn_cell_bloch: the network is not periodic");
     check_status(rn_network_bloch_dofs(net, &n_, nullptr, nullptr),
                  "rn_network_bloch_dofs");
-    if (n_ > kMaxDense)
+    if (n_ > kMaxDense && sparse == 0)
       throw Error(RN_ERR_ARG, "rn_cell_bloch: the cell has " + std::to_string(n_) +
                                   " Bloch DOFs; the dense Bloch analysis takes at most " +
-                                  std::to_string(kMaxDense));
+                                  std::to_string(kMaxDense) +
+                                  " (rn_cell_bloch_lowest_sparse takes any size)");
+    sparse_ = sparse == 2 || n_ > kMaxDense;
     kind_.resize(n_);
     comp_.resize(n_);
     check_status(rn_network_bloch_dofs(net, &n_, kind_.data(), comp_.data()),
@@ -421,14 +426,19 @@ public:
         if (i < nfl_) sel0_.push_back(static_cast<int>(i));
       }
     if (sel0_.empty()) throw Error(RN_ERR_ARG, "rn_cell_bloch: no DOFs to examine");
-    re_.resize(n_ * n_);
-    im_.resize(n_ * n_);
+    if (sparse_) {
+      sb_.reset(new SparseBloch(net, x_.data(), n_));
+    } else {
+      re_.resize(n_ * n_);
+      im_.resize(n_ * n_);
+    }
     if (modes != RN_BLOCH_ALL) check_decoupled();
   }
 
   int dim() const { return dim_; }
   int evaluations() const { return evals_; }
   size_t size() const { return n_; }
+  const SparseBloch *sparse() const { return sb_.get(); } // NULL: dense
 
   static bool is_zero(const double *xi, int d) {
     for (int i = 0; i < d; ++i)
@@ -439,6 +449,11 @@ public:
   // The lowest nev eigenvalues (ascending) at xi; vec: eigenvector of the lowest
   // (2 n: re, im per Bloch DOF).  Returns the number found.
   int lowest(const double *xi, int nev, double *w, double *vec = nullptr) {
+    if (sparse_) { // the lowest only
+      w[0] = sb_->lowest(xi, is_zero(xi, dim_) ? sel0_ : sel_, vec);
+      ++evals_;
+      return 1;
+    }
     check_status(rn_network_bloch_hessian(net_, x_.data(), xi, re_.data(), im_.data()),
                  "rn_network_bloch_hessian");
     const std::vector<int> &sel = is_zero(xi, dim_) ? sel0_ : sel_;
@@ -510,15 +525,19 @@ private:
                       const std::vector<std::vector<double>> &X);
   void check_decoupled() {
     const double xi[3] = {0.1234, 0.3071, 0.0};
-    check_status(rn_network_bloch_hessian(net_, x_.data(), xi, re_.data(), im_.data()),
-                 "rn_network_bloch_hessian");
     double big = 0.0, cross = 0.0;
-    for (size_t i = 0; i < n_; ++i)
-      for (size_t j = 0; j < n_; ++j) {
-        const double v = std::hypot(re_[i * n_ + j], im_[i * n_ + j]);
-        big = std::max(big, v);
-        if (mask_[i] != mask_[j]) cross = std::max(cross, v);
-      }
+    if (sparse_) {
+      sb_->coupling(xi, mask_, &big, &cross);
+    } else {
+      check_status(rn_network_bloch_hessian(net_, x_.data(), xi, re_.data(), im_.data()),
+                   "rn_network_bloch_hessian");
+      for (size_t i = 0; i < n_; ++i)
+        for (size_t j = 0; j < n_; ++j) {
+          const double v = std::hypot(re_[i * n_ + j], im_[i * n_ + j]);
+          big = std::max(big, v);
+          if (mask_[i] != mask_[j]) cross = std::max(cross, v);
+        }
+    }
     if (cross > 1e-9 * big)
       throw Error(RN_ERR_ARG,
                   "rn_cell_bloch: in-plane and out-of-plane modes do not decouple at "
@@ -533,6 +552,8 @@ private:
   size_t n_ = 0, nfl_ = 0;
   std::vector<int> kind_, comp_, sel_, sel0_;
   std::vector<char> mask_;
+  bool sparse_ = false;
+  std::unique_ptr<SparseBloch> sb_;
   std::vector<double> x_, re_, im_;
   int evals_ = 0;
 };
@@ -1000,7 +1021,25 @@ extern "C" rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi,
                                                     "the Bloch analysis"))
     return st;
   return rodnet::guarded(net, "rn_cell_bloch_eigen", [&] {
-    rodnet::Bloch b(net, modes);
+    rodnet::Bloch b(net, modes, neig == 1 ? 1 : 0);
     b.lowest(xi, neig, eig, vec);
+  });
+}
+
+extern "C" rn_status rn_cell_bloch_lowest_sparse(rn_network *net, const double *xi,
+                                                 rn_bloch_modes modes, double *eig,
+                                                 double *vec, int *steps, double *shift) {
+  if (!net) return RN_ERR_ARG;
+  if (!xi || !eig)
+    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
+                                "rn_cell_bloch_lowest_sparse: bad arguments");
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_cell_bloch_lowest_sparse",
+                                                    "the Bloch analysis"))
+    return st;
+  return rodnet::guarded(net, "rn_cell_bloch_lowest_sparse", [&] {
+    rodnet::Bloch b(net, modes, 2);
+    b.lowest(xi, 1, eig, vec);
+    if (steps) *steps = b.sparse()->steps();
+    if (shift) *shift = b.sparse()->shift();
   });
 }
