@@ -684,7 +684,8 @@ rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
  * vector xi (reciprocal coordinates; xi = 0 without the rigid translations),
  * restricted to modes; eig[neig]; vec (may be NULL) receives the eigenvector of
  * the lowest as 2 n doubles (real, imaginary parts per Bloch DOF; zero outside
- * the modes examined). */
+ * the modes examined).  Dense (zheevr) up to 4000 Bloch DOFs; beyond, neig 1 takes
+ * the sparse route of rn_cell_bloch_lowest_sparse and neig > 1 is RN_ERR_ARG. */
 rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes modes,
                               int neig, double *eig, double *vec);
 /* The lowest Bloch eigenvalue at xi (as rn_cell_bloch_eigen with neig 1) without a

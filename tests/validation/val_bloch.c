@@ -314,6 +314,24 @@ static void check_sparse_eigen(rn_context *ctx) {
   const double g3[3] = {0.21, -0.37, 0.13};
   compare_sparse(ctx, rn_scene_network(s), "octet at rest", RN_BLOCH_ALL, g3);
   rn_scene_destroy(&s);
+  /* beyond the dense reach (8 x 8 supercell, 6336 Bloch DOFs): rn_cell_bloch_eigen
+   * takes the sparse route for neig 1 and refuses more eigenvalues */
+  s = cell(ctx, RN_LATTICE_HONEYCOMB, 8, 8, &l);
+  net = rn_scene_network(s);
+  size_t n8 = 0;
+  double e1 = NAN, e2[2];
+  must(ctx, rn_network_bloch_dofs(net, &n8, NULL, NULL), "bloch dofs");
+  CHECK(n8 > 4000);
+  must(ctx, rn_cell_bloch_eigen(net, m, RN_BLOCH_ALL, 1, &e1, NULL), "eigen beyond 4000");
+  must(ctx, rn_cell_bloch_lowest_sparse(net, m, RN_BLOCH_ALL, &sp, NULL, NULL, NULL),
+       "sparse beyond 4000");
+  printf("beyond the dense reach (%zu Bloch DOFs): rn_cell_bloch_eigen %.10e, sparse "
+         "%.10e\n",
+         n8, e1, sp);
+  CHECK(e1 == sp && e1 > 0.0);
+  CHECK_STATUS(rn_cell_bloch_eigen(net, m, RN_BLOCH_ALL, 2, e2, NULL), RN_ERR_ARG);
+  CHECK(strstr(rn_context_last_error(ctx), "rn_cell_bloch_lowest_sparse") != NULL);
+  rn_scene_destroy(&s);
   /* bad arguments */
   CHECK_STATUS(
       rn_cell_bloch_lowest_sparse(NULL, gen, RN_BLOCH_ALL, &sp, NULL, NULL, NULL),
