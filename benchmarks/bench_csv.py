@@ -1,6 +1,8 @@
 """Shared by the plot scripts of benchmarks/: reading a benchmark CSV (the common
 columns of bench_util.h's rn_bench_csv_header) and the provenance title."""
 import csv
+import os
+import re
 import sys
 
 COMMON = ("commit", "compiler", "bench", "case", "size", "median", "min")
@@ -23,3 +25,23 @@ def title(rows, what):
     """"rodnet <what> - commit ..., compiler, ranks" from the first row."""
     r = rows[0]
     return f"rodnet {what} - commit {r['commit']}, {r['compiler']}, {r['ranks']} rank(s)"
+
+
+def provenance(rodnet, commit_override=None):
+    """commit, compiler, flags from <build>/benchmarks/bench_config.h of the build
+    that holds the rodnet binary (commit_override replaces the commit)."""
+    prov = {"commit": "unknown", "compiler": "unknown", "flags": ""}
+    cfg = os.path.join(os.path.dirname(os.path.abspath(rodnet)), "benchmarks",
+                       "bench_config.h")
+    try:
+        text = open(cfg).read()
+        for key, name in (("commit", "RN_BENCH_COMMIT"), ("compiler", "RN_BENCH_COMPILER"),
+                          ("flags", "RN_BENCH_FLAGS")):
+            m = re.search(r'#define %s "(.*)"' % name, text)
+            if m:
+                prov[key] = m.group(1).replace('\\"', '"')
+    except OSError:
+        pass
+    if commit_override:
+        prov["commit"] = commit_override
+    return prov

@@ -29,31 +29,14 @@ import csv
 import json
 import math
 import os
-import re
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
 
-
-def provenance(rodnet, commit_override):
-    """commit, compiler, flags from <build>/benchmarks/bench_config.h."""
-    prov = {"commit": "unknown", "compiler": "unknown", "flags": ""}
-    cfg = os.path.join(os.path.dirname(os.path.abspath(rodnet)), "benchmarks",
-                       "bench_config.h")
-    try:
-        text = open(cfg).read()
-        for key, name in (("commit", "RN_BENCH_COMMIT"), ("compiler", "RN_BENCH_COMPILER"),
-                          ("flags", "RN_BENCH_FLAGS")):
-            m = re.search(r'#define %s "(.*)"' % name, text)
-            if m:
-                prov[key] = m.group(1).replace('\\"', '"')
-    except OSError:
-        pass
-    if commit_override:
-        prov["commit"] = commit_override
-    return prov
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_csv  # noqa: E402
 
 
 def write_cantilever(path, n):
@@ -151,7 +134,7 @@ def main():
     unknown = set(cases) - {"version", "solve", "solve-mpi1"}
     if unknown or args.repeats < 1 or min(sizes) < 3:
         sys.exit(f"bench_startup: bad --cases {sorted(unknown)}, --repeats or --sizes")
-    prov = provenance(args.rodnet, args.commit)
+    prov = bench_csv.provenance(args.rodnet, args.commit)
     with tempfile.TemporaryDirectory(prefix="rodnet_startup_") as tmp:
         jobs = make_jobs(args.rodnet, tmp, sizes, cases)
         walls, solves = time_jobs(jobs, args.repeats)

@@ -1243,6 +1243,15 @@ rn_cli_test(problems_cli_i22_homog_steps_no_path 2 "--steps applies to a path on
             ARGS homogenize ${i22}/cell.json --steps 5 -o ${i22}/r.json)
 rn_cli_test(problems_cli_i22_homog_modes_no_path 2 "--modes applies to a path only"
             ARGS homogenize ${i22}/cell.json --modes in-plane -o ${i22}/r.json)
+rn_cli_test(problems_cli_homog_bloch_method_no_path 2 "--bloch-method applies to a path only"
+            ARGS homogenize ${i22}/cell.json --bloch-method sparse -o ${i22}/r.json)
+rn_cli_test(problems_cli_homog_bloch_method_bad 2
+            "--bloch-method takes auto, dense or sparse, not 'lanczos'"
+            ARGS homogenize ${i22}/cell.json --path 0,0,0 --bloch-method lanczos
+                 -o ${i22}/r.json)
+rn_cli_test(problems_cli_homog_bloch_method_twice 2 "--bloch-method ${i22_twice}"
+            ARGS homogenize ${i22}/cell.json --path 0,0,0 --bloch-method dense
+                 --bloch-method sparse -o ${i22}/r.json)
 rn_cli_test(problems_cli_i22_homog_post_steps_alone 2
             "--post-steps applies to --post-buckling only"
             ARGS homogenize ${i22}/cell.json --path 0,0,0 --post-steps 3 -o ${i22}/r.json)

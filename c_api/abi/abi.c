@@ -152,6 +152,7 @@ static const abi_field fields[] = {
     RN_ABI_FIELD(rn_cell_path_options, modes),
     RN_ABI_FIELD(rn_cell_path_options, progress),
     RN_ABI_FIELD(rn_cell_path_options, user),
+    RN_ABI_FIELD(rn_cell_path_options, bloch_method),
     RN_ABI_FIELD(rn_cell_path_result, ns),
     RN_ABI_FIELD(rn_cell_path_result, nseg),
     RN_ABI_FIELD(rn_cell_path_result, seg),

@@ -160,6 +160,8 @@ static rn_status bloch_assemble(const rn_network *net, const double *x, const do
   b.order = (k1 != NULL) + (k2 != NULL);
   b.re = re;
   b.im = im;
+  b.moment = !re && !recip;
+  b.raw = !re && recip == 2;
   if (re) memset(re, 0, n * n * sizeof(double));
   if (re && im) memset(im, 0, n * n * sizeof(double));
   st = rn_eval_bloch(net, x, &b, where);
@@ -234,7 +236,8 @@ static void sort_row(rn_bloch_trip *t, rn_bloch_trip *w, size_t m) {
 /* Triplets to CSR: a counting sort by row, each row by column (both stable: the
  * duplicates of an entry stay in assembly order and are summed in it, as the dense
  * matrix sums them).  Fills rowptr[n + 1] and *nnz; with col (and re, im) the
- * entries (cap: the arrays' length).  0, or -1 out of memory. */
+ * entries (cap: the arrays' length; im may be NULL: real values).  0, or -1 out of
+ * memory. */
 static int triplets_to_csr(const bloch_triplets *tr, size_t cap, size_t *nnz,
                            int64_t *rowptr, int64_t *col, double *re, double *im) {
   const size_t n = tr->n, m = tr->ntrip;
@@ -258,13 +261,16 @@ static int triplets_to_csr(const bloch_triplets *tr, size_t cap, size_t *nnz,
     if (rowptr) rowptr[r] = (int64_t)count;
     for (size_t q = 0; q < len; ++q) {
       if (q > 0 && t[q].c == t[q - 1].c) {
-        if (col && count <= cap) re[count - 1] += t[q].re, im[count - 1] += t[q].im;
+        if (col && count <= cap) {
+          re[count - 1] += t[q].re;
+          if (im) im[count - 1] += t[q].im;
+        }
         continue;
       }
       if (col && count < cap) {
         col[count] = t[q].c;
         re[count] = 0.0 + t[q].re;
-        im[count] = 0.0 + t[q].im;
+        if (im) im[count] = 0.0 + t[q].im;
       }
       ++count;
     }
@@ -273,6 +279,23 @@ static int triplets_to_csr(const bloch_triplets *tr, size_t cap, size_t *nnz,
   *nnz = count;
   free(start), free(s), free(w);
   return 0;
+}
+
+/* The triplets of the sparse mode into CSR with the checks of the _csr entries. */
+static rn_status csr_out(const rn_network *net, bloch_triplets *tr, size_t *nnz,
+                         int64_t *rowptr, int64_t *col, double *re, double *im,
+                         const char *where) {
+  size_t cap = col ? *nnz : 0, count = 0;
+  if (triplets_to_csr(tr, cap, &count, rowptr, col, re, im)) {
+    free(tr->trip);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
+  free(tr->trip);
+  *nnz = count;
+  if (col && count > cap)
+    return rn_fail(net->ctx, RN_ERR_RANGE, where,
+                   "the arrays hold %zu entries, the matrix has %zu", cap, count);
+  return RN_OK;
 }
 
 rn_status rn_network_bloch_hessian_csr(const rn_network *net, const double *x,
@@ -288,15 +311,105 @@ rn_status rn_network_bloch_hessian_csr(const rn_network *net, const double *x,
     return rn_fail(net->ctx, RN_ERR_ARG, where, "col without rowptr, re or im");
   bloch_triplets tr = {NULL, 0, 0};
   if ((st = bloch_assemble(net, x, xi, NULL, 1, NULL, NULL, &tr, where))) return st;
-  size_t cap = col ? *nnz : 0, count = 0;
-  if (triplets_to_csr(&tr, cap, &count, rowptr, col, re, im)) {
-    free(tr.trip);
+  return csr_out(net, &tr, nnz, rowptr, col, re, im, where);
+}
+
+rn_status rn_network_bloch_moment_csr(const rn_network *net, const double *x,
+                                      const double *k1, const double *k2, size_t *nnz,
+                                      int64_t *rowptr, int64_t *col, double *val) {
+  static const char *where = "rn_network_bloch_moment_csr";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_bloch_args(net, x, nnz, nnz, where))) return st;
+  if (!k1 && k2) return rn_fail(net->ctx, RN_ERR_ARG, where, "k2 without k1");
+  if ((k1 && !rn_all_finite(3, k1)) || (k2 && !rn_all_finite(3, k2)))
+    return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "k1 or k2 is not finite");
+  if (col && (!rowptr || !val))
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "col without rowptr or val");
+  bloch_triplets tr = {NULL, 0, 0};
+  if ((st = bloch_assemble(net, x, k1, k2, 0, NULL, NULL, &tr, where))) return st;
+  return csr_out(net, &tr, nnz, rowptr, col, val, NULL, where);
+}
+
+/* The lattice shift of a phase difference d under the coded wave vector xi =
+ * (1, 64, 4096): d = 2 pi (n1 + 64 n2 + 4096 n3), |n_i| < 32. */
+static void decode_shift(double d, int *n) {
+  long code = lround(d / 6.283185307179586477);
+  for (int i = 0; i < 3; ++i) {
+    long r = ((code % 64) + 64 + 32) % 64 - 32;
+    n[i] = (int)r;
+    code = (code - r) / 64;
+  }
+}
+
+rn_status rn_network_bloch_terms(const rn_network *net, const double *x, int *nterms,
+                                 int *shift, size_t *nnz, int64_t *rowptr, int64_t *col,
+                                 double *val) {
+  static const char *where = "rn_network_bloch_terms";
+  enum { MAX_TERMS = 64 };
+  const double code[3] = {1.0, 64.0, 4096.0};
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = check_bloch_args(net, x, nnz, nterms, where))) return st;
+  if (col && (!rowptr || !val || !shift))
+    return rn_fail(net->ctx, RN_ERR_ARG, where, "col without rowptr, val or shift");
+  const int tcap = col ? *nterms : 0;
+  bloch_triplets tr = {NULL, 0, 0};
+  if ((st = bloch_assemble(net, x, code, NULL, 2, NULL, NULL, &tr, where))) return st;
+  /* the distinct shifts, in order of first appearance; each triplet's term in its im */
+  int sh[MAX_TERMS][3], nt = 0;
+  for (size_t q = 0; q < tr.ntrip; ++q) {
+    int n[3], t = 0;
+    decode_shift(tr.trip[q].im, n);
+    while (t < nt && (sh[t][0] != n[0] || sh[t][1] != n[1] || sh[t][2] != n[2])) ++t;
+    if (t == nt) {
+      if (nt == MAX_TERMS) {
+        free(tr.trip);
+        return rn_fail(net->ctx, RN_ERR_INTERNAL, where, "more than %d lattice shifts",
+                       MAX_TERMS);
+      }
+      memcpy(sh[nt++], n, sizeof n);
+    }
+    tr.trip[q].im = (double)t;
+  }
+  /* the pattern (union over the terms), then each term's values on it */
+  size_t count = 0, cap = col ? *nnz : 0;
+  double *one = malloc((tr.ntrip ? tr.ntrip : 1) * sizeof(double));
+  rn_bloch_trip *orig = malloc((tr.ntrip ? tr.ntrip : 1) * sizeof *orig);
+  if (!one || !orig) {
+    free(one), free(orig), free(tr.trip);
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
-  free(tr.trip);
+  memcpy(orig, tr.trip, tr.ntrip * sizeof *orig);
+  /* the pattern by triplets_to_csr (its values unused) */
+  if (triplets_to_csr(&tr, cap, &count, rowptr, col, one, NULL)) {
+    free(one), free(orig), free(tr.trip);
+    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  }
   *nnz = count;
-  if (col && count > cap)
+  *nterms = nt;
+  if (col && (count > cap || nt > tcap)) {
+    free(one), free(orig), free(tr.trip);
     return rn_fail(net->ctx, RN_ERR_RANGE, where,
-                   "the arrays hold %zu entries, the matrix has %zu", cap, count);
+                   "the arrays hold %zu entries and %d terms, the matrix has %zu and %d",
+                   cap, tcap, count, nt);
+  }
+  if (col) {
+    memset(val, 0, (size_t)nt * count * sizeof(double));
+    for (int t = 0; t < nt; ++t) memcpy(shift + 3 * t, sh[t], sizeof sh[t]);
+    for (size_t q = 0; q < tr.ntrip; ++q) { /* each triplet's entry: search its row */
+      const rn_bloch_trip *e = &orig[q];
+      int64_t lo = rowptr[e->r], hi = rowptr[e->r + 1] - 1;
+      while (lo < hi) {
+        int64_t mid = (lo + hi) / 2;
+        if (col[mid] < e->c)
+          lo = mid + 1;
+        else
+          hi = mid;
+      }
+      val[(size_t)e->im * count + (size_t)lo] += e->re;
+    }
+  }
+  free(one), free(orig), free(tr.trip);
   return RN_OK;
 }

@@ -613,6 +613,24 @@ rn_status rn_network_bloch_hessian_csr(const rn_network *net, const double *x,
  * give the acoustic tensor of the long-wavelength limit. */
 rn_status rn_network_bloch_moment(const rn_network *net, const double *x,
                                   const double *k1, const double *k2, double *out);
+/* The Bloch Hessian at x as a sum over lattice shifts, for many wave vectors at one
+ * state: H(xi) = sum_t exp(2 pi i xi . n_t) T_t, n_t = shift[3 t ..] the integer
+ * lattice coordinates of term t (of nterms; unused ones 0) and T_t real, all on one
+ * pattern in compressed sparse rows (the union; both triangles, columns ascending):
+ * T_t's entry q is val[t * nnz + q].  With col NULL: *nterms, *nnz (and rowptr[n + 1]
+ * if not NULL) only; with col: caller arrays rowptr[n + 1], col[*nnz], shift[3 *
+ * *nterms], val[*nterms * *nnz] (RN_ERR_RANGE and the count needed if short).  The
+ * values agree with rn_network_bloch_hessian_csr to round-off (summed per term). */
+rn_status rn_network_bloch_terms(const rn_network *net, const double *x, int *nterms,
+                                 int *shift, size_t *nnz, int64_t *rowptr, int64_t *col,
+                                 double *val);
+/* The same moments in compressed sparse rows, as rn_network_bloch_hessian_csr
+ * gives H (both triangles, columns ascending, the values of
+ * rn_network_bloch_moment summed in the same order; col NULL: the count only;
+ * caller arrays rowptr[n + 1], col, val of *nnz entries, RN_ERR_RANGE if short). */
+rn_status rn_network_bloch_moment_csr(const rn_network *net, const double *x,
+                                      const double *k1, const double *k2, size_t *nnz,
+                                      int64_t *rowptr, int64_t *col, double *val);
 
 /* ---- parts of a network (distributed solves; docs/parallel.md) -----------
  * A distributed solve gives every rod to one part (rank) and builds on each

@@ -629,13 +629,29 @@ typedef enum rn_bloch_modes {
   RN_BLOCH_OUT_OF_PLANE = 2 /* 2D cells at a planar state: z, material angles, joint
                                rotations about x and y */
 } rn_bloch_modes;
+/* How rn_cell_bloch solves its eigenproblems. */
+typedef enum rn_bloch_method {
+  RN_BLOCH_AUTO = 0,  /* dense up to 64 Bloch DOFs, sparse beyond (measured faster) */
+  RN_BLOCH_DENSE = 1, /* LAPACK zheevr on the dense Bloch Hessian (<= 4000 DOFs) and
+                         the dense moments for the acoustic tensor: the oracle */
+  RN_BLOCH_SPARSE = 2 /* at any size: rn_cell_bloch_lowest_sparse per wave vector
+                         (the lowest neig at the minimum by deflated runs), the
+                         acoustic tensor from rn_network_bloch_moment_csr and the
+                         sparse Cholesky factor of the fluctuation block */
+} rn_bloch_method;
 typedef struct rn_bloch_options {
   int grid;   /* wave vectors per reciprocal direction of the Brillouin-zone
                  grid (default 0: 16 in 2D, 6 in 3D) */
   int refine; /* 1 (default): refine the grid minimum by a pattern search in
                  xi down to 1e-4 */
   rn_bloch_modes modes;
-  const double *xi_hint; /* optional: also start a refinement here (dim) */
+  const double *xi_hint;  /* optional: also start a refinement here (dim) */
+  rn_bloch_method method; /* default RN_BLOCH_AUTO */
+  /* 1: no grid scan, only the refinement from xi_hint (a tracked minimum, e.g.
+   * while a critical load is located); without xi_hint no local test (local_min
+   * +inf, neig 0) */
+  int no_scan;
+  int no_acoustic; /* 1: no acoustic test (acoustic_valid -1) */
 } rn_bloch_options;
 void rn_bloch_options_default(rn_bloch_options *opt);
 typedef struct rn_bloch_result {
@@ -654,7 +670,8 @@ typedef struct rn_bloch_result {
    * homogenised tangent (with its stress terms), from the second-order
    * expansion of the Bloch Hessian at k = 0 (force per length in 2D, stress
    * in 3D) */
-  int acoustic_valid; /* 0 if K_uu is not positive definite (no tangent) */
+  int acoustic_valid; /* 1; 0 if K_uu is not positive definite (no tangent); -1 not
+                         examined (no_acoustic) */
   double acoustic_min;
   double acoustic_scale; /* the largest eigenvalue of A over the directions */
   double direction[3];   /* n at the minimum (Cartesian, reference) */
@@ -674,8 +691,9 @@ typedef struct rn_bloch_result {
  * equilibrium of the fluctuations, e.g. after rn_cell_relax): the lowest
  * eigenvalue of the Bloch Hessian over a grid of the Brillouin zone (half of it:
  * H(-xi) = conj H(xi)) refined around the minima, and the acoustic tensor over
- * directions (720 in 2D, 2000 on the sphere in 3D, refined).  Dense LAPACK
- * (zheevr): cells up to 4000 Bloch DOFs (RN_ERR_ARG beyond).  RN_ERR_ARG for
+ * directions (720 in 2D, 2000 on the sphere in 3D, refined).  opt->method:
+ * dense LAPACK (zheevr, cells up to 4000 Bloch DOFs, RN_ERR_ARG beyond) or
+ * sparse (any size; the same numbers to the eigensolvers' accuracy).  RN_ERR_ARG for
  * in-plane or out-of-plane modes on a 3D cell or at a state where those modes do
  * not decouple.  Serial; needs no runtime initialisation. */
 rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
@@ -684,8 +702,9 @@ rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
  * vector xi (reciprocal coordinates; xi = 0 without the rigid translations),
  * restricted to modes; eig[neig]; vec (may be NULL) receives the eigenvector of
  * the lowest as 2 n doubles (real, imaginary parts per Bloch DOF; zero outside
- * the modes examined).  Dense (zheevr) up to 4000 Bloch DOFs; beyond, neig 1 takes
- * the sparse route of rn_cell_bloch_lowest_sparse and neig > 1 is RN_ERR_ARG. */
+ * the modes examined).  Dense (zheevr) up to 4000 Bloch DOFs; beyond, the sparse
+ * route of rn_cell_bloch_lowest_sparse (neig > 1 by Lanczos runs deflated by the
+ * eigenvectors found before, multiplicities included). */
 rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes modes,
                               int neig, double *eig, double *vec);
 /* The lowest Bloch eigenvalue at xi (as rn_cell_bloch_eigen with neig 1) without a
@@ -698,7 +717,7 @@ rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes 
  * *eig the eigenvalue, vec (may be NULL) its eigenvector as for
  * rn_cell_bloch_eigen (unit norm); *steps (may be NULL) the Lanczos steps (each
  * one solve), *shift (may be NULL) sigma.  rn_cell_bloch_eigen takes this route by
- * itself for neig 1 on cells of more than 4000 Bloch DOFs.  RN_ERR_SOLVER if
+ * itself on cells of more than 4000 Bloch DOFs.  RN_ERR_SOLVER if
  * Lanczos does not converge in 400 steps.  Serial. */
 rn_status rn_cell_bloch_lowest_sparse(rn_network *net, const double *xi,
                                       rn_bloch_modes modes, double *eig, double *vec,
@@ -773,6 +792,7 @@ typedef struct rn_cell_path_options {
   rn_bloch_modes modes;           /* the Bloch modes examined */
   rn_cell_path_progress progress; /* may be NULL */
   void *user;                     /* progress's first argument */
+  rn_bloch_method bloch_method;   /* rn_bloch_options.method (default RN_BLOCH_AUTO) */
 } rn_cell_path_options;
 void rn_cell_path_options_default(rn_cell_path_options *opt);
 

@@ -60,7 +60,16 @@ static void add_triplet(rn_bloch_acc *b, int64_t r, int64_t col, double re, doub
 static void add_entry(rn_bloch_acc *b, int64_t r, int64_t col, double h, double d1,
                       double d2) {
   if (!b->re) {
-    add_triplet(b, r, col, h * cos(d1), h * sin(d1));
+    if (b->raw)
+      add_triplet(b, r, col, h, d1);
+    else if (b->moment)
+      add_triplet(b, r, col,
+                  b->order == 0   ? h
+                  : b->order == 1 ? h * d1
+                                  : h * d1 * d2,
+                  0.0);
+    else
+      add_triplet(b, r, col, h * cos(d1), h * sin(d1));
     return;
   }
   size_t at = (size_t)r * b->n + (size_t)col;

@@ -55,7 +55,10 @@ typedef struct rn_bloch_acc {
   int order;           /* real mode: 0, 1 or 2 */
   double *re, *im;     /* output; im NULL: real mode */
   /* sparse mode (re NULL): every entry appended as a triplet (row, column, re, im)
-   * in assembly order; trip_failed set if the array could not grow */
+   * in assembly order (moment set: the real moment of order `order` as re, im 0);
+   * trip_failed set if the array could not grow */
+  int moment;
+  int raw; /* sparse mode: re the entry h, im its phase difference d1 (terms) */
   struct rn_bloch_trip *trip;
   size_t ntrip, cap_trip;
   int trip_failed;

@@ -64,6 +64,9 @@ static const char homogenize_help[] =
     "                      model has the in-plane modes only)\n"
     "      --bloch-grid G  wave vectors per reciprocal direction (default 16 in 2D,\n"
     "                      6 in 3D), refined around the minimum\n"
+    "      --bloch-method M  auto (default: dense up to 64 Bloch DOFs, sparse\n"
+    "                      beyond), dense (LAPACK, up to 4000: the oracle) or\n"
+    "                      sparse (shift-invert Lanczos, any size)\n"
     "      --pattern P     after a local instability: the supercell its wave vector\n"
     "                      calls for at the critical strain plus the critical mode\n"
     "                      (scaled for display), written to P.vtu and drawn to\n"
@@ -94,7 +97,9 @@ typedef struct hom_args {
   const char *path_stress, *path_file; /* --path-stress, --path-file */
   int quiet, steps, grid, post_steps;
   int has_steps, has_grid, has_modes, has_post_steps; /* given on the command line */
+  int has_method;
   rn_bloch_modes modes;
+  rn_bloch_method method;
 } hom_args;
 
 /* The files the command reads and writes (cli.h); returns their count. */
@@ -148,6 +153,19 @@ static int valued_option(int argc, char **argv, int *i, hom_args *a) {
       *ints[k].given = 1;
       return 1;
     }
+  if ((m = rn_cli_option_value("homogenize", argc, argv, i, "--bloch-method", NULL,
+                               &v))) {
+    static const char *const names[] = {"auto", "dense", "sparse"};
+    if (m < 0) return RN_EXIT_USAGE;
+    a->has_method = 1;
+    for (int k = 0; k < 3; ++k)
+      if (strcmp(v, names[k]) == 0) {
+        a->method = (rn_bloch_method)k;
+        return 1;
+      }
+    return rn_cli_usage_error("homogenize",
+                              "--bloch-method takes auto, dense or sparse, not '%s'", v);
+  }
   if ((m = rn_cli_option_value("homogenize", argc, argv, i, "--modes", NULL, &v))) {
     if (m < 0) return RN_EXIT_USAGE;
     a->has_modes = 1;
@@ -179,13 +197,14 @@ static int check_combination(hom_args *a) {
   if (a->post && !a->path)
     return rn_cli_usage_error("homogenize", "--post-buckling needs --path");
   /* options of the path only: without one they would be ignored */
-  if (!a->path && (a->has_steps || a->has_grid || a->has_modes))
+  if (!a->path && (a->has_steps || a->has_grid || a->has_modes || a->has_method))
     return rn_cli_usage_error("homogenize",
                               "%s applies to a path only: give --path, --path-stress or "
                               "--path-file",
-                              a->has_steps  ? "--steps"
-                              : a->has_grid ? "--bloch-grid"
-                                            : "--modes");
+                              a->has_steps   ? "--steps"
+                              : a->has_grid  ? "--bloch-grid"
+                              : a->has_modes ? "--modes"
+                                             : "--bloch-method");
   if (a->has_post_steps && !a->post)
     return rn_cli_usage_error("homogenize",
                               "--post-steps applies to --post-buckling only");
@@ -219,10 +238,11 @@ static int parse_args(int argc, char **argv, hom_args *a) {
                                 a->scene, s);
     a->scene = s;
   }
-  static const char *const valued[] = {"--output|-o",     "--plot",       "--path-stress",
-                                       "--path-file",     "--path",       "--pattern",
-                                       "--post-buckling", "--post-steps", "--steps",
-                                       "--bloch-grid",    "--modes",      NULL};
+  static const char *const valued[] = {
+      "--output|-o", "--plot",       "--path-stress",   "--path-file",
+      "--path",      "--pattern",    "--post-buckling", "--post-steps",
+      "--steps",     "--bloch-grid", "--modes",         "--bloch-method",
+      NULL};
   int rc = rn_cli_check_repeats("homogenize", argc, argv, valued);
   if (rc) return rc;
   if ((rc = check_combination(a))) return rc;
@@ -691,6 +711,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     path.dim = h.dim;
     path.modes = a.modes;
     path.grid = a.grid;
+    path.bloch_method = a.method;
     path.quiet = a.quiet;
     st = hp_run(net, &path);
     if (st) {

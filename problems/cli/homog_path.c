@@ -27,6 +27,7 @@ rn_status hp_run(rn_network *net, hp_path *p) {
   rn_cell_path_options_default(&o);
   o.grid = p->grid;
   o.modes = p->modes;
+  o.bloch_method = p->bloch_method;
   if (!p->quiet) o.progress = print_step;
   return rn_cell_path_run(net, p->nseg, p->seg, &o, &p->r);
 }
@@ -163,10 +164,12 @@ static void put_instability(FILE *f, const hp_path *p) {
 
 void hp_write_json(FILE *f, const hp_path *p) {
   static const char *const mode_names[] = {"all", "in-plane", "out-of-plane"};
+  static const char *const method_names[] = {"auto", "dense", "sparse"};
   fputs("  \"path_target\": ", f);
   hp_put_vec(f, p->ns, p->target);
   fprintf(f, ",\n  \"path_steps\": %d,\n  \"bloch_modes\": \"%s\",\n", p->steps,
           mode_names[p->modes]);
+  fprintf(f, "  \"bloch_method\": \"%s\",\n", method_names[p->bloch_method]);
   fprintf(f, "  \"path_kind\": \"%s\",\n", p->kind);
   put_segments(f, p);
   put_steps(f, p);

@@ -29,6 +29,7 @@ typedef struct hp_path {
   const char *kind;          /* "strain", "stress", "mixed" or "waypoints" */
   rn_bloch_modes modes;
   int grid;
+  rn_bloch_method bloch_method; /* --bloch-method */
   int quiet;
   rn_cell_path_result r; /* rn_cell_path_run (hp_run), owned (hp_free) */
   hp_pattern pattern;    /* --pattern (cli_homogenize.c) */

@@ -14,6 +14,7 @@ _JOINT_MODELS = {"elastic": 0, "rigid": 1, "smooth": 2}
 _ENDS = {"start": 0, "end": 1, 0: 0, 1: 1}
 _SUPPORT_KINDS = ("clamp", "vertex", "angle", "joint")
 _MODES = {"all": 0, "in-plane": 1, "out-of-plane": 2}
+_BLOCH_METHODS = {"auto": 0, "dense": 1, "sparse": 2}
 _STAB_METHODS = {"auto": 0, "cholesky": 1, "lobpcg": 2}
 
 
@@ -916,7 +917,7 @@ def _path_dict(res, ns, dim, target, steps, modes):
 
 
 def homogenize(model, path=None, steps=20, stress=False, modes="all", bloch_grid=0,
-               progress=None):
+               progress=None, bloch_method="auto"):
     """Effective linear stiffness of a periodic cell at its current (rest) state,
     as `rodnet homogenize` computes it: a dict with "C" (numpy, Voigt with
     engineering shear, per unit cell area in 2D / volume in 3D), "constants"
@@ -928,7 +929,7 @@ def homogenize(model, path=None, steps=20, stress=False, modes="all", bloch_grid
     component at zero stress, "s:V" / "e:V" mixed; stress=True: every number a
     stress, `--path-stress`) in steps steps, with the Bloch-Floquet test at
     every step (modes: all, in-plane, out-of-plane; bloch_grid as
-    `--bloch-grid`); the dict gains "path", "path_segments", "instability"
+    `--bloch-grid`, bloch_method as `--bloch-method`: auto, dense, sparse); the dict gains "path", "path_segments", "instability"
     (None if the path is stable) and, if it stopped early, "path_stopped" and
     "partial": True.  progress: a callable given each step's dict."""
     net = model._handle()
@@ -938,6 +939,8 @@ def homogenize(model, path=None, steps=20, stress=False, modes="all", bloch_grid
                     "object with lattice vectors)" % getattr(model, "label", "network"))
     if modes not in _MODES:
         raise Error("modes %r: expected all, in-plane or out-of-plane" % (modes,))
+    if bloch_method not in _BLOCH_METHODS:
+        raise Error("bloch_method %r: expected auto, dense or sparse" % (bloch_method,))
     if path is not None and modes != "all" and info["dim"] == 3:
         raise Error("modes %s: a 3D cell has no in-plane / out-of-plane split of its "
                     "modes (use modes='all')" % modes)
@@ -971,6 +974,7 @@ def homogenize(model, path=None, steps=20, stress=False, modes="all", bloch_grid
     fn.rn_cell_path_options_default(ctypes.byref(o))
     o.grid = int(bloch_grid)
     o.modes = _MODES[modes]
+    o.bloch_method = _BLOCH_METHODS[bloch_method]
     failure = []
 
     def on_step(_, r):

@@ -175,7 +175,8 @@ CELL_PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.POINTER(CellPathR
 
 class CellPathOptions(ctypes.Structure):
     _fields_ = [("grid", ctypes.c_int), ("modes", ctypes.c_int),
-                ("progress", CELL_PROGRESS), ("user", ctypes.c_void_p)]
+                ("progress", CELL_PROGRESS), ("user", ctypes.c_void_p),
+                ("bloch_method", ctypes.c_int)]
 
 
 CellPathResult._fields_ = [

@@ -39,14 +39,25 @@ double tridiagonal_largest(const std::vector<double> &alpha,
 
 LanczosResult lanczos_largest(const std::function<void(double *)> &solve_A,
                               const std::vector<double> &d, int max_steps, double rel_tol,
-                              std::vector<double> &v) {
+                              std::vector<double> &v,
+                              const std::vector<std::vector<double>> *locked) {
   const size_t n = d.size();
+  auto deflate = [&](std::vector<double> &w) {
+    if (!locked) return;
+    for (const std::vector<double> &u : *locked) {
+      const double c = mdot(d, u.data(), w.data());
+      for (size_t i = 0; i < n; ++i) w[i] -= c * u[i];
+    }
+  };
   const int m =
       static_cast<int>(std::min<size_t>(n, static_cast<size_t>(std::max(1, max_steps))));
   std::vector<std::vector<double>> Q;
   std::vector<double> alpha, beta, y, w(n);
   LanczosResult res;
+  deflate(v);
+  deflate(v);
   double nv = std::sqrt(mdot(d, v.data(), v.data()));
+  if (!(nv > 0.0)) return res; // the start vector lies in the locked span
   Q.emplace_back(v);
   for (double &e : Q[0]) e /= nv;
   for (int j = 0; j < m; ++j) {
@@ -54,11 +65,13 @@ LanczosResult lanczos_largest(const std::function<void(double *)> &solve_A,
     for (size_t i = 0; i < n; ++i) w[i] = d[i] * q[i];
     solve_A(w.data());
     alpha.push_back(mdot(d, q.data(), w.data()));
-    for (int pass = 0; pass < 2; ++pass) // full reorthogonalisation, twice
+    for (int pass = 0; pass < 2; ++pass) { // full reorthogonalisation, twice
+      deflate(w);
       for (const std::vector<double> &qi : Q) {
         const double c = mdot(d, qi.data(), w.data());
         for (size_t i = 0; i < n; ++i) w[i] -= c * qi[i];
       }
+    }
     beta.push_back(std::sqrt(mdot(d, w.data(), w.data())));
     res.steps = j + 1;
     res.theta = tridiagonal_largest(alpha, beta, j + 1, y);

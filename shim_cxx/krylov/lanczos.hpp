@@ -25,11 +25,15 @@ struct LanczosResult {
 // solve_A(x): x <- A^{-1} x (length n = d.size()).  At most max_steps steps (<= n),
 // from the start vector v (overwritten with the Ritz
 // vector, ||v||_M = 1); stops when the Ritz residual estimate |beta_j y_j| falls below
-// rel_tol theta.  Memory: max_steps vectors of length n.  Throws Error if LAPACK's
+// rel_tol theta.  locked (may be NULL): M-orthonormal vectors that every Lanczos
+// vector is kept M-orthogonal to (deflation: T restricted to their complement, e.g.
+// for the next eigenpair after the found ones; they should span an invariant
+// subspace of T).  Memory: max_steps vectors of length n.  Throws Error if LAPACK's
 // tridiagonal eigensolver fails.
 LanczosResult lanczos_largest(const std::function<void(double *)> &solve_A,
                               const std::vector<double> &d, int max_steps, double rel_tol,
-                              std::vector<double> &v);
+                              std::vector<double> &v,
+                              const std::vector<std::vector<double>> *locked = nullptr);
 
 } // namespace rodnet
 

@@ -29,10 +29,10 @@ bool local_unstable(const rn_bloch_result &b, const Path &p) {
   return b.local_min < -1e-9 * p.local_scale;
 }
 bool macro_unstable(const rn_bloch_result &b, const Path &p) {
-  return b.acoustic_valid && b.acoustic_min < -1e-9 * p.acoustic_scale;
+  return b.acoustic_valid == 1 && b.acoustic_min < -1e-9 * p.acoustic_scale;
 }
 bool unstable(const rn_bloch_result &b, const Path &p) {
-  return local_unstable(b, p) || macro_unstable(b, p) || !b.acoustic_valid;
+  return local_unstable(b, p) || macro_unstable(b, p) || b.acoustic_valid == 0;
 }
 
 // Strain and stress of the current state (and its elastic energy if energy).
@@ -257,13 +257,19 @@ rn_status relax_at(rn_network *net, const Path &p, int j, double u,
   return state_of(net, s->strain, s->stress, &s->energy);
 }
 
-rn_status bloch_at(rn_network *net, const Path &p, const double *hint,
-                   rn_bloch_result *b) {
+// The Bloch test at the current state: the full search (grid, refinement from the
+// grid minima and from hint, the acoustic test), or with tracked set only what the
+// secant of locate() follows: the acoustic test (macro) or the refinement from hint.
+rn_status bloch_at(rn_network *net, const Path &p, const double *hint, rn_bloch_result *b,
+                   bool tracked = false, bool macro = false) {
   rn_bloch_options o;
   rn_bloch_options_default(&o);
   o.grid = p.opt.grid;
   o.modes = p.opt.modes;
-  o.xi_hint = hint;
+  o.xi_hint = tracked && macro ? nullptr : hint;
+  o.method = p.opt.bloch_method;
+  o.no_scan = tracked;
+  o.no_acoustic = tracked && !macro;
   return rn_cell_bloch(net, &o, b);
 }
 
@@ -296,13 +302,12 @@ struct Bracket {
   int why;
 };
 
-// Bisection of the bracket to 0.1 % of the parameter (at most 60 halvings);
-// returns their count in *it.
+// Bisection of the bracket to 0.1 % of the parameter (at most 60 iterations of
+// locate in all); adds its halvings to *it.
 rn_status bisect(rn_network *net, const Path &p, Bracket &b, int *it) {
   rn_status st;
   rn_cell_path_step s;
   int f[6], nstress = stress_components(p.r->seg[b.j], p.r->ns, f);
-  *it = 0;
   while (b.u_hi - b.u_lo > 1e-3 * b.u_hi && *it < 60) {
     double mid = 0.5 * (b.u_lo + b.u_hi);
     rn_bloch_result r;
@@ -329,6 +334,65 @@ rn_status bisect(rn_network *net, const Path &p, Bracket &b, int *it) {
       if ((st = rn_network_state_save(net, &b.lo))) return st;
       b.u_lo = mid;
       b.blo = r;
+    }
+  }
+  return RN_OK;
+}
+
+// The quantity whose zero is the instability of the kind being located: the lowest
+// eigenvalue of the acoustic tensor (macro) or of the Bloch Hessian near the tracked
+// wave vector.
+double critical_value(const rn_bloch_result &r, bool macro) {
+  return macro ? r.acoustic_min : r.local_min;
+}
+
+// The critical parameter of a Bloch instability in the bracket by the Illinois
+// (modified regula falsi) secant on critical_value(u), each value from the Bloch
+// test tracked from the bracket's unstable end (no grid scan): superlinear, to
+// 1e-7 of the parameter.  *uc the estimate; *ok false where the secant does not
+// apply (no sign change, or a trial state past a limit point, unconverged, or
+// unstable outside the modes examined: the bracket is then left to bisect()).
+rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc,
+                 bool *ok) {
+  rn_cell_path_step s;
+  int f[6], nstress = stress_components(p.r->seg[b.j], p.r->ns, f);
+  const bool macro = macro_unstable(b.bhi, p) && b.bhi.acoustic_valid == 1;
+  double flo = critical_value(b.blo, macro), fhi = critical_value(b.bhi, macro);
+  *ok = false;
+  if (b.why != 0 || !(flo > 0.0) || !(fhi < 0.0)) return RN_OK;
+  int side = 0;
+  double prev = NAN;
+  while (*it < 60) {
+    const double w = b.u_hi - b.u_lo, tol = 1e-7 * b.u_hi;
+    double u = b.u_lo + w * flo / (flo - fhi);
+    if (!(u > b.u_lo && u < b.u_hi)) u = 0.5 * (b.u_lo + b.u_hi);
+    if (w <= tol || std::fabs(u - prev) <= tol) {
+      *uc = u;
+      *ok = true;
+      return RN_OK;
+    }
+    prev = u;
+    ++*it;
+    rn_status st;
+    rn_bloch_result r;
+    if ((st = rn_network_state_restore(net, b.lo)) || (st = relax_at(net, p, b.j, u, &s)))
+      return st;
+    if (limit_passed(s, nstress) || !s.converged || s.kuu_indefinite) return RN_OK;
+    if ((st = bloch_at(net, p, b.bhi.xi, &r, true, macro))) return st;
+    const double fu = critical_value(r, macro);
+    if (!std::isfinite(fu)) return RN_OK;
+    if (fu < 0.0) { // the unstable side; Illinois: halve the other end's value
+      b.u_hi = u;
+      fhi = fu;
+      if (side < 0) flo *= 0.5;
+      side = -1;
+    } else {
+      rn_state_destroy(&b.lo);
+      if ((st = rn_network_state_save(net, &b.lo))) return st;
+      b.u_lo = u;
+      flo = fu;
+      if (side > 0) fhi *= 0.5;
+      side = 1;
     }
   }
   return RN_OK;
@@ -367,14 +431,15 @@ rn_status record_stress_limit(rn_network *net, const Path &p, const Bracket &b) 
 
 // A local or macroscopic instability from the Bloch results across the bracket;
 // returns the critical parameter (a secant estimate inside the bracket).
-double record_bloch(const Path &p, const Bracket &b) {
+double record_bloch(const Path &p, const Bracket &b, double uc_secant) {
   rn_cell_path_instability *in = &p.r->inst;
   const rn_bloch_result &rlo = b.blo, &rhi = b.bhi;
   double uc = b.u_hi;
-  in->kind_macroscopic = macro_unstable(rhi, p) && rhi.acoustic_valid;
+  in->kind_macroscopic = macro_unstable(rhi, p);
   double flo = in->kind_macroscopic ? rlo.acoustic_min : rlo.local_min;
   double fhi = in->kind_macroscopic ? rhi.acoustic_min : rhi.local_min;
   if (flo > 0.0 && fhi < 0.0) uc = b.u_lo + (b.u_hi - b.u_lo) * flo / (flo - fhi);
+  if (std::isfinite(uc_secant)) uc = uc_secant;
   if (in->kind_macroscopic) {
     std::memset(in->xi, 0, sizeof(in->xi));
     in->multiplicity = 1;
@@ -391,13 +456,60 @@ double record_bloch(const Path &p, const Bracket &b) {
   return uc;
 }
 
-// Locate the first instability in the bracket b (its state lo owned here) by
-// bisection, then record it with the state at the critical parameter.
+// The secant of a Bloch instability, then the full Bloch test at both ends of the
+// final bracket: at the stable end it must find no other unstable wave vector (else
+// the bracket goes back to its start, with that result at its end, for bisection
+// with the full test: a mode that went unstable earlier elsewhere in the zone); at
+// the unstable end it gives the wave vector, its equivalents and the eigenvalues
+// recorded.  *uc the secant's estimate (NaN where bisect() is to finish the job).
+rn_status secant_then_check(rn_network *net, const Path &p, Bracket &b, int *it,
+                            double *uc) {
+  rn_state *start = nullptr;
+  rn_cell_path_step s;
+  rn_bloch_result lo_full, hi_full;
+  bool ok = false;
+  const double u0 = b.u_lo;
+  const rn_bloch_result b0lo = b.blo;
+  rn_status st = rn_network_state_restore(net, b.lo);
+  if (!st) st = rn_network_state_save(net, &start); // the bracket's first state
+  if (!st) st = secant(net, p, b, it, uc, &ok);
+  if (!st && ok) {
+    // the stable end: unstable nowhere in the zone
+    if (!(st = rn_network_state_restore(net, b.lo)))
+      st = bloch_at(net, p, b.bhi.xi, &lo_full);
+    if (!st && unstable(lo_full, p)) { // another mode first: bisect from the start
+      rn_state_destroy(&b.lo);
+      b.lo = start;
+      start = nullptr;
+      b.u_hi = b.u_lo;
+      b.bhi = lo_full;
+      b.u_lo = u0;
+      b.blo = b0lo;
+      *uc = NAN;
+    } else if (!st) {
+      b.blo = lo_full;
+      // the unstable end: the full test there for the record
+      if (!(st = relax_at(net, p, b.j, b.u_hi, &s)) &&
+          !(st = bloch_at(net, p, b.bhi.xi, &hi_full)) && unstable(hi_full, p))
+        b.bhi = hi_full;
+      b.u_lo = b.u_hi; // bisect() has nothing left to do
+    }
+  } else if (!st)
+    *uc = NAN;
+  rn_state_destroy(&start);
+  return st;
+}
+
+// Locate the first instability in the bracket b (its state lo owned here) by the
+// secant (Bloch instabilities) or bisection, then record it with the state at the
+// critical parameter.
 rn_status locate(rn_network *net, const Path &p, Bracket b) {
   rn_cell_path_instability *in = &p.r->inst;
   rn_cell_path_step s;
   int it = 0;
-  rn_status st = bisect(net, p, b, &it);
+  double uc_secant = NAN;
+  rn_status st = secant_then_check(net, p, b, &it, &uc_secant);
+  if (!st) st = bisect(net, p, b, &it);
   if (!st) {
     in->found = 1;
     in->bisections = it;
@@ -414,7 +526,7 @@ rn_status locate(rn_network *net, const Path &p, Bracket b) {
       uc = b.u_lo;
       st = record_stress_limit(net, p, b);
     } else
-      uc = record_bloch(p, b);
+      uc = record_bloch(p, b, uc_secant);
     if (!st && in->found) {
       in->t = b.j + uc;
       if (!(st = rn_network_state_restore(net, b.lo)) &&

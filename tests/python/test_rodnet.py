@@ -270,6 +270,28 @@ def test_homogenize_path_matches_the_command(cli, hc8, tmp_path):
     assert h2["instability"]["load_factor"] == inst["load_factor"]
 
 
+def test_homogenize_path_bloch_method(cli, hc8, tmp_path):
+    # bloch_method is the command's --bloch-method; dense and sparse agree on the
+    # critical strain far inside the locate tolerance
+    found = {}
+    for m in ("dense", "sparse"):
+        out = tmp_path / ("%s.json" % m)
+        subprocess.run([cli, "homogenize", hc8, "--path", "-0.004,-0.004,0", "--steps",
+                        "4", "--modes", "in-plane", "--bloch-grid", "4", "--bloch-method",
+                        m, "-o", str(out), "-q"], check=True, capture_output=True)
+        ref = json.loads(out.read_text())
+        assert ref["bloch_method"] == m
+        h = rodnet.homogenize(rodnet.load_scene(hc8), path=[-0.004, -0.004, 0], steps=4,
+                              modes="in-plane", bloch_grid=4, bloch_method=m)
+        assert h["instability"]["load_factor"] == pytest.approx(
+            ref["instability"]["load_factor"], rel=1e-12)
+        found[m] = h["instability"]["load_factor"]
+    assert found["sparse"] == pytest.approx(found["dense"], rel=1e-7)
+    with pytest.raises(rodnet.Error, match="bloch_method"):
+        rodnet.homogenize(rodnet.load_scene(hc8), path=[-0.004, -0.004, 0],
+                          bloch_method="lanczos")
+
+
 # ---- errors: rodnet.Error with the library's message, never a crash ---------------------
 def test_errors(tmp_path, scenes, hc8):
     bad = tmp_path / "bad.json"

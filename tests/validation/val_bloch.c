@@ -230,6 +230,92 @@ static void check_sparse_one(rn_context *ctx, rn_lattice_kind kind, int rep, int
                RN_ERR_ARG);
   CHECK_STATUS(rn_network_bloch_hessian_csr(net, x, xi, &nnz2, NULL, col, cr, ci),
                RN_ERR_ARG);
+  /* the real moments (rn_network_bloch_moment_csr) against the dense ones: plain
+   * sum, first and second order, the same numbers */
+  const double k1[3] = {0.7, -0.2, 0.4}, k2[3] = {-0.3, 0.9, 0.5};
+  const double *ka[3] = {NULL, k1, k1}, *kb[3] = {NULL, NULL, k2};
+  double mdiff = 0.0, mout = 0.0, mbig = 0.0;
+  for (int o = 0; o < 3; ++o) {
+    size_t mz = 0;
+    must(ctx, rn_network_bloch_moment(net, x, ka[o], kb[o], re), "moment");
+    must(ctx, rn_network_bloch_moment_csr(net, x, ka[o], kb[o], &mz, rp, NULL, NULL),
+         "moment size");
+    int64_t *mc = malloc(mz * sizeof(int64_t));
+    double *mv = malloc(mz * sizeof(double));
+    must(ctx, rn_network_bloch_moment_csr(net, x, ka[o], kb[o], &mz, rp, mc, mv),
+         "moment csr");
+    memset(in, 0, n * n);
+    for (size_t i = 0; i < n; ++i)
+      for (int64_t q = rp[i]; q < rp[i + 1]; ++q) {
+        size_t j = (size_t)mc[q];
+        CHECK(j < n && (q == rp[i] || mc[q] > mc[q - 1]));
+        if (j >= n) continue;
+        in[i * n + j] = 1;
+        mdiff = fmax(mdiff, fabs(mv[q] - re[i * n + j]));
+      }
+    for (size_t a = 0; a < n * n; ++a) {
+      mbig = fmax(mbig, fabs(re[a]));
+      if (!in[a]) mout = fmax(mout, fabs(re[a]));
+    }
+    if (o == 1) {
+      size_t sh = mz - 1;
+      CHECK_STATUS(rn_network_bloch_moment_csr(net, x, k1, NULL, &sh, rp, mc, mv),
+                   RN_ERR_RANGE);
+      CHECK(sh == mz);
+    }
+    free(mc), free(mv);
+  }
+  printf("sparse Bloch moments, %s: against the dense %.1e (largest entry %.1e), "
+         "outside the pattern %.1e\n",
+         rn_lattice_kind_name(kind), mdiff, mbig, mout);
+  CHECK(mdiff == 0.0 && mout == 0.0 && mbig > 0.0);
+  CHECK_STATUS(rn_network_bloch_moment_csr(net, x, NULL, k2, &nnz2, rp, NULL, NULL),
+               RN_ERR_ARG);
+  /* the terms over lattice shifts (rn_network_bloch_terms): sum_t exp(2 pi i xi . n_t)
+   * T_t is H(xi) to round-off, on a pattern that holds H's */
+  {
+    int nt = 0;
+    size_t tz = 0;
+    must(ctx, rn_network_bloch_terms(net, x, &nt, NULL, &tz, rp, NULL, NULL),
+         "terms size");
+    int *shift = malloc(3 * (size_t)nt * sizeof(int));
+    int64_t *tc = malloc(tz * sizeof(int64_t));
+    double *tv = malloc((size_t)nt * tz * sizeof(double)), tdiff = 0.0, tbig = 0.0;
+    int ntc = nt - 1;
+    size_t tzc = tz;
+    CHECK_STATUS(rn_network_bloch_terms(net, x, &ntc, shift, &tzc, rp, tc, tv),
+                 RN_ERR_RANGE);
+    must(ctx, rn_network_bloch_terms(net, x, &nt, shift, &tz, rp, tc, tv), "terms");
+    must(ctx, rn_network_bloch_hessian(net, x, xi, re, im), "bloch again");
+    memset(in, 0, n * n);
+    for (size_t i = 0; i < n; ++i)
+      for (int64_t q = rp[i]; q < rp[i + 1]; ++q) {
+        double sr = 0.0, si = 0.0;
+        for (int t = 0; t < nt; ++t) {
+          const int *m = shift + 3 * t;
+          const double ph = 2.0 * M_PI * (xi[0] * m[0] + xi[1] * m[1] + xi[2] * m[2]);
+          sr += cos(ph) * tv[(size_t)t * tz + (size_t)q];
+          si += sin(ph) * tv[(size_t)t * tz + (size_t)q];
+        }
+        const size_t j = (size_t)tc[q];
+        in[i * n + j] = 1;
+        tdiff = fmax(tdiff, fmax(fabs(sr - re[i * n + j]), fabs(si - im[i * n + j])));
+      }
+    double tout = 0.0;
+    int has_zero = 0;
+    for (int t = 0; t < nt; ++t)
+      has_zero |= shift[3 * t] == 0 && shift[3 * t + 1] == 0 && shift[3 * t + 2] == 0;
+    for (size_t a = 0; a < n * n; ++a) {
+      tbig = fmax(tbig, hypot(re[a], im[a]));
+      if (!in[a]) tout = fmax(tout, hypot(re[a], im[a]));
+    }
+    printf("Bloch terms, %s: %d lattice shifts, %zu entries; against H(xi) %.1e (largest "
+           "entry %.1e), outside the pattern %.1e\n",
+           rn_lattice_kind_name(kind), nt, tz, tdiff, tbig, tout);
+    CHECK(nt >= 2 && nt <= 64 && has_zero);
+    CHECK(tdiff <= 1e-13 * tbig && tout == 0.0);
+    free(shift), free(tc), free(tv);
+  }
   free(in), free(col), free(cr), free(ci), free(rp), free(x), free(re), free(im);
   rn_scene_destroy(&s);
 }
@@ -329,13 +415,128 @@ static void check_sparse_eigen(rn_context *ctx) {
          "%.10e\n",
          n8, e1, sp);
   CHECK(e1 == sp && e1 > 0.0);
-  CHECK_STATUS(rn_cell_bloch_eigen(net, m, RN_BLOCH_ALL, 2, e2, NULL), RN_ERR_ARG);
-  CHECK(strstr(rn_context_last_error(ctx), "rn_cell_bloch_lowest_sparse") != NULL);
+  /* more eigenvalues by deflation; the dense method refused beyond its reach */
+  must(ctx, rn_cell_bloch_eigen(net, m, RN_BLOCH_ALL, 2, e2, NULL), "two beyond 4000");
+  CHECK(e2[0] == e1 && e2[1] >= e2[0]);
+  rn_bloch_options o;
+  rn_bloch_result br;
+  rn_bloch_options_default(&o);
+  o.method = RN_BLOCH_DENSE;
+  CHECK_STATUS(rn_cell_bloch(net, &o, &br), RN_ERR_ARG);
+  CHECK(strstr(rn_context_last_error(ctx), "RN_BLOCH_SPARSE") != NULL);
+  o.method = (rn_bloch_method)7;
+  CHECK_STATUS(rn_cell_bloch(net, &o, &br), RN_ERR_ARG);
   rn_scene_destroy(&s);
   /* bad arguments */
   CHECK_STATUS(
       rn_cell_bloch_lowest_sparse(NULL, gen, RN_BLOCH_ALL, &sp, NULL, NULL, NULL),
       RN_ERR_ARG);
+}
+
+/* The lowest 8 eigenvalues by deflated sparse runs against zheevr (multiplicities
+ * included: the honeycomb's K point has degenerate pairs), and the whole search
+ * (rn_cell_bloch: grid, refinement, ties, the acoustic tensor) with RN_BLOCH_SPARSE
+ * against RN_BLOCH_DENSE: the same wave vectors and equivalent set, eigenvalues to
+ * 1e-9 of the scale, the acoustic minimum to 1e-9 of its scale. */
+/* The lowest 8 eigenvalues at xi = 0 of the honeycomb's 2 x 2 supercell compressed
+ * equibiaxially (symmetric: the lowest is a double eigenvalue) by the sparse search's
+ * deflated runs (grid 1: xi = 0 only) against zheevr: every copy found, to 1e-9 of
+ * the scale. */
+static void compare_degenerate(rn_context *ctx) {
+  double l, dense[8];
+  rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 2, 4, &l);
+  rn_network *net = rn_scene_network(s);
+  const double e[3] = {-5e-4, -5e-4, 0.0}, zero[2] = {0.0, 0.0};
+  rn_cell_relax_report rep;
+  must(ctx, rn_cell_relax(net, e, &rep), "relax");
+  must(ctx, rn_cell_bloch_eigen(net, zero, RN_BLOCH_IN_PLANE, 8, dense, NULL), "dense 8");
+  rn_bloch_options o;
+  rn_bloch_result r;
+  rn_bloch_options_default(&o);
+  o.method = RN_BLOCH_SPARSE;
+  o.grid = 1;
+  o.refine = 0;
+  o.modes = RN_BLOCH_IN_PLANE;
+  must(ctx, rn_cell_bloch(net, &o, &r), "sparse search");
+  const double scale = fabs(dense[7]) + fabs(dense[0]);
+  double diff = 0.0;
+  int copies = 1, copies_sparse = 1;
+  for (int i = 0; i < 8; ++i) diff = fmax(diff, fabs(r.eig[i] - dense[i]));
+  for (int i = 1; i < 8; ++i) {
+    copies += fabs(dense[i] - dense[0]) <= 1e-9 * scale;
+    copies_sparse += fabs(r.eig[i] - r.eig[0]) <= 1e-9 * scale;
+  }
+  printf("deflated sparse eigenvalues, 2 x 2 honeycomb supercell compressed, xi = 0: "
+         "%.8e %.8e %.8e %.8e ... against dense %.8e %.8e %.8e %.8e: %.1e of the "
+         "scale; %d copies of the lowest\n",
+         r.eig[0], r.eig[1], r.eig[2], r.eig[3], dense[0], dense[1], dense[2], dense[3],
+         diff / scale, copies);
+  CHECK(r.neig == 8);
+  CHECK(copies >= 2 && copies_sparse == copies);
+  CHECK(diff <= 1e-9 * scale);
+  rn_scene_destroy(&s);
+}
+
+static void compare_search(rn_context *ctx, rn_network *net, rn_bloch_modes modes,
+                           const char *label) {
+  rn_bloch_options o;
+  rn_bloch_result d, sp;
+  rn_bloch_options_default(&o);
+  o.modes = modes;
+  o.method = RN_BLOCH_DENSE;
+  must(ctx, rn_cell_bloch(net, &o, &d), "dense search");
+  o.method = RN_BLOCH_SPARSE;
+  must(ctx, rn_cell_bloch(net, &o, &sp), "sparse search");
+  double scale = fabs(d.local_scale) + fabs(d.local_min), ediff = 0.0, xdiff = 0.0;
+  for (int i = 0; i < d.neig && i < sp.neig; ++i)
+    ediff = fmax(ediff, fabs(d.eig[i] - sp.eig[i]));
+  for (int i = 0; i < 3; ++i) xdiff = fmax(xdiff, fabs(d.xi[i] - sp.xi[i]));
+  printf("rn_cell_bloch sparse against dense, %s: local %.10e / %.10e at (%.4f %.4f "
+         "%.4f) / (%.4f %.4f %.4f), %d / %d equivalent, eigenvalues %.1e of the scale; "
+         "acoustic %.10e / %.10e (%.1e of its scale); %d / %d evaluations\n",
+         label, sp.local_min, d.local_min, sp.xi[0], sp.xi[1], sp.xi[2], d.xi[0], d.xi[1],
+         d.xi[2], sp.nequiv, d.nequiv, ediff / scale, sp.acoustic_min, d.acoustic_min,
+         fabs(sp.acoustic_min - d.acoustic_min) / d.acoustic_scale, sp.evaluations,
+         d.evaluations);
+  CHECK(fabs(sp.local_min - d.local_min) <= 1e-9 * scale);
+  /* the same wave vector, or a symmetry-equivalent one (ties between equivalent
+   * refined minima are decided by round-off): the dense eigenvalue there */
+  double at = NAN;
+  must(ctx, rn_cell_bloch_eigen(net, sp.xi, modes, 1, &at, NULL), "dense at sparse xi");
+  CHECK(xdiff <= 1e-12 || fabs(at - d.local_min) <= 1e-9 * scale);
+  CHECK(sp.nequiv == d.nequiv && sp.neig == d.neig);
+  CHECK(ediff <= 1e-9 * scale);
+  CHECK(sp.acoustic_valid == d.acoustic_valid);
+  if (d.acoustic_valid) {
+    CHECK(fabs(sp.acoustic_min - d.acoustic_min) <= 1e-9 * d.acoustic_scale);
+    CHECK(fabs(sp.acoustic_scale - d.acoustic_scale) <= 1e-9 * d.acoustic_scale);
+  }
+  CHECK(sp.bloch_dofs == d.bloch_dofs);
+}
+
+static void check_sparse_search(rn_context *ctx) {
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 1, 8, &l);
+  rn_network *net = rn_scene_network(s);
+  compare_search(ctx, net, RN_BLOCH_ALL, "honeycomb at rest, all modes");
+  const double e[3] = {-5e-4, -5e-4, 0.0};
+  rn_cell_relax_report rep;
+  must(ctx, rn_cell_relax(net, e, &rep), "relax");
+  compare_search(ctx, net, RN_BLOCH_IN_PLANE, "honeycomb compressed, in-plane");
+  const double e2[3] = {-2e-3, -2e-3, 0.0};
+  must(ctx, rn_cell_relax(net, e2, &rep), "relax");
+  compare_search(ctx, net, RN_BLOCH_IN_PLANE, "honeycomb past the instability");
+  rn_scene_destroy(&s);
+  s = cell(ctx, RN_LATTICE_SQUARE, 1, 8, &l);
+  net = rn_scene_network(s);
+  const double e3[3] = {-1.3e-3, 0.0, 0.0};
+  must(ctx, rn_cell_relax(net, e3, &rep), "relax");
+  compare_search(ctx, net, RN_BLOCH_IN_PLANE, "square past the macroscopic one");
+  rn_scene_destroy(&s);
+  s = cell(ctx, RN_LATTICE_OCTET, 1, 2, &l);
+  compare_search(ctx, rn_scene_network(s), RN_BLOCH_ALL, "octet at rest");
+  rn_scene_destroy(&s);
+  compare_degenerate(ctx);
 }
 
 static void check_acoustic(rn_context *ctx) {
@@ -378,15 +579,15 @@ static void check_acoustic(rn_context *ctx) {
 /* Load factor t in [lo, hi] where f(t) changes sign (f(lo) > 0 > f(hi)), by
  * bisection to rel; each evaluation relaxes the cell from the state at lo. */
 typedef double (*crit_fn)(rn_context *ctx, rn_network *net, const void *user);
-static double bisect(rn_context *ctx, rn_network *net, const double *dir3, double lo,
-                     double hi, crit_fn f, const void *user) {
+static double bisect_tol(rn_context *ctx, rn_network *net, const double *dir3, double lo,
+                         double hi, crit_fn f, const void *user, double rtol) {
   rn_state *s0 = NULL;
   rn_cell_relax_report rep;
   double e[3];
   for (int k = 0; k < 3; ++k) e[k] = lo * dir3[k];
   must(ctx, rn_cell_relax(net, e, &rep), "relax lo");
   must(ctx, rn_network_state_save(net, &s0), "save");
-  while (hi - lo > 1e-4 * hi) {
+  while (hi - lo > rtol * hi) {
     double mid = 0.5 * (lo + hi);
     must(ctx, rn_network_state_restore(net, s0), "restore");
     for (int k = 0; k < 3; ++k) e[k] = mid * dir3[k];
@@ -401,6 +602,10 @@ static double bisect(rn_context *ctx, rn_network *net, const double *dir3, doubl
   }
   rn_state_destroy(&s0);
   return 0.5 * (lo + hi);
+}
+static double bisect(rn_context *ctx, rn_network *net, const double *dir3, double lo,
+                     double hi, crit_fn f, const void *user) {
+  return bisect_tol(ctx, net, dir3, lo, hi, f, user, 1e-4);
 }
 
 /* rn_cell_bloch on the in-plane modes with a grid of G wave vectors. */
@@ -426,6 +631,60 @@ static double sway(rn_context *ctx, rn_network *net, const void *user) {
        rn_cell_bloch_eigen(net, (const double *)user, RN_BLOCH_IN_PLANE, 1, eig, NULL),
        "eigen");
   return eig[0];
+}
+
+/* rn_cell_path_run locates a Bloch instability by the secant on the tracked lowest
+ * eigenvalue: against a bisection (bisect_tol) to 1e-11 of the strain of the tracked
+ * quantity (the lowest in-plane eigenvalue at the honeycomb's M point under
+ * equibiaxial compression, a local instability; the acoustic tensor's minimum of the
+ * square lattice under uniaxial compression, a macroscopic one) the critical strain
+ * agrees to 1e-6 relative, dense and sparse, in at most 8 iterations. */
+static double m_point(rn_context *ctx, rn_network *net, const void *user) {
+  double w;
+  (void)user;
+  const double m[2] = {0.5, 0.0};
+  must(ctx, rn_cell_bloch_eigen(net, m, RN_BLOCH_IN_PLANE, 1, &w, NULL), "M point");
+  return w;
+}
+static void path_secant(rn_context *ctx, rn_lattice_kind kind, const double *dir3,
+                        double hi, crit_fn f, int macro) {
+  double l;
+  rn_scene *s = cell(ctx, kind, 1, 8, &l);
+  rn_network *net = rn_scene_network(s);
+  const double ref = bisect_tol(ctx, net, dir3, 0.0, hi, f, NULL, 1e-11);
+  for (int method = RN_BLOCH_DENSE; method <= RN_BLOCH_SPARSE; ++method) {
+    rn_cell_relax_report rep;
+    const double zero[3] = {0.0, 0.0, 0.0};
+    must(ctx, rn_cell_relax(net, zero, &rep), "rest");
+    rn_cell_path_segment seg;
+    memset(&seg, 0, sizeof seg);
+    seg.steps = 8;
+    for (int k = 0; k < 3; ++k) seg.target[k] = hi * dir3[k];
+    rn_cell_path_options o;
+    rn_cell_path_options_default(&o);
+    o.modes = RN_BLOCH_IN_PLANE;
+    o.bloch_method = (rn_bloch_method)method;
+    rn_cell_path_result r;
+    memset(&r, 0, sizeof r);
+    must(ctx, rn_cell_path_run(net, 1, &seg, &o, &r), "path");
+    const rn_cell_path_instability *in = &r.inst;
+    const double ec = in->strain[0] / dir3[0];
+    printf("path secant, %s (%s): critical strain %.12e against %.12e (%.1e), %d "
+           "iterations, %s\n",
+           rn_lattice_kind_name(kind), method == RN_BLOCH_DENSE ? "dense" : "sparse", ec,
+           ref, fabs(ec / ref - 1.0), in->bisections,
+           in->kind_macroscopic ? "macroscopic" : "local");
+    CHECK(in->found && in->kind_macroscopic == macro);
+    CHECK_REL(ec, ref, 1e-6);
+    CHECK(in->bisections >= 1 && in->bisections <= 8);
+    rn_cell_path_result_free(&r);
+  }
+  rn_scene_destroy(&s);
+}
+static void check_path_secant(rn_context *ctx) {
+  const double eq[3] = {-1.0, -1.0, 0.0}, ux[3] = {-1.0, 0.0, 0.0};
+  path_secant(ctx, RN_LATTICE_HONEYCOMB, eq, 1.5e-3, m_point, 0);
+  path_secant(ctx, RN_LATTICE_SQUARE, ux, 2.0e-3, acoustic, 1);
 }
 
 static void check_square(rn_context *ctx) {
@@ -673,6 +932,8 @@ int main(int argc, char **argv) {
   check_hessian(ctx);
   check_sparse(ctx);
   check_sparse_eigen(ctx);
+  check_sparse_search(ctx);
+  check_path_secant(ctx);
   check_acoustic(ctx);
   check_square(ctx);
   check_honeycomb(ctx);
