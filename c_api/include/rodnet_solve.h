@@ -645,8 +645,8 @@ typedef struct rn_bloch_options {
   int refine; /* 1 (default): refine the grid minimum by a pattern search in
                  xi down to 1e-4 */
   rn_bloch_modes modes;
-  const double *xi_hint;  /* optional: also start a refinement here (dim) */
-  rn_bloch_method method; /* default RN_BLOCH_AUTO */
+  const double *xi_hint; /* optional: also start a refinement here (dim) */
+  int method; /* an rn_bloch_method (int: any value is checked); default RN_BLOCH_AUTO */
   /* 1: no grid scan, only the refinement from xi_hint (a tracked minimum, e.g.
    * while a critical load is located); without xi_hint no local test (local_min
    * +inf, neig 0) */
@@ -792,7 +792,7 @@ typedef struct rn_cell_path_options {
   rn_bloch_modes modes;           /* the Bloch modes examined */
   rn_cell_path_progress progress; /* may be NULL */
   void *user;                     /* progress's first argument */
-  rn_bloch_method bloch_method;   /* rn_bloch_options.method (default RN_BLOCH_AUTO) */
+  int bloch_method;               /* rn_bloch_options.method (default RN_BLOCH_AUTO) */
 } rn_cell_path_options;
 void rn_cell_path_options_default(rn_cell_path_options *opt);
 

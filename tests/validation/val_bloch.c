@@ -424,7 +424,7 @@ static void check_sparse_eigen(rn_context *ctx) {
   o.method = RN_BLOCH_DENSE;
   CHECK_STATUS(rn_cell_bloch(net, &o, &br), RN_ERR_ARG);
   CHECK(strstr(rn_context_last_error(ctx), "RN_BLOCH_SPARSE") != NULL);
-  o.method = (rn_bloch_method)7;
+  o.method = 7;
   CHECK_STATUS(rn_cell_bloch(net, &o, &br), RN_ERR_ARG);
   rn_scene_destroy(&s);
   /* bad arguments */
@@ -663,7 +663,7 @@ static void path_secant(rn_context *ctx, rn_lattice_kind kind, const double *dir
     rn_cell_path_options o;
     rn_cell_path_options_default(&o);
     o.modes = RN_BLOCH_IN_PLANE;
-    o.bloch_method = (rn_bloch_method)method;
+    o.bloch_method = method;
     rn_cell_path_result r;
     memset(&r, 0, sizeof r);
     must(ctx, rn_cell_path_run(net, 1, &seg, &o, &r), "path");
