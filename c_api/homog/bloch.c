@@ -236,8 +236,8 @@ static void sort_row(rn_bloch_trip *t, rn_bloch_trip *w, size_t m) {
 /* Triplets to CSR: a counting sort by row, each row by column (both stable: the
  * duplicates of an entry stay in assembly order and are summed in it, as the dense
  * matrix sums them).  Fills rowptr[n + 1] and *nnz; with col (and re, im) the
- * entries (cap: the arrays' length; im may be NULL: real values).  0, or -1 out of
- * memory. */
+ * entries (cap: the arrays' length; im may be NULL: real values; re and im NULL:
+ * the pattern only; tr is not changed).  0, or -1 out of memory. */
 static int triplets_to_csr(const bloch_triplets *tr, size_t cap, size_t *nnz,
                            int64_t *rowptr, int64_t *col, double *re, double *im) {
   const size_t n = tr->n, m = tr->ntrip;
@@ -262,14 +262,14 @@ static int triplets_to_csr(const bloch_triplets *tr, size_t cap, size_t *nnz,
     for (size_t q = 0; q < len; ++q) {
       if (q > 0 && t[q].c == t[q - 1].c) {
         if (col && count <= cap) {
-          re[count - 1] += t[q].re;
+          if (re) re[count - 1] += t[q].re;
           if (im) im[count - 1] += t[q].im;
         }
         continue;
       }
       if (col && count < cap) {
         col[count] = t[q].c;
-        re[count] = 0.0 + t[q].re;
+        if (re) re[count] = 0.0 + t[q].re;
         if (im) im[count] = 0.0 + t[q].im;
       }
       ++count;
@@ -374,22 +374,14 @@ rn_status rn_network_bloch_terms(const rn_network *net, const double *x, int *nt
   }
   /* the pattern (union over the terms), then each term's values on it */
   size_t count = 0, cap = col ? *nnz : 0;
-  double *one = malloc((tr.ntrip ? tr.ntrip : 1) * sizeof(double));
-  rn_bloch_trip *orig = malloc((tr.ntrip ? tr.ntrip : 1) * sizeof *orig);
-  if (!one || !orig) {
-    free(one), free(orig), free(tr.trip);
-    return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  }
-  memcpy(orig, tr.trip, tr.ntrip * sizeof *orig);
-  /* the pattern by triplets_to_csr (its values unused) */
-  if (triplets_to_csr(&tr, cap, &count, rowptr, col, one, NULL)) {
-    free(one), free(orig), free(tr.trip);
+  if (triplets_to_csr(&tr, cap, &count, rowptr, col, NULL, NULL)) {
+    free(tr.trip);
     return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   }
   *nnz = count;
   *nterms = nt;
   if (col && (count > cap || nt > tcap)) {
-    free(one), free(orig), free(tr.trip);
+    free(tr.trip);
     return rn_fail(net->ctx, RN_ERR_RANGE, where,
                    "the arrays hold %zu entries and %d terms, the matrix has %zu and %d",
                    cap, tcap, count, nt);
@@ -398,7 +390,7 @@ rn_status rn_network_bloch_terms(const rn_network *net, const double *x, int *nt
     memset(val, 0, (size_t)nt * count * sizeof(double));
     for (int t = 0; t < nt; ++t) memcpy(shift + 3 * t, sh[t], sizeof sh[t]);
     for (size_t q = 0; q < tr.ntrip; ++q) { /* each triplet's entry: search its row */
-      const rn_bloch_trip *e = &orig[q];
+      const rn_bloch_trip *e = &tr.trip[q];
       int64_t lo = rowptr[e->r], hi = rowptr[e->r + 1] - 1;
       while (lo < hi) {
         int64_t mid = (lo + hi) / 2;
@@ -410,6 +402,6 @@ rn_status rn_network_bloch_terms(const rn_network *net, const double *x, int *nt
       val[(size_t)e->im * count + (size_t)lo] += e->re;
     }
   }
-  free(one), free(orig), free(tr.trip);
+  free(tr.trip);
   return RN_OK;
 }

@@ -19,16 +19,16 @@ namespace rodnet {
 
 class SparseAnalysis;
 
+// Q_JL[a][b] -= B_J[:, a] . X_L[:, b] (m rows; B_J, X_L column-major m x na): the
+// fluctuation part of the brackets, shared by the dense and the sparse acoustic tensor.
+void subtract_bx(int d, int na, size_t m, const std::vector<std::vector<double>> &B,
+                 const std::vector<std::vector<double>> &X, std::vector<double> &Q);
 // The brackets Q[d][d][na][na] of the acoustic tensor (cell_path.cpp,
 // AcousticTensor) from the sparse moments (rn_network_bloch_moment_csr): Q_JL[a][b] =
 // -1/2 T_a' M2_JL T_b - B_J' K^-1 B_L, B_J = M1_J' T on the rows sel0, K = H(0) on
 // sel0 by its sparse Cholesky factor; amp_of[i] the amplitude index a of Bloch DOF i
 // where it is the translation component amp[a], else -1.  False (Q untouched) if K is
 // not positive definite.
-// Q_JL[a][b] -= B_J[:, a] . X_L[:, b] (m rows; B_J, X_L column-major m x na): the
-// fluctuation part of the brackets, shared by the dense and the sparse acoustic tensor.
-void subtract_bx(int d, int na, size_t m, const std::vector<std::vector<double>> &B,
-                 const std::vector<std::vector<double>> &X, std::vector<double> &Q);
 bool sparse_acoustic_brackets(const rn_network *net, const double *x, size_t n, int d,
                               int na, const std::vector<int> &sel0,
                               const std::vector<int> &amp_of, std::vector<double> &Q);

@@ -356,7 +356,7 @@ rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc
                  bool *ok) {
   rn_cell_path_step s;
   int f[6], nstress = stress_components(p.r->seg[b.j], p.r->ns, f);
-  const bool macro = macro_unstable(b.bhi, p) && b.bhi.acoustic_valid == 1;
+  const bool macro = macro_unstable(b.bhi, p);
   double flo = critical_value(b.blo, macro), fhi = critical_value(b.bhi, macro);
   *ok = false;
   if (b.why != 0 || !(flo > 0.0) || !(fhi < 0.0)) return RN_OK;
@@ -436,8 +436,8 @@ double record_bloch(const Path &p, const Bracket &b, double uc_secant) {
   const rn_bloch_result &rlo = b.blo, &rhi = b.bhi;
   double uc = b.u_hi;
   in->kind_macroscopic = macro_unstable(rhi, p);
-  double flo = in->kind_macroscopic ? rlo.acoustic_min : rlo.local_min;
-  double fhi = in->kind_macroscopic ? rhi.acoustic_min : rhi.local_min;
+  double flo = critical_value(rlo, in->kind_macroscopic);
+  double fhi = critical_value(rhi, in->kind_macroscopic);
   if (flo > 0.0 && fhi < 0.0) uc = b.u_lo + (b.u_hi - b.u_lo) * flo / (flo - fhi);
   if (std::isfinite(uc_secant)) uc = uc_secant;
   if (in->kind_macroscopic) {
@@ -492,7 +492,6 @@ rn_status secant_then_check(rn_network *net, const Path &p, Bracket &b, int *it,
       if (!(st = relax_at(net, p, b.j, b.u_hi, &s)) &&
           !(st = bloch_at(net, p, b.bhi.xi, &hi_full)) && unstable(hi_full, p))
         b.bhi = hi_full;
-      b.u_lo = b.u_hi; // bisect() has nothing left to do
     }
   } else if (!st)
     *uc = NAN;
@@ -509,7 +508,7 @@ rn_status locate(rn_network *net, const Path &p, Bracket b) {
   int it = 0;
   double uc_secant = NAN;
   rn_status st = secant_then_check(net, p, b, &it, &uc_secant);
-  if (!st) st = bisect(net, p, b, &it);
+  if (!st && !std::isfinite(uc_secant)) st = bisect(net, p, b, &it);
   if (!st) {
     in->found = 1;
     in->bisections = it;
