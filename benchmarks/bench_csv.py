@@ -45,3 +45,24 @@ def provenance(rodnet, commit_override=None):
     if commit_override:
         prov["commit"] = commit_override
     return prov
+
+
+def plot_rows(doc, bench, prog):
+    """The command line of a plot script (CSV, -o PNG; doc its help) and the CSV's
+    rows of bench: (rows, output path); exits with "<prog>: ..." if there are none."""
+    import argparse
+    ap = argparse.ArgumentParser(description=doc)
+    ap.add_argument("csv")
+    ap.add_argument("-o", "--output", required=True)
+    a = ap.parse_args()
+    rows = [r for r in read_rows(a.csv, prog) if r["bench"] == bench]
+    if not rows:
+        sys.exit(f"{prog}: {a.csv} has no bench_{bench} rows")
+    return rows, a.output
+
+
+def save(fig, output, dpi=120):
+    """fig to output through a temporary name (a complete PNG or none)."""
+    tmp = output + ".tmp.png"
+    fig.savefig(tmp, dpi=dpi)
+    os.replace(tmp, output)

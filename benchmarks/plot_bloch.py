@@ -6,7 +6,6 @@ Lanczos steps of the sparse runs marked.  The title carries the commit and compi
 
     plot_bloch.py benchmarks/results/bloch.csv -o benchmarks/results/bloch.png
 """
-import argparse
 import os
 import sys
 
@@ -20,13 +19,7 @@ import bench_csv  # noqa: E402
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("csv")
-    ap.add_argument("-o", "--output", required=True)
-    a = ap.parse_args()
-    rows = [r for r in bench_csv.read_rows(a.csv, "plot_bloch") if r["bench"] == "bloch"]
-    if not rows:
-        sys.exit(f"plot_bloch: {a.csv} has no bench_bloch rows")
+    rows, output = bench_csv.plot_rows(__doc__, "bloch", "plot_bloch")
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for case, colour, label in (("dense", "tab:red", "dense (zheevr)"),
                                 ("sparse", "tab:blue", "sparse (shift-invert Lanczos)")):
@@ -50,9 +43,7 @@ def main():
     ax.set_title(f"lowest Bloch eigenvalue, {lat} supercells (numbers: Lanczos steps)\n"
                  + bench_csv.title(rows, "bench_bloch"), fontsize=8)
     fig.tight_layout()
-    tmp = a.output + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, a.output)
+    bench_csv.save(fig, output)
 
 
 if __name__ == "__main__":

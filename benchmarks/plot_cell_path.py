@@ -6,7 +6,6 @@ compiler.
 
     plot_cell_path.py benchmarks/results/cell_path.csv -o benchmarks/results/cell_path.png
 """
-import argparse
 import os
 import sys
 
@@ -20,14 +19,7 @@ import bench_csv  # noqa: E402
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("csv")
-    ap.add_argument("-o", "--output", required=True)
-    a = ap.parse_args()
-    rows = [r for r in bench_csv.read_rows(a.csv, "plot_cell_path")
-            if r["bench"] == "cell_path"]
-    if not rows:
-        sys.exit(f"plot_cell_path: {a.csv} has no bench_cell_path rows")
+    rows, output = bench_csv.plot_rows(__doc__, "cell_path", "plot_cell_path")
     cases = []
     for r in rows:
         if r["case"] not in cases:
@@ -63,9 +55,7 @@ def main():
     ax.set_title(bench_csv.title(rows, "homogenize --path (Bloch method)"), fontsize=9)
     ax.grid(True, axis="y", which="both", alpha=0.3)
     fig.tight_layout()
-    tmp = a.output + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, a.output)
+    bench_csv.save(fig, output)
 
 
 if __name__ == "__main__":

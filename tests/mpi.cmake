@@ -28,6 +28,19 @@ function(rn_mpi_cli name np rc regex)
                        ENVIRONMENT "${RN_MPI_ENV}")
 endfunction()
 
+# rn_mpi_usage_once(NAME REGEX ARGS...): rodnet on 2 ranks prints a usage error
+# once (its two lines, from rank 0, matching REGEX) and exits 2 on every rank.
+function(rn_mpi_usage_once name regex)
+  string(REPLACE ";" "@@" args "${ARGN}")
+  add_test(NAME ${name}
+           COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
+                   "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@2@@${CMAKE_BINARY_DIR}/rodnet@@${args}"
+                   -DEXPECT_RC=2 "-DEXPECT_REGEX=${regex}" -DSTDERR_LINES=2
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
+  set_tests_properties(${name} PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
+                       ENVIRONMENT "${RN_MPI_ENV}")
+endfunction()
+
 rn_mpi_cli(mpi_cli_malformed 2 3 "malformed JSON"
            solve ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/malformed.json -o ${RN_MPI_OUT}/mpi_cli_malformed.json)
 rn_mpi_cli(mpi_cli_coincident 2 3 "joints 0 .'J1'. and 1 .'J2'. are coincident"
@@ -40,31 +53,37 @@ rn_mpi_cli(mpi_cli_serial_solver 2 2 "solver 'tr-minres' .*cannot run on 2 MPI r
            solve ${RN_MPI_DATA}/chain.json --solver tr-minres
            -o ${RN_MPI_OUT}/mpi_cli_serial_solver.json)
 # ---- issue 22 item 5: the one-process commands under mpirun ------------------------
-# homogenize, path, sweep, generate, check and bench on 2 ranks used to run the whole
+# homogenize, path, generate, check and bench on 2 ranks used to run the whole
 # job on every rank (every message twice, both ranks writing the same files); they
 # refuse: one line from rank 0, exit status 2 on every rank, nothing written, no hang.
+# (sweep runs distributed since issue 24: mpi_sweep below.)
 set(RN_MPI_REFUSE "runs on one process, not on 2 MPI ranks.*run it without mpirun")
 rn_mpi_cli(mpi_cli_one_process_homogenize 2 2 "rodnet homogenize: ${RN_MPI_REFUSE}"
            homogenize ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_one_process_homogenize.json)
 rn_mpi_cli(mpi_cli_one_process_path 2 2 "rodnet path: ${RN_MPI_REFUSE}"
            path ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_one_process_path.json)
-rn_mpi_cli(mpi_cli_one_process_sweep 2 2 "rodnet sweep: ${RN_MPI_REFUSE}"
-           sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json
-           -o ${RN_MPI_OUT}/mpi_cli_one_process_sweep.json)
 rn_mpi_cli(mpi_cli_one_process_generate 2 2 "rodnet generate: ${RN_MPI_REFUSE}"
            generate square --cells 2 -o ${RN_MPI_OUT}/mpi_cli_one_process_generate.json)
 rn_mpi_cli(mpi_cli_one_process_check 2 2 "rodnet check: ${RN_MPI_REFUSE}"
            check ${RN_MPI_DATA}/chain.json --random 0)
 rn_mpi_cli(mpi_cli_one_process_bench 2 2 "rodnet bench: ${RN_MPI_REFUSE}"
            bench --suite smoke --no-plot -o ${RN_MPI_OUT}/mpi_cli_one_process_bench.json)
+# ---- issue 24 section 4: sweeps spread over the ranks ------------------------------
+# The same CSV on 1 and 2 ranks (a path to the first instability per point), one
+# progress bar, resumes, failing points reported once (tests/unit/check_sweep_mpi.py).
+add_test(NAME mpi_sweep
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_sweep_mpi.py
+                 ${CMAKE_BINARY_DIR}/rodnet ${MPIEXEC_EXECUTABLE} 2 ${RN_MPI_OUT}/sweep)
+set_tests_properties(mpi_sweep PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                     ENVIRONMENT "${RN_MPI_ENV}")
+# A usage error of sweep is printed once, a bad sweep file once (rank 0).
+rn_mpi_usage_once(mpi_cli_sweep_usage_once "missing -o DIR"
+                  sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json)
+rn_mpi_cli(mpi_cli_sweep_bad 2 3 "sweep_bad.json: unknown key 'density'"
+           sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_bad.json
+           -o ${RN_MPI_OUT}/mpi_cli_sweep_bad)
 # A usage error of solve is printed once (by rank 0): its two lines, not four.
-add_test(NAME mpi_cli_usage_once
-         COMMAND ${CMAKE_COMMAND} -DCMD=${MPIEXEC_EXECUTABLE}
-                 "-DARGS=-q@@${MPIEXEC_NUMPROC_FLAG}@@2@@${CMAKE_BINARY_DIR}/rodnet@@solve@@${RN_MPI_DATA}/chain.json"
-                 -DEXPECT_RC=2 "-DEXPECT_REGEX=missing -o RESULT.json" -DSTDERR_LINES=2
-                 -P ${CMAKE_CURRENT_SOURCE_DIR}/unit/problems_run.cmake)
-set_tests_properties(mpi_cli_usage_once PROPERTIES LABELS mpi TIMEOUT 120
-                     PROCESSORS 2 ENVIRONMENT "${RN_MPI_ENV}")
+rn_mpi_usage_once(mpi_cli_usage_once "missing -o RESULT.json" solve ${RN_MPI_DATA}/chain.json)
 
 # No solver asked for: under mpirun the default is the distributed tr-krylov (dd).
 add_test(NAME mpi_cli_default_solver

@@ -569,6 +569,26 @@ if(RN_WITH_TRILINOS)
               "\"relative_density\" 0.95: .*overlap at the joints.*keep it below 0.88"
               ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_reentrant_dense.json
                    -o ${gen}/sweep_dense)
+  # issue 24 section 4: "path" in sweep files.  Bad paths are refused before any
+  # point, naming the key and the reason; a path sweep's instabilities are the
+  # ones `rodnet homogenize --path` finds, and do not depend on the steps (a
+  # regression of the secant's unverified bracket, tests/unit/check_sweep_path.py).
+  foreach(case "len|has 6 entries but the lattice 'honeycomb' is 2D: give 3"
+               "key|\"path\": unknown key 'step'"
+               "both|\"path\" needs exactly one of \"strain\" and \"stress\""
+               "modes3d|the 3D lattice 'octet' has no in-plane / out-of-plane split"
+               "zero|must be a list with a non-zero entry")
+    string(REPLACE "|" ";" case "${case}")
+    list(GET case 0 name)
+    list(GET case 1 regex)
+    rn_cli_test(problems_cli_sweep_path_${name} 3 "sweep_path_${name}.json: .*${regex}"
+                ARGS sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_path_${name}.json
+                     -o ${gen}/sweep_path_bad)
+  endforeach()
+  add_test(NAME problems_cli_sweep_path
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_sweep_path.py
+                   ${RN_CLI} ${gen}/sweep_path)
+  set_tests_properties(problems_cli_sweep_path PROPERTIES LABELS unit TIMEOUT 300)
   # rodnet solve of a stress-controlled cell: RESULT.json "cell"
   rn_cli_test(problems_cli_periodic_solve_stress 0 "status +converged"
               REMOVE ${gen}/hc_stress_result.json FIXTURE_SETUP problems_periodic_stress

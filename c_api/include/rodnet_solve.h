@@ -387,6 +387,27 @@ void rn_runtime_ranks(int *rank, int *size);
  * on other ranks when there are several) is then recorded in ctx on every rank. */
 rn_status rn_dist_agree(rn_context *ctx, rn_status local);
 
+/* Collective over MPI_COMM_WORLD: v[0 .. n-1] reduced elementwise over the ranks
+ * in place on every rank (op: RN_DIST_SUM, RN_DIST_MAX or RN_DIST_MIN).  A no-op
+ * on one rank.  RN_ERR_ARG for a bad op or n < 0. */
+typedef enum rn_dist_op { RN_DIST_SUM = 0, RN_DIST_MAX = 1, RN_DIST_MIN = 2 } rn_dist_op;
+rn_status rn_dist_allreduce_int(int *v, int n, int op);
+
+/* Notices: small records (n <= RN_DIST_NOTICE_INTS integers and a text of at
+ * most RN_DIST_NOTICE_TEXT - 1 bytes) sent from any rank to rank 0 while the
+ * ranks work independently (progress of independent tasks, their failures),
+ * without a collective.  rn_dist_notice_send (rank > 0) does not wait for rank
+ * 0: the record is buffered until it is delivered; rn_dist_notice_poll (rank 0)
+ * takes one arrived record if there is one (1, with its ints, text and the
+ * sender's rank; 0 if none has arrived; it never waits); rn_dist_notice_flush
+ * (rank > 0) waits until this rank's records are delivered, e.g. before a
+ * collective that ends the independent work.  Not collective.  On one rank
+ * (or rank 0 sending) nothing is sent.  RN_ERR_ARG for bad arguments. */
+enum { RN_DIST_NOTICE_INTS = 8, RN_DIST_NOTICE_TEXT = 1024 };
+rn_status rn_dist_notice_send(const int *v, int n, const char *text);
+int rn_dist_notice_poll(int *v, int n, char *text, size_t text_size, int *from);
+rn_status rn_dist_notice_flush(void);
+
 /* Collective: the partition's sizes per rank, gathered on every rank:
  * owned_dofs[ranks] and owned_stencils[ranks] (arrays of at least *ranks entries
  * allocated by the caller: call with owned_dofs = NULL first to get *ranks). */

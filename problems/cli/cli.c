@@ -40,7 +40,7 @@ static const rn_cli_command commands[] = {
      "(load or displacement control; --plot PNG)",
      rn_cli_path, RN_CLI_NEEDS_SOLVER},
     {"sweep", "sweep SWEEP.json -o DIR", "homogenisation over a grid of parameters",
-     rn_cli_sweep, RN_CLI_NEEDS_SOLVER},
+     rn_cli_sweep, RN_CLI_NEEDS_SOLVER | RN_CLI_DISTRIBUTED},
 };
 enum { n_commands = (int)(sizeof commands / sizeof commands[0]) };
 
@@ -158,6 +158,12 @@ static void env_ranks(long *rank, long *size) {
   *size = n > 0 ? n : -1;
 }
 
+long rn_cli_env_ranks(void) {
+  long rank, size;
+  env_ranks(&rank, &size);
+  return size;
+}
+
 int rn_cli_quiet_rank(void) {
   long rank, size;
   env_ranks(&rank, &size);
@@ -176,7 +182,8 @@ static int refuse_mpi(const char *cmd) {
     fprintf(stderr,
             "rodnet %s: runs on one process, not on %ld MPI ranks (each would run the "
             "whole job and write the same files); run it without mpirun (of the "
-            "commands only 'rodnet solve' is distributed; docs/parallel.md)\n",
+            "commands only 'rodnet solve' and 'rodnet sweep' run on several ranks; "
+            "docs/parallel.md)\n",
             cmd, size);
   return RN_EXIT_USAGE;
 }

@@ -141,5 +141,9 @@ void rn_cli_child(long pid);
  * (from the launcher's environment, without starting MPI): it prints no
  * usage error. */
 int rn_cli_quiet_rank(void);
+/* The number of ranks of this process's MPI job from the launcher's
+ * environment (1 without a launcher or with RODNET_MPI=0; -1 if the launcher
+ * says the rank only), without starting MPI. */
+long rn_cli_env_ranks(void);
 
 #endif

@@ -7,6 +7,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <stdarg.h>
 #include <fnmatch.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,16 +179,29 @@ static const char *show(const rn_cli_file *f, const resolved *r, char *buf, size
   return buf;
 }
 
+/* A message of the checks, printed once under mpirun (by rank 0). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static void
+say(const char *fmt, ...) {
+  va_list ap;
+  if (rn_cli_quiet_rank()) return;
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+}
+
 int rn_cli_check_files(const char *cmd, const rn_cli_file *files, int n) {
   resolved *r = calloc((size_t)(n > 0 ? n : 1), sizeof *r);
   int rc = 0;
   if (!r) {
-    fprintf(stderr, "rodnet %s: out of memory\n", cmd);
+    say("rodnet %s: out of memory\n", cmd);
     return RN_EXIT_INTERNAL;
   }
   for (int i = 0; i < n && !rc; i++)
     if (files[i].path && resolve(&files[i], &r[i])) {
-      fprintf(stderr, "rodnet %s: out of memory\n", cmd);
+      say("rodnet %s: out of memory\n", cmd);
       rc = RN_EXIT_INTERNAL;
     }
   char a[4200];
@@ -216,7 +230,7 @@ int rn_cli_check_files(const char *cmd, const rn_cli_file *files, int n) {
 int rn_cli_probe_outputs(const char *cmd, const rn_cli_file *files, int n) {
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) {
-    fprintf(stderr, "rodnet %s: out of memory\n", cmd);
+    say("rodnet %s: out of memory\n", cmd);
     return RN_EXIT_INTERNAL;
   }
   int rc = 0;
@@ -230,8 +244,7 @@ int rn_cli_probe_outputs(const char *cmd, const rn_cli_file *files, int n) {
       int err = 0;
       if (stat(f->path, &sb) == 0) {
         if (!S_ISDIR(sb.st_mode)) {
-          fprintf(stderr, "rodnet %s: %s %s: exists and is not a folder\n", cmd, f->what,
-                  f->path);
+          say("rodnet %s: %s %s: exists and is not a folder\n", cmd, f->what, f->path);
           rc = RN_EXIT_INPUT;
         } else if (access(f->path, W_OK | X_OK) != 0)
           err = errno;
@@ -243,8 +256,8 @@ int rn_cli_probe_outputs(const char *cmd, const rn_cli_file *files, int n) {
         err = errno;
       free(dir);
       if (err) {
-        fprintf(stderr, "rodnet %s: %s %s: cannot write the folder: %s\n", cmd, f->what,
-                f->path, strerror(err));
+        say("rodnet %s: %s %s: cannot write the folder: %s\n", cmd, f->what, f->path,
+            strerror(err));
         rc = RN_EXIT_INPUT;
       }
       continue;
@@ -256,7 +269,7 @@ int rn_cli_probe_outputs(const char *cmd, const rn_cli_file *files, int n) {
     }
     sprintf(name, "%s%s", f->path, f->suffix ? f->suffix : "");
     if (rn_file_probe_writable(ctx, name) != RN_OK) {
-      fprintf(stderr, "rodnet %s: %s %s\n", cmd, f->what, rn_context_last_error(ctx));
+      say("rodnet %s: %s %s\n", cmd, f->what, rn_context_last_error(ctx));
       rc = RN_EXIT_INPUT;
     }
     free(name);

@@ -41,7 +41,8 @@ static const char sweep_help[] =
     "  {\"lattice\": \"honeycomb\" or [...], \"joint_model\": \"rigid\" or [...],\n"
     "   \"relative_density\": [...] or {\"from\": a, \"to\": b, \"count\": n,\n"
     "   \"scale\": \"log\" or \"linear\"}, \"seed\": [...], \"perturb\": amp,\n"
-    "   \"edges_per_rod\": N, \"cells\": [m, n(, k)], \"E\": 1, \"nu\": 0.3}\n"
+    "   \"edges_per_rod\": N, \"cells\": [m, n(, k)], \"E\": 1, \"nu\": 0.3,\n"
+    "   \"path\": {\"strain\": [E11, E22, E12] or \"stress\": [...], \"steps\": 20}}\n"
     "Every point (the product of the lists) is written atomically to\n"
     "DIR/point_NNNN.json as soon as it is done, with its record (every parameter\n"
     "of the sweep file at that point, the rodnet version, a hash of its cell\n"
@@ -49,6 +50,10 @@ static const char sweep_help[] =
     "others, so a killed sweep loses nothing.  Then DIR/sweep.csv (atomically) and,\n"
     "with --plot, a PNG of E1 and nu12 against relative density (the frame closed\n"
     "forms on the same axes for the rigid-jointed honeycomb).\n"
+    "With \"path\", every point also follows the macroscopic path (null entries:\n"
+    "the other control at zero) to its first instability, written to the point\n"
+    "file and the CSV.  Under mpirun the points are spread over the ranks (each\n"
+    "point on one rank; rank 0 prints the one progress bar and writes the CSV).\n"
     "\n"
     "Options:\n"
     "  -o, --output DIR    output folder (created if missing)\n"
@@ -69,6 +74,13 @@ typedef struct sweep_spec {
   long seed[MAX_LIST];
   double perturb, E, nu;
   int edges, cells[3];
+  /* "path": a proportional macroscopic path per point, with its first
+   * instability (has_path 0: none) */
+  int has_path, path_ns, path_stress_given, path_steps;
+  double path_target[6];
+  int path_stress[6]; /* per component: 1 stress-controlled */
+  rn_bloch_modes path_modes;
+  int path_method; /* rn_bloch_method */
 } sweep_spec;
 
 typedef struct point {
@@ -86,6 +98,7 @@ static int sweep_error(const char *file, const char *fmt, ...)
     ;
 static int sweep_error(const char *file, const char *fmt, ...) {
   va_list ap;
+  if (rn_cli_quiet_rank()) return RN_EXIT_INPUT; /* rank 0 of the MPI job says it */
   fprintf(stderr, "rodnet sweep: %s: ", file);
   va_start(ap, fmt);
   vfprintf(stderr, fmt, ap);
@@ -159,6 +172,25 @@ static int put_nu(cJSON *r, const char *k, const sweep_spec *s, const point *p) 
   (void)p;
   return cJSON_AddNumberToObject(r, k, s->nu) != NULL;
 }
+static const char *const bloch_method_names[] = {"auto", "dense", "sparse"};
+static const char *const bloch_mode_names[] = {"all", "in-plane", "out-of-plane"};
+/* "path" (only when given: a sweep without one keeps the records it had) */
+static int put_path(cJSON *r, const char *k, const sweep_spec *s, const point *p) {
+  (void)p;
+  if (!s->has_path) return 1;
+  cJSON *o = cJSON_AddObjectToObject(r, k), *a;
+  if (!o || !(a = cJSON_AddArrayToObject(o, s->path_stress_given ? "stress" : "strain")))
+    return 0;
+  for (int i = 0; i < s->path_ns; ++i) {
+    /* an entry of the other control (at zero): null */
+    int other = s->path_stress[i] != s->path_stress_given;
+    cJSON *e = other ? cJSON_CreateNull() : cJSON_CreateNumber(s->path_target[i]);
+    if (!e || !cJSON_AddItemToArray(a, e)) return 0;
+  }
+  return cJSON_AddNumberToObject(o, "steps", s->path_steps) &&
+         cJSON_AddStringToObject(o, "modes", bloch_mode_names[s->path_modes]) &&
+         cJSON_AddStringToObject(o, "bloch_method", bloch_method_names[s->path_method]);
+}
 static const struct {
   const char *name;
   put_key put;
@@ -170,7 +202,8 @@ static const struct {
                  {"edges_per_rod", put_edges},
                  {"cells", put_cells},
                  {"E", put_E},
-                 {"nu", put_nu}};
+                 {"nu", put_nu},
+                 {"path", put_path}};
 enum { NKEYS = (int)(sizeof spec_keys / sizeof spec_keys[0]) };
 
 /* The record of point p of sweep s: every key of the table (NULL out of memory). */
@@ -352,6 +385,95 @@ static int parse_material(const char *file, const cJSON *root, sweep_spec *s) {
   return 0;
 }
 
+/* The index of str among names[n]; -1 if it is not one (or NULL). */
+static int name_index(const char *str, const char *const *names, int n) {
+  for (int i = 0; str && i < n; ++i)
+    if (strcmp(str, names[i]) == 0) return i;
+  return -1;
+}
+
+/* "path": {"strain": [...] or "stress": [...], "steps", "modes", "bloch_method"};
+ * one entry per strain component of every lattice swept (3 in 2D, 6 in 3D,
+ * Voigt order, engineering shear), a number or null (the other control, at
+ * zero: null in "strain" is a stress-free component, as '-' of homogenize
+ * --path). */
+static int parse_path(const char *file, const cJSON *root, sweep_spec *s) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "path"), *e;
+  if (!v) return 0;
+  if (!cJSON_IsObject(v))
+    return sweep_error(file, "\"path\" must be an object {\"strain\": [...] or "
+                             "\"stress\": [...], \"steps\": N}");
+  cJSON_ArrayForEach(e, v) {
+    static const char *const keys[] = {"strain", "stress", "steps", "modes",
+                                       "bloch_method"};
+    if (name_index(e->string, keys, 5) < 0)
+      return sweep_error(file,
+                         "\"path\": unknown key '%s' (strain, stress, steps, modes, "
+                         "bloch_method)",
+                         e->string);
+  }
+  const cJSON *se = cJSON_GetObjectItemCaseSensitive(v, "strain"),
+              *ss = cJSON_GetObjectItemCaseSensitive(v, "stress"),
+              *st = cJSON_GetObjectItemCaseSensitive(v, "steps"),
+              *mo = cJSON_GetObjectItemCaseSensitive(v, "modes"),
+              *me = cJSON_GetObjectItemCaseSensitive(v, "bloch_method");
+  if (!se == !ss)
+    return sweep_error(file, "\"path\" needs exactly one of \"strain\" and \"stress\"");
+  const cJSON *t = se ? se : ss;
+  const char *tname = se ? "strain" : "stress";
+  s->has_path = 1;
+  s->path_stress_given = ss != NULL;
+  int n = 0, any = 0;
+  cJSON_ArrayForEach(e, t) {
+    if (n >= 6 || !(cJSON_IsNull(e) || (cJSON_IsNumber(e) && isfinite(e->valuedouble))))
+      return sweep_error(file,
+                         "\"path\".\"%s\"[%d]: the entries must be finite numbers or "
+                         "null (the other control, at zero), at most 6",
+                         tname, n);
+    s->path_stress[n] = cJSON_IsNull(e) ? !s->path_stress_given : s->path_stress_given;
+    s->path_target[n] = cJSON_IsNull(e) ? 0.0 : e->valuedouble;
+    any |= !cJSON_IsNull(e) && e->valuedouble != 0.0;
+    ++n;
+  }
+  if (!cJSON_IsArray(t) || !any)
+    return sweep_error(file,
+                       "\"path\".\"%s\" must be a list with a non-zero entry (the "
+                       "path's end)",
+                       tname);
+  s->path_ns = n;
+  for (int j = 0; j < s->nlat; ++j) {
+    rn_lattice_kind kind = RN_LATTICE_HONEYCOMB;
+    if (strcmp(s->lat[j], "reentrant")) rn_lattice_kind_from_name(s->lat[j], &kind);
+    const int dim = rn_lattice_kind_dimension(kind), ns = dim == 2 ? 3 : 6;
+    if (n != ns)
+      return sweep_error(
+          file,
+          "\"path\".\"%s\" has %d entries but the lattice '%s' is %dD: "
+          "give %d (%s)%s",
+          tname, n, s->lat[j], dim, ns, ns == 3 ? "11, 22, 12" : "11, 22, 33, 23, 13, 12",
+          s->nlat > 1 ? "; sweep planar and 3D lattices in separate files" : "");
+    if (dim == 3 && mo && !(cJSON_IsString(mo) && strcmp(mo->valuestring, "all") == 0))
+      return sweep_error(file,
+                         "\"path\".\"modes\": the 3D lattice '%s' has no "
+                         "in-plane / out-of-plane split of its modes (use \"all\")",
+                         s->lat[j]);
+  }
+  s->path_steps = 20;
+  if (st && (!cJSON_IsNumber(st) || st->valuedouble < 1 || st->valuedouble > 10000 ||
+             st->valuedouble != floor(st->valuedouble)))
+    return sweep_error(file, "\"path\".\"steps\" must be an integer in 1 .. 10000");
+  if (st) s->path_steps = (int)st->valuedouble;
+  int m = mo ? name_index(cJSON_GetStringValue(mo), bloch_mode_names, 3) : 0;
+  if (m < 0)
+    return sweep_error(file, "\"path\".\"modes\" must be all, in-plane or out-of-plane");
+  s->path_modes = (rn_bloch_modes)m;
+  int b = me ? name_index(cJSON_GetStringValue(me), bloch_method_names, 3) : 0;
+  if (b < 0)
+    return sweep_error(file, "\"path\".\"bloch_method\" must be auto, dense or sparse");
+  s->path_method = b;
+  return 0;
+}
+
 static int parse_spec(const char *file, const char *text, sweep_spec *s) {
   cJSON *root = cJSON_Parse(text);
   int rc = 0;
@@ -368,7 +490,8 @@ static int parse_spec(const char *file, const char *text, sweep_spec *s) {
   if ((rc = check_keys(file, root)) || (rc = parse_lattices(file, root, s)) ||
       (rc = parse_joint_models(file, root, s)) || (rc = parse_densities(file, root, s)) ||
       (rc = parse_seeds(file, root, s)) || (rc = parse_cell_options(file, root, s)) ||
-      (rc = parse_cells(file, root, s)) || (rc = parse_material(file, root, s))) {
+      (rc = parse_cells(file, root, s)) || (rc = parse_material(file, root, s)) ||
+      (rc = parse_path(file, root, s))) {
     cJSON_Delete(root);
     return rc;
   }
@@ -467,9 +590,11 @@ typedef struct point_out {
   const rn_homogenization *h;
   const double *S;
   double seconds;
-  const char *path;   /* the file being written (messages) */
-  const char *record; /* point_record, unformatted JSON */
-  const char *hash;   /* scene_hash of the cell scene homogenised */
+  const char *path;             /* the file being written (messages) */
+  const char *record;           /* point_record, unformatted JSON */
+  const char *hash;             /* scene_hash of the cell scene homogenised */
+  const rn_cell_path_result *r; /* the sweep's "path" (NULL: none) */
+  double path_seconds;
 } point_out;
 
 /* The numbers of a point file are finite (issue 22: no "nan" in JSON): C,
@@ -490,6 +615,15 @@ static int point_finite(const point_out *o, rn_num_check *chk) {
                      i == j ? 1.0 / o->S[i * n + i] : -o->S[i * n + j] / o->S[i * n + i]);
     }
   rn_num_checked(chk, "time_s", o->seconds);
+  if (o->r && o->r->inst.found) {
+    const rn_cell_path_instability *in = &o->r->inst;
+    rn_num_checked(chk, "instability.load_factor", in->t);
+    for (int i = 0; i < o->r->ns; ++i) {
+      rn_num_checked(chk, "instability.strain", in->strain[i]);
+      rn_num_checked(chk, "instability.stress", in->stress[i]);
+    }
+    for (int i = 0; i < 3; ++i) rn_num_checked(chk, "instability.wave_vector", in->xi[i]);
+  }
   return !chk->bad;
 }
 
@@ -506,6 +640,51 @@ static int scene_hash(rn_context *ctx, const char *path, char out[32]) {
   free(text);
   snprintf(out, 32, "fnv1a64:%016llx", (unsigned long long)h);
   return 0;
+}
+
+static void put_vec(FILE *f, int n, const double *v) {
+  fputc('[', f);
+  for (int i = 0; i < n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", v[i]);
+  fputc(']', f);
+}
+
+/* The kind and the criterion of a path's first instability. */
+static const char *inst_kind(const rn_cell_path_instability *in) {
+  return !in->found ? "none" : in->kind_macroscopic ? "macroscopic" : "local";
+}
+static const char *inst_criterion(const rn_cell_path_instability *in) {
+  return !in->found             ? ""
+         : in->stress_limit     ? "stress_limit"
+         : in->cell_periodic    ? "cell_periodic_fluctuations"
+         : in->kind_macroscopic ? "rank_one_convexity"
+                                : "bloch";
+}
+
+/* The point file's "path" and "instability" members (each ends ",\n"). */
+static void put_path_result(FILE *f, const point_out *o) {
+  const rn_cell_path_result *r = o->r;
+  const rn_cell_path_instability *in = &r->inst;
+  fprintf(f, "  \"path\": {\"steps\": %d, \"steps_done\": %d, \"stopped\": ", r->steps,
+          r->done);
+  if (r->stopped)
+    fprintf(f, "\"%s\"", r->stopped);
+  else
+    fputs("null", f);
+  fprintf(f, ", \"limit_end\": %d, \"time_s\": %.6g},\n", r->limit_end, o->path_seconds);
+  fputs("  \"instability\": ", f);
+  if (!in->found) {
+    fputs("null,\n", f);
+    return;
+  }
+  fprintf(f, "{\"kind\": \"%s\", \"criterion\": \"%s\", \"load_factor\": %.17g, ",
+          inst_kind(in), inst_criterion(in), in->t);
+  fputs("\"strain\": ", f);
+  put_vec(f, r->ns, in->strain);
+  fputs(", \"stress\": ", f);
+  put_vec(f, r->ns, in->stress);
+  fputs(", \"wave_vector\": ", f);
+  put_vec(f, o->h->dim, in->xi);
+  fprintf(f, ", \"multiplicity\": %d},\n", in->multiplicity);
 }
 
 static rn_status write_point(FILE *f, void *user, rn_context *ctx) {
@@ -530,6 +709,7 @@ static rn_status write_point(FILE *f, void *user, rn_context *ctx) {
   for (int i = 0; i < n * n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", o->h->C[i]);
   fputs("],\n", f);
   rn_homog_put_constants(f, o->h, o->S);
+  if (o->r) put_path_result(f, o);
   fprintf(f, "  \"time_s\": %.6g\n}\n", o->seconds);
   return RN_OK;
 }
@@ -572,15 +752,121 @@ static int point_done(rn_context *ctx, const char *path, const point *p, const c
   return ok;
 }
 
+/* The ranks of the sweep (docs/parallel.md, "Sweeps"): every point on one
+ * rank; rank 0 prints the progress bar and the failures of every rank (sent as
+ * notices) and writes the CSV and the plot. */
+typedef struct sweep_run {
+  int rank, size, quiet, total;
+  int shown;    /* points shown on the progress bar */
+  int finished; /* rank 0: ranks that said they are done */
+  const sweep_spec *s;
+} sweep_run;
+
+/* Notice ints: point index (-1: the rank is done), status, skipped. */
+enum { NOTE_INDEX, NOTE_STATUS, NOTE_SKIP, NOTE_N };
+
+/* The MPI helpers of the solver's shim (rodnet_solve.h); without the solver
+ * (no MPI, and sweep refuses before any point) one rank and nothing to send. */
+#ifdef RN_HAVE_SOLVER
+#define SW_MPI(call) call
+#else
+#define SW_MPI(call) RN_OK
+#endif
+static rn_status sw_allreduce(int *v, int n, int op) {
+  (void)v, (void)n, (void)op;
+  return SW_MPI(rn_dist_allreduce_int(v, n, op));
+}
+static rn_status sw_send(const int *v, int n, const char *text) {
+  (void)v, (void)n, (void)text;
+  return SW_MPI(rn_dist_notice_send(v, n, text));
+}
+static int sw_poll(int *v, int n, char *text, size_t size) {
+  int from = 0;
+  (void)v, (void)n, (void)text, (void)size, (void)from;
+  return SW_MPI(rn_dist_notice_poll(v, n, text, size, &from));
+}
+static rn_status sw_flush(void) { return SW_MPI(rn_dist_notice_flush()); }
+/* Under mpirun: MPI started, this rank and the number of ranks (RN_OK). */
+static rn_status sw_start(int *rank, int *size) {
+  (void)rank, (void)size;
+  rn_status st = SW_MPI(rn_runtime_initialize(NULL, NULL));
+#ifdef RN_HAVE_SOLVER
+  if (!st) rn_runtime_ranks(rank, size);
+#endif
+  return st;
+}
+static void sw_stop(void) {
+#ifdef RN_HAVE_SOLVER
+  rn_runtime_finalize();
+#endif
+}
+
+static void progress(const sweep_run *w, const point *p, int skipped);
+
+/* The point of index k (the grid's order: lattice, joint model, density, seed). */
+static point point_at(const sweep_spec *s, int k) {
+  const int d = k % s->nseed, c = (k / s->nseed) % s->nrho,
+            j = (k / (s->nseed * s->nrho)) % s->njm,
+            i = k / (s->nseed * s->nrho * s->njm);
+  point p = {k, s->lat[i], s->jm[j], s->rho[c], s->seed[d]};
+  return p;
+}
+
+/* A point's failure on the console (rank 0). */
+static void print_failure(const sweep_run *w, int k, const char *msg) {
+  point p = point_at(w->s, k);
+  fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
+          w->quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho, p.seed,
+          msg);
+}
+
+/* Rank 0: the notices that have arrived (progress and failures of the other
+ * ranks' points); *failed counts the failures. */
+static void take_notices(sweep_run *w, int *failed) {
+  int v[NOTE_N];
+  char text[RN_DIST_NOTICE_TEXT];
+  while (w->size > 1 && sw_poll(v, NOTE_N, text, sizeof text)) {
+    if (v[NOTE_INDEX] < 0) {
+      ++w->finished;
+      continue;
+    }
+    if (v[NOTE_SKIP] < 0) { /* a failure already counted (the first round) */
+      print_failure(w, v[NOTE_INDEX], text);
+      continue;
+    }
+    if (v[NOTE_STATUS]) {
+      print_failure(w, v[NOTE_INDEX], text);
+      if (failed) ++*failed;
+    }
+    ++w->shown;
+    point p = point_at(w->s, v[NOTE_INDEX]);
+    if (!w->quiet) progress(w, &p, v[NOTE_SKIP]);
+  }
+}
+
+#ifdef RN_HAVE_SOLVER
+/* rn_cell_path_run's progress: rank 0 keeps the bar going during its own
+ * long points. */
+static void path_tick(void *user, const rn_cell_path_result *res) {
+  (void)res;
+  sweep_run *w = user;
+  if (w->rank == 0) take_notices(w, NULL);
+}
+#endif
+
 /* Homogenise one point (its cell already written to scene, of hash; rec its
- * record) into DIR/point_NNNN.json; RN_OK or the failure. */
-static rn_status run_point(rn_context *ctx, const point *p, const char *dir,
+ * record), then follow the sweep's path if it has one, into
+ * DIR/point_NNNN.json; RN_OK or the failure. */
+static rn_status run_point(rn_context *ctx, sweep_run *w, const point *p, const char *dir,
                            const char *scene, const char *rec, const char *hash) {
   char out[4096];
   rn_scene *sc = NULL;
   rn_homogenization h;
-  double S[36];
+  rn_cell_path_result r;
+  double S[36], path_seconds = 0.0;
   rn_status st;
+  const sweep_spec *s = w->s;
+  memset(&r, 0, sizeof r);
   snprintf(out, sizeof out, "%s/point_%04d.json", dir, p->index);
   if ((st = rn_scene_load(ctx, scene, &sc))) return st;
   double t0 = now();
@@ -593,10 +879,37 @@ static rn_status run_point(rn_context *ctx, const point *p, const char *dir,
   double seconds = now() - t0;
   if (!st && !rn_homog_invert(h.nstrain, h.C, S))
     st = rn_context_set_error(ctx, RN_ERR_SOLVER, "the effective stiffness is singular");
+#ifdef RN_HAVE_SOLVER
+  if (!st && s->has_path) {
+    rn_cell_path_segment seg;
+    rn_cell_path_options o;
+    memset(&seg, 0, sizeof seg);
+    seg.steps = s->path_steps;
+    for (int v = 0; v < s->path_ns; ++v) {
+      seg.stress[v] = s->path_stress[v];
+      seg.target[v] = s->path_target[v];
+    }
+    rn_cell_path_options_default(&o);
+    o.modes = s->path_modes;
+    o.bloch_method = s->path_method;
+    o.progress = path_tick;
+    o.user = w;
+    t0 = now();
+    st = rn_cell_path_run(rn_scene_network(sc), 1, &seg, &o, &r);
+    path_seconds = now() - t0;
+    if (!st && r.ns != s->path_ns)
+      st = rn_context_set_error(ctx, RN_ERR_ARG, "the cell has %d strain components",
+                                r.ns);
+  }
+#endif
   if (!st) {
-    point_out o = {p, &h, S, seconds, out, rec, hash};
+    point_out o = {p,           &h, S, seconds, out, rec, hash, s->has_path ? &r : NULL,
+                   path_seconds};
     st = rn_file_write_atomic(ctx, out, write_point, &o);
   }
+#ifdef RN_HAVE_SOLVER
+  rn_cell_path_result_free(&r);
+#endif
   rn_scene_destroy(&sc);
   return st;
 }
@@ -604,15 +917,63 @@ static rn_status run_point(rn_context *ctx, const point *p, const char *dir,
 typedef struct csv_in {
   const char *dir;
   int npoints;
-  const unsigned char *valid; /* [npoints]: the point file is this sweep's */
+  const int *valid; /* [npoints]: the point file is this sweep's */
+  int path;         /* the sweep has a "path": its columns */
 } csv_in;
+
+/* A JSON list of numbers as one CSV field, space-separated ("" if not a list);
+ * 0 if an entry is not a finite number. */
+static int csv_vec(FILE *f, const cJSON *a) {
+  const cJSON *e;
+  int first = 1;
+  cJSON_ArrayForEach(e, a) {
+    if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble)) return 0;
+    fprintf(f, "%s%.17g", first ? "" : " ", e->valuedouble);
+    first = 0;
+  }
+  return 1;
+}
+
+/* The path columns of a point (after its other columns): instability kind and
+ * criterion, its load factor, strain, stress and wave vector, the steps done
+ * and why the path stopped ("" if it did not).  0 if the point file lacks
+ * them. */
+static int csv_path(FILE *f, const cJSON *r) {
+  const cJSON *pa = cJSON_GetObjectItemCaseSensitive(r, "path"),
+              *in = cJSON_GetObjectItemCaseSensitive(r, "instability");
+  const cJSON *done = cJSON_GetObjectItemCaseSensitive(pa, "steps_done"),
+              *why = cJSON_GetObjectItemCaseSensitive(pa, "stopped");
+  if (!cJSON_IsObject(pa) || !cJSON_IsNumber(done) ||
+      !(cJSON_IsNull(in) || cJSON_IsObject(in)))
+    return 0;
+  if (cJSON_IsObject(in)) {
+    const cJSON *lf = cJSON_GetObjectItemCaseSensitive(in, "load_factor");
+    const char *kind = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(in, "kind")),
+               *crit = cJSON_GetStringValue(
+                   cJSON_GetObjectItemCaseSensitive(in, "criterion"));
+    if (!kind || !crit || !cJSON_IsNumber(lf) || !isfinite(lf->valuedouble)) return 0;
+    fprintf(f, ",%s,%s,%.17g,", kind, crit, lf->valuedouble);
+    if (!csv_vec(f, cJSON_GetObjectItemCaseSensitive(in, "strain"))) return 0;
+    fputc(',', f);
+    if (!csv_vec(f, cJSON_GetObjectItemCaseSensitive(in, "stress"))) return 0;
+    fputc(',', f);
+    if (!csv_vec(f, cJSON_GetObjectItemCaseSensitive(in, "wave_vector"))) return 0;
+  } else
+    fputs(",none,,,,,", f);
+  fprintf(f, ",%.0f,", done->valuedouble);
+  if (cJSON_IsString(why)) fprintf(f, "\"%s\"", why->valuestring); /* static texts */
+  return 1;
+}
 
 /* DIR/sweep.csv from the point files. */
 static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
   const csv_in *in = user;
-  fputs("index,lattice,joint_model,relative_density_target,seed,relative_density,"
-        "dimension,E1,E2,nu12,G12,time_s\n",
-        f);
+  fprintf(f,
+          "index,lattice,joint_model,relative_density_target,seed,relative_density,"
+          "dimension,E1,E2,nu12,G12,time_s%s\n",
+          in->path ? ",instability,criterion,critical_load_factor,critical_strain,"
+                     "critical_stress,wave_vector,path_steps_done,path_stopped"
+                   : "");
   for (int k = 0; k < in->npoints; ++k) {
     char path[4096], *text = NULL;
     size_t len = 0;
@@ -647,9 +1008,12 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
     for (int i = 0; i < 9; ++i) rn_num_checked(&chk, col[i], v[i]);
     if (!lattice || !joint)
       rn_num_checked(&chk, lattice ? "joint_model" : "lattice", NAN);
-    if (!chk.bad)
-      fprintf(f, "%d,%s,%s,%.17g,%.0f,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g,%.6g\n", k,
+    if (!chk.bad) {
+      fprintf(f, "%d,%s,%s,%.17g,%.0f,%.17g,%.0f,%.17g,%.17g,%.17g,%.17g,%.6g", k,
               lattice, joint, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+      if (in->path && !csv_path(f, r)) rn_num_checked(&chk, "path or instability", NAN);
+      fputc('\n', f);
+    }
 #undef NUM
 #undef STR
     cJSON_Delete(r);
@@ -664,8 +1028,9 @@ static rn_status write_csv(FILE *f, void *user, rn_context *ctx) {
   return RN_OK;
 }
 
-static void progress(int done, int total, const point *p, int skipped) {
+static void progress(const sweep_run *w, const point *p, int skipped) {
   char bar[31];
+  const int done = w->shown, total = w->total;
   int fill = total ? 30 * done / total : 30;
   for (int i = 0; i < 30; ++i) bar[i] = i < fill ? '#' : '.';
   bar[30] = '\0';
@@ -719,81 +1084,203 @@ static int parse_sweep_args(int argc, char **argv, sweep_args *a) {
   return 0;
 }
 
-/* Point p of the sweep into DIR/point_NNNN.json (skipped if done before);
- * RN_OK or the failure (message in ctx). *skip: it was done before. */
-static rn_status sweep_point(rn_context *ctx, const sweep_spec *s, const point *p,
-                             const char *dir, int *skip) {
+/* Point p of the sweep: its cell scene written and hashed, and its record;
+ * *skip: DIR/point_NNNN.json is done before (same record, version, scene);
+ * else, if run, the point computed into it.  RN_OK or the failure (message in
+ * ctx). */
+static rn_status sweep_point(rn_context *ctx, sweep_run *w, const point *p,
+                             const char *dir, int run, int *skip) {
   char out[4096], scene[4096], hash[32];
   snprintf(out, sizeof out, "%s/point_%04d.json", dir, p->index);
   snprintf(scene, sizeof scene, "%s/point_%04d.scene.json", dir, p->index);
   /* the point's record: its parameters, the version, its cell scene */
-  cJSON *rec = point_record(s, p);
+  cJSON *rec = point_record(w->s, p);
   char *rec_text = rec ? cJSON_PrintUnformatted(rec) : NULL;
   rn_status st =
       rec_text ? RN_OK : rn_context_set_error(ctx, RN_ERR_ALLOC, "out of memory");
-  if (!st) st = write_cell(ctx, s, p, scene);
+  if (!st) st = write_cell(ctx, w->s, p, scene);
   if (!st && scene_hash(ctx, scene, hash)) st = RN_ERR_IO;
   *skip = !st && point_done(ctx, out, p, rec, hash);
-  if (!st && !*skip) st = run_point(ctx, p, dir, scene, rec_text, hash);
+  if (!st && !*skip && run) st = run_point(ctx, w, p, dir, scene, rec_text, hash);
   cJSON_Delete(rec);
   cJSON_free(rec_text);
   return st;
 }
 
-/* Every point of the grid, in the order lattice, joint model, density, seed;
- * valid[k]: point k succeeded.  0, else RN_EXIT_INPUT (the folder failed: no
- * point in going on, message printed); *failed counts the failed points. */
-static int sweep_points(rn_context *ctx, const sweep_spec *s, const sweep_args *a,
-                        unsigned char *valid, int *failed) {
-  int total = s->nlat * s->njm * s->nrho * s->nseed, k = 0;
-  for (int i = 0; i < s->nlat; ++i)
-    for (int j = 0; j < s->njm; ++j)
-      for (int c = 0; c < s->nrho; ++c)
-        for (int d = 0; d < s->nseed; ++d, ++k) {
-          point p = {k, s->lat[i], s->jm[j], s->rho[c], s->seed[d]};
-          int skip = 0;
-          rn_status st = sweep_point(ctx, s, &p, a->dir, &skip);
-          valid[k] = !st;
-          if (st) {
-            fprintf(stderr, "%srodnet sweep: point %d (%s %s rho %g seed %ld): %s\n",
-                    a->quiet ? "" : "\n", k, p.lattice, joint_name(p.joint_model), p.rho,
-                    p.seed, rn_context_last_error(ctx));
-            if (st == RN_ERR_IO) return RN_EXIT_INPUT; /* the folder */
-            ++*failed;
-          }
-          if (!a->quiet) progress(k + 1, total, &p, skip);
-        }
-  return 0;
+/* Every point of the grid (docs/parallel.md, "Sweeps"), in two rounds over
+ * the ranks: first each rank writes the cell scenes of every size-th point and
+ * finds which are done before; then the points to compute are dealt out in
+ * turn (the j-th to rank j mod size), so that a resumed sweep is shared as
+ * evenly as a fresh one.  valid[k] (every rank): point k succeeded.  0, else
+ * RN_EXIT_INPUT (the folder failed on some rank: no point in going on);
+ * *failed counts the failed points. */
+static int sweep_points(rn_context *ctx, sweep_run *w, const sweep_args *a, int *valid,
+                        int *failed) {
+  const int total = w->total;
+  int *todo = calloc((size_t)total + 1, sizeof(int)), io = 0, ntodo = 0;
+  if (!todo) return RN_EXIT_INTERNAL;
+  *failed = 0;
+  /* round 1: the done-before points */
+  for (int k = w->rank; k < total && !io; k += w->size) {
+    point p = point_at(w->s, k);
+    int skip = 0;
+    rn_status st = sweep_point(ctx, w, &p, a->dir, 0, &skip);
+    if (st == RN_ERR_IO) {
+      if (w->rank == 0) fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
+      io = 1;
+    } else if (st) { /* out of memory, a generator failure: the point fails */
+      int v[NOTE_N] = {k, (int)st, -1};
+      todo[k] = 2;
+      if (w->rank == 0)
+        print_failure(w, k, rn_context_last_error(ctx));
+      else
+        sw_send(v, NOTE_N, rn_context_last_error(ctx));
+    } else {
+      todo[k] = skip ? 0 : 1;
+      valid[k] = skip;
+    }
+  }
+  todo[total] = io;
+  sw_allreduce(todo, total + 1, RN_DIST_MAX);
+  sw_allreduce(valid, total, RN_DIST_MAX);
+  if (todo[total]) {
+    free(todo);
+    return RN_EXIT_INPUT;
+  }
+  for (int k = 0; k < total; ++k) {
+    if (todo[k] == 1) continue;
+    *failed += todo[k] == 2;
+    ++w->shown;
+    point p = point_at(w->s, k);
+    if (todo[k] == 0 && w->rank == 0 && !a->quiet) progress(w, &p, 1);
+  }
+  /* round 2: the points to compute, dealt out in turn */
+  for (int k = 0; k < total && !io; ++k) {
+    if (todo[k] != 1) continue;
+    if (ntodo++ % w->size != w->rank) continue;
+    point p = point_at(w->s, k);
+    int skip = 0, v[NOTE_N];
+    rn_status st = sweep_point(ctx, w, &p, a->dir, 1, &skip);
+    valid[k] = !st;
+    io = st == RN_ERR_IO;
+    v[NOTE_INDEX] = k;
+    v[NOTE_STATUS] = (int)st;
+    v[NOTE_SKIP] = skip;
+    if (w->rank == 0) {
+      if (st) {
+        print_failure(w, k, rn_context_last_error(ctx));
+        ++*failed;
+      }
+      ++w->shown;
+      if (!a->quiet) progress(w, &p, skip);
+      take_notices(w, failed);
+    } else
+      sw_send(v, NOTE_N, st ? rn_context_last_error(ctx) : NULL);
+  }
+  /* the end of the independent work: rank 0 takes every rank's last notices */
+  if (w->rank == 0) {
+    while (w->finished < w->size - 1) {
+      const int before = w->finished, shown = w->shown;
+      take_notices(w, failed);
+      if (w->finished == before && w->shown == shown) {
+        struct timespec ts = {0, 2000000L}; /* nothing arrived: 2 ms */
+        nanosleep(&ts, NULL);
+      }
+    }
+  } else {
+    int v[NOTE_N] = {-1, 0, 0};
+    sw_send(v, NOTE_N, NULL);
+    sw_flush();
+  }
+  int agreed[2] = {io, w->rank == 0 ? *failed : 0};
+  sw_allreduce(agreed, 1, RN_DIST_MAX);
+  sw_allreduce(agreed + 1, 1, RN_DIST_SUM);
+  sw_allreduce(valid, total, RN_DIST_MAX);
+  *failed = agreed[1];
+  free(todo);
+  if (agreed[0] && w->rank == 0 && !io)
+    fprintf(stderr, "rodnet sweep: %s: a rank could not write the folder\n", a->dir);
+  return agreed[0] ? RN_EXIT_INPUT : 0;
 }
 
-/* The sweep file's points into the folder, then its CSV and the plot. */
-static int run_sweep(rn_context *ctx, const sweep_spec *s, const sweep_args *a) {
-  int total = s->nlat * s->njm * s->nrho * s->nseed, failed = 0, rc;
-  unsigned char *valid = calloc((size_t)total, 1);
+/* The sweep file's points into the folder, then (rank 0) its CSV and the
+ * plot; the exit status, the same on every rank. */
+static int run_sweep(rn_context *ctx, sweep_run *w, const sweep_args *a) {
+  int total = w->total, failed = 0, rc;
+  int *valid = calloc((size_t)total, sizeof(int));
   if (!valid) return RN_EXIT_INTERNAL;
-  if ((rc = check_cells(ctx, s, a->file)) ||
-      (rc = sweep_points(ctx, s, a, valid, &failed))) {
+  if ((rc = check_cells(ctx, w->s, a->file)) ||
+      (rc = sweep_points(ctx, w, a, valid, &failed))) {
     free(valid);
     return rc;
   }
-  char csv[4096];
-  snprintf(csv, sizeof csv, "%s/sweep.csv", a->dir);
-  csv_in in = {a->dir, total, valid};
-  if (rn_file_write_atomic(ctx, csv, write_csv, &in)) {
-    fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
-    free(valid);
-    return RN_EXIT_INPUT;
+  if (w->rank == 0) {
+    char csv[4096];
+    snprintf(csv, sizeof csv, "%s/sweep.csv", a->dir);
+    csv_in in = {a->dir, total, valid, w->s->has_path};
+    if (rn_file_write_atomic(ctx, csv, write_csv, &in)) {
+      fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
+      rc = RN_EXIT_INPUT;
+    } else {
+      if (!a->quiet) {
+        printf("rodnet sweep: %d points (%d failed); wrote %s", total, failed, csv);
+        if (w->size > 1) printf(" (%d ranks)", w->size);
+        putchar('\n');
+      }
+      if (failed) rc = RN_EXIT_INTERNAL;
+      if (a->plot &&
+          rn_cli_plot("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, csv, a->plot) != 0) {
+        fprintf(stderr, "rodnet sweep: the plot %s failed (python3 with matplotlib)\n",
+                a->plot);
+        rc = RN_EXIT_INTERNAL;
+      }
+    }
   }
   free(valid);
-  if (!a->quiet)
-    printf("rodnet sweep: %d points (%d failed); wrote %s\n", total, failed, csv);
-  if (failed) rc = RN_EXIT_INTERNAL;
-  if (a->plot &&
-      rn_cli_plot("RODNET_PLOT_SWEEP", RN_PLOT_SWEEP_SCRIPT, csv, a->plot) != 0) {
-    fprintf(stderr, "rodnet sweep: the plot %s failed (python3 with matplotlib)\n",
-            a->plot);
-    rc = RN_EXIT_INTERNAL;
+  sw_allreduce(&rc, 1, RN_DIST_MAX); /* rank 0's */
+  return rc;
+}
+
+/* The same exit status on every rank: the largest (checks that every rank ran
+ * on the same input agree; one that differs would otherwise leave a rank
+ * waiting in a collective). */
+static int agree_exit(int rc) {
+  sw_allreduce(&rc, 1, RN_DIST_MAX);
+  return rc;
+}
+
+static int sweep_main(const sweep_args *ap, const rn_cli_file *files, sweep_run *w) {
+  const sweep_args a = *ap;
+  int rc = 0;
+  rn_context *ctx = NULL;
+  if (rn_context_create(&ctx) != RN_OK) return agree_exit(RN_EXIT_INTERNAL);
+  char *text = NULL;
+  size_t len = 0;
+  sweep_spec *s = calloc(1, sizeof(*s));
+  if (!s) {
+    rn_context_destroy(&ctx);
+    return agree_exit(RN_EXIT_INTERNAL);
   }
+  if (rn_text_file_read(ctx, a.file, 1 << 20, &text, &len)) {
+    if (w->rank == 0) fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
+    rc = RN_EXIT_INPUT;
+  } else if (!(rc = parse_spec(a.file, text, s)) &&
+             !(rc = rn_cli_probe_outputs("sweep", files, 5))) {
+    if (mkdir(a.dir, 0777) != 0 && errno != EEXIST) {
+      if (w->rank == 0)
+        fprintf(stderr, "rodnet sweep: %s: cannot create the folder: %s\n", a.dir,
+                strerror(errno));
+      rc = RN_EXIT_INPUT;
+    }
+  }
+  if (!(rc = agree_exit(rc))) {
+    w->s = s;
+    w->total = s->nlat * s->njm * s->nrho * s->nseed;
+    rc = run_sweep(ctx, w, &a);
+  }
+  free(text);
+  free(s);
+  rn_context_destroy(&ctx);
   return rc;
 }
 
@@ -807,33 +1294,21 @@ int rn_cli_sweep(int argc, char **argv) {
                                {"-o", a.dir, "/point_*.json", RN_CLI_OUT},
                                {"-o", a.dir, "/sweep.csv", RN_CLI_OUT},
                                {"--plot", a.plot, NULL, RN_CLI_OUT}};
-  if ((rc = rn_cli_check_files("sweep", files, 5))) return rc;
 #ifndef RN_HAVE_SOLVER
+  if ((rc = rn_cli_check_files("sweep", files, 5))) return rc;
   return rn_cli_no_solver("sweep"); /* rn_homogenize is the solver's */
 #endif
-  rn_context *ctx = NULL;
-  if (rn_context_create(&ctx) != RN_OK) return RN_EXIT_INTERNAL;
-  char *text = NULL;
-  size_t len = 0;
-  sweep_spec *s = calloc(1, sizeof(*s));
-  if (!s) {
-    rn_context_destroy(&ctx);
-    return RN_EXIT_INTERNAL;
+  sweep_run w = {0, 1, a.quiet, 0, 0, 0, NULL};
+  const int mpi = rn_cli_env_ranks() != 1;
+  if (mpi) { /* under mpirun: the runtime first, to know the ranks */
+    if (sw_start(&w.rank, &w.size) != RN_OK) {
+      fprintf(stderr, "rodnet sweep: cannot start the MPI runtime\n");
+      return RN_EXIT_INTERNAL;
+    }
   }
-  if (rn_text_file_read(ctx, a.file, 1 << 20, &text, &len)) {
-    fprintf(stderr, "rodnet sweep: %s\n", rn_context_last_error(ctx));
-    rc = RN_EXIT_INPUT;
-  } else if (!(rc = parse_spec(a.file, text, s)) &&
-             !(rc = rn_cli_probe_outputs("sweep", files, 5))) {
-    if (mkdir(a.dir, 0777) != 0 && errno != EEXIST) {
-      fprintf(stderr, "rodnet sweep: %s: cannot create the folder: %s\n", a.dir,
-              strerror(errno));
-      rc = RN_EXIT_INPUT;
-    } else
-      rc = run_sweep(ctx, s, &a);
-  }
-  free(text);
-  free(s);
-  rn_context_destroy(&ctx);
+  rc = rn_cli_check_files("sweep", files, 5);
+  rc = agree_exit(rc);
+  if (!rc) rc = sweep_main(&a, files, &w);
+  if (mpi) sw_stop();
   return rc;
 }

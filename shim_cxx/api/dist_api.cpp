@@ -3,6 +3,10 @@
 // that the command's MPI paths stay in the shim.
 #include <mpi.h>
 
+#include <algorithm>
+#include <cstring>
+#include <iterator>
+#include <list>
 #include <string>
 #include <vector>
 
@@ -15,6 +19,31 @@ bool mpi_up() {
   MPI_Initialized(&up);
   MPI_Finalized(&down);
   return up && !down;
+}
+
+// A notice as sent: RN_DIST_NOTICE_INTS ints then the text (NUL-terminated), one
+// MPI_BYTE message of tag kNoticeTag; kept until its send has completed.
+constexpr int kNoticeTag = 7301;
+constexpr size_t kNoticeBytes = RN_DIST_NOTICE_INTS * sizeof(int) + RN_DIST_NOTICE_TEXT;
+struct Pending {
+  std::vector<char> buf;
+  MPI_Request req = MPI_REQUEST_NULL;
+};
+std::list<Pending> &pending() {
+  static std::list<Pending> p;
+  return p;
+}
+// Drops the records whose sends have completed.
+void reap(bool wait) {
+  auto &p = pending();
+  for (auto it = p.begin(); it != p.end();) {
+    int done = 1;
+    if (wait)
+      MPI_Wait(&it->req, MPI_STATUS_IGNORE);
+    else
+      MPI_Test(&it->req, &done, MPI_STATUS_IGNORE);
+    it = done ? p.erase(it) : std::next(it);
+  }
 }
 
 } // namespace
@@ -50,6 +79,86 @@ rn_status rn_dist_agree(rn_context *ctx, rn_status local) {
       rn_context_set_error(ctx, static_cast<rn_status>(st), "rank %d: %s", first,
                            text.c_str());
     return static_cast<rn_status>(st);
+  } catch (...) {
+    return RN_ERR_INTERNAL;
+  }
+}
+
+rn_status rn_dist_allreduce_int(int *v, int n, int op) {
+  if (n < 0 || (n > 0 && !v) || op < RN_DIST_SUM || op > RN_DIST_MIN) return RN_ERR_ARG;
+  int size = 1;
+  rn_runtime_ranks(nullptr, &size);
+  if (size == 1 || n == 0) return RN_OK;
+  const MPI_Op mop = op == RN_DIST_SUM ? MPI_SUM : op == RN_DIST_MAX ? MPI_MAX : MPI_MIN;
+  return MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_INT, mop, MPI_COMM_WORLD) == MPI_SUCCESS
+             ? RN_OK
+             : RN_ERR_INTERNAL;
+}
+
+rn_status rn_dist_notice_send(const int *v, int n, const char *text) {
+  if (n < 0 || n > RN_DIST_NOTICE_INTS || (n > 0 && !v)) return RN_ERR_ARG;
+  int rank = 0, size = 1;
+  rn_runtime_ranks(&rank, &size);
+  if (size == 1 || rank == 0) return RN_OK;
+  try {
+    reap(false);
+    Pending rec;
+    rec.buf.assign(kNoticeBytes, 0);
+    std::memcpy(rec.buf.data(), v, static_cast<size_t>(n) * sizeof(int));
+    if (text) {
+      const size_t len = std::min(std::strlen(text), size_t{RN_DIST_NOTICE_TEXT} - 1);
+      std::memcpy(rec.buf.data() + RN_DIST_NOTICE_INTS * sizeof(int), text, len);
+    }
+    auto &p = pending();
+    p.push_back(std::move(rec));
+    Pending &b = p.back();
+    if (MPI_Isend(b.buf.data(), static_cast<int>(kNoticeBytes), MPI_BYTE, 0, kNoticeTag,
+                  MPI_COMM_WORLD, &b.req) != MPI_SUCCESS) {
+      p.pop_back();
+      return RN_ERR_INTERNAL;
+    }
+    return RN_OK;
+  } catch (const std::bad_alloc &) {
+    return RN_ERR_ALLOC;
+  } catch (...) {
+    return RN_ERR_INTERNAL;
+  }
+}
+
+int rn_dist_notice_poll(int *v, int n, char *text, size_t text_size, int *from) {
+  int rank = 0, size = 1;
+  rn_runtime_ranks(&rank, &size);
+  if (size == 1 || rank != 0 || n < 0 || n > RN_DIST_NOTICE_INTS || (n > 0 && !v))
+    return 0;
+  int flag = 0;
+  MPI_Status status;
+  if (MPI_Iprobe(MPI_ANY_SOURCE, kNoticeTag, MPI_COMM_WORLD, &flag, &status) !=
+          MPI_SUCCESS ||
+      !flag)
+    return 0;
+  try {
+    std::vector<char> buf(kNoticeBytes, 0);
+    if (MPI_Recv(buf.data(), static_cast<int>(kNoticeBytes), MPI_BYTE, status.MPI_SOURCE,
+                 kNoticeTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE) != MPI_SUCCESS)
+      return 0;
+    std::memcpy(v, buf.data(), static_cast<size_t>(n) * sizeof(int));
+    if (text && text_size > 0) {
+      const char *t = buf.data() + RN_DIST_NOTICE_INTS * sizeof(int);
+      const size_t len = std::min(strnlen(t, RN_DIST_NOTICE_TEXT - 1), text_size - 1);
+      std::memcpy(text, t, len);
+      text[len] = '\0';
+    }
+    if (from) *from = status.MPI_SOURCE;
+    return 1;
+  } catch (...) {
+    return 0;
+  }
+}
+
+rn_status rn_dist_notice_flush(void) {
+  try {
+    reap(true);
+    return RN_OK;
   } catch (...) {
     return RN_ERR_INTERNAL;
   }

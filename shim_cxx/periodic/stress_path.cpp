@@ -302,13 +302,13 @@ struct Bracket {
   int why;
 };
 
-// Bisection of the bracket to 0.1 % of the parameter (at most 60 iterations of
-// locate in all); adds its halvings to *it.
+// Bisection of the bracket to 0.1 % of the parameter (at most 60 halvings); adds
+// its halvings to *it.
 rn_status bisect(rn_network *net, const Path &p, Bracket &b, int *it) {
   rn_status st;
   rn_cell_path_step s;
   int f[6], nstress = stress_components(p.r->seg[b.j], p.r->ns, f);
-  while (b.u_hi - b.u_lo > 1e-3 * b.u_hi && *it < 60) {
+  for (int k = 0; b.u_hi - b.u_lo > 1e-3 * b.u_hi && k < 60; ++k) {
     double mid = 0.5 * (b.u_lo + b.u_hi);
     rn_bloch_result r;
     ++*it;
@@ -349,9 +349,11 @@ double critical_value(const rn_bloch_result &r, bool macro) {
 // The critical parameter of a Bloch instability in the bracket by the Illinois
 // (modified regula falsi) secant on critical_value(u), each value from the Bloch
 // test tracked from the bracket's unstable end (no grid scan): superlinear, to
-// 1e-7 of the parameter.  *uc the estimate; *ok false where the secant does not
-// apply (no sign change, or a trial state past a limit point, unconverged, or
-// unstable outside the modes examined: the bracket is then left to bisect()).
+// 1e-7 of the parameter (at most 40 iterations).  *uc the estimate; *ok false
+// where the secant does not apply or finish (no sign change, a trial state past a
+// limit point, unconverged, or unstable outside the modes examined, the iteration
+// limit: the bracket is then left to bisect()).  The ends it moves are judged by
+// the tracked test only: an unstable end is unstable, a stable end need not be.
 rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc,
                  bool *ok) {
   rn_cell_path_step s;
@@ -362,7 +364,7 @@ rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc
   if (b.why != 0 || !(flo > 0.0) || !(fhi < 0.0)) return RN_OK;
   int side = 0;
   double prev = NAN;
-  while (*it < 60) {
+  for (int k = 0; k < 40; ++k) {
     const double w = b.u_hi - b.u_lo, tol = 1e-7 * b.u_hi;
     double u = b.u_lo + w * flo / (flo - fhi);
     if (!(u > b.u_lo && u < b.u_hi)) u = 0.5 * (b.u_lo + b.u_hi);
@@ -458,43 +460,58 @@ double record_bloch(const Path &p, const Bracket &b, double uc_secant) {
 
 // The secant of a Bloch instability, then the full Bloch test at both ends of the
 // final bracket: at the stable end it must find no other unstable wave vector (else
-// the bracket goes back to its start, with that result at its end, for bisection
-// with the full test: a mode that went unstable earlier elsewhere in the zone); at
-// the unstable end it gives the wave vector, its equivalents and the eigenvalues
-// recorded.  *uc the secant's estimate (NaN where bisect() is to finish the job).
+// another mode went unstable earlier elsewhere in the zone: the secant again, on
+// that mode, from the bracket's start to there, at most 4 rounds); at the unstable
+// end it gives the wave vector, its equivalents and the eigenvalues recorded.  *uc
+// the secant's estimate, or NaN where bisect() is to finish the job: then the
+// bracket runs from its start (the last state the full test found stable) to the
+// nearest state found unstable.
 rn_status secant_then_check(rn_network *net, const Path &p, Bracket &b, int *it,
                             double *uc) {
   rn_state *start = nullptr;
   rn_cell_path_step s;
   rn_bloch_result lo_full, hi_full;
-  bool ok = false;
   const double u0 = b.u_lo;
   const rn_bloch_result b0lo = b.blo;
+  *uc = NAN;
   rn_status st = rn_network_state_restore(net, b.lo);
   if (!st) st = rn_network_state_save(net, &start); // the bracket's first state
-  if (!st) st = secant(net, p, b, it, uc, &ok);
-  if (!st && ok) {
-    // the stable end: unstable nowhere in the zone
-    if (!(st = rn_network_state_restore(net, b.lo)))
-      st = bloch_at(net, p, b.bhi.xi, &lo_full);
-    if (!st && unstable(lo_full, p)) { // another mode first: bisect from the start
-      rn_state_destroy(&b.lo);
-      b.lo = start;
-      start = nullptr;
-      b.u_hi = b.u_lo;
-      b.bhi = lo_full;
-      b.u_lo = u0;
-      b.blo = b0lo;
+  // back to the start, unstable at u_hi (result hi)
+  auto restart = [&](double u_hi, const rn_bloch_result &hi) -> rn_status {
+    rn_state_destroy(&b.lo);
+    b.u_lo = u0;
+    b.blo = b0lo;
+    b.u_hi = u_hi;
+    b.bhi = hi;
+    rn_status rs = rn_network_state_restore(net, start);
+    return rs ? rs : rn_network_state_save(net, &b.lo);
+  };
+  for (int round = 0; !st && round < 4; ++round) {
+    bool ok = false;
+    if ((st = secant(net, p, b, it, uc, &ok))) break;
+    if (!ok) { // unfinished: the stable end is not verified
       *uc = NAN;
-    } else if (!st) {
-      b.blo = lo_full;
-      // the unstable end: the full test there for the record
-      if (!(st = relax_at(net, p, b.j, b.u_hi, &s)) &&
-          !(st = bloch_at(net, p, b.bhi.xi, &hi_full)) && unstable(hi_full, p))
-        b.bhi = hi_full;
+      if (b.u_lo != u0) st = restart(b.u_hi, b.bhi);
+      break;
     }
-  } else if (!st)
-    *uc = NAN;
+    // the stable end: unstable nowhere in the zone
+    if ((st = rn_network_state_restore(net, b.lo)) ||
+        (st = bloch_at(net, p, b.bhi.xi, &lo_full)))
+      break;
+    if (unstable(lo_full, p)) { // another mode first: the secant on it
+      *uc = NAN;
+      if ((st = restart(b.u_lo, lo_full))) break;
+      continue;
+    }
+    b.blo = lo_full;
+    // the unstable end: the full test there for the record
+    if (!(st = relax_at(net, p, b.j, b.u_hi, &s)) &&
+        !(st = bloch_at(net, p, b.bhi.xi, &hi_full)) && unstable(hi_full, p))
+      b.bhi = hi_full;
+    rn_state_destroy(&start);
+    return st;
+  }
+  *uc = NAN;
   rn_state_destroy(&start);
   return st;
 }

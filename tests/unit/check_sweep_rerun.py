@@ -53,6 +53,25 @@ def main():
         skipped, rows = run(rodnet, dict(base, **{key: value}), out, key)
         print(f"{key} = {value}: {'skipped (WRONG)' if skipped else 'recomputed'}")
         ok &= not skipped
+    # a path (issue 24 section 4): in the record; another number of steps, or
+    # another end, recomputes
+    path = {"strain": [-0.002, -0.002, 0], "steps": 2, "modes": "in-plane"}
+    skipped, rows = run(rodnet, dict(base, path=path), out, "path")
+    ok &= not skipped and rows[0].get("instability") in ("none", "local", "macroscopic")
+    skipped, rows = run(rodnet, dict(base, path=path), out, "path_same")
+    ok &= skipped
+    for key, value in (("steps", 3), ("strain", [-0.003, -0.002, 0]),
+                       ("bloch_method", "dense")):
+        skipped, rows = run(rodnet, dict(base, path=dict(path, **{key: value})), out,
+                            "path_" + key)
+        print(f"path {key} = {value}: {'skipped (WRONG)' if skipped else 'recomputed'}")
+        ok &= not skipped
+    with open(os.path.join(out, "sweep", "point_0000.json")) as f:
+        rec = json.load(f).get("parameters", {}).get("path")
+    print("path record:", rec)
+    ok &= rec == {"strain": [-0.002, -0.002, 0], "steps": 2, "modes": "in-plane",
+                  "bloch_method": "dense"}
+    skipped, rows = run(rodnet, dict(base, perturb=0.05), out, "no_path")
     # the record of a point
     with open(os.path.join(out, "sweep", "point_0000.json")) as f:
         p = json.load(f)
