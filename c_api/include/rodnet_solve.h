@@ -663,8 +663,8 @@ typedef enum rn_bloch_method {
 typedef struct rn_bloch_options {
   int grid;   /* wave vectors per reciprocal direction of the Brillouin-zone
                  grid (default 0: 16 in 2D, 6 in 3D) */
-  int refine; /* 1 (default): refine the grid minimum by a pattern search in
-                 xi down to 1e-4 */
+  int refine; /* 1 (default): refine the grid minima by a quasi-Newton descent in
+                 xi with the Hellmann-Feynman gradient (rn_cell_bloch_gradient) */
   rn_bloch_modes modes;
   const double *xi_hint; /* optional: also start a refinement here (dim) */
   int method; /* an rn_bloch_method (int: any value is checked); default RN_BLOCH_AUTO */
@@ -728,6 +728,14 @@ rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
  * eigenvectors found before, multiplicities included). */
 rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi, rn_bloch_modes modes,
                               int neig, double *eig, double *vec);
+/* The lowest Bloch eigenvalue *eig at xi (as rn_cell_bloch_eigen with neig 1; method
+ * an rn_bloch_method) and its gradient grad[dim] in xi (reciprocal coordinates) by
+ * Hellmann-Feynman, d lambda / d xi_a = v^H (dH/dxi_a) v with v its unit eigenvector
+ * and dH/dxi_a from the lattice-shift terms of H (rn_network_bloch_terms): exact for a
+ * simple eigenvalue (at a multiple one the derivative along the eigenvector found).
+ * rn_cell_bloch's refinement descends along it. */
+rn_status rn_cell_bloch_gradient(rn_network *net, const double *xi, rn_bloch_modes modes,
+                                 int method, double *eig, double *grad);
 /* The lowest Bloch eigenvalue at xi (as rn_cell_bloch_eigen with neig 1) without a
  * dense matrix, at any cell size: the sparse Bloch Hessian
  * (rn_network_bloch_hessian_csr) on the examined DOFs in its real symmetric form

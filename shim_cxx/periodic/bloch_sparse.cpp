@@ -23,9 +23,9 @@ SparseBloch::SparseBloch(const rn_network *net, const double *x, size_t n)
 
 SparseBloch::~SparseBloch() = default;
 
-// H(xi) into rp_, col_, re_, im_: the terms of the state once (rn_network_bloch_terms),
-// then H(xi) = sum_t exp(2 pi i xi . n_t) T_t per wave vector.
-void SparseBloch::assemble(const double *xi) {
+// The terms of the state (rn_network_bloch_terms) into rp_, col_, shift_n_, terms_,
+// once.
+void SparseBloch::fetch_terms() {
   if (terms_.empty()) {
     size_t nnz = 0;
     rn_status st = rn_network_bloch_terms(net_, x_, &nterms_, nullptr, &nnz, rp_.data(),
@@ -41,6 +41,12 @@ void SparseBloch::assemble(const double *xi) {
     re_.resize(nnz);
     im_.resize(nnz);
   }
+}
+
+// H(xi) into rp_, col_, re_, im_: H(xi) = sum_t exp(2 pi i xi . n_t) T_t per wave
+// vector, from the terms fetched once.
+void SparseBloch::assemble(const double *xi) {
+  fetch_terms();
   const size_t nnz = col_.size();
   std::fill(re_.begin(), re_.end(), 0.0);
   std::fill(im_.begin(), im_.end(), 0.0);
@@ -54,6 +60,38 @@ void SparseBloch::assemble(const double *xi) {
       re_[q] += c * v[q];
       im_[q] += s * v[q];
     }
+  }
+}
+
+void SparseBloch::gradient(const double *xi, const double *vec, int d, double *g) {
+  fetch_terms();
+  const size_t nnz = col_.size();
+  // conj(v_i) v_j = a_q + i b_q per pattern entry q = (i, j)
+  std::vector<double> a(nnz), b(nnz);
+  for (size_t i = 0; i < n_; ++i)
+    for (int64_t q = rp_[i]; q < rp_[i + 1]; ++q) {
+      const size_t j = static_cast<size_t>(col_[static_cast<size_t>(q)]);
+      const double vri = vec[2 * i], vii = vec[2 * i + 1], vrj = vec[2 * j],
+                   vij = vec[2 * j + 1];
+      a[static_cast<size_t>(q)] = vri * vrj + vii * vij;
+      b[static_cast<size_t>(q)] = vri * vij - vii * vrj;
+    }
+  for (int k = 0; k < d; ++k) g[k] = 0.0;
+  for (int t = 0; t < nterms_; ++t) {
+    const int *n = &shift_n_[3 * static_cast<size_t>(t)];
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue; // T_0 does not depend on xi
+    const double *v = &terms_[static_cast<size_t>(t) * nnz];
+    double cr = 0.0, ci = 0.0; // c_t = v^H T_t v
+    for (size_t q = 0; q < nnz; ++q) {
+      cr += v[q] * a[q];
+      ci += v[q] * b[q];
+    }
+    double ph = 0.0;
+    for (int k = 0; k < d; ++k) ph += xi[k] * n[k];
+    ph *= 2.0 * M_PI;
+    // Re(2 pi i n_a exp(i ph) c_t) = -2 pi n_a (sin(ph) cr + cos(ph) ci)
+    const double f = -2.0 * M_PI * (std::sin(ph) * cr + std::cos(ph) * ci);
+    for (int k = 0; k < d; ++k) g[k] += f * n[k];
   }
 }
 

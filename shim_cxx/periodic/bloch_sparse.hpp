@@ -47,6 +47,11 @@ public:
   // (-y, x) of the real form); vec as for lowest() (the lowest one's).  Returns k.
   int lowest_k(const double *xi, const std::vector<int> &sel, int k, double *w,
                double *vec);
+  // The gradient g[d] in xi (reciprocal coordinates) of an eigenvalue of H(xi) whose
+  // unit eigenvector is vec (2 n: re, im per Bloch DOF) by Hellmann-Feynman:
+  // g_a = vec^H (dH/dxi_a) vec, dH/dxi_a = sum_t 2 pi i n_t,a exp(2 pi i xi . n_t) T_t.
+  // Exact for a simple eigenvalue; at a multiple one the derivative along vec.
+  void gradient(const double *xi, const double *vec, int d, double *g);
   // The largest |H_ij| over all entries and over those with mask[i] != mask[j].
   void coupling(const double *xi, const std::vector<char> &mask, double *big,
                 double *cross);
@@ -54,6 +59,7 @@ public:
   double shift() const { return shift_; } // sigma of the last lowest()
 
 private:
+  void fetch_terms();
   void assemble(const double *xi);
   void real_form(const std::vector<int> &sel);
   const rn_network *net_;

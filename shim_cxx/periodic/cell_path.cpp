@@ -515,6 +515,17 @@ public:
     return w[0];
   }
 
+  // The lowest eigenvalue at xi and its gradient g[dim] in xi (Hellmann-Feynman from
+  // its eigenvector and the terms of H; SparseBloch::gradient).
+  double lowest_grad(const double *xi, double *g) {
+    double w[1];
+    std::vector<double> vec(2 * n_);
+    lowest(xi, 1, w, vec.data());
+    if (!sb_ && !terms_) terms_.reset(new SparseBloch(net_, x_.data(), n_));
+    (sb_ ? sb_ : terms_)->gradient(xi, vec.data(), dim_, g);
+    return w[0];
+  }
+
   // Acoustic tensor data: fills res->acoustic_*.
   void acoustic(rn_bloch_result *res);
 
@@ -558,6 +569,7 @@ private:
   std::vector<int> kind_, comp_, sel_, sel0_;
   std::vector<char> mask_;
   bool sparse_ = false;
+  std::unique_ptr<SparseBloch> terms_; // dense: the terms for lowest_grad only
   std::unique_ptr<SparseBloch> sb_;
   std::vector<double> x_, re_, im_;
   int evals_ = 0;
@@ -853,28 +865,107 @@ std::vector<Pt> grid_scan(Bloch &b, int G) {
   return pts;
 }
 
-// Pattern search in xi from cur (steps from 1/(2G) down to 1e-4), skipping the
-// wave vectors with 0 < |xi|_inf < excl (left to the long-wavelength test).
-Pt refine(Bloch &b, Pt cur, int G, double excl) {
+// 0 < |xi|_inf < excl: left to the long-wavelength (acoustic) test.
+bool excluded(const double *xi, int d, double excl) {
+  double inf = 0.0;
+  for (int i = 0; i < d; ++i) inf = std::max(inf, std::fabs(xi[i]));
+  return inf > 0.0 && inf < excl;
+}
+
+// Probe: the lowest of cur's 2 d neighbours at distance h along the axes, if lower
+// than cur by more than tol (skipping excluded ones); false if none is.
+bool probe(Bloch &b, Pt &cur, double h, double excl, double tol) {
   const int d = b.dim();
-  double h = 0.5 / G;
-  while (h >= 1e-4) {
-    bool moved = false;
-    for (int ax = 0; ax < d && !moved; ++ax)
-      for (int sg = -1; sg <= 1 && !moved; sg += 2) {
-        Pt c = cur;
-        c.xi[ax] += sg * h;
-        wrap(c.xi, d);
-        double inf = 0.0;
-        for (int i = 0; i < d; ++i) inf = std::max(inf, std::fabs(c.xi[i]));
-        if (inf > 0.0 && inf < excl) continue;
-        c.lam = b.lowest1(c.xi);
-        if (c.lam < cur.lam) {
-          cur = c;
-          moved = true;
-        }
+  Pt best = cur;
+  for (int ax = 0; ax < d; ++ax)
+    for (int sg = -1; sg <= 1; sg += 2) {
+      Pt c = cur;
+      c.xi[ax] += sg * h;
+      wrap(c.xi, d);
+      if (excluded(c.xi, d, excl)) continue;
+      c.lam = b.lowest1(c.xi);
+      if (c.lam < best.lam) best = c;
+    }
+  if (!(best.lam < cur.lam - tol)) return false;
+  cur = best;
+  return true;
+}
+
+// Local minimum of the lowest eigenvalue from cur: quasi-Newton (BFGS) on xi with the
+// Hellmann-Feynman gradient (Bloch::lowest_grad) and a backtracking line search,
+// steps at most 1/(2G), until a step shorter than 1e-7 or no descent (none larger
+// than tol predicted); then a probe of
+// the axes at 1e-3 (a saddle where the gradient vanishes, e.g. a symmetric point of
+// the grid, or a kink where two eigenvalues cross), and from a lower neighbour
+// again (at most 4 restarts; lower by more than tol, the round-off of the
+// eigenvalues).  Skips the wave vectors with 0 < |xi|_inf < excl.
+Pt refine(Bloch &b, Pt cur, int G, double excl, double tol) {
+  const int d = b.dim();
+  const double hmax = 0.5 / G;
+  for (int restart = 0; restart < 5; ++restart) {
+    double g[3] = {0, 0, 0}, H[9] = {0}, x[3] = {cur.xi[0], cur.xi[1], cur.xi[2]};
+    cur.lam = b.lowest_grad(cur.xi, g);
+    double gn = 0.0;
+    for (int a = 0; a < d; ++a) gn = std::max(gn, std::fabs(g[a]));
+    for (int a = 0; a < d; ++a) H[a * 3 + a] = gn > 0.0 ? hmax / gn : 0.0;
+    for (int it = 0; it < 50 && gn > 0.0; ++it) {
+      double p[3] = {0, 0, 0}, plen = 0.0, slope = 0.0;
+      for (int a = 0; a < d; ++a) {
+        for (int c = 0; c < d; ++c) p[a] -= H[a * 3 + c] * g[c];
+        plen = std::max(plen, std::fabs(p[a]));
+        slope += p[a] * g[a];
       }
-    if (!moved) h *= 0.5;
+      if (!(slope < 0.0)) { // not a descent direction: back to steepest descent
+        for (int a = 0; a < 9; ++a) H[a] = 0.0;
+        for (int a = 0; a < d; ++a) H[a * 3 + a] = hmax / gn;
+        continue;
+      }
+      double alpha = plen > hmax ? hmax / plen : 1.0;
+      Pt t = cur;
+      double gt[3] = {0, 0, 0}, xt[3] = {0, 0, 0};
+      bool ok = false;
+      // (a decrease below the eigenvalues' round-off tol is noise: stop there)
+      while (alpha * plen >= 1e-7 && -alpha * slope > tol) {
+        for (int a = 0; a < d; ++a) t.xi[a] = xt[a] = x[a] + alpha * p[a];
+        wrap(t.xi, d);
+        if (!excluded(t.xi, d, excl)) {
+          t.lam = b.lowest_grad(t.xi, gt);
+          if (t.lam <= cur.lam + 1e-4 * alpha * slope && t.lam < cur.lam) {
+            ok = true;
+            break;
+          }
+        }
+        alpha *= 0.5;
+      }
+      if (!ok) break;
+      // BFGS update of the inverse Hessian with s = xt - x, y = gt - g
+      double sv[3], y[3], sy = 0.0, step = 0.0;
+      for (int a = 0; a < d; ++a) {
+        sv[a] = xt[a] - x[a];
+        y[a] = gt[a] - g[a];
+        sy += sv[a] * y[a];
+        step = std::max(step, std::fabs(sv[a]));
+      }
+      if (sy > 0.0) {
+        double Hy[3] = {0, 0, 0}, yHy = 0.0;
+        for (int a = 0; a < d; ++a)
+          for (int c = 0; c < d; ++c) Hy[a] += H[a * 3 + c] * y[c];
+        for (int a = 0; a < d; ++a) yHy += y[a] * Hy[a];
+        for (int a = 0; a < d; ++a)
+          for (int c = 0; c < d; ++c)
+            H[a * 3 + c] += (1.0 + yHy / sy) * sv[a] * sv[c] / sy -
+                            (Hy[a] * sv[c] + sv[a] * Hy[c]) / sy;
+      }
+      cur = t;
+      for (int a = 0; a < d; ++a) {
+        x[a] = xt[a];
+        g[a] = gt[a];
+      }
+      gn = 0.0;
+      for (int a = 0; a < d; ++a) gn = std::max(gn, std::fabs(g[a]));
+      if (step < 1e-7) break;
+    }
+    if (!probe(b, cur, 1e-3, excl, tol)) break;
   }
   return cur;
 }
@@ -950,9 +1041,17 @@ void local_search(Bloch &b, const rn_bloch_options &opt, int G, double excl,
   Pt best = starts.front();
   for (const Pt &s : starts)
     if (s.lam < best.lam) best = s;
+  // the eigenvalues' round-off: 1e-10 of the spread over the grid (or of the start
+  // without one)
+  double lo = best.lam, hi = best.lam;
+  for (const Pt &q : grid_pts) {
+    lo = std::min(lo, q.lam);
+    hi = std::max(hi, q.lam);
+  }
+  const double tol = 1e-10 * std::max(hi - lo, std::fabs(best.lam));
   if (opt.refine)
     for (const Pt &start : starts) {
-      Pt cur = refine(b, start, G, excl);
+      Pt cur = refine(b, start, G, excl, tol);
       if (cur.lam < best.lam) best = cur;
     }
   ties(grid_pts, best, res);
@@ -1057,6 +1156,25 @@ extern "C" rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi,
   return rodnet::guarded(net, "rn_cell_bloch_eigen", [&] {
     rodnet::Bloch b(net, modes, 1);
     b.lowest(xi, neig, eig, vec);
+  });
+}
+
+extern "C" rn_status rn_cell_bloch_gradient(rn_network *net, const double *xi,
+                                            rn_bloch_modes modes, int method, double *eig,
+                                            double *grad) {
+  if (!net) return RN_ERR_ARG;
+  if (!xi || !eig || !grad || method < RN_BLOCH_AUTO || method > RN_BLOCH_SPARSE)
+    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
+                                "rn_cell_bloch_gradient: bad arguments");
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_cell_bloch_gradient",
+                                                    "the Bloch analysis"))
+    return st;
+  return rodnet::guarded(net, "rn_cell_bloch_gradient", [&] {
+    rodnet::Bloch b(net, modes,
+                    method == RN_BLOCH_SPARSE  ? 2
+                    : method == RN_BLOCH_DENSE ? 0
+                                               : 3);
+    *eig = b.lowest_grad(xi, grad);
   });
 }
 

@@ -7,7 +7,8 @@
   1e-12 relative).
 - The path's steps do not decide the answer: with 20 steps (the first step 15 to
   50 times past the critical strain of these thin honeycombs) the critical strain
-  agrees with 100 steps to 1e-6 relative, at the same wave vector.  Before the
+  agrees with 100 steps to 1e-6 relative, at a wave vector of the zone boundary (M
+  and K are critical at the same strain here).  Before the
   fix, the Illinois secant that followed the wrong Bloch mode or ran out of
   iterations left a bracket whose stable end only the tracked mode had checked:
   rho 0.0255 gave twice the critical strain at a long-wave mode, rho 0.02 and
@@ -77,7 +78,10 @@ def main():
         ok &= rel(lf, same["load_factor"]) < 1e-12
         ok &= point["instability"]["load_factor"] == lf
         ok &= rel(e[0], fine["strain"][0]) < 1e-6
-        ok &= max(abs(a - b) for a, b in zip(xi, fine["wave_vector"])) < 1e-6
+        # the zone boundary: M (0.5, 0) and K (-1/3, 1/3) go unstable at the same
+        # strain in these cells (the refinement ends at either); the wrong answer
+        # was a long-wave mode near Gamma, at another strain
+        ok &= min(max(abs(v) for v in xi), max(abs(v) for v in fine["wave_vector"])) > 0.3
     print("OK" if ok else "FAILED")
     sys.exit(0 if ok else 1)
 
