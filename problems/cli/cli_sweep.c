@@ -642,24 +642,6 @@ static int scene_hash(rn_context *ctx, const char *path, char out[32]) {
   return 0;
 }
 
-static void put_vec(FILE *f, int n, const double *v) {
-  fputc('[', f);
-  for (int i = 0; i < n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", v[i]);
-  fputc(']', f);
-}
-
-/* The kind and the criterion of a path's first instability. */
-static const char *inst_kind(const rn_cell_path_instability *in) {
-  return !in->found ? "none" : in->kind_macroscopic ? "macroscopic" : "local";
-}
-static const char *inst_criterion(const rn_cell_path_instability *in) {
-  return !in->found             ? ""
-         : in->stress_limit     ? "stress_limit"
-         : in->cell_periodic    ? "cell_periodic_fluctuations"
-         : in->kind_macroscopic ? "rank_one_convexity"
-                                : "bloch";
-}
-
 /* The point file's "path" and "instability" members (each ends ",\n"). */
 static void put_path_result(FILE *f, const point_out *o) {
   const rn_cell_path_result *r = o->r;
@@ -677,13 +659,13 @@ static void put_path_result(FILE *f, const point_out *o) {
     return;
   }
   fprintf(f, "{\"kind\": \"%s\", \"criterion\": \"%s\", \"load_factor\": %.17g, ",
-          inst_kind(in), inst_criterion(in), in->t);
+          hp_instability_kind(in), hp_instability_criterion(in), in->t);
   fputs("\"strain\": ", f);
-  put_vec(f, r->ns, in->strain);
+  hp_put_vec(f, r->ns, in->strain);
   fputs(", \"stress\": ", f);
-  put_vec(f, r->ns, in->stress);
+  hp_put_vec(f, r->ns, in->stress);
   fputs(", \"wave_vector\": ", f);
-  put_vec(f, o->h->dim, in->xi);
+  hp_put_vec(f, o->h->dim, in->xi);
   fprintf(f, ", \"multiplicity\": %d},\n", in->multiplicity);
 }
 

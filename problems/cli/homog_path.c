@@ -122,6 +122,18 @@ static void put_steps(FILE *f, const hp_path *p) {
   fputs("],\n", f);
 }
 
+const char *hp_instability_kind(const rn_cell_path_instability *in) {
+  return !in->found ? "none" : in->kind_macroscopic ? "macroscopic" : "local";
+}
+
+const char *hp_instability_criterion(const rn_cell_path_instability *in) {
+  return !in->found             ? ""
+         : in->stress_limit     ? "stress_limit"
+         : in->cell_periodic    ? "cell_periodic_fluctuations"
+         : in->kind_macroscopic ? "rank_one_convexity"
+                                : "bloch";
+}
+
 /* The "instability" member's object (ends ",\n"). */
 static void put_instability(FILE *f, const hp_path *p) {
   const rn_cell_path_instability *in = &p->r.inst;
@@ -142,12 +154,7 @@ static void put_instability(FILE *f, const hp_path *p) {
   fprintf(f,
           ", \"kind\": \"%s\", \"criterion\": \"%s\", \"multiplicity\": %d, "
           "\"load_factor\": %.17g",
-          in->kind_macroscopic ? "macroscopic" : "local",
-          in->stress_limit       ? "stress_limit"
-          : in->cell_periodic    ? "cell_periodic_fluctuations"
-          : in->kind_macroscopic ? "rank_one_convexity"
-                                 : "bloch",
-          in->multiplicity, in->t);
+          hp_instability_kind(in), hp_instability_criterion(in), in->multiplicity, in->t);
   fputs(", \"bloch_eigenvalues\": ", f);
   hp_put_vec(f, in->neig, in->eig);
   if (in->stress_limit) {

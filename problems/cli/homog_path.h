@@ -68,6 +68,13 @@ void hp_put_vec(FILE *f, int n, const double *v);
  * RESULT.json), %.*e if exp else %.*g with prec digits. */
 void hp_print_vec(FILE *f, int n, const double *v, int prec, int exp);
 
+/* The instability's "kind" ("local", "macroscopic"; "none" if not found) and
+ * "criterion" ("bloch", "rank_one_convexity", "stress_limit",
+ * "cell_periodic_fluctuations"; "" if not found) as RESULT.json and the sweep's
+ * point files and CSV write them. */
+const char *hp_instability_kind(const rn_cell_path_instability *in);
+const char *hp_instability_criterion(const rn_cell_path_instability *in);
+
 /* Parse a path's targets: comma-separated entries, each a number (a strain, or
  * a stress if stress_default), "-" (stress-controlled at zero stress),
  * "s:VALUE" (stress-controlled) or "e:VALUE" (strain-controlled); at most 6.

@@ -972,14 +972,19 @@ Pt refine(Bloch &b, Pt cur, int G, double excl, double tol) {
 
 // Ties (symmetry-equivalent minima, equal up to round-off): the first in grid
 // order becomes best, and all of them are reported in res->xi_equiv.
-void ties(const std::vector<Pt> &grid_pts, Pt &best, rn_bloch_result *res) {
+// The spread of the lowest eigenvalue over the grid (0 without one).
+double spread(const std::vector<Pt> &grid_pts) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const Pt &q : grid_pts) {
     lo = std::min(lo, q.lam);
     hi = std::max(hi, q.lam);
   }
+  return grid_pts.empty() ? 0.0 : hi - lo;
+}
+
+void ties(const std::vector<Pt> &grid_pts, Pt &best, rn_bloch_result *res) {
   const double tie =
-      grid_pts.empty() ? 0.0 : 1e-8 * std::max(hi - lo, std::fabs(best.lam));
+      grid_pts.empty() ? 0.0 : 1e-8 * std::max(spread(grid_pts), std::fabs(best.lam));
   res->nequiv = 0;
   for (const Pt &q : grid_pts)
     if (std::fabs(q.lam - best.lam) <= tie && res->nequiv < 12) {
@@ -1014,9 +1019,7 @@ void bloch_search(rn_network *net, const rn_bloch_options &opt, rn_bloch_result 
     Pt p{0.0, {0.0, 0.0, 0.0}};
     for (int i = 0; i < d; ++i) p.xi[i] = opt.xi_hint[i];
     wrap(p.xi, d);
-    double inf = 0.0;
-    for (int i = 0; i < d; ++i) inf = std::max(inf, std::fabs(p.xi[i]));
-    if (inf == 0.0 || inf >= excl) {
+    if (!excluded(p.xi, d, excl)) {
       p.lam = b.lowest1(p.xi);
       starts.push_back(p);
     }
@@ -1043,12 +1046,7 @@ void local_search(Bloch &b, const rn_bloch_options &opt, int G, double excl,
     if (s.lam < best.lam) best = s;
   // the eigenvalues' round-off: 1e-10 of the spread over the grid (or of the start
   // without one)
-  double lo = best.lam, hi = best.lam;
-  for (const Pt &q : grid_pts) {
-    lo = std::min(lo, q.lam);
-    hi = std::max(hi, q.lam);
-  }
-  const double tol = 1e-10 * std::max(hi - lo, std::fabs(best.lam));
+  const double tol = 1e-10 * std::max(spread(grid_pts), std::fabs(best.lam));
   if (opt.refine)
     for (const Pt &start : starts) {
       Pt cur = refine(b, start, G, excl, tol);
