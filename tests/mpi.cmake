@@ -56,10 +56,11 @@ rn_mpi_cli(mpi_cli_serial_solver 2 2 "solver 'tr-minres' .*cannot run on 2 MPI r
 # homogenize, path, generate, check and bench on 2 ranks used to run the whole
 # job on every rank (every message twice, both ranks writing the same files); they
 # refuse: one line from rank 0, exit status 2 on every rank, nothing written, no hang.
-# (sweep runs distributed since issue 24: mpi_sweep below.)
+# (sweep and homogenize run distributed since issue 24: mpi_sweep and
+# mpi_periodic below; a scene that is not periodic is refused once.)
 set(RN_MPI_REFUSE "runs on one process, not on 2 MPI ranks.*run it without mpirun")
-rn_mpi_cli(mpi_cli_one_process_homogenize 2 2 "rodnet homogenize: ${RN_MPI_REFUSE}"
-           homogenize ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_one_process_homogenize.json)
+rn_mpi_cli(mpi_cli_homogenize_not_periodic 2 3 "chain.json: the scene is not periodic"
+           homogenize ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_homogenize_not_periodic.json)
 rn_mpi_cli(mpi_cli_one_process_path 2 2 "rodnet path: ${RN_MPI_REFUSE}"
            path ${RN_MPI_DATA}/chain.json -o ${RN_MPI_OUT}/mpi_cli_one_process_path.json)
 rn_mpi_cli(mpi_cli_one_process_generate 2 2 "rodnet generate: ${RN_MPI_REFUSE}"
@@ -75,6 +76,15 @@ add_test(NAME mpi_sweep
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_sweep_mpi.py
                  ${CMAKE_BINARY_DIR}/rodnet ${MPIEXEC_EXECUTABLE} 2 ${RN_MPI_OUT}/sweep)
 set_tests_properties(mpi_sweep PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                     ENVIRONMENT "${RN_MPI_ENV}")
+# ---- issue 24 section 1: periodic cells in the distributed solver -----------------
+# homogenize and solve of periodic cells and supercells (2D, 3D, elastic and rigid
+# joints, mixed strain / stress control) on 1 and 2 ranks: the same C, strain and
+# stress to 1e-10, the partition recorded (tests/unit/check_periodic_mpi.py).
+add_test(NAME mpi_periodic
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_periodic_mpi.py
+                 ${CMAKE_BINARY_DIR}/rodnet ${MPIEXEC_EXECUTABLE} 2 ${RN_MPI_OUT}/periodic)
+set_tests_properties(mpi_periodic PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                      ENVIRONMENT "${RN_MPI_ENV}")
 # A usage error of sweep is printed once, a bad sweep file once (rank 0).
 rn_mpi_usage_once(mpi_cli_sweep_usage_once "missing -o DIR"

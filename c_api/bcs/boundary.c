@@ -46,7 +46,9 @@ rn_status rn_network_clamp(rn_network *net, int rod, int end) {
   rn_status st;
   int lr;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_end(net, "rn_network_clamp", rod, end, &lr))) return rn_not_here_ok(st);
+  st = check_end(net, "rn_network_clamp", rod, end, &lr);
+  if (st == RN_OK || st == RN_NOT_HERE) net->positions_fixed = 1;
+  if (st) return rn_not_here_ok(st);
   net->rods[lr].clamped[end] = 1;
   return RN_OK;
 }
@@ -63,6 +65,7 @@ static rn_status pin_vertex(rn_network *net, const char *where, int rod, int ver
                    "rod %d vertex %d: components must be a non-empty RN_FIX_X | "
                    "RN_FIX_Y | RN_FIX_Z bitmask (1 .. 7), got %d",
                    rod, v, components);
+  net->positions_fixed = 1;
   if (st == RN_NOT_HERE) return RN_OK;
   net->rods[lr].pinned[v] |= (unsigned char)components;
   return RN_OK;

@@ -200,6 +200,9 @@ struct rn_network {
                                     linearly with a periodic supercell) */
   struct rn_part_data *part;     /* NULL: a whole network (part.c) */
   struct rn_cell *cell;          /* NULL: not periodic (periodic.c) */
+  int positions_fixed;           /* a clamp or pin of a position was asked for,
+                                    also one another part holds (the periodic
+                                    anchor: periodic.c) */
   int model;                     /* rn_model asked for (planar.c) */
   int planar;                    /* 1: the planar model is in use (set at finalize) */
   int planar_ok;                 /* 1: the network qualifies for it (set at finalize) */
@@ -250,11 +253,13 @@ rn_status rn_net_rod(const rn_network *net, const char *where, int *rod);
 rn_status rn_net_joint(const rn_network *net, const char *where, int *joint);
 /* Hooks of the building calls: add_rod asks whether rod gid is held here (1)
  * and records its vertex count; add_joint whether the joint is held and which
- * of its ends are (keep[k]; ghost joints list only the ends at local rods);
+ * of its ends are (keep[k]; ghost joints list only the ends at local rods;
+ * images: the ends' periodic images or NULL, for the graph's joint point);
  * add_moment numbers the couples. */
 rn_status rn_part_add_rod(rn_network *net, int nv, const double *xyz, int *keep);
 rn_status rn_part_add_joint(rn_network *net, const char *name, int n_ends,
-                            const int *rods, const int *ends, int *keep, int *keep_end);
+                            const int *rods, const int *ends, const int *images,
+                            int *keep, int *keep_end);
 int rn_part_next_moment(rn_network *net);
 /* Sets gid/owner/ghost of the rod or joint just added locally. */
 void rn_part_tag_rod(const rn_network *net, rn_rod *r);
@@ -291,6 +296,9 @@ typedef struct rn_cell {
   int nimg, cap_img;
   int32_t *slot; /* [nfull]: 3 r + c for component c of record r, -1 */
 } rn_cell;
+/* In a part of a partition, the macroscopic strain DOFs are owned by part 0 and
+ * held by every part (a ghost elsewhere); the stress work is evaluated there. */
+int rn_cell_owned_here(const rn_network *net);
 /* Number of full strain DOFs (0 if not periodic). */
 static inline size_t rn_cell_full_count(const rn_network *net) {
   return net->cell ? (size_t)net->cell->nstrain : 0;

@@ -99,7 +99,7 @@ static rn_status graph_add_rod(rn_network *net, int nv, const double *xyz) {
 }
 
 static rn_status graph_add_joint(rn_network *net, const char *name, int n,
-                                 const int *rods, const int *ends) {
+                                 const int *rods, const int *ends, const int *images) {
   static const char *where = "rn_network_add_joint";
   rn_part_data *p = net->part;
   int cap = p->cap_ends, have = p->jptr[p->njoints];
@@ -127,6 +127,11 @@ static rn_status graph_add_joint(rn_network *net, const char *name, int n,
   if (fail) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
   pt = &p->points[p->njoints]; /* as rn_network_add_joint sets x0 and lmin */
   memcpy(pt->x0, p->rod_ends + 8 * (size_t)rods[0] + 3 * ends[0], sizeof(pt->x0));
+  if (images && net->cell) { /* the first end at an image: shifted back */
+    for (int c = 0; c < 3; ++c)
+      for (int m = 0; m < net->cell->dim; ++m)
+        pt->x0[c] -= images[m] * net->cell->a[m][c];
+  }
   pt->lmin = INFINITY;
   for (int k = 0; k < n; ++k)
     pt->lmin = fmin(pt->lmin, p->rod_ends[8 * (size_t)rods[k] + 6 + ends[k]]);
@@ -173,14 +178,15 @@ void rn_part_tag_rod(const rn_network *net, rn_rod *r) {
 }
 
 rn_status rn_part_add_joint(rn_network *net, const char *name, int n, const int *rods,
-                            const int *ends, int *keep, int *keep_end) {
+                            const int *ends, const int *images, int *keep,
+                            int *keep_end) {
   rn_part_data *p = net->part;
   int gid;
   *keep = 1;
   for (int k = 0; k < n; ++k) keep_end[k] = 1;
   if (!p) return RN_OK;
   *keep = 0;
-  if (p->mode == MODE_GRAPH) return graph_add_joint(net, name, n, rods, ends);
+  if (p->mode == MODE_GRAPH) return graph_add_joint(net, name, n, rods, ends, images);
   gid = p->njoints;
   if (gid >= p->njoints_total)
     return rn_fail(net->ctx, RN_ERR_ARG, "rn_network_add_joint",
@@ -208,6 +214,10 @@ int rn_part_next_moment(rn_network *net) {
 }
 
 /* ---- queries -------------------------------------------------------------------- */
+int rn_cell_owned_here(const rn_network *net) {
+  return !net->part || (net->part->mode == MODE_PART && net->part->part == 0);
+}
+
 int rn_network_rod_is_local(const rn_network *net, int rod) {
   if (!net || rod < 0 || rod >= rn_net_num_rods_g(net)) return 0;
   if (!net->part) return 1;

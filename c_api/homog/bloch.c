@@ -56,6 +56,10 @@ static rn_status check_periodic(const rn_network *net, const char *where) {
   if (!net->cell)
     return rn_fail(net->ctx, RN_ERR_STATE, where,
                    "the network is not periodic (rn_network_set_periodic)");
+  if (net->part)
+    return rn_fail(net->ctx, RN_ERR_STATE, where,
+                   "the Bloch-Floquet analysis needs the whole cell, not a part of a "
+                   "partition");
   return RN_OK;
 }
 

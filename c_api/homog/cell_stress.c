@@ -20,7 +20,8 @@ rn_status rn_network_cell_stress(const rn_network *net, const double *x, double 
   st = rn_eval_gradient_full(net, x, gfull, where);
   if (st == RN_OK)
     for (int v = 0; v < c->nstrain; ++v) /* the gradient includes -lambda V sigma */
-      stress[v] = gfull[c->off + (size_t)v] / c->measure + net->lambda * c->stress[v];
+      stress[v] = gfull[c->off + (size_t)v] / c->measure +
+                  (rn_cell_owned_here(net) ? net->lambda * c->stress[v] : 0.0);
   free(gfull);
   return st;
 }

@@ -520,7 +520,12 @@ rn_status rn_network_joint_rotation(const rn_network *net, int joint, double R[9
  * and are reduced DOFs unless prescribed.  Symmetric F removes the rigid
  * rotations (a 2D cell also keeps F_31 = F_32 = 0: no rotation out of plane);
  * finalize pins joint 0 (rod 0's first vertex without joints), the anchor, if
- * no boundary condition fixes a position.  A whole network only (not a part). */
+ * no boundary condition fixes a position.  A part of a partition
+ * (rn_network_set_part, docs/parallel.md) may be periodic: the strain DOFs are
+ * owned by part 0 and held by every part, the applied stress's work is part 0's,
+ * and the cell's stress and relative density below are the part's contributions
+ * (they sum over the parts to the network's); the Bloch-Floquet calls need a
+ * whole network. */
 
 /* Make the empty network periodic with dim = 2 or 3 lattice vectors
  * vectors[3 dim] (rows).  RN_ERR_GEOMETRY for a degenerate cell, RN_ERR_ARG for
@@ -704,7 +709,8 @@ rn_status rn_network_part_dofs(const rn_network *net, size_t *n_owned,
 /* The state of the rods, joints and couples a finalized part owns (current
  * positions and angles, reference frames and twists, joint rotations and
  * reference data, couple frames and angles) packed into buf[*n] doubles (buf
- * NULL: only *n), for another process. */
+ * NULL: only *n), for another process; part 0 adds the macroscopic strain of a
+ * periodic cell. */
 rn_status rn_network_part_state_pack(const rn_network *net, double *buf, size_t *n);
 /* Installs such a packed state into a finalized network holding those rods,
  * joints and couples (a whole network built from the same scene, at the same

@@ -139,10 +139,11 @@ static int local_ends(const rn_network *net, int n, const int *rods, const int *
   return m;
 }
 
-/* Images of the ends of a new joint: checked and copied into J->image (NULL
- * when every shift is zero). */
+/* Images of the ends of a new joint: all n checked, those of the ends kept here
+ * (keep_end; a part's joint lists the ends at its rods) copied into J->image
+ * (NULL when every kept shift is zero). */
 static rn_status set_images(const rn_network *net, const char *where, const char *name,
-                            int n, const int *images, rn_joint *J) {
+                            int n, const int *images, const int *keep_end, rn_joint *J) {
   int any = 0, dim = net->cell ? net->cell->dim : 0;
   if (!images) return RN_OK;
   for (int k = 0; k < n; ++k)
@@ -158,12 +159,13 @@ static rn_status set_images(const rn_network *net, const char *where, const char
         return rn_fail(net->ctx, RN_ERR_ARG, where,
                        "joint '%s' end %d: image component %d of a %dD cell must be 0",
                        name ? name : "", k, c, dim);
-      any = 1;
+      any |= keep_end[k];
     }
   if (!any) return RN_OK;
   J->image = malloc(3 * (size_t)n * sizeof(int));
   if (!J->image) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  memcpy(J->image, images, 3 * (size_t)n * sizeof(int));
+  for (int k = 0, m = 0; k < n; ++k)
+    if (keep_end[k]) memcpy(J->image + 3 * m++, images + 3 * k, 3 * sizeof(int));
   return RN_OK;
 }
 
@@ -248,7 +250,7 @@ static rn_status add_joint(rn_network *net, const char *where, const char *name,
     if ((st = check_joint_end(net, where, rods, ends, k))) return st;
   buf = malloc(3 * (size_t)n_ends * sizeof(int));
   if (!buf) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
-  st = rn_part_add_joint(net, name, n_ends, rods, ends, &keep, buf);
+  st = rn_part_add_joint(net, name, n_ends, rods, ends, images, &keep, buf);
   if (st != RN_OK) {
     free(buf);
     if (st == RN_NOT_HERE && joint) *joint = rn_net_joints_added(net) - 1;
@@ -270,7 +272,7 @@ static rn_status add_joint(rn_network *net, const char *where, const char *name,
   }
   J.model = (int)model;
   rn_part_tag_joint(net, &J);
-  if ((st = set_images(net, where, name, n_ends, images, &J)) ||
+  if ((st = set_images(net, where, name, n_ends, images, buf, &J)) ||
       (st = check_coincide(net, where, name, &J))) {
     rn_joint_free(&J);
     free(buf);
@@ -322,8 +324,9 @@ rn_status rn_network_clamp_joint(rn_network *net, int joint) {
   rn_status st;
   int lj;
   if (!net) return RN_ERR_ARG;
-  if ((st = check_joint_arg(net, "rn_network_clamp_joint", joint, &lj)))
-    return rn_not_here_ok(st);
+  st = check_joint_arg(net, "rn_network_clamp_joint", joint, &lj);
+  if (st == RN_OK || st == RN_NOT_HERE) net->positions_fixed = 1;
+  if (st) return rn_not_here_ok(st);
   net->joints[lj].clamped = 1;
   return RN_OK;
 }
@@ -340,6 +343,7 @@ static rn_status pin_joint(rn_network *net, const char *where, int joint,
                    "joint %d: components must be a non-empty RN_FIX_X | RN_FIX_Y | "
                    "RN_FIX_Z bitmask (1 .. 7), got %d",
                    joint, components);
+  net->positions_fixed = 1;
   if (st == RN_NOT_HERE) return RN_OK;
   net->joints[lj].pinned |= components;
   return RN_OK;

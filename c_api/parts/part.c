@@ -251,6 +251,10 @@ void rn_part_mark_absent(rn_network *net) {
         if (pr[v + c] && !pr[xp + c]) pr[xp + c] = 1;
     }
   }
+  /* periodic: the strain DOFs, owned by part 0, held by every part */
+  if (net->cell)
+    memset(pr + net->cell->off, rn_cell_owned_here(net) ? 2 : 1,
+           (size_t)net->cell->nstrain);
   for (size_t a = 0; a < net->nfull; ++a)
     if (!pr[a]) net->map[a] = RN_DOF_ABSENT;
 }
@@ -292,6 +296,10 @@ rn_status rn_part_build_keys(rn_network *net) {
       set_key(net, J->off + c, p->joint_key0 + 6 * (int64_t)J->gid + (int64_t)c,
               J->owner);
   }
+  if (net->cell) /* after every joint's six entries */
+    for (int v = 0; v < net->cell->nstrain; ++v)
+      set_key(net, net->cell->off + (size_t)v,
+              p->joint_key0 + 6 * (int64_t)p->njoints_total + v, 0);
   for (size_t m = 0; m < net->nred; ++m) {
     if (p->owner[m] < 0) return RN_ERR_INTERNAL;
     if (p->owner[m] == p->part) p->n_owned = m + 1;
@@ -371,7 +379,7 @@ rn_status rn_part_graph_validate(const rn_network *net, const char *where) {
 }
 
 /* ---- state of the owned rods, joints and couples, packed ------------------------ */
-enum { REC_ROD = 1, REC_JOINT = 2, REC_MOMENT = 3, FRAME_DOUBLES = 6 };
+enum { REC_ROD = 1, REC_JOINT = 2, REC_MOMENT = 3, REC_CELL = 4, FRAME_DOUBLES = 6 };
 
 static size_t rod_record(const rn_rod *r) {
   return 2 + rn_dof_rod_count(r->nv) + FRAME_DOUBLES * (size_t)r->ne +
@@ -456,6 +464,16 @@ rn_status rn_network_part_state_pack(const rn_network *net, double *buf, size_t 
     o += 12;
     ++count;
   }
+  if (net->cell && rn_cell_owned_here(net)) { /* the macroscopic strain */
+    const rn_cell *c = net->cell;
+    if (buf) {
+      buf[o] = REC_CELL;
+      buf[o + 1] = c->nstrain;
+      memcpy(buf + o + 2, net->xfull + c->off, (size_t)c->nstrain * sizeof(double));
+    }
+    o += 2 + (size_t)c->nstrain;
+    ++count;
+  }
   if (buf) buf[0] = count;
   *n = o;
   return RN_OK;
@@ -530,6 +548,12 @@ rn_status rn_network_part_state_unpack(rn_network *net, const double *buf, size_
         used = 12;
         st = RN_OK;
       }
+    }
+    if (type == REC_CELL && net->cell && (int)buf[o + 1] == net->cell->nstrain &&
+        o + 2 + (size_t)net->cell->nstrain <= n) {
+      used = 2 + (size_t)net->cell->nstrain;
+      memcpy(net->xfull + net->cell->off, buf + o + 2, (used - 2) * sizeof(double));
+      st = RN_OK;
     }
     if (st)
       return rn_fail(net->ctx, RN_ERR_ARG, where,

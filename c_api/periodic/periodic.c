@@ -45,9 +45,6 @@ rn_status rn_network_set_periodic(rn_network *net, int dim, const double *vector
   double n[3], scale = 0.0;
   if (!net) return RN_ERR_ARG;
   if ((st = rn_net_check_building(net, where))) return st;
-  if (net->part || rn_network_is_graph_only(net))
-    return rn_fail(net->ctx, RN_ERR_STATE, where,
-                   "periodic cells cannot be distributed (a part or graph-only network)");
   if (net->cell)
     return rn_fail(net->ctx, RN_ERR_STATE, where, "the network is already periodic");
   if (net->njoints > 0 || net->nrods > 0)
@@ -220,10 +217,24 @@ rn_status rn_network_cell_strain(const rn_network *net, const double *x, double 
 }
 
 /* ---- finalize --------------------------------------------------------------- */
+/* The anchor is joint 0 of the whole network (rod 0's vertex 0 if there are no
+ * joints).  A part decides from the building calls (positions_fixed counts the
+ * clamps and pins of rods and joints other parts hold), pins the anchor if it
+ * holds it (owned or ghost: every holder of a DOF agrees that it is fixed) and
+ * records anchored on every part. */
 void rn_cell_anchor(rn_network *net) {
   rn_cell *c = net->cell;
   if (!c) return;
   c->anchored = 0;
+  if (net->part) {
+    if (net->positions_fixed) return;
+    c->anchored = 1;
+    if (rn_net_num_joints_g(net) > 0) {
+      if (net->njoints > 0 && net->joints[0].gid == 0) net->joints[0].pinned = RN_FIX_XYZ;
+    } else if (net->nrods > 0 && net->rods[0].gid == 0)
+      net->rods[0].pinned[0] = RN_FIX_XYZ;
+    return;
+  }
   for (int ij = 0; ij < net->njoints; ++ij)
     if (rn_joint_fixed_components(&net->joints[ij])) return;
   for (int ir = 0; ir < net->nrods; ++ir)
@@ -488,7 +499,7 @@ double rn_cell_load(const rn_network *net, const double *x, double lambda, doubl
                     double *gfull) {
   const rn_cell *c = net->cell;
   double eps[6], E = 0.0;
-  if (!c) return 0.0;
+  if (!c || !rn_cell_owned_here(net)) return 0.0; /* a part: the strain's owner */
   strain_of(net, x, eps);
   for (int v = 0; v < c->nstrain; ++v) {
     double f = lambda * c->measure * c->stress[v];
@@ -557,6 +568,7 @@ rn_status rn_network_cell_relative_density(const rn_network *net, double *rho) {
   if (!rho) return rn_fail(net->ctx, RN_ERR_ARG, where, "rho is NULL");
   for (int ir = 0; ir < net->nrods; ++ir) {
     const rn_rod *r = &net->rods[ir];
+    if (!rn_rod_evaluated(r)) continue; /* a part: its owned rods */
     for (int j = 0; j < r->ne; ++j)
       sum += r->lbar[j] * (net->cell->dim == 3 ? r->sec[j].A : inplane_thickness(r, j));
   }

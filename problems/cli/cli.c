@@ -29,7 +29,8 @@ static const rn_cli_command commands[] = {
      "--periodic: a periodic cell)",
      rn_cli_generate, 0},
     {"homogenize", "homogenize SCENE.json -o RESULT.json",
-     "effective stiffness of a periodic cell", rn_cli_homogenize, RN_CLI_NEEDS_SOLVER},
+     "effective stiffness of a periodic cell", rn_cli_homogenize,
+     RN_CLI_NEEDS_SOLVER | RN_CLI_DISTRIBUTED},
     {"bench", "bench [--suite quick|full] -o DIR",
      "optimiser benchmark: every problem of the\n"
      "suite against every solver (runs.csv and\n"
@@ -182,7 +183,8 @@ static int refuse_mpi(const char *cmd) {
     fprintf(stderr,
             "rodnet %s: runs on one process, not on %ld MPI ranks (each would run the "
             "whole job and write the same files); run it without mpirun (of the "
-            "commands only 'rodnet solve' and 'rodnet sweep' run on several ranks; "
+            "commands only 'rodnet solve', 'rodnet homogenize' and 'rodnet sweep' run on "
+            "several ranks; "
             "docs/parallel.md)\n",
             cmd, size);
   return RN_EXIT_USAGE;

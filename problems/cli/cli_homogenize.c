@@ -14,6 +14,7 @@
 #include "io/atomic_file.h"
 #include "io/num_format.h"
 #include "cli/cli.h"
+#include "cli/cli_dist.h"
 #include "cli/homog_path.h"
 #include "scene/result_json.h"
 #include "rodnet_solve.h"
@@ -267,8 +268,9 @@ typedef struct hom_out {
   double seconds;
   const hp_path *path; /* NULL without --path */
   const rn_network *net;
-  const hp_post *post; /* --post-buckling */
-  const char *dest;    /* the file written (messages) */
+  const hp_post *post;            /* --post-buckling */
+  const char *dest;               /* the file written (messages) */
+  const struct rn_cli_dist *dist; /* under mpirun: the partition, else NULL */
 } hom_out;
 
 #ifdef RN_HAVE_SOLVER
@@ -361,6 +363,9 @@ static rn_status write_result(FILE *f, void *user, rn_context *ctx) {
     fputs("],\n", f);
   }
   fprintf(f, "  \"directional_modulus_angles_deg\": [0, 360, 2],\n");
+  if (o->dist)
+    rn_result_put_partition(f, o->dist->size, o->dist->dofs, o->dist->stencils,
+                            o->dist->edge_cut, o->dist->imbalance);
   if (o->path) hp_write_json(f, o->path);
   if (o->path && o->post) hp_post_write_json(f, o->path, o->post);
   fprintf(f, "  \"fluctuation_dofs\": %zu,\n  \"time_s\": %.6g\n}\n", h->fluctuation_dofs,
@@ -603,17 +608,9 @@ static void print_cell(const hom_out *o) {
          1.0 / S[n + 1], -S[1] / S[0], 1.0 / S[n * n - 1], o->dest);
 }
 
-/* The effective stiffness h of the cell and its compliance S, timed; 0 or the
- * exit status (message printed). */
-static int homogenize_cell(rn_context *ctx, const hom_args *a, rn_network *net,
-                           rn_homogenization *h, double *S, double *seconds) {
-  double t0 = now();
-  rn_status st = rn_homogenize(net, h);
-  *seconds = now() - t0;
-  if (st) {
-    fprintf(stderr, "rodnet homogenize: %s: %s\n", a->scene, rn_context_last_error(ctx));
-    return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
-  }
+/* The compliance S of the effective stiffness h, with the warnings on h; 0 or
+ * the exit status (message printed). */
+static int check_stiffness(const hom_args *a, const rn_homogenization *h, double *S) {
   if (h->relative_density >= 1.0) /* issue 22 item 1 (docs/lattices.md) */
     fprintf(stderr,
             "rodnet homogenize: warning: %s: relative density %.6g >= 1: the struts "
@@ -628,6 +625,20 @@ static int homogenize_cell(rn_context *ctx, const hom_args *a, rn_network *net,
     return RN_EXIT_INTERNAL;
   }
   return 0;
+}
+
+/* The effective stiffness h of the cell and its compliance S, timed; 0 or the
+ * exit status (message printed). */
+static int homogenize_cell(rn_context *ctx, const hom_args *a, rn_network *net,
+                           rn_homogenization *h, double *S, double *seconds) {
+  double t0 = now();
+  rn_status st = rn_homogenize(net, h);
+  *seconds = now() - t0;
+  if (st) {
+    fprintf(stderr, "rodnet homogenize: %s: %s\n", a->scene, rn_context_last_error(ctx));
+    return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+  }
+  return check_stiffness(a, h, S);
 }
 
 /* Writes RESULT.json (or, for a path that stopped early, its partial result
@@ -675,10 +686,74 @@ static int write_and_print(rn_context *ctx, hom_out *o, const hp_path *path,
   return rc;
 }
 
+/* ---- under mpirun: the cell distributed over the ranks (docs/parallel.md) ---- */
+
+/* The rank-0 steps' exit status shared by every rank. */
+static int agree_rc(int rc) {
+  rn_dist_allreduce_int(&rc, 1, RN_DIST_MAX);
+  return rc;
+}
+
+/* One part of the cell per rank (rn_homogenize on the parts: the Schur complement
+ * through the distributed solver); rank 0 writes and prints.  Every rank returns
+ * the same exit status. */
+static int homogenize_distributed(const hom_args *a, rn_cli_dist *d) {
+  int rc = 0, dim = 0;
+  if (a->path || a->path_stress || a->path_file || a->pattern || a->post) {
+    if (d->rank == 0)
+      fprintf(stderr,
+              "rodnet homogenize: --path, --path-stress, --path-file, --pattern and "
+              "--post-buckling run on one process (the strain path and its "
+              "Bloch-Floquet stability are not distributed yet); run them without "
+              "mpirun (docs/parallel.md)\n");
+    return RN_EXIT_USAGE;
+  }
+  rn_cli_file files[8];
+  if (d->rank == 0) rc = rn_cli_probe_outputs("homogenize", files, hom_files(a, files));
+  if ((rc = agree_rc(rc))) return rc;
+  if ((rc = rn_cli_dist_load_graph(d, a->scene)) ||
+      (rc = rn_cli_dist_load_part(d, a->scene, "rodnet homogenize")))
+    return rc;
+  rn_network *net = rn_scene_network(d->part);
+  rn_network_cell_info(net, &dim, NULL, NULL, NULL);
+  if (d->rank == 0) rc = check_cell(a, net, dim);
+  if ((rc = agree_rc(rc))) return rc;
+  rn_homogenization h;
+  char prefix[4200];
+  double S[36], t0 = now();
+  rn_status st = rn_homogenize(net, &h);
+  double seconds = now() - t0;
+  snprintf(prefix, sizeof prefix, "rodnet homogenize: %s: ", a->scene);
+  if ((st = rn_cli_dist_agree(d, st, prefix)))
+    return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+  if (rn_cli_dist_agree(d, rn_cli_dist_partition(d), "rodnet homogenize: "))
+    return RN_EXIT_INTERNAL;
+  if (d->rank == 0 && !(rc = check_stiffness(a, &h, S))) {
+    hp_path path;
+    hp_post post;
+    memset(&path, 0, sizeof(path));
+    memset(&post, 0, sizeof(post));
+    hom_out o = {a, &h, S, seconds, NULL, net, &post, NULL, d};
+    rc = write_and_print(d->ctx, &o, &path, &post);
+  }
+  return agree_rc(rc);
+}
+
+static int homogenize_mpi(const hom_args *a, int rank, int size) {
+  rn_cli_dist d;
+  int rc = rn_cli_dist_begin(&d, rank, size, "rodnet homogenize");
+  if (!rc) rc = homogenize_distributed(a, &d);
+  rn_cli_dist_end(&d);
+  return rc;
+}
+
 int rn_cli_homogenize(int argc, char **argv) {
   hom_args a;
   int rc = parse_args(argc, argv, &a);
   if (rc) return rc < 0 ? RN_EXIT_OK : rc;
+  int rank, size;
+  if ((rc = rn_cli_mpi_start("rodnet homogenize", &rank, &size))) return rc;
+  if (size > 1) return homogenize_mpi(&a, rank, size);
   rn_context *ctx = NULL;
   if (rn_context_create(&ctx) != RN_OK) {
     fprintf(stderr, "rodnet homogenize: out of memory\n");
@@ -721,7 +796,7 @@ int rn_cli_homogenize(int argc, char **argv) {
     }
   }
   rc = after_path(ctx, &a, &path, &post);
-  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post, NULL};
+  hom_out o = {&a, &h, S, seconds, a.path ? &path : NULL, net, &post, NULL, NULL};
   int wrc = write_and_print(ctx, &o, &path, &post);
   /* the first failure's status, but a failed write of the result wins */
   if (wrc == RN_EXIT_INPUT || !rc) rc = wrc;

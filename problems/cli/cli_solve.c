@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.h"
 #include "cli/cli.h"
+#include "cli/cli_dist.h"
 #include "cli/cli_registry.h"
 #include "scene/result_json.h"
 #include "rodnet_couple.h"
@@ -440,102 +441,29 @@ static int run_solve(rn_context *ctx, const solve_args *a, rn_scene *scene) {
 
 /* ---- under mpirun: one part of the network per rank (docs/parallel.md) ---- */
 
-/* 1 if an MPI launcher started this process as one of several (the runtime is
- * then initialised before the scene is read, to know the ranks). */
-static int in_mpi_job(void) {
-  static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", NULL};
-  for (int i = 0; vars[i]; i++) {
-    const char *v = getenv(vars[i]);
-    if (v && atoi(v) > 1) return 1;
-  }
-  return getenv("PMIX_RANK") != NULL;
-}
-
-/* Everything one distributed run holds on a rank. */
-typedef struct dist_run {
-  rn_context *ctx;
-  int rank, size;
-  rn_scene *graph, *part, *whole;
-  int *rod_part;
-  long edge_cut;
-  part_block pb;
-} dist_run;
-
-/* Agree on a step's status over the ranks; rank 0 prints the (first failing
- * rank's) message with prefix.  Returns the agreed status. */
-static rn_status agree(dist_run *d, rn_status st, const char *prefix) {
-  st = rn_dist_agree(d->ctx, st);
-  if (st && d->rank == 0)
-    fprintf(stderr, "%s%s\n", prefix, rn_context_last_error(d->ctx));
-  return st;
-}
-
-/* Graph pass: the scene's rod graph and options, and the output paths. */
-static int load_graph(dist_run *d, const solve_args *a) {
-  rn_scene_part sp;
-  memset(&sp, 0, sizeof sp);
-  sp.mode = RN_SCENE_GRAPH;
-  rn_status st = rn_scene_load_part(d->ctx, a->scene, &sp, &d->graph);
-  if ((st = agree(d, st, ""))) return rn_cli_load_exit_code(st);
-  st = d->rank == 0 ? rn_file_probe_writable(d->ctx, a->output) : RN_OK;
-  if (!st && d->rank == 0 && a->vtk) st = rn_file_probe_writable(d->ctx, a->vtk);
-  if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INPUT;
-  return 0;
-}
-
-/* Partition of the graph, then the part pass.  0 or an exit status. */
-static int load_part(dist_run *d, const solve_args *a) {
-  rn_scene_part sp;
-  const int *nv = NULL, *jp = NULL, *jr = NULL;
-  int nr = 0, nj = 0;
-  rn_status st;
-  memset(&sp, 0, sizeof sp);
-  rn_network_rod_graph(rn_scene_network(d->graph), &nr, &nv, &nj, &jp, &jr);
-  d->rod_part = malloc(((size_t)nr + 1) * sizeof(int));
-  st = d->rod_part
-           ? rn_partition_rods(nr, nv, nj, jp, jr, d->size, d->rod_part, &d->edge_cut)
-           : RN_ERR_ALLOC;
-  if (st)
-    rn_context_set_error(d->ctx, st, "%s: cannot partition the rod graph (%s)", a->scene,
-                         rn_status_name(st));
-  if ((st = agree(d, st, "rodnet solve: "))) return RN_EXIT_INTERNAL;
-  sp.mode = RN_SCENE_PART;
-  sp.nparts = d->size;
-  sp.part = d->rank;
-  sp.nrods = nr;
-  sp.njoints = nj;
-  sp.rod_nv = nv;
-  sp.rod_part = d->rod_part;
-  sp.joint_ptr = jp;
-  sp.joint_rods = jr;
-  st = rn_scene_load_part(d->ctx, a->scene, &sp, &d->part);
-  if ((st = agree(d, st, ""))) return rn_cli_load_exit_code(st);
-  return 0;
-}
-
-/* The partition block (gathered on every rank). */
-static rn_status partition_info(dist_run *d, rn_result_info *in) {
-  rn_network *net = rn_scene_network(d->part);
-  int ranks = d->size;
-  double sum = 0.0, mx = 0.0;
-  d->pb.dofs = calloc((size_t)ranks, sizeof(long));
-  d->pb.stencils = calloc((size_t)ranks, sizeof(long));
-  if (!d->pb.dofs || !d->pb.stencils) return RN_ERR_ALLOC;
-  rn_status st = rn_dist_part_sizes(net, &ranks, d->pb.dofs, d->pb.stencils);
-  for (int q = 0; q < ranks; q++) {
-    sum += (double)d->pb.dofs[q];
-    if ((double)d->pb.dofs[q] > mx) mx = (double)d->pb.dofs[q];
-  }
-  in->part_ranks = ranks;
-  in->part_dofs = d->pb.dofs;
-  in->part_stencils = d->pb.stencils;
+/* The partition block of RESULT.json from d (rn_cli_dist_partition, collective). */
+static rn_status partition_info(rn_cli_dist *d, rn_result_info *in) {
+  rn_status st = rn_cli_dist_partition(d);
+  in->part_ranks = d->size;
+  in->part_dofs = d->dofs;
+  in->part_stencils = d->stencils;
   in->edge_cut = d->edge_cut;
-  in->imbalance = sum > 0.0 ? mx * ranks / sum : 1.0;
+  in->imbalance = d->imbalance;
   return st;
+}
+
+/* Graph pass (the scene's rod graph and options), and the output paths. */
+static int load_graph(rn_cli_dist *d, const solve_args *a) {
+  int rc = rn_cli_dist_load_graph(d, a->scene);
+  if (rc) return rc;
+  rn_status st = d->rank == 0 ? rn_file_probe_writable(d->ctx, a->output) : RN_OK;
+  if (!st && d->rank == 0 && a->vtk) st = rn_file_probe_writable(d->ctx, a->vtk);
+  if (rn_cli_dist_agree(d, st, "rodnet solve: ")) return RN_EXIT_INPUT;
+  return 0;
 }
 
 /* Rank 0 reads the whole scene and receives every part's state; then writes. */
-static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in) {
+static int gather_and_write(rn_cli_dist *d, const solve_args *a, rn_result_info *in) {
   rn_network *part = rn_scene_network(d->part);
   rn_status st = RN_OK;
   if (d->rank == 0) {
@@ -544,11 +472,13 @@ static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in
       st = rn_network_set_load_factor(rn_scene_network(d->whole),
                                       rn_network_load_factor(part));
   }
-  if (agree(d, st, "rodnet solve: cannot gather the result: ")) return RN_EXIT_INTERNAL;
+  if (rn_cli_dist_agree(d, st, "rodnet solve: cannot gather the result: "))
+    return RN_EXIT_INTERNAL;
   st = rn_dist_gather_state(part, d->whole ? rn_scene_network(d->whole) : NULL);
-  if (agree(d, st, "rodnet solve: cannot gather the result: ")) return RN_EXIT_INTERNAL;
+  if (rn_cli_dist_agree(d, st, "rodnet solve: cannot gather the result: "))
+    return RN_EXIT_INTERNAL;
   st = partition_info(d, in);
-  if (agree(d, st, "rodnet solve: ")) return RN_EXIT_INTERNAL;
+  if (rn_cli_dist_agree(d, st, "rodnet solve: ")) return RN_EXIT_INTERNAL;
   /* the solve checks stability on the parts (LOBPCG, collective); if it did not,
    * the Cholesky check on rank 0 on the gathered state (serial; the other ranks
    * wait at the next agreement) */
@@ -559,12 +489,12 @@ static int gather_and_write(dist_run *d, const solve_args *a, rn_result_info *in
       in->stability_note = "failed on the gathered state";
   }
   int rc = d->rank == 0 ? write_outputs(d->ctx, a, d->whole, in) : RN_EXIT_OK;
-  if (agree(d, rc ? RN_ERR_IO : RN_OK, "")) return RN_EXIT_INTERNAL;
+  if (rn_cli_dist_agree(d, rc ? RN_ERR_IO : RN_OK, "")) return RN_EXIT_INTERNAL;
   if (d->rank == 0) print_summary(a, d->whole, in);
   return 0;
 }
 
-static int run_distributed(dist_run *d, const solve_args *a) {
+static int run_distributed(rn_cli_dist *d, const solve_args *a) {
   rn_solve_options opt;
   int rc = load_graph(d, a);
   if (rc) return rc;
@@ -586,7 +516,7 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   }
   if ((rc = refuse_fixed_couples(a, rn_scene_network(d->graph), &opt, d->rank == 0)))
     return rc;
-  if ((rc = load_part(d, a))) return rc;
+  if ((rc = rn_cli_dist_load_part(d, a->scene, "rodnet solve"))) return rc;
   progress_state ps = {0};
   if (!a->quiet && d->rank == 0) {
     opt.progress = progress;
@@ -595,7 +525,7 @@ static int run_distributed(dist_run *d, const solve_args *a) {
   rn_solve_report rep;
   memset(&rep, 0, sizeof rep);
   rn_status st = rn_solve(rn_scene_network(d->part), &opt, &rep);
-  if (agree(d, st, "rodnet solve: solver failed: ")) return RN_EXIT_INTERNAL;
+  if (rn_cli_dist_agree(d, st, "rodnet solve: solver failed: ")) return RN_EXIT_INTERNAL;
   rn_result_info in;
   rn_result_info_fill(&rep, &opt, &in);
   if (rn_network_fixed_couples(rn_scene_network(d->part), NULL, NULL) > 0)
@@ -606,37 +536,19 @@ static int run_distributed(dist_run *d, const solve_args *a) {
 
 /* Every rank returns the same exit status; only rank 0 prints. */
 static int solve_distributed(const solve_args *a, int rank, int size) {
-  dist_run d;
-  memset(&d, 0, sizeof d);
-  d.rank = rank;
-  d.size = size;
-  int rc = rn_context_create(&d.ctx) == RN_OK ? 0 : RN_EXIT_INTERNAL;
-  if (agree(&d, rc ? RN_ERR_ALLOC : RN_OK, "rodnet solve: out of memory"))
-    rc = RN_EXIT_INTERNAL;
+  rn_cli_dist d;
+  int rc = rn_cli_dist_begin(&d, rank, size, "rodnet solve");
   if (!rc) rc = run_distributed(&d, a);
-  rn_scene_destroy(&d.whole);
-  rn_scene_destroy(&d.part);
-  rn_scene_destroy(&d.graph);
-  free(d.rod_part);
-  free(d.pb.dofs);
-  free(d.pb.stencils);
-  rn_context_destroy(&d.ctx);
-  rn_runtime_finalize();
+  rn_cli_dist_end(&d);
   return rc;
 }
 
 static int solve_scene_serial(const solve_args *a);
 
 static int solve_scene(const solve_args *a) {
-  if (in_mpi_job()) { /* the runtime first, to know the ranks */
-    int rank = 0, size = 1;
-    if (rn_runtime_initialize(NULL, NULL) != RN_OK) {
-      fprintf(stderr, "rodnet solve: cannot start the MPI runtime\n");
-      return RN_EXIT_INTERNAL;
-    }
-    rn_runtime_ranks(&rank, &size);
-    if (size > 1) return solve_distributed(a, rank, size);
-  }
+  int rank, size, rc = rn_cli_mpi_start("rodnet solve", &rank, &size);
+  if (rc) return rc;
+  if (size > 1) return solve_distributed(a, rank, size);
   return solve_scene_serial(a);
 }
 

@@ -272,22 +272,22 @@ static void put_costs(json_out *o) {
           in->krylov_iterations);
 }
 
+void rn_result_put_partition(FILE *f, int ranks, const long *dofs, const long *stencils,
+                             long edge_cut, double imbalance) {
+  fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", ranks);
+  for (int q = 0; q < ranks; q++) fprintf(f, "%s%ld", q ? ", " : "", dofs[q]);
+  fputs("], \"owned_stencils\": [", f);
+  for (int q = 0; q < ranks; q++) fprintf(f, "%s%ld", q ? ", " : "", stencils[q]);
+  fprintf(f, "], \"edge_cut\": %ld, \"imbalance\": %.17g},\n", edge_cut,
+          isfinite(imbalance) ? imbalance : 1.0);
+}
+
 /* "partition" of a distributed solve. */
 static void put_partition(json_out *o) {
   const rn_result_info *in = o->info;
-  FILE *f = o->f;
-  if (in->part_ranks > 0) {
-    fprintf(f, "  \"partition\": {\"ranks\": %d, \"owned_dofs\": [", in->part_ranks);
-    for (int q = 0; q < in->part_ranks; q++)
-      fprintf(f, "%s%ld", q ? ", " : "", in->part_dofs[q]);
-    fputs("], \"owned_stencils\": [", f);
-    for (int q = 0; q < in->part_ranks; q++)
-      fprintf(f, "%s%ld", q ? ", " : "", in->part_stencils[q]);
-    fprintf(f, "], \"edge_cut\": %ld, \"imbalance\": ", in->edge_cut);
-    o->where = "partition.imbalance";
-    put_num(o, in->imbalance);
-    fputs("},\n", f);
-  }
+  if (in->part_ranks > 0)
+    rn_result_put_partition(o->f, in->part_ranks, in->part_dofs, in->part_stencils,
+                            in->edge_cut, in->imbalance);
 }
 
 static void put_summary(json_out *o, rn_network *net) {

@@ -48,6 +48,11 @@ typedef struct rn_result_info {
   const char *stability_note;
 } rn_result_info;
 
+/* The "partition" line of a distributed run (ranks, owned DOFs and stencils per
+ * rank, edge cut, imbalance), for the result files of other commands too. */
+void rn_result_put_partition(FILE *f, int ranks, const long *dofs, const long *stencils,
+                             long edge_cut, double imbalance);
+
 /* The summary fields of *in from the report and the options of an rn_solve call
  * (everything but the partition block, part_ranks = 0); with the solver only. */
 void rn_result_info_fill(const rn_solve_report *rep, const rn_solve_options *opt,

@@ -127,7 +127,10 @@ extern "C" rn_status rn_homogenize(rn_network *net, rn_homogenization *h) {
     return st;
   try {
     *h = rn_homogenization{};
-    rodnet::homogenize(net, h);
+    if (rn_network_is_part(net))
+      rodnet::homogenize_dist(net, h);
+    else
+      rodnet::homogenize(net, h);
     return RN_OK;
   } catch (const rodnet::Error &e) {
     return e.recorded() ? e.status()

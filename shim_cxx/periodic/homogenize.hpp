@@ -40,6 +40,10 @@ struct CellBlocks {
 // the entry point, for the message) if dsyev fails.
 void sym_eigen(int m, const double *a, double *w, double *v, const char *where);
 
+// rn_homogenize on a part of a distributed cell (homogenize_dist.cpp; collective,
+// throws Error).
+void homogenize_dist(rn_network *net, rn_homogenization *h);
+
 // Runs f; converts any exception to a status with the message in net's context.
 template <class F>
 rn_status guarded(rn_network *net, const char *where, F &&f) {

@@ -1,7 +1,10 @@
 /* api_part.c - parts of a network (rn_network_set_part) in one process: for
  * several networks (a single rod; independent rods; a grid with rigid joints;
  * a frame with elastic joints, a clamped joint turned and a pinned joint moved;
- * a lattice of one-edge rods with both joint models and component pins) and
+ * a lattice of one-edge rods with both joint models and component pins;
+ * periodic cells: a 2D square supercell with mixed strain / stress control and
+ * the anchor, a 2D cell of one-edge rods, a 3D cubic cell under stress pinned on
+ * a rod's vertex) and
  * partitions into K = 1 .. 5 parts (more parts than rods included), built
  * through the same calls with whole-network indices:
  *   - the one-part partition numbers the DOFs exactly as the whole network and
@@ -396,6 +399,81 @@ static void check_network(rn_context *ctx, builder b, const char *label) {
   rn_network_destroy(&g);
 }
 
+/* A periodic n x n supercell of the unit square lattice (2D cell, lattice
+ * vectors n e1, n e2): joint (i, j) joins the rods starting there with the rods
+ * ending there, those across the cell's edges at the images (1, 0) and (0, 1).
+ * Mixed control: E11 prescribed, an applied stress on E22, E12 free; no support
+ * (the anchor: joint 0).  model -1: joints alternate elastic and rigid. */
+static void square_cell(rn_network *net, int n, int ne, int model) {
+  const double vec[6] = {n, 0, 0, 0, n, 0};
+  const int fixed[3] = {1, 0, 0};
+  const double strain[3] = {2e-3, 0, 0}, stress[3] = {0, -40.0, 0};
+  int *hor = malloc(sizeof(int) * (size_t)(n * n)),
+      *ver = malloc(sizeof(int) * (size_t)(n * n));
+  CHECK_STATUS(rn_network_set_periodic(net, 2, vec), RN_OK);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double a[3] = {i, j, 0}, b[3] = {i + 1, j, 0}, c[3] = {i, j + 1, 0};
+      hor[j * n + i] = line(net, a, b, ne, ne > 1 ? 0.03 * ((i + j) % 2 ? 1 : -1) : 0.0);
+      ver[j * n + i] = line(net, a, c, ne, ne > 1 ? 0.02 : 0.0);
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      int rods[4], ends[4], img[12] = {0}, jt;
+      int mdl = model >= 0 ? model : ((i + j) % 2 ? RN_JOINT_ELASTIC : RN_JOINT_RIGID);
+      int il = (i + n - 1) % n, jl = (j + n - 1) % n;
+      rods[0] = hor[j * n + i], ends[0] = RN_START;
+      rods[1] = ver[j * n + i], ends[1] = RN_START;
+      rods[2] = hor[j * n + il], ends[2] = RN_END;
+      rods[3] = ver[jl * n + i], ends[3] = RN_END;
+      img[6] = i == 0;
+      img[10] = j == 0;
+      CHECK_STATUS(rn_network_add_joint_images(net, NULL, (rn_joint_model)mdl, 4, rods,
+                                               ends, img, &jt),
+                   RN_OK);
+      CHECK(jt == j * n + i);
+    }
+  CHECK_STATUS(rn_network_set_cell_strain(net, fixed, strain), RN_OK);
+  CHECK_STATUS(rn_network_set_cell_stress(net, stress), RN_OK);
+  free(hor);
+  free(ver);
+}
+
+static void build_square_supercell(rn_network *net) { square_cell(net, 3, 3, -1); }
+static void build_square_one_edge(rn_network *net) { square_cell(net, 2, 1, -1); }
+
+/* A 3D periodic 2 x 1 x 1 supercell of the simple cubic lattice with rigid
+ * joints, stress control on every component (E33 compressed, a shear), and a pin
+ * of a rod's vertex instead of the anchor (the part holding that rod is not the
+ * one holding joint 0). */
+static void build_cubic_cell(rn_network *net) {
+  const double vec[9] = {2, 0, 0, 0, 1, 0, 0, 0, 1};
+  const int fixed[6] = {0};
+  const double stress[6] = {0, 0, -30.0, 0, 8.0, 0};
+  int r[2][3];
+  CHECK_STATUS(rn_network_set_periodic(net, 3, vec), RN_OK);
+  for (int i = 0; i < 2; ++i)
+    for (int d = 0; d < 3; ++d) {
+      double a[3] = {i, 0, 0}, b[3] = {i, 0, 0};
+      b[d] += 1.0;
+      r[i][d] = line(net, a, b, 3, d == 2 ? 0.0 : 0.02);
+    }
+  for (int i = 0; i < 2; ++i) {
+    int rods[6], ends[6], img[18] = {0};
+    for (int d = 0; d < 3; ++d) {
+      rods[2 * d] = r[i][d], ends[2 * d] = RN_START;
+      rods[2 * d + 1] = d == 0 ? r[1 - i][0] : r[i][d], ends[2 * d + 1] = RN_END;
+      img[3 * (2 * d + 1) + d] = d == 0 ? (i == 0) : 1;
+    }
+    CHECK_STATUS(
+        rn_network_add_joint_images(net, NULL, RN_JOINT_RIGID, 6, rods, ends, img, NULL),
+        RN_OK);
+  }
+  CHECK_STATUS(rn_network_set_cell_strain(net, fixed, NULL), RN_OK);
+  CHECK_STATUS(rn_network_set_cell_stress(net, stress), RN_OK);
+  CHECK_STATUS(rn_network_pin(net, r[1][2], 1), RN_OK);
+}
+
 /* Two pairs of rods whose joints coincide: graph-only mode finds it (no part holds
  * both joints of a two-part partition); a part built from another graph fails. */
 static void build_cross(rn_network *net) {
@@ -450,6 +528,9 @@ int main(void) {
   check_network(ctx, build_rigid_grid, "rigid grid");
   check_network(ctx, build_mixed_grid, "one-edge rods, mixed joints");
   check_network(ctx, build_elastic_frame, "elastic frame");
+  check_network(ctx, build_square_supercell, "periodic 3 x 3 square supercell");
+  check_network(ctx, build_square_one_edge, "periodic 2 x 2 cell of one-edge rods");
+  check_network(ctx, build_cubic_cell, "periodic 3D cubic 2 x 1 x 1 cell");
   rn_context_destroy(&ctx);
   return rn_test_finish("api_part");
 }
