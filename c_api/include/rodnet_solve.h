@@ -598,8 +598,12 @@ typedef struct rn_homogenization {
  * Every strain component must be a DOF (RN_ERR_ARG otherwise); RN_ERR_SOLVER if
  * K_uu is not positive definite (a mechanism: a zero-energy periodic
  * fluctuation, or an unstable state); RN_ERR_ARG for a network with a couple
- * fixed in space (rodnet_couple.h: no energy).  Serial; needs no runtime
- * initialisation. */
+ * fixed in space (rodnet_couple.h: no energy).  On a whole network: serial, needs
+ * no runtime initialisation.  On a part of a distributed periodic cell
+ * (rn_network_set_part; docs/parallel.md, "Periodic cells under mpirun"):
+ * collective over the ranks, through the distributed solver (the strain block of
+ * the inverse Hessian by MINRES with the rod-level DD, C its inverse over the
+ * measure); every rank receives the same h (fluctuation_dofs: the whole cell's). */
 rn_status rn_homogenize(rn_network *net, rn_homogenization *h);
 
 /* ---- strain paths and stability of periodic cells (docs/homogenization.md) --- */
