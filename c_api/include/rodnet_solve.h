@@ -615,6 +615,8 @@ typedef struct rn_cell_relax_report {
                             the solution (an unstable cell-periodic state) */
   double residual;       /* largest |dE/du| at the end */
   double residual_scale; /* largest balancing force there (the test is relative) */
+  int sparse_solves;     /* Newton steps on an indefinite K_uu solved by the sparse
+                            route (MINRES, rn_cell_relax_method) */
 } rn_cell_relax_report;
 /* Equilibrium of the fluctuations at the prescribed macroscopic strain
  * strain[nstrain] (the strain components that are DOFs of net are held at those
@@ -623,16 +625,28 @@ typedef struct rn_cell_relax_report {
  * du = -K_uu^-1 (g_u + K_ue d eps) (accepted if it lowers the energy), then
  * Newton with the sparse Cholesky factor of K_uu and a backtracking line search
  * on the energy; where K_uu is not positive definite (past an instability on
- * the cell-periodic branch) Newton steps on the gradient norm with a dense
- * symmetric indefinite solve (cells up to 4000 fluctuation DOFs).  Reference
+ * the cell-periodic branch) Newton steps on the gradient norm with a symmetric
+ * indefinite solve: dense (LAPACK dsysv) up to 4000 fluctuation DOFs, beyond
+ * that sparse (MINRES preconditioned by the Cholesky factor of K_uu + mu D, the
+ * smallest shift mu that factors; rn_cell_relax_method chooses).  Reference
  * frames are updated on every accepted step.  Converged when the largest
  * fluctuation force is at most 1e-9 of the largest balancing force
  * (rn_network_gradient_magnitude) or the Newton step stalls at round-off.
  * Leaves the result as the current state; RN_OK when it ran (check
  * rep->converged).  RN_ERR_ARG for a network with a couple fixed in space
  * (rodnet_couple.h; so also rn_cell_minimize, rn_cell_bloch and
- * rn_cell_bloch_eigen).  Serial; needs no runtime initialisation. */
+ * rn_cell_bloch_eigen).  Serial; needs no runtime initialisation (but on
+ * cells beyond 4000 fluctuation DOFs past an instability, where its sparse
+ * indefinite solve initialises Kokkos itself). */
 rn_status rn_cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep);
+/* rn_cell_relax with the indefinite solves of method (rn_bloch_method values):
+ * RN_BLOCH_AUTO as rn_cell_relax, RN_BLOCH_DENSE always dense (a cell beyond 4000
+ * fluctuation DOFs then stops unconverged where K_uu is indefinite),
+ * RN_BLOCH_SPARSE always sparse (the route of large cells, on any cell: the
+ * tests compare it with the dense one).  The sparse route initialises the solver
+ * runtime (Kokkos) itself.  RN_ERR_ARG for another method. */
+rn_status rn_cell_relax_method(rn_network *net, const double *strain, int method,
+                               rn_cell_relax_report *rep);
 /* As rn_cell_relax, but a minimisation of the energy over the fluctuations that
  * may leave the cell-periodic (principal) branch, e.g. onto the bifurcated branch
  * of a supercell after a perturbation along its critical mode: Newton with the

@@ -77,6 +77,36 @@ private:
   bool factored_ = false;
 };
 
+// The sparse LDL' factorisation of a symmetric indefinite matrix (CHOLMOD's
+// simplicial LDL', METIS ordering, no pivoting: D may be negative) and the SPD
+// operator M^-1 = (P' L |D| L' P)^-1 of it: with M as the preconditioner, MINRES on
+// the matrix sees the eigenvalues +1 and -1 only (exactly so for an exact
+// factorisation), the classic preconditioner of an indefinite Newton system.  For
+// Newton steps on the principal branch of a periodic cell past an instability
+// (periodic/cell_path.cpp), where K_uu has many negative modes.  No Trilinos here.
+class CholmodLdl {
+public:
+  // The pattern as CholmodAnalysis's (borrowed).  Throws Error if CHOLMOD cannot
+  // analyse it.
+  CholmodLdl(size_t n, const int64_t *rowptr, const int32_t *col);
+  ~CholmodLdl();
+  CholmodLdl(const CholmodLdl &) = delete;
+  CholmodLdl &operator=(const CholmodLdl &) = delete;
+  // Factor A (values on the pattern); false if a pivot is zero or not finite (the
+  // factor is then unusable) or some |D_jj| is below rel_floor times the largest.
+  bool factor(const double *vals, double rel_floor = 1e-13);
+  // x <- M^-1 x, M = P' L |D| L' P (requires a successful factor()).
+  void solve_abs(double *x) const;
+  // Negative pivots of the last factor (the inertia of A: its negative eigenvalues).
+  size_t negative_pivots() const { return negative_; }
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  size_t n_ = 0, negative_ = 0;
+  bool factored_ = false;
+};
+
 } // namespace rodnet
 
 #endif

@@ -1,6 +1,8 @@
 // minres.cpp - Tpetra operator adapter and Belos MINRES (see minres.hpp).
 #include "krylov/minres.hpp"
+#include "krylov/minres_local.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -48,7 +50,35 @@ private:
   mutable MV tmp_;
 };
 
+// A VectorOperator of a callback on the column's host array.
+class CallbackOperator : public VectorOperator {
+public:
+  explicit CallbackOperator(const LocalApply &f) : f_(f) {}
+  void apply(const MV &x, MV &y) const override { f_(host_data(x), host_data(y)); }
+
+private:
+  const LocalApply &f_;
+};
+
 } // namespace
+
+LocalMinresResult minres_local(size_t n, const LocalApply &A, const LocalApply &Minv,
+                               const double *b, double *x, double rel_tol,
+                               int max_iterations) {
+  ensure_runtime();
+  auto map = make_local_map(n);
+  MV bv(map, 1), xv(map, 1);
+  std::copy(b, b + n, host_data(bv));
+  MinresSolver solver(map, rel_tol, max_iterations);
+  const MinresResult r =
+      solver.solve(CallbackOperator(A), CallbackOperator(Minv), bv, xv);
+  std::copy(host_data(xv), host_data(xv) + n, x);
+  LocalMinresResult out;
+  out.iterations = r.iterations;
+  out.converged = r.converged;
+  out.achieved_tol = r.achieved_tol;
+  return out;
+}
 
 Teuchos::RCP<const Map> make_local_map(size_t n) {
   auto comm = self_comm();

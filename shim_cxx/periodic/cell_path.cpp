@@ -19,7 +19,9 @@
 #include "system/problem.hpp"
 #include "rodnet_solve.h"
 #include "base/shim_error.hpp"
+#include "factor/cholmod_factor.hpp"
 #include "factor/sparse_cholesky.hpp"
+#include "krylov/minres_local.hpp"
 
 extern "C" {
 // LAPACK (Fortran) with the hidden character-length arguments of gfortran.
@@ -85,9 +87,12 @@ bool dense_indefinite_solve(const CellBlocks &cb, std::vector<double> &rhs) {
 class Relax {
 public:
   // descend: a minimisation that may leave the cell-periodic branch (rn_cell_minimize)
-  Relax(rn_network *net, bool descend)
+  // method (rn_bloch_method): the indefinite solves past an instability, dense
+  // (LAPACK dsysv, up to kMaxDense DOFs), sparse (MINRES preconditioned by the
+  // shifted Cholesky factor) or auto (dense up to kMaxDense, sparse beyond)
+  Relax(rn_network *net, bool descend, int method = RN_BLOCH_AUTO)
       : p_(net), cb_(p_, descend ? "rn_cell_minimize" : "rn_cell_relax", false),
-        descend_(descend) {
+        descend_(descend), method_(method) {
     x_.resize(cb_.n);
     g_.resize(cb_.n);
     check_status(rn_network_get_dofs(net, x_.data()), "rn_network_get_dofs");
@@ -110,22 +115,35 @@ public:
     std::vector<double> xs(x_);
     for (int v = 0; v < cb_.ns; ++v)
       xs[nu + static_cast<size_t>(v)] = strain[cb_.comp[v]];
-    // the tangent predictor from the current (equilibrium) state
+    // the tangent predictor from the current (equilibrium) state; where K_uu is
+    // indefinite (the principal branch past an instability, not minimising) with the
+    // indefinite solve, kept if it lowers |g_u| (without it Newton starts from the
+    // old fluctuations at the new strain and, in a supercell with many unstable
+    // modes, may converge to a bifurcated equilibrium instead)
+    std::vector<double> s(nu);
+    for (size_t i = 0; i < nu; ++i) {
+      double r = g_[i];
+      for (int v = 0; v < cb_.ns; ++v)
+        r += cb_.kue[static_cast<size_t>(v) * nu + i] *
+             (strain[cb_.comp[v]] - x_[nu + static_cast<size_t>(v)]);
+      s[i] = -r;
+    }
+    std::vector<double> xt;
     if (pd_) {
-      std::vector<double> s(nu);
-      for (size_t i = 0; i < nu; ++i) {
-        double r = g_[i];
-        for (int v = 0; v < cb_.ns; ++v)
-          r += cb_.kue[static_cast<size_t>(v) * nu + i] *
-               (strain[cb_.comp[v]] - x_[nu + static_cast<size_t>(v)]);
-        s[i] = -r;
-      }
       chol_->solve(s.data());
-      std::vector<double> xt;
       trial(xs, s, 1.0, nu, xt);
       double Et = 0.0, Es = 0.0;
       if (p_.energy(xt.data(), &Et) == RN_OK && p_.energy(xs.data(), &Es) == RN_OK &&
           Et <= Es) {
+        xs = xt;
+        rep.predictor = 1;
+      }
+    } else if (!descend_ && indefinite_solve(s, rep.sparse_solves)) {
+      trial(xs, s, 1.0, nu, xt);
+      std::vector<double> gs(cb_.n), gt(cb_.n);
+      double Eg = 0.0;
+      if (p_.gradient(xt.data(), &Eg, gt.data()) == RN_OK &&
+          p_.gradient(xs.data(), &Eg, gs.data()) == RN_OK && unorm(gt) <= unorm(gs)) {
         xs = xt;
         rep.predictor = 1;
       }
@@ -206,7 +224,7 @@ private:
       for (size_t i = 0; i < nu; ++i) s[i] = -g_[i];
       if (pd_)
         chol_->solve(s.data());
-      else if (nu > kMaxDense || !dense_indefinite_solve(cb_, s))
+      else if (!indefinite_solve(s, rep.sparse_solves))
         return;
       const double gs = dot(nu, g_.data(), s.data()), g0 = unorm(g_);
       double alpha = 1.0;
@@ -233,6 +251,57 @@ private:
         rep.converged = 1;
         return;
       }
+    }
+  }
+
+  // s <- K_uu^-1 s where K_uu is indefinite (the Newton step on the principal branch
+  // past an instability); false if it cannot be solved (singular, no convergence).
+  // Sparse: MINRES on K_uu preconditioned by |LDL'| (CHOLMOD's LDL' of K_uu with
+  // |D|: the preconditioned spectrum is +-1, two or three iterations), or where
+  // that factorisation has a (nearly) zero pivot by the Cholesky factor of
+  // K_uu + mu D, the smallest shift that factors (slower: many negative modes
+  // spread its spectrum); solved to 1e-10 and accepted as an inexact Newton step if
+  // the true residual is below 1e-4 of the gradient (the line search on |g| then
+  // still descends).
+  bool indefinite_solve(std::vector<double> &s, int &sparse_solves) {
+    const size_t nu = cb_.nu;
+    const bool sparse =
+        method_ == RN_BLOCH_SPARSE || (method_ != RN_BLOCH_DENSE && nu > kMaxDense);
+    if (!sparse) return nu <= kMaxDense && dense_indefinite_solve(cb_, s);
+    if (!ldl_) ldl_ = std::make_unique<CholmodLdl>(nu, cb_.urp.data(), cb_.ucol.data());
+    const bool have_ldl = ldl_->factor(cb_.uval.data());
+    if (!have_ldl) {
+      std::vector<double> d;
+      diag_pattern(d);
+      factor_shifted(d);
+    }
+    std::vector<double> b(s), r(nu);
+    const LocalApply A = [this](const double *x, double *y) { kuu_apply(x, y); };
+    const LocalApply M = [this, nu, have_ldl](const double *x, double *y) {
+      std::copy(x, x + nu, y);
+      if (have_ldl)
+        ldl_->solve_abs(y);
+      else
+        chol_->solve(y);
+    };
+    const LocalMinresResult res = minres_local(nu, A, M, b.data(), s.data(), 1e-10, 1000);
+    kuu_apply(s.data(), r.data());
+    double rn = 0.0, bn = 0.0;
+    for (size_t i = 0; i < nu; ++i) {
+      rn = std::max(rn, std::fabs(r[i] - b[i]));
+      bn = std::max(bn, std::fabs(b[i]));
+      if (!std::isfinite(s[i])) return false;
+    }
+    ++sparse_solves;
+    return res.iterations > 0 && rn <= 1e-4 * bn;
+  }
+
+  void kuu_apply(const double *x, double *y) const {
+    for (size_t i = 0; i < cb_.nu; ++i) {
+      double t = 0.0;
+      for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
+        t += cb_.uval[static_cast<size_t>(q)] * x[cb_.ucol[static_cast<size_t>(q)]];
+      y[i] = t;
     }
   }
 
@@ -377,6 +446,8 @@ private:
   std::unique_ptr<SparseCholesky> chol_;
   bool pd_ = false;
   bool descend_ = false;
+  int method_ = RN_BLOCH_AUTO;
+  std::unique_ptr<CholmodLdl> ldl_; // the sparse indefinite solves' preconditioner
 };
 
 // ---- Bloch-Floquet analysis -----------------------------------------------------
@@ -1077,7 +1148,7 @@ void sym_eigen(int m, const double *a, double *w, double *v, const char *where) 
 
 namespace {
 rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report *rep,
-                     bool descend) {
+                     bool descend, int method = RN_BLOCH_AUTO) {
   const char *where = descend ? "rn_cell_minimize" : "rn_cell_relax";
   if (!net) return RN_ERR_ARG;
   if (!strain)
@@ -1095,7 +1166,11 @@ rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report
     for (int v = 0; v < ns; ++v)
       if (!std::isfinite(strain[v]))
         throw Error(RN_ERR_NOT_FINITE, std::string(where) + ": strain is not finite");
-    Relax(net, descend).run(strain, r);
+    if (method < RN_BLOCH_AUTO || method > RN_BLOCH_SPARSE)
+      throw Error(RN_ERR_ARG, std::string(where) +
+                                  ": method must be RN_BLOCH_AUTO, RN_BLOCH_DENSE or "
+                                  "RN_BLOCH_SPARSE");
+    Relax(net, descend, method).run(strain, r);
   });
 }
 } // namespace
@@ -1104,6 +1179,11 @@ rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report
 extern "C" rn_status rn_cell_relax(rn_network *net, const double *strain,
                                    rn_cell_relax_report *rep) {
   return rodnet::cell_relax(net, strain, rep, false);
+}
+
+extern "C" rn_status rn_cell_relax_method(rn_network *net, const double *strain,
+                                          int method, rn_cell_relax_report *rep) {
+  return rodnet::cell_relax(net, strain, rep, false, method);
 }
 
 extern "C" rn_status rn_cell_minimize(rn_network *net, const double *strain,

@@ -192,7 +192,7 @@ rn_status mixed_relax(rn_network *net, const Path &p, const int *stress,
   std::memcpy(eps_ok, m.eps, sizeof(m.eps));
   mixed_predict(net, m);
   for (s->outer = 1; s->outer <= 40; ++s->outer) {
-    if ((st = rn_cell_relax(net, m.eps, &rep))) break;
+    if ((st = rn_cell_relax_method(net, m.eps, p.opt.bloch_method, &rep))) break;
     s->newton += rep.iterations;
     tangent_ok = rep.converged && !rep.indefinite;
     seen_indefinite |= rep.converged && rep.indefinite;
@@ -250,7 +250,7 @@ rn_status relax_at(rn_network *net, const Path &p, int j, double u,
     if ((st = mixed_relax(net, p, g.stress, val, s))) return st;
   } else {
     rn_cell_relax_report rep;
-    if ((st = rn_cell_relax(net, val, &rep))) return st;
+    if ((st = rn_cell_relax_method(net, val, p.opt.bloch_method, &rep))) return st;
     s->newton = rep.iterations;
     s->converged = rep.converged;
   }
