@@ -484,6 +484,27 @@ if(RN_WITH_TRILINOS)
                    ${gen}/hom_post.json ${gen}/hom_post.png)
   set_tests_properties(problems_cli_homogenize_post_buckling_result PROPERTIES
                        LABELS unit FIXTURES_REQUIRED problems_hom_post)
+  # The same on a finer planar cell (48 edges per strut, the path to about twice
+  # the critical strain): the principal branch of the supercell used to be lost at
+  # the first step past the critical strain (relaxed from the critical state, where
+  # K_uu is singular, it fell onto the bifurcated branch: principal = bifurcated).
+  rn_cli_test(problems_cli_homogenize_post_buckling_fine_generate 0 "wrote"
+              REMOVE ${gen}/hom_hc48.json FIXTURE_SETUP problems_hom_hc48
+              ARGS generate honeycomb --periodic --joint-model rigid --edges-per-rod 48
+                   --model planar -o ${gen}/hom_hc48.json)
+  rn_cli_test(problems_cli_homogenize_post_buckling_fine 0
+              "post-buckling: 2 x 2 supercell, 10 steps .*a verified minimum"
+              REMOVE ${gen}/hom_post48.vtu FIXTURE_SETUP problems_hom_post48
+              ARGS homogenize ${gen}/hom_hc48.json --path -0.0015,-0.0015,0 --steps 8
+                   --modes in-plane --post-buckling ${gen}/hom_post48
+                   -o ${gen}/hom_post48.json)
+  set_tests_properties(problems_cli_homogenize_post_buckling_fine PROPERTIES
+                       FIXTURES_REQUIRED problems_hom_hc48)
+  add_test(NAME problems_cli_homogenize_post_buckling_fine_result
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_post_buckling.py
+                   ${gen}/hom_post48.json ${gen}/hom_post48.png)
+  set_tests_properties(problems_cli_homogenize_post_buckling_fine_result PROPERTIES
+                       LABELS unit FIXTURES_REQUIRED problems_hom_post48)
   rn_cli_test(problems_cli_homogenize_path_hc_generate 0 "wrote"
               REMOVE ${gen}/hom_hc8.json FIXTURE_SETUP problems_hom_hc8
               ARGS generate honeycomb --periodic --joint-model rigid --edges-per-rod 8

@@ -162,11 +162,14 @@ void harmonics(const rn_network *net, int dim, const rn_cell_post_options &o,
 struct PostRun {
   rn_network *net = nullptr;
   rn_state *prin = nullptr, *bif = nullptr;
+  rn_state *before = nullptr; // the principal branch at the last path step before the
+                              // critical strain (K_uu positive definite)
   std::vector<double> mode, xp, xb;
   double vmax = 0.0;
   ~PostRun() {
     rn_state_destroy(&prin);
     rn_state_destroy(&bif);
+    rn_state_destroy(&before);
   }
 };
 
@@ -180,6 +183,7 @@ rn_status post_start(const rn_cell_path_result *p, const rn_cell_post_options &o
   rn_status st;
   for (int k = 1; k <= p->done && p->step[k].t < in.t; ++k)
     if ((st = rn_cell_relax(net, p->step[k].strain, &rep))) return st;
+  if ((st = rn_network_state_save(net, &q.before))) return st;
   if ((st = rn_cell_relax(net, in.strain, &rep))) return st;
   size_t npos = 0;
   for (int r = 0; r < rn_network_num_rods(net); ++r)
@@ -199,7 +203,11 @@ rn_status post_step(rn_cell_post_result *res, PostRun &q, rn_cell_post_step *s) 
   rn_network *net = q.net;
   rn_cell_relax_report rep;
   rn_status st;
-  if ((st = rn_network_state_restore(net, q.prin)) ||
+  // The first step starts from the principal state before the critical strain, not
+  // at it: there K_uu is singular along the critical mode, and the indefinite
+  // predictor's step from it (its right-hand side has round-off along that mode)
+  // throws the state onto the bifurcated branch.
+  if ((st = rn_network_state_restore(net, q.bif ? q.prin : q.before)) ||
       (st = rn_cell_relax(net, s->strain, &rep)))
     return st;
   s->principal_converged = rep.converged;
