@@ -602,7 +602,7 @@ typedef struct rn_homogenization {
  * no runtime initialisation.  On a part of a distributed periodic cell
  * (rn_network_set_part; docs/parallel.md, "Periodic cells under mpirun"):
  * collective over the ranks, through the distributed solver (the strain block of
- * the inverse Hessian by MINRES with the rod-level DD, C its inverse over the
+ * the inverse Hessian by block CG with the rod-level DD, C its inverse over the
  * measure); every rank receives the same h (fluctuation_dofs: the whole cell's). */
 rn_status rn_homogenize(rn_network *net, rn_homogenization *h);
 

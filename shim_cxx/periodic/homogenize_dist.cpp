@@ -5,25 +5,28 @@
 // The strain DOFs are global unknowns (owned by rank 0, a border of the rod-level DD's
 // coarse problem).  With the whole Hessian K = [K_uu K_ue; K_eu K_ee] (fluctuations u,
 // strain e), the strain block of K^-1 is the inverse of the Schur complement
-// S = K_ee - K_eu K_uu^-1 K_ue, so the ns load cases K [x_u; x_e] = [0; e_b] (MINRES
-// preconditioned by the solve's preconditioner, the DD by default) give
-// X_e = S^-1 and C = S / measure = X_e^-1 / measure.  On an exact DD (direct coarse
-// solve, no shifted piece) each case takes one or two MINRES iterations; then one step
-// of iterative refinement on the residual brings the answer to round-off.  K must be
-// positive definite (a stable cell without mechanisms): a shifted preconditioner, a
-// MINRES that does not converge or an X_e that is not positive definite is
-// RN_ERR_SOLVER.  Collective over the ranks.
+// S = K_ee - K_eu K_uu^-1 K_ue, so the ns load cases K [x_u; x_e] = [0; e_b], solved
+// at once (Belos block CG preconditioned by the solve's preconditioner, the DD by
+// default, which applies the whole block per message), give X_e = S^-1 and
+// C = S / measure = X_e^-1 / measure.  On an exact DD (direct coarse solve, no shifted
+// piece) block CG takes one or two iterations; then one step of iterative refinement
+// on the true residuals brings the answer to round-off.  K must be positive definite
+// (a stable cell without mechanisms): a shifted preconditioner, a solve that does not
+// converge or an X_e that is not positive definite is RN_ERR_SOLVER.  Collective over
+// the ranks.
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include <BelosBlockCGSolMgr.hpp>
+#include <BelosLinearProblem.hpp>
+#include <BelosTpetraAdapter.hpp>
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_oblackholestream.hpp>
 
 #include "base/lapack.hpp"
 #include "base/runtime.hpp"
 #include "base/shim_error.hpp"
-#include "krylov/minres.hpp"
-#include "pc/operators.hpp"
 #include "pc/preconditioner.hpp"
 #include "pc/registry.hpp"
 #include "periodic/homogenize.hpp"
@@ -34,6 +37,31 @@ namespace rodnet {
 namespace {
 
 const char *const kWhere = "rn_homogenize";
+
+// X = K^-1 B (X overwritten) by Belos block CG with the preconditioner's inverse as
+// the left preconditioner, to 1e-13 of each column's initial residual (implicit
+// residuals; at most 500 iterations).  True if it converged.
+bool block_cg(const System &sys, const Preconditioner &prec, const TMV &B, TMV &X) {
+  using OP = Tpetra::Operator<>;
+  X.putScalar(0.0);
+  auto problem = Teuchos::rcp(new Belos::LinearProblem<double, TMV, OP>(
+      sys.hessian(), Teuchos::rcpFromRef(X), Teuchos::rcpFromRef(B)));
+  problem->setLeftPrec(prec.inverse());
+  if (!problem->setProblem())
+    throw Error(RN_ERR_SOLVER, std::string(kWhere) + ": Belos rejected the block solve");
+  auto params = Teuchos::rcp(new Teuchos::ParameterList);
+  params->set("Block Size", static_cast<int>(B.getNumVectors()));
+  params->set("Maximum Iterations", 500);
+  params->set("Convergence Tolerance", 1e-13);
+  params->set("Verbosity", static_cast<int>(Belos::Errors));
+  params->set("Output Stream", Teuchos::rcp<std::ostream>(new Teuchos::oblackholestream));
+  Belos::BlockCGSolMgr<double, TMV, OP> solver(problem, params);
+  try {
+    return solver.solve() == Belos::Converged;
+  } catch (const std::exception &) {
+    return false; // e.g. a loss of orthogonality: the refinement and residual check
+  }
+}
 
 } // namespace
 
@@ -71,37 +99,38 @@ void homogenize_dist(rn_network *net, rn_homogenization *h) {
                     ": the Hessian of the cell is not positive definite: the cell has a "
                     "mechanism (a periodic fluctuation of zero energy, e.g. a joint or "
                     "rod end that nothing holds) or is unstable at this state");
-  const SystemHessianOp A(sys);
-  const PreconditionerInverseOp M(*prec);
-  MinresSolver minres(map, 1e-14, 1000);
-  double xe[36] = {0.0};
-  for (int b = 0; b < ns; ++b) {
-    TMV rhs(map, 1), s(map, 1), r(map, 1), ds(map, 1);
-    if (owner) rhs.getDataNonConst(0)[static_cast<size_t>(sidx[b])] = 1.0;
-    MinresResult res = minres.solve(A, M, rhs, s);
-    // one step of iterative refinement: r = rhs - K s, K ds = r
-    A.apply(s, r);
-    r.update(1.0, rhs, -1.0);
-    MinresResult res2 = minres.solve(A, M, r, ds);
-    s.update(1.0, ds, 1.0);
-    Teuchos::Array<double> nr(1), nb(1);
-    A.apply(s, r);
-    r.update(1.0, rhs, -1.0);
-    r.norm2(nr());
-    rhs.norm2(nb());
-    if (!(res.converged || res2.converged) || !(nr[0] <= 1e-8 * nb[0]))
+  // The ns load cases at once: block CG (K is SPD here) preconditioned by the DD,
+  // which applies a block with one halo exchange and one coarse solve; then one
+  // step of iterative refinement on the true residuals.
+  TMV rhs(map, static_cast<size_t>(ns)), X(map, static_cast<size_t>(ns));
+  TMV R(map, static_cast<size_t>(ns)), dX(map, static_cast<size_t>(ns));
+  if (owner)
+    for (int b = 0; b < ns; ++b)
+      rhs.getDataNonConst(static_cast<size_t>(b))[static_cast<size_t>(sidx[b])] = 1.0;
+  const bool converged = block_cg(sys, *prec, rhs, X);
+  sys.hessian()->apply(X, R);
+  R.update(1.0, rhs, -1.0);
+  const bool refined = block_cg(sys, *prec, R, dX);
+  X.update(1.0, dX, 1.0);
+  sys.hessian()->apply(X, R);
+  R.update(1.0, rhs, -1.0);
+  Teuchos::Array<double> nr(static_cast<size_t>(ns)), nb(static_cast<size_t>(ns));
+  R.norm2(nr());
+  rhs.norm2(nb());
+  for (int b = 0; b < ns; ++b)
+    if (!(converged || refined) ||
+        !(nr[static_cast<size_t>(b)] <= 1e-8 * nb[static_cast<size_t>(b)]))
       throw Error(RN_ERR_SOLVER, std::string(kWhere) +
-                                     ": MINRES did not solve strain load case " +
+                                     ": block CG did not solve strain load case " +
                                      std::to_string(b) + " (relative residual " +
-                                     std::to_string(nr[0]) + ")");
-    double col[6] = {0.0}, all[6] = {0.0};
-    if (owner) {
-      auto d = s.getData(0);
-      for (int a = 0; a < ns; ++a) col[a] = d[static_cast<size_t>(sidx[a])];
+                                     std::to_string(nr[static_cast<size_t>(b)]) + ")");
+  double xe[36] = {0.0}, mine[36] = {0.0};
+  if (owner)
+    for (int b = 0; b < ns; ++b) {
+      auto d = X.getData(static_cast<size_t>(b));
+      for (int a = 0; a < ns; ++a) mine[a * ns + b] = d[static_cast<size_t>(sidx[a])];
     }
-    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, ns, col, all);
-    for (int a = 0; a < ns; ++a) xe[a * ns + b] = all[a];
-  }
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, ns * ns, mine, xe);
   // C = X_e^-1 / measure (X_e symmetric up to round-off; Cholesky proves it SPD)
   for (int a = 0; a < ns; ++a)
     for (int b = a + 1; b < ns; ++b)

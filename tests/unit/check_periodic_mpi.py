@@ -6,8 +6,8 @@ elastic joints, a 4 x 4 honeycomb supercell with rigid joints, the 3D octet cell
 a 2 x 2 x 2 octet supercell):
 - `rodnet homogenize` on one process (sparse Cholesky of the fluctuation block and
   the Schur complement) and `mpirun -np NP rodnet homogenize` (the cell split over
-  the ranks, the strain DOFs global, the strain block of K^-1 through MINRES with
-  the rod-level DD) give the same C to 1e-10 of its largest entry, and the same
+  the ranks, the strain DOFs global, the strain block of K^-1 through block CG
+  with the rod-level DD) give the same C to 1e-10 of its largest entry, and the same
   relative density; RESULT.json records the partition (NP ranks whose owned DOFs
   add up to every reduced DOF, the strain's included);
 - `rodnet solve` of the cell under mixed control (one strain component prescribed,
