@@ -30,7 +30,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_csv  # noqa: E402
@@ -56,15 +55,6 @@ CASES = {
 }
 
 
-def run_once(cmd):
-    """Wall seconds, exit status and peak resident MB of one process."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    return wall, os.waitstatus_to_exitcode(status), ru.ru_maxrss / 1024.0
-
-
 def result_of(out):
     """The instability and the fluctuation DOFs of RESULT.json (or its partial form)."""
     for path in (out, out.replace(".json", ".partial.json")):
@@ -82,10 +72,7 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--cases", default=",".join(CASES))
     a = ap.parse_args()
-    names = [c for c in a.cases.split(",") if c]
-    for c in names:
-        if c not in CASES:
-            sys.exit("bench_cell_path: unknown case '%s' (known: %s)" % (c, ", ".join(CASES)))
+    names = bench_csv.pick_cases(a.cases, CASES, "bench_cell_path")
     prov = bench_csv.provenance(a.rodnet)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -101,7 +88,7 @@ def main():
                     ["--bloch-method", method, "-o", out, "-q"]
                 times, rss, status = [], 0.0, 0
                 for _ in range(a.repeats):
-                    wall, status, mb = run_once(cmd)
+                    wall, status, mb = bench_csv.run_once(cmd)
                     times.append(wall)
                     rss = max(rss, mb)
                 res = result_of(out)

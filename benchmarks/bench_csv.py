@@ -3,7 +3,9 @@ columns of bench_util.h's rn_bench_csv_header) and the provenance title."""
 import csv
 import os
 import re
+import subprocess
 import sys
+import time
 
 COMMON = ("commit", "compiler", "bench", "case", "size", "median", "min")
 
@@ -66,3 +68,29 @@ def save(fig, output, dpi=120):
     tmp = output + ".tmp.png"
     fig.savefig(tmp, dpi=dpi)
     os.replace(tmp, output)
+
+
+def run_once(cmd, env=None):
+    """Wall seconds, exit status and the peak resident MB of the largest process of
+    one run of cmd, output discarded (RUSAGE_CHILDREN of an MPI launcher covers its
+    ranks)."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         env=env)
+    _, status, ru = os.wait4(p.pid, 0)
+    return time.perf_counter() - t0, os.waitstatus_to_exitcode(status), ru.ru_maxrss / 1024
+
+
+def mpi_env():
+    """The environment for mpiexec as root and with more ranks than cores."""
+    return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def pick_cases(arg, known, prog):
+    """The case names of a comma list (--cases); exits naming an unknown one."""
+    names = [c for c in arg.split(",") if c]
+    for c in names:
+        if c not in known:
+            sys.exit("%s: unknown case '%s' (known: %s)" % (prog, c, ", ".join(known)))
+    return names

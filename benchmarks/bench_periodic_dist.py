@@ -28,7 +28,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_csv  # noqa: E402
@@ -41,19 +40,10 @@ CASES = {
 }
 
 
-def run_once(cmd, env):
-    """Wall seconds, exit status and the peak resident MB of the largest process."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                         env=env)
-    _, status, ru = os.wait4(p.pid, 0)
-    return time.perf_counter() - t0, os.waitstatus_to_exitcode(status), ru.ru_maxrss / 1024
-
-
 def timed(cmd, env, repeats):
     times, rss, status = [], 0.0, 0
     for _ in range(repeats):
-        wall, status, mb = run_once(cmd, env)
+        wall, status, mb = bench_csv.run_once(cmd, env)
         times.append(wall)
         rss = max(rss, mb)
     return statistics.median(times), min(times), rss, status
@@ -70,13 +60,8 @@ def main():
     ap.add_argument("--cases", default=",".join(CASES))
     a = ap.parse_args()
     ranks = [int(r) for r in a.ranks.split(",")]
-    names = [c for c in a.cases.split(",") if c]
-    for c in names:
-        if c not in CASES:
-            sys.exit("bench_periodic_dist: unknown case '%s' (known: %s)"
-                     % (c, ", ".join(CASES)))
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1")
+    names = bench_csv.pick_cases(a.cases, CASES, "bench_periodic_dist")
+    env = bench_csv.mpi_env()
     prov = bench_csv.provenance(a.rodnet)
     rows = []
 

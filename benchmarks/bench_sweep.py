@@ -25,10 +25,8 @@ import json
 import os
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_csv  # noqa: E402
@@ -43,16 +41,6 @@ CASES = {
 }
 
 
-def run_once(cmd, env):
-    """Wall seconds, exit status and the peak resident MB of the largest process
-    (RUSAGE_CHILDREN of the launcher covers its ranks)."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                         env=env)
-    _, status, ru = os.wait4(p.pid, 0)
-    return time.perf_counter() - t0, os.waitstatus_to_exitcode(status), ru.ru_maxrss / 1024
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -64,12 +52,8 @@ def main():
     ap.add_argument("--cases", default=",".join(CASES))
     a = ap.parse_args()
     ranks = [int(r) for r in a.ranks.split(",")]
-    names = [c for c in a.cases.split(",") if c]
-    for c in names:
-        if c not in CASES:
-            sys.exit("bench_sweep: unknown case '%s' (known: %s)" % (c, ", ".join(CASES)))
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1")
+    names = bench_csv.pick_cases(a.cases, CASES, "bench_sweep")
+    env = bench_csv.mpi_env()
     prov = bench_csv.provenance(a.rodnet)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -86,7 +70,7 @@ def main():
                 times, rss, status = [], 0.0, 0
                 for _ in range(a.repeats):
                     shutil.rmtree(folder, ignore_errors=True)  # every point computed
-                    wall, status, mb = run_once(cmd, env)
+                    wall, status, mb = bench_csv.run_once(cmd, env)
                     times.append(wall)
                     rss = max(rss, mb)
                 med = statistics.median(times)

@@ -6,12 +6,34 @@
 
 #include "system/dist_system.hpp"
 #include "krylov/minres.hpp"
-#include "pc/operators.hpp"
 #include "pc/preconditioner.hpp"
 #include "base/shim_error.hpp"
 #include "newton/solvers.hpp"
 
 namespace rodnet {
+
+namespace {
+
+// y = H x with the System's assembled Hessian; y = M^{-1} x with a preconditioner.
+class HessianOp : public VectorOperator {
+public:
+  explicit HessianOp(const System &s) : s_(s) {}
+  void apply(const MV &x, MV &y) const override { s_.hessian()->apply(x, y); }
+
+private:
+  const System &s_;
+};
+
+class InverseOp : public VectorOperator {
+public:
+  explicit InverseOp(const Preconditioner &p) : p_(p) {}
+  void apply(const MV &x, MV &y) const override { p_.inverse()->apply(x, y); }
+
+private:
+  const Preconditioner &p_;
+};
+
+} // namespace
 
 bool predict_load_step(DistSystem &sys, Preconditioner &prec, const rn_solve_options &opt,
                        double t_prev, double t) {
@@ -35,8 +57,7 @@ bool predict_load_step(DistSystem &sys, Preconditioner &prec, const rn_solve_opt
   prec.setup(sys);
   r.scale(-1.0);
   MinresSolver minres(map, opt.krylov_tol, opt.krylov_max_iterations);
-  sys.counters.krylov +=
-      minres.solve(SystemHessianOp(sys), PreconditionerInverseOp(prec), r, s).iterations;
+  sys.counters.krylov += minres.solve(HessianOp(sys), InverseOp(prec), r, s).iterations;
   double E0 = 0.0, E1 = 0.0;
   xs.update(1.0, x, 1.0, s, 0.0);
   // (the jumped state x may be degenerate: then the evaluable prediction is better)

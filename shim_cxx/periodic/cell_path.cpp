@@ -88,8 +88,8 @@ class Relax {
 public:
   // descend: a minimisation that may leave the cell-periodic branch (rn_cell_minimize)
   // method (rn_bloch_method): the indefinite solves past an instability, dense
-  // (LAPACK dsysv, up to kMaxDense DOFs), sparse (MINRES preconditioned by the
-  // shifted Cholesky factor) or auto (dense up to kMaxDense, sparse beyond)
+  // (LAPACK dsysv, up to kMaxDense DOFs), sparse (MINRES preconditioned by |LDL'|:
+  // indefinite_solve) or auto (dense up to kMaxDense, sparse beyond)
   Relax(rn_network *net, bool descend, int method = RN_BLOCH_AUTO)
       : p_(net), cb_(p_, descend ? "rn_cell_minimize" : "rn_cell_relax", false),
         descend_(descend), method_(method) {
@@ -296,6 +296,7 @@ private:
     return res.iterations > 0 && rn <= 1e-4 * bn;
   }
 
+  // y = K_uu x (the blocks of the last factor_at).
   void kuu_apply(const double *x, double *y) const {
     for (size_t i = 0; i < cb_.nu; ++i) {
       double t = 0.0;
@@ -351,11 +352,7 @@ private:
       if (!(m > 0.0)) break;
       for (size_t i = 0; i < nu; ++i) v[i] = dv[i] / m;
       // Rayleigh quotient v'Kv / v'Dv
-      std::fill(kv.begin(), kv.end(), 0.0);
-      for (size_t i = 0; i < nu; ++i)
-        for (int64_t q = cb_.urp[i]; q < cb_.urp[i + 1]; ++q)
-          kv[i] += cb_.uval[static_cast<size_t>(q)] *
-                   v[static_cast<size_t>(cb_.ucol[static_cast<size_t>(q)])];
+      kuu_apply(v.data(), kv.data());
       double vkv = 0.0, vdv = 0.0;
       for (size_t i = 0; i < nu; ++i) {
         vkv += v[i] * kv[i];
