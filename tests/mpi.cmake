@@ -86,6 +86,11 @@ add_test(NAME mpi_periodic
                  ${CMAKE_BINARY_DIR}/rodnet ${MPIEXEC_EXECUTABLE} 2 ${RN_MPI_OUT}/periodic)
 set_tests_properties(mpi_periodic PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                      ENVIRONMENT "${RN_MPI_ENV}")
+add_test(NAME mpi_path
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_path_mpi.py
+                 ${CMAKE_BINARY_DIR}/rodnet ${MPIEXEC_EXECUTABLE} 2 ${RN_MPI_OUT}/path)
+set_tests_properties(mpi_path PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                     ENVIRONMENT "${RN_MPI_ENV}")
 # A usage error of sweep is printed once, a bad sweep file once (rank 0).
 rn_mpi_usage_once(mpi_cli_sweep_usage_once "missing -o DIR"
                   sweep ${CMAKE_CURRENT_SOURCE_DIR}/data/periodic/sweep_hc.json)

@@ -292,6 +292,7 @@ typedef struct rn_cell {
   double strain[6]; /* their prescribed values (unscaled by the load factor) */
   double stress[6]; /* applied macroscopic stress (work conjugate, unscaled) */
   int anchored;     /* 1: finalize pinned joint 0 (or rod 0's vertex 0) */
+  int held;         /* rn_network_cell_hold_strain: the strain DOFs are held */
   rn_image *img;    /* image records */
   int nimg, cap_img;
   int32_t *slot; /* [nfull]: 3 r + c for component c of record r, -1 */
@@ -299,6 +300,16 @@ typedef struct rn_cell {
 /* In a part of a partition, the macroscopic strain DOFs are owned by part 0 and
  * held by every part (a ghost elsewhere); the stress work is evaluated there. */
 int rn_cell_owned_here(const rn_network *net);
+/* rn_network_cell_hold_strain: while the strain DOFs are held, the reduced
+ * gradient, HVP and Hessian see them as fixed (their entries of the gradient 0,
+ * their rows and columns those of the identity, the 1 on part 0).  Zeroes the
+ * strain entries of a reduced vector v[nred]; no-op when not held. */
+void rn_cell_hold_zero(const rn_network *net, double *v);
+/* The Hessian values vals[nnz] with the held strain rows and columns replaced. */
+void rn_cell_hold_hessian(const rn_network *net, double *vals);
+static inline int rn_cell_held(const rn_network *net) {
+  return net->cell && net->cell->held;
+}
 /* Number of full strain DOFs (0 if not periodic). */
 static inline size_t rn_cell_full_count(const rn_network *net) {
   return net->cell ? (size_t)net->cell->nstrain : 0;

@@ -3,6 +3,7 @@
  * calls the kernels of rnk.h.  Evaluation is pure: nothing in the network changes and
  * all scratch lives on the stack (reentrant). */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "contact/contact.h"
@@ -669,6 +670,7 @@ rn_status rn_network_gradient(const rn_network *net, const double *x, double *E,
   if ((st = check_eval(net, "rn_network_gradient", x, g))) return st;
   args_init(&a, net, OP_GRAD, "rn_network_gradient", x);
   if ((st = eval_into(net, &a, g))) return st;
+  rn_cell_hold_zero(net, g);
   if (E) *E = sum_terms(a.E);
   return RN_OK;
 }
@@ -684,8 +686,25 @@ rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v
   if (!rn_all_finite(net->nred, v))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "v has NaN or infinite entries");
   args_init(&a, net, OP_HVP, where, x);
-  a.v = v;
-  return eval_into(net, &a, Hv);
+  if (!rn_cell_held(net)) {
+    a.v = v;
+    return eval_into(net, &a, Hv);
+  }
+  /* held strain: H v = [H_uu v_u; v_e] (the v_e term once, on part 0) */
+  double *vu = malloc((net->nred ? net->nred : 1) * sizeof(double));
+  if (!vu) return rn_fail(net->ctx, RN_ERR_ALLOC, where, "out of memory");
+  memcpy(vu, v, net->nred * sizeof(double));
+  rn_cell_hold_zero(net, vu);
+  a.v = vu;
+  st = eval_into(net, &a, Hv);
+  if (!st) {
+    rn_cell_hold_zero(net, Hv);
+    if (rn_cell_owned_here(net))
+      for (size_t i = 0; i < net->nred; ++i)
+        if (vu[i] != v[i]) Hv[i] += v[i];
+  }
+  free(vu);
+  return st;
 }
 
 rn_status rn_network_hessian_values(const rn_network *net, const double *x,
@@ -697,7 +716,9 @@ rn_status rn_network_hessian_values(const rn_network *net, const double *x,
   args_init(&a, net, OP_HESS, "rn_network_hessian_values", x);
   a.vals = vals;
   rn_hessian_zero(net, vals); /* the rest is stored by the rods first */
-  return eval_all(net, &a);
+  if ((st = eval_all(net, &a))) return st;
+  rn_cell_hold_hessian(net, vals);
+  return RN_OK;
 }
 
 rn_status rn_eval_fixed_hvp(const rn_network *net, const double *x, const double *vfull,

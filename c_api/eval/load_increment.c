@@ -149,6 +149,7 @@ rn_status rn_network_load_increment(rn_network *net, const double *x, double t_p
   if (!net->nred) return RN_OK;
   if ((st = rn_network_state_save(net, &saved))) return st;
   st = increment_at(net, x, t_prev, t, dg);
+  if (!st) rn_cell_hold_zero(net, dg);
   st2 = rn_network_state_restore(net, saved);
   rn_state_destroy(&saved);
   return st ? st : st2;

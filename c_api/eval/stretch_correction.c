@@ -59,5 +59,6 @@ rn_status rn_network_stretch_correction(const rn_network *net, const double *x,
   }
   if (!rn_all_finite(net->nred, f))
     return rn_fail(net->ctx, RN_OVERFLOW, where, "the correction force overflows");
+  rn_cell_hold_zero(net, f);
   return RN_OK;
 }

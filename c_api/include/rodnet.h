@@ -560,6 +560,14 @@ rn_status rn_network_set_cell_stress(rn_network *net, const double *stress);
  * RN_ERR_ARG (nothing changed) for a non-zero stress on a prescribed component. */
 rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
                                    const double *stress);
+/* Hold the strain DOFs (hold != 0; after finalize) or release them (0).  While
+ * held they are fixed at their values as if prescribed, with the DOF layout
+ * unchanged: the reduced gradient's and load increment's strain entries are 0,
+ * the Hessian's strain rows and columns (values and HVP) those of the identity
+ * (its 1 on part 0 of a partition); the energy is unchanged.  A solve then
+ * relaxes the fluctuations at the current strain, and the stability check
+ * examines them alone (rn_cell_relax and rn_cell_bloch on a part). */
+rn_status rn_network_cell_hold_strain(rn_network *net, int hold);
 /* Dimension (0 if not periodic), number of strain components, cell area (2D)
  * or volume (3D), lattice vectors vectors[9] (rows; unused rows 0).  Any
  * pointer may be NULL. */

@@ -392,6 +392,9 @@ rn_status rn_dist_agree(rn_context *ctx, rn_status local);
  * on one rank.  RN_ERR_ARG for a bad op or n < 0. */
 typedef enum rn_dist_op { RN_DIST_SUM = 0, RN_DIST_MAX = 1, RN_DIST_MIN = 2 } rn_dist_op;
 rn_status rn_dist_allreduce_int(int *v, int n, int op);
+/* The same for doubles (MPI_SUM of the same inputs gives the same result on
+ * every rank). */
+rn_status rn_dist_allreduce_double(double *v, int n, int op);
 
 /* Notices: small records (n <= RN_DIST_NOTICE_INTS integers and a text of at
  * most RN_DIST_NOTICE_TEXT - 1 bytes) sent from any rank to rank 0 while the
@@ -444,8 +447,10 @@ rn_status rn_hessian_min_eigenvalue(rn_network *net, double *lambda_min);
  * Ritz values above their residuals.  The banded or
  * sparse factorisation as rn_solve's RN_FACTOR_AUTO chooses.  verified_minimum
  * here concerns the Hessian alone (not equilibrium).  A part of a distributed
- * network: out->checked = 0 (RN_OK).  Not collective; needs no runtime
- * initialisation (no Tpetra).  out is filled only on RN_OK. */
+ * network: the LOBPCG check on the distributed Hessian (as rn_solve's on a part;
+ * collective over the ranks, initialises the runtime).  On a whole network not
+ * collective and no runtime initialisation (no Tpetra).  out is filled only on
+ * RN_OK. */
 rn_status rn_network_stability(rn_network *net, rn_stability *out);
 /* ---- path following (docs/path-following.md) --------------------------------
  * Pseudo-arclength continuation of the equilibria of a finalized whole network
@@ -734,9 +739,28 @@ typedef struct rn_bloch_result {
  * dense LAPACK (zheevr, cells up to 4000 Bloch DOFs, RN_ERR_ARG beyond) or
  * sparse (any size; the same numbers to the eigensolvers' accuracy).  RN_ERR_ARG for
  * in-plane or out-of-plane modes on a 3D cell or at a state where those modes do
- * not decouple.  Serial; needs no runtime initialisation. */
+ * not decouple.  Serial; needs no runtime initialisation.
+ * On a part of a distributed cell (collective): the cell-periodic test alone
+ * (xi = 0: local_min the lowest eigenvalue of the Jacobi-scaled fluctuation
+ * Hessian by distributed LOBPCG, as rn_network_stability with the strain held;
+ * local_scale its scale; neig 1) and the long-wavelength test from the tangent
+ * (rn_cell_acoustic_tangent); opt->modes must be RN_BLOCH_ALL, grid, xi_hint,
+ * no_scan and method are not used.  A supercell's cell-periodic modes are the
+ * primitive cell's Bloch modes on the supercell's wave-vector grid
+ * (docs/homogenization.md, "Paths under mpirun"). */
 rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
                         rn_bloch_result *res);
+/* The long-wavelength (macroscopic) test from the homogenised tangent at the
+ * current state (whole network or part; collective on a part): C (rn_homogenize)
+ * and the stress give the first elasticity tensor L_aJbL = F_aI F_bK CE_IJKL +
+ * delta_ab S_JL (F = I + H the cell's deformation gradient, CE and S the tangent
+ * and stress of the Green-Lagrange strain E = H + H^2 / 2, by the chain rule) and
+ * the acoustic tensor A(n)_ab = L_aJbL n_J n_L; fills res->acoustic_* as
+ * rn_cell_bloch does (acoustic_valid 0 if K is not positive definite).  The same
+ * numbers as rn_cell_bloch's expansion of the Bloch Hessian (val_bloch
+ * check_acoustic_tangent). */
+rn_status rn_cell_acoustic_tangent(rn_network *net, rn_bloch_modes modes,
+                                   rn_bloch_result *res);
 /* The lowest neig (<= 8) Bloch eigenvalues at the current state at the wave
  * vector xi (reciprocal coordinates; xi = 0 without the rigid translations),
  * restricted to modes; eig[neig]; vec (may be NULL) receives the eigenvector of
@@ -853,7 +877,9 @@ struct rn_cell_path_result {
   const char *stopped;       /* NULL, or why the path stopped early (static text) */
   int limit_end;             /* the path ended under stress control at its first
                                 instability: 1 a limit point of the stress, 2 unstable
-                                cell-periodic fluctuations (K_uu indefinite) */
+                                cell-periodic fluctuations (K_uu indefinite); 3 on a
+                                part of a distributed cell (any control): with the
+                                step past the first instability */
   double tangent_scale;      /* largest eigenvalue of C at rest */
   double c_rest[36];         /* C at rest (ns x ns) */
   rn_cell_path_instability inst;

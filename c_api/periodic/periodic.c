@@ -172,6 +172,45 @@ rn_status rn_network_set_cell_load(rn_network *net, const double *strain,
   return RN_OK;
 }
 
+rn_status rn_network_cell_hold_strain(rn_network *net, int hold) {
+  static const char *where = "rn_network_cell_hold_strain";
+  rn_status st;
+  if (!net) return RN_ERR_ARG;
+  if ((st = rn_cell_check(net, where, 0))) return st;
+  net->cell->held = hold != 0;
+  return RN_OK;
+}
+
+/* The reduced indices of the free strain components (-1: prescribed). */
+static int held_rows(const rn_network *net, int64_t *r) {
+  const rn_cell *c = net->cell;
+  for (int v = 0; v < c->nstrain; ++v) r[v] = net->map[c->off + (size_t)v];
+  return c->nstrain;
+}
+
+void rn_cell_hold_zero(const rn_network *net, double *v) {
+  int64_t r[6];
+  if (!rn_cell_held(net) || !v) return;
+  for (int k = 0, n = held_rows(net, r); k < n; ++k)
+    if (r[k] >= 0) v[r[k]] = 0.0;
+}
+
+void rn_cell_hold_hessian(const rn_network *net, double *vals) {
+  int64_t r[6];
+  if (!rn_cell_held(net) || !vals) return;
+  const int n = held_rows(net, r), one = rn_cell_owned_here(net);
+  for (size_t i = 0; i < net->nred; ++i) {
+    int strain_row = 0;
+    for (int k = 0; k < n; ++k) strain_row |= r[k] == (int64_t)i;
+    for (int64_t pos = net->rowptr[i]; pos < net->rowptr[i + 1]; ++pos) {
+      const int64_t c = net->col[pos];
+      int strain_col = 0;
+      for (int k = 0; k < n; ++k) strain_col |= r[k] == c;
+      if (strain_row || strain_col) vals[pos] = (one && c == (int64_t)i) ? 1.0 : 0.0;
+    }
+  }
+}
+
 rn_status rn_network_cell_info(const rn_network *net, int *dim, int *nstrain,
                                double *measure, double vectors[9]) {
   if (!net) return RN_ERR_ARG;

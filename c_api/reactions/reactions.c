@@ -107,7 +107,9 @@ rn_status rn_network_gradient_magnitude(const rn_network *net, const double *x,
     return rn_fail(net->ctx, RN_ERR_ARG, where, "NULL array");
   if (!rn_all_finite(net->nred, x))
     return rn_fail(net->ctx, RN_ERR_NOT_FINITE, where, "x has NaN or infinite entries");
-  return rn_eval_gradient_magnitude(net, x, gabs, where);
+  if ((st = rn_eval_gradient_magnitude(net, x, gabs, where))) return st;
+  rn_cell_hold_zero(net, gabs);
+  return RN_OK;
 }
 
 static double norm3(const double v[3]) {

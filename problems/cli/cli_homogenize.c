@@ -478,9 +478,9 @@ static int check_cell(const hom_args *a, rn_network *net, int dim) {
 }
 
 /* The path of --path, --path-stress or --path-file into path (its segments);
- * 0 or the exit status (message printed). */
+ * 0 or the exit status (message printed if loud). */
 static int read_path(rn_context *ctx, const hom_args *a, rn_network *net, int dim,
-                     hp_path *path) {
+                     hp_path *path, int loud) {
   int count = 0, ns = 0, stress[6] = {0};
   double target[6] = {0};
   rn_status st;
@@ -488,14 +488,18 @@ static int read_path(rn_context *ctx, const hom_args *a, rn_network *net, int di
   path->ns = ns;
   if (a->path_file) {
     if ((st = hp_read_path_file(ctx, a->path_file, a->steps, path))) {
-      fprintf(stderr, "rodnet homogenize: --path-file: %s\n", rn_context_last_error(ctx));
+      if (loud)
+        fprintf(stderr, "rodnet homogenize: --path-file: %s\n",
+                rn_context_last_error(ctx));
       return st == RN_ERR_ALLOC ? RN_EXIT_INTERNAL : RN_EXIT_INPUT;
     }
     return 0;
   }
   if (hp_parse_targets(a->path, a->path_stress != NULL, target, stress, &count) ||
       count != ns) {
-    if (a->path_stress)
+    if (!loud) {
+      /* rank 0 prints it */
+    } else if (a->path_stress)
       fprintf(stderr,
               "rodnet homogenize: --path-stress '%s': expected %d comma-separated "
               "numbers (%s) for this %dD cell\n",
@@ -699,13 +703,13 @@ static int agree_rc(int rc) {
  * the same exit status. */
 static int homogenize_distributed(const hom_args *a, rn_cli_dist *d) {
   int rc = 0, dim = 0;
-  if (a->path || a->path_stress || a->path_file || a->pattern || a->post) {
+  if (a->pattern || a->post) {
     if (d->rank == 0)
       fprintf(stderr,
-              "rodnet homogenize: --path, --path-stress, --path-file, --pattern and "
-              "--post-buckling run on one process (the strain path and its "
-              "Bloch-Floquet stability are not distributed yet); run them without "
-              "mpirun (docs/parallel.md)\n");
+              "rodnet homogenize: --pattern and --post-buckling run on one process "
+              "(the bifurcated branch is not distributed yet); run them without "
+              "mpirun, or give the supercell of the critical mode to 'mpirun rodnet "
+              "solve' (docs/parallel.md)\n");
     return RN_EXIT_USAGE;
   }
   rn_cli_file files[8];
@@ -717,25 +721,59 @@ static int homogenize_distributed(const hom_args *a, rn_cli_dist *d) {
   rn_network *net = rn_scene_network(d->part);
   rn_network_cell_info(net, &dim, NULL, NULL, NULL);
   if (d->rank == 0) rc = check_cell(a, net, dim);
+  if (!rc && a->path && a->modes != RN_BLOCH_ALL && rn_network_is_planar(net) != 1) {
+    if (d->rank == 0)
+      fprintf(stderr,
+              "rodnet homogenize: %s: --modes %s: under mpirun the path examines "
+              "every mode of the cell (for the in-plane ones alone use the planar "
+              "model, \"model\": \"planar\" in the scene; docs/parallel.md)\n",
+              a->scene, a->modes == RN_BLOCH_IN_PLANE ? "in-plane" : "out-of-plane");
+    rc = RN_EXIT_USAGE;
+  }
   if ((rc = agree_rc(rc))) return rc;
+  hp_path path;
+  hp_post post;
+  memset(&path, 0, sizeof(path));
+  memset(&post, 0, sizeof(post));
+  /* every rank reads the path (the same file), rank 0 prints its errors */
+  if (a->path) {
+    rc = read_path(d->ctx, a, net, dim, &path, d->rank == 0);
+    if ((rc = agree_rc(rc))) {
+      hp_free(&path);
+      return rc;
+    }
+  }
   rn_homogenization h;
   char prefix[4200];
   double S[36], t0 = now();
   rn_status st = rn_homogenize(net, &h);
   double seconds = now() - t0;
   snprintf(prefix, sizeof prefix, "rodnet homogenize: %s: ", a->scene);
-  if ((st = rn_cli_dist_agree(d, st, prefix)))
+  if ((st = rn_cli_dist_agree(d, st, prefix))) {
+    hp_free(&path);
     return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
-  if (rn_cli_dist_agree(d, rn_cli_dist_partition(d), "rodnet homogenize: "))
+  }
+  if (rn_cli_dist_agree(d, rn_cli_dist_partition(d), "rodnet homogenize: ")) {
+    hp_free(&path);
     return RN_EXIT_INTERNAL;
+  }
+  if (a->path) { /* collective: every rank follows the path in lockstep */
+    path.dim = h.dim;
+    path.modes = RN_BLOCH_ALL;
+    path.grid = a->grid;
+    path.bloch_method = a->method;
+    path.quiet = a->quiet || d->rank != 0;
+    st = hp_run(net, &path);
+    if ((st = rn_cli_dist_agree(d, st, prefix))) {
+      hp_free(&path);
+      return st == RN_ERR_ARG ? RN_EXIT_INPUT : RN_EXIT_INTERNAL;
+    }
+  }
   if (d->rank == 0 && !(rc = check_stiffness(a, &h, S))) {
-    hp_path path;
-    hp_post post;
-    memset(&path, 0, sizeof(path));
-    memset(&post, 0, sizeof(post));
-    hom_out o = {a, &h, S, seconds, NULL, net, &post, NULL, d};
+    hom_out o = {a, &h, S, seconds, a->path ? &path : NULL, net, &post, NULL, d};
     rc = write_and_print(d->ctx, &o, &path, &post);
   }
+  hp_free(&path);
   return agree_rc(rc);
 }
 
@@ -780,7 +818,7 @@ int rn_cli_homogenize(int argc, char **argv) {
   rn_network *net = rn_scene_network(scene);
   rn_network_cell_info(net, &dim, NULL, NULL, NULL);
   if ((rc = check_cell(&a, net, dim))) goto done;
-  if (a.path && (rc = read_path(ctx, &a, net, dim, &path))) goto done;
+  if (a.path && (rc = read_path(ctx, &a, net, dim, &path, 1))) goto done;
   if ((rc = homogenize_cell(ctx, &a, net, &h, S, &seconds))) goto done;
   if (a.path) {
     path.dim = h.dim;

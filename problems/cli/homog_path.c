@@ -187,6 +187,11 @@ void hp_write_json(FILE *f, const hp_path *p) {
     fputs("  \"path_end\": \"past the instability the cell-periodic fluctuations are "
           "unstable: no tangent for the stress control\",\n",
           f);
+  else if (p->r.limit_end == 3)
+    fputs("  \"path_end\": \"the step past the first instability (under mpirun the path "
+          "ends there: the distributed Newton solver does not follow the unstable "
+          "principal branch further)\",\n",
+          f);
   fputs("  \"instability\": ", f);
   if (p->r.inst.found)
     put_instability(f, p);

@@ -46,6 +46,19 @@ void reap(bool wait) {
   }
 }
 
+// v[0 .. n-1] reduced in place over MPI_COMM_WORLD (rn_dist_allreduce_*).
+template <class T>
+rn_status allreduce(T *v, int n, int op, MPI_Datatype type) {
+  if (n < 0 || (n > 0 && !v) || op < RN_DIST_SUM || op > RN_DIST_MIN) return RN_ERR_ARG;
+  int size = 1;
+  if (mpi_up()) MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size == 1 || n == 0) return RN_OK;
+  const MPI_Op mop = op == RN_DIST_SUM ? MPI_SUM : op == RN_DIST_MAX ? MPI_MAX : MPI_MIN;
+  return MPI_Allreduce(MPI_IN_PLACE, v, n, type, mop, MPI_COMM_WORLD) == MPI_SUCCESS
+             ? RN_OK
+             : RN_ERR_INTERNAL;
+}
+
 } // namespace
 
 extern "C" {
@@ -85,14 +98,11 @@ rn_status rn_dist_agree(rn_context *ctx, rn_status local) {
 }
 
 rn_status rn_dist_allreduce_int(int *v, int n, int op) {
-  if (n < 0 || (n > 0 && !v) || op < RN_DIST_SUM || op > RN_DIST_MIN) return RN_ERR_ARG;
-  int size = 1;
-  rn_runtime_ranks(nullptr, &size);
-  if (size == 1 || n == 0) return RN_OK;
-  const MPI_Op mop = op == RN_DIST_SUM ? MPI_SUM : op == RN_DIST_MAX ? MPI_MAX : MPI_MIN;
-  return MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_INT, mop, MPI_COMM_WORLD) == MPI_SUCCESS
-             ? RN_OK
-             : RN_ERR_INTERNAL;
+  return allreduce(v, n, op, MPI_INT);
+}
+
+rn_status rn_dist_allreduce_double(double *v, int n, int op) {
+  return allreduce(v, n, op, MPI_DOUBLE);
 }
 
 rn_status rn_dist_notice_send(const int *v, int n, const char *text) {

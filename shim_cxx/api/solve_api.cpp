@@ -681,8 +681,14 @@ rn_status rn_network_stability(rn_network *net, rn_stability *out) {
                                                     "the stability check"))
     return st;
   return guarded(net, "rn_network_stability", [&] {
-    if (rn_network_is_part(net)) {
-      *out = rn_stability{};
+    if (rn_network_is_part(net)) { // LOBPCG on the distributed Hessian (collective)
+      rodnet::DistSystem sys(net, rodnet::world_comm());
+      rodnet::TMV x(sys.map(), 1);
+      sys.get_state(x);
+      sys.assemble_hessian(x);
+      rn_solve_options opt;
+      rn_solve_options_default(&opt);
+      *out = rodnet::lobpcg_stability(sys, opt);
       return;
     }
     rodnet::Problem p(net);

@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "base/lapack.hpp"
+#include "periodic/acoustic.hpp"
 #include "periodic/bloch_sparse.hpp"
+#include "periodic/cell_part.hpp"
 #include "periodic/homogenize.hpp"
 #include "base/nonconservative.hpp"
 #include "system/problem.hpp"
@@ -449,9 +451,6 @@ private:
 
 // ---- Bloch-Floquet analysis -----------------------------------------------------
 
-struct AcousticTensor;
-void acoustic_search(const AcousticTensor &t, rn_bloch_result *res);
-
 class Bloch {
 public:
   // sparse: 0 dense only (cells up to kMaxDense Bloch DOFs), 1 sparse beyond that,
@@ -641,36 +640,6 @@ private:
   std::unique_ptr<SparseBloch> sb_;
   std::vector<double> x_, re_, im_;
   int evals_ = 0;
-};
-
-// The acoustic tensor A(n) = (1/V) [-1/2 sum n_J n_L T^T M2_JL T
-//                                   - sum n_J n_L (M1_J^T T)^T K^-1 (M1_L^T T)]
-// over the amplitude components amp[na] of the modes examined, K the fluctuation
-// block (anchor pinned) on those modes: the second-order term of the Bloch
-// Hessian's acoustic branches (translations t plus the fluctuation i k w they
-// induce).  Q_JL[a][b] holds the bracket per direction pair.
-struct AcousticTensor {
-  int d = 0, na = 0;
-  double measure = 0.0;
-  std::vector<int> amp;
-  std::vector<double> Q; // [d][d][na][na]
-  double &q(int J, int L, int a, int b) {
-    return Q[static_cast<size_t>(((J * d + L) * na + a) * na + b)];
-  }
-  double q(int J, int L, int a, int b) const {
-    return Q[static_cast<size_t>(((J * d + L) * na + a) * na + b)];
-  }
-  // A(n) (na x na) for the unit direction nv.
-  void at(const double *nv, double *A) const {
-    for (int a = 0; a < na; ++a)
-      for (int b = 0; b < na; ++b) {
-        double s = 0.0;
-        for (int J = 0; J < d; ++J)
-          for (int L = 0; L < d; ++L)
-            s += nv[J] * nv[L] * 0.5 * (q(J, L, a, b) + q(J, L, b, a));
-        A[a * na + b] = s / measure;
-      }
-  }
 };
 
 // The lowest eigenvalue of A(n) over unit directions n (best, at bn, its
@@ -874,19 +843,6 @@ void Bloch::acoustic(rn_bloch_result *res) {
   first_moments(t, K, M, B, X);
   second_moments(t, M, B, X);
   acoustic_search(t, res);
-}
-
-// The lowest eigenvalue of the acoustic tensor t over the directions into res.
-void acoustic_search(const AcousticTensor &t, rn_bloch_result *res) {
-  AcousticMin am(t);
-  if (t.d == 2)
-    am.search_plane();
-  else
-    am.search_sphere();
-  res->acoustic_min = am.best;
-  res->acoustic_scale = am.top;
-  std::copy(am.bn, am.bn + 3, res->direction);
-  std::copy(am.bv, am.bv + 3, res->amplitude);
 }
 
 // Wraps xi_i into (-1/2, 1/2].
@@ -1130,6 +1086,20 @@ void local_search(Bloch &b, const rn_bloch_options &opt, int G, double excl,
 }
 
 } // namespace
+
+// The lowest eigenvalue of the acoustic tensor t over the directions into res.
+void acoustic_search(const AcousticTensor &t, rn_bloch_result *res) {
+  AcousticMin am(t);
+  if (t.d == 2)
+    am.search_plane();
+  else
+    am.search_sphere();
+  res->acoustic_min = am.best;
+  res->acoustic_scale = am.top;
+  std::copy(am.bn, am.bn + 3, res->direction);
+  std::copy(am.bv, am.bv + 3, res->amplitude);
+}
+
 } // namespace rodnet
 
 namespace rodnet {
@@ -1167,6 +1137,14 @@ rn_status cell_relax(rn_network *net, const double *strain, rn_cell_relax_report
       throw Error(RN_ERR_ARG, std::string(where) +
                                   ": method must be RN_BLOCH_AUTO, RN_BLOCH_DENSE or "
                                   "RN_BLOCH_SPARSE");
+    if (rn_network_is_part(net)) {
+      if (descend)
+        throw Error(RN_ERR_ARG, std::string(where) +
+                                    ": a part of a distributed cell relaxes on the "
+                                    "principal branch only (rn_cell_relax)");
+      relax_part(net, strain, r);
+      return;
+    }
     Relax(net, descend, method).run(strain, r);
   });
 }
@@ -1214,8 +1192,25 @@ extern "C" rn_status rn_cell_bloch(rn_network *net, const rn_bloch_options *opt,
     if (o.method < RN_BLOCH_AUTO || o.method > RN_BLOCH_SPARSE)
       throw rodnet::Error(RN_ERR_ARG, "rn_cell_bloch: method must be RN_BLOCH_AUTO, "
                                       "RN_BLOCH_DENSE or RN_BLOCH_SPARSE");
-    rodnet::bloch_search(net, o, res);
+    if (rn_network_is_part(net))
+      rodnet::bloch_part(net, o, res);
+    else
+      rodnet::bloch_search(net, o, res);
   });
+}
+
+extern "C" rn_status rn_cell_acoustic_tangent(rn_network *net, rn_bloch_modes modes,
+                                              rn_bloch_result *res) {
+  if (!net) return RN_ERR_ARG;
+  if (!res)
+    return rn_context_set_error(rn_network_context(net), RN_ERR_ARG,
+                                "rn_cell_acoustic_tangent: res is NULL");
+  *res = rn_bloch_result{};
+  if (rn_status st = rodnet::refuse_nonconservative(net, "rn_cell_acoustic_tangent",
+                                                    "the acoustic test"))
+    return st;
+  return rodnet::guarded(net, "rn_cell_acoustic_tangent",
+                         [&] { rodnet::acoustic_tangent(net, modes, res); });
 }
 
 extern "C" rn_status rn_cell_bloch_eigen(rn_network *net, const double *xi,

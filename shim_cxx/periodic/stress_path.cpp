@@ -45,6 +45,12 @@ rn_status state_of(rn_network *net, double *strain, double *stress, double *ener
   if (!st) st = rn_network_cell_stress(net, x.data(), stress);
   if (!st && energy) st = rn_network_energy_terms(net, x.data(), E);
   if (!st && energy) *energy = E[RN_TERM_STRETCH] + E[RN_TERM_BEND] + E[RN_TERM_TWIST];
+  if (!st && rn_network_is_part(net)) { // the parts' shares (collective)
+    int ns = 0;
+    st = rn_network_cell_info(net, nullptr, &ns, nullptr, nullptr);
+    if (!st) st = rn_dist_allreduce_double(stress, ns, RN_DIST_SUM);
+    if (!st && energy) st = rn_dist_allreduce_double(energy, 1, RN_DIST_SUM);
+  }
   return st;
 }
 
@@ -668,6 +674,9 @@ rn_status examine(rn_network *net, Path &p, int j, int i, rn_state **prev, rn_st
     }
     if ((st = rn_network_state_restore(net, *cur))) return st;
     rn_state_destroy(cur);
+    // a part of a distributed cell: the path ends with this step (Newton on the
+    // distributed system may leave the unstable principal branch further on)
+    if (rn_network_is_part(net)) r->limit_end = 3;
   }
   *bprev = b;
   return RN_OK;
@@ -686,7 +695,7 @@ rn_status run(rn_network *net, Path &p) {
     bool end = false;
     for (int v = 0; v < r->ns; ++v) // start values from the state reached
       g->start[v] = g->stress[v] ? r->step[k].stress[v] : r->step[k].strain[v];
-    for (int i = 1; i <= n && !end; ++i) {
+    for (int i = 1; i <= n && !end && !r->limit_end; ++i) {
       rn_cell_path_step *s = &r->step[k + 1];
       if ((st = take_step(net, p, j, (double)(i - 1) / n, (double)i / n, prev, s))) break;
       bool limit = limit_passed(*s, nstress);

@@ -15,39 +15,15 @@ a 2 x 2 x 2 octet supercell):
   same macroscopic strain and stress (1e-10 of their largest entry), the same
   energy (1e-10), the partition recorded.
 The 2D and 3D cells, supercells and mixed stress control all run distributed.
-Also: under mpirun a scene that is not periodic and --path are refused once.
+Also: under mpirun a scene that is not periodic and --pattern are refused once
+(paths under mpirun: check_path_mpi.py).
 
 Usage: check_periodic_mpi.py RODNET MPIEXEC NP DIR"""
 import json
 import os
-import shutil
-import subprocess
 import sys
 
-FAILED = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILED.append(what)
-
-
-def run(cmd, name, want=0):
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-    print(f"--- {name}: exit {r.returncode}")
-    if r.returncode != want:
-        print(r.stdout[-3000:])
-        print(r.stderr[-3000:])
-    check(r.returncode == want, f"{name}: exit status {want}")
-    return r
-
-
-def rel(a, b):
-    a = [float(v) for v in a]
-    b = [float(v) for v in b]
-    scale = max(abs(v) for v in b) or 1.0
-    return max(abs(x - y) for x, y in zip(a, b)) / scale
+from mpi_cli import check, finish, load_all, rel, run, setup
 
 
 def flat(c):
@@ -59,21 +35,11 @@ def one_and_many(rodnet, mpi, cmd, scene, stem, d, name):
     outs = [os.path.join(d, f"{stem}{k}.json") for k in (1, 2)]
     run([rodnet, cmd, scene, "-o", outs[0], "-q"], f"{name}: {cmd}")
     run(mpi + [rodnet, cmd, scene, "-o", outs[1], "-q"], f"{name}: {cmd} under mpirun")
-    if not all(os.path.exists(o) for o in outs):
-        return None
-    return [json.load(open(o)) for o in outs]
+    return load_all(outs)
 
 
 def main():
-    rodnet, mpiexec, np_ = sys.argv[1], sys.argv[2], int(sys.argv[3])
-    d = sys.argv[4]
-    shutil.rmtree(d, ignore_errors=True)
-    os.makedirs(d)
-    mpi = [mpiexec, "-n", str(np_)]
-    if os.geteuid() == 0:
-        mpi.append("--allow-run-as-root")
-    if np_ > (os.cpu_count() or 1):
-        mpi.append("--oversubscribe")
+    rodnet, np_, d, mpi = setup(sys.argv)
     cells = {
         "hc_cell": ["honeycomb", "--cells", "1,1", "--edges-per-rod", "8"],
         "hc_super_rigid": ["honeycomb", "--cells", "4,4", "--edges-per-rod", "4",
@@ -130,12 +96,12 @@ def main():
             "homogenize of a scene that is not periodic", 3)
     check(r.stderr.count("the scene is not periodic") == 1, "not periodic: said once")
     r = run(mpi + [rodnet, "homogenize", os.path.join(d, "hc_cell.json"), "-o",
-                   os.path.join(d, "no.json"), "--path", "-0.01,-0.01,0"],
-            "homogenize --path on several ranks", 2)
-    check(r.stderr.count("run them without mpirun") == 1, "--path refused once")
+                   os.path.join(d, "no.json"), "--path", "-0.01,-0.01,0", "--pattern",
+                   os.path.join(d, "pat")],
+            "homogenize --pattern on several ranks", 2)
+    check(r.stderr.count("run them without mpirun") == 1, "--pattern refused once")
     check(not os.path.exists(os.path.join(d, "no.json")), "nothing written")
-    print("FAILED: " + "; ".join(FAILED) if FAILED else "all passed")
-    return 1 if FAILED else 0
+    return finish()
 
 
 if __name__ == "__main__":
