@@ -10,6 +10,9 @@ rigid joints; the generate time is measured too, as the `generate` step):
   solve       `rodnet solve` of the cell under a uniaxial macroscopic stress (the
               other components free), default solver on 1 rank (`tr-minres`) and on N
               (`tr-krylov` with `dd`); stability check and RESULT.json included
+  path        `rodnet homogenize CELL --path P --steps N` (--path; the whole path with
+              its first instability: on 1 rank the Bloch search over the supercell's
+              zone, on N the cell-periodic and long-wavelength tests on the parts)
 
 CSV columns: commit, compiler, flags, ranks, bench (periodic), case (the cell),
 step (generate, homogenize, solve), size (reduced DOFs), repeats, median, min
@@ -18,7 +21,12 @@ this median, same run), peak_rss_mb (the largest rank), exit_status.
 
     /usr/bin/python3 benchmarks/bench_periodic_dist.py --rodnet build/rodnet \\
         --out benchmarks/results/periodic_dist.csv [--ranks 1,2] [--repeats 3] \\
-        [--cases hc25,hc50,hc100,octet6]
+        [--cases hc25,hc50,hc100,octet6] [--steps homogenize,solve,path] \\
+        [--path=-0.004,-0.004,0 --path-steps 10]
+
+The dhc cases are disordered honeycomb supercells on the planar model (joints moved
+by up to 2 % of the bar length, sections scattered by 5 %: `--perturb 0.02
+--section-scatter 0.05 --model planar`), for the paths through buckling.
 """
 import argparse
 import csv
@@ -37,7 +45,14 @@ CASES = {
     "hc50": ["honeycomb", "--cells", "50,50", "--edges-per-rod", "4"],
     "hc100": ["honeycomb", "--cells", "100,100", "--edges-per-rod", "4"],
     "octet6": ["octet", "--cells", "6,6,6", "--edges-per-rod", "2"],
+    "dhc25": ["honeycomb", "--cells", "25,25", "--edges-per-rod", "4", "--perturb", "0.02",
+              "--section-scatter", "0.05", "--model", "planar"],
+    "dhc50": ["honeycomb", "--cells", "50,50", "--edges-per-rod", "4", "--perturb", "0.02",
+              "--section-scatter", "0.05", "--model", "planar"],
+    "dhc100": ["honeycomb", "--cells", "100,100", "--edges-per-rod", "4", "--perturb",
+               "0.02", "--section-scatter", "0.05", "--model", "planar"],
 }
+DEFAULT_CASES = "hc25,hc50,hc100,octet6"
 
 
 def timed(cmd, env, repeats):
@@ -57,7 +72,10 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--cases", default=DEFAULT_CASES)
+    ap.add_argument("--steps", default="homogenize,solve")
+    ap.add_argument("--path", default="-0.004,-0.004,0")
+    ap.add_argument("--path-steps", type=int, default=10)
     a = ap.parse_args()
     ranks = [int(r) for r in a.ranks.split(",")]
     names = bench_csv.pick_cases(a.cases, CASES, "bench_periodic_dist")
@@ -89,8 +107,11 @@ def main():
             ns = len(h["C"])
             scene["periodic"]["stress"] = [1e-4 * h["C"][0][0]] + [0.0] * (ns - 1)
             json.dump(scene, open(stressed, "w"))
-            for step, args in (("homogenize", ["homogenize", cell]),
-                               ("solve", ["solve", stressed])):
+            steps = {"homogenize": ["homogenize", cell], "solve": ["solve", stressed],
+                     "path": ["homogenize", cell, "--path", a.path, "--steps",
+                              str(a.path_steps)]}
+            for step in a.steps.split(","):
+                args = steps[step]
                 one = None
                 for n in ranks:
                     cmd = ([a.rodnet] if n == 1 else

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """plot_periodic_dist.py - bench_periodic_dist CSV to PNG: seconds of the whole command
-against the supercell's DOFs, one panel per step (homogenize, solve), one line per
-rank count (log-log), and the generate time in the homogenize panel (dotted).  The
+against the supercell's DOFs, one panel per step in the CSV (homogenize, solve,
+path), one line per lattice and rank count (log-log), and the generate time in the
+first panel (dotted).  The
 title carries the commit and compiler.
 
     plot_periodic_dist.py benchmarks/results/periodic_dist.csv \\
@@ -26,11 +27,12 @@ def family(case):
 
 def main():
     rows, output = bench_csv.plot_rows(__doc__, "periodic", "plot_periodic_dist")
-    steps = ["homogenize", "solve"]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    steps = [s for s in ("homogenize", "solve", "path") if any(r["step"] == s for r in rows)]
+    fig, axes = plt.subplots(1, len(steps), figsize=(5 * len(steps), 4.2), squeeze=False)
+    axes = axes[0]
     colours = {1: "tab:blue", 2: "tab:orange", 3: "tab:green", 4: "tab:red"}
-    markers = {"hc": "o", "octet": "^"}
-    names = {"hc": "honeycomb", "octet": "octet"}
+    markers = {"hc": "o", "octet": "^", "dhc": "D"}
+    names = {"hc": "honeycomb", "octet": "octet", "dhc": "disordered honeycomb"}
     for ax, step in zip(axes, steps):
         ranks = sorted({int(r["ranks"]) for r in rows if r["step"] == step})
         for fam in sorted({family(r["case"]) for r in rows}):
@@ -48,7 +50,7 @@ def main():
                     ax.annotate("%s %.2f s" % (case, t), (size, t),
                                 textcoords="offset points",
                                 xytext=(5, 4) if n == 1 else (-62, -3), fontsize=7)
-        if step == "homogenize":
+        if step == steps[0]:
             sel = sorted((int(r["size"]), float(r["median"])) for r in rows
                          if r["step"] == "generate")
             ax.plot([s[0] for s in sel], [s[1] for s in sel], "s:", color="tab:gray",
@@ -59,7 +61,8 @@ def main():
         ax.set_yscale("log")
         ax.set_xlabel("reduced DOFs of the supercell")
         ax.set_ylabel("seconds, whole command (median)")
-        ax.set_title("rodnet %s" % step, fontsize=9)
+        ax.set_title("rodnet %s" % ("homogenize --path" if step == "path" else step),
+                     fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, loc="lower right")
     fig.suptitle("periodic supercells on 1 and 2 ranks - commit %s, %s"
