@@ -16,6 +16,8 @@ whole zone of the same supercell):
   wave vector 0;
 - honeycomb 2 x 2 supercell under uniaxial stress (mixed control, --path E,-,-):
   the same strains at every step to 1e-8;
+- the regular 20 x 20 honeycomb supercell on NP ranks against the primitive cell
+  on one process: the same critical load factor to 1e-3;
 - on NP ranks the path ends with the step past the instability (path_end says
   why), RESULT.json has the partition, exit status 0;
 - refused once (exit 2, nothing written): --modes in-plane on a scene on the 3D
@@ -88,6 +90,32 @@ def main():
             check(tb >= ta * (1 - 1e-4) and tb <= ta * (1 + 1e-3),
                   "honeycomb: the cell-periodic critical load factor is the zone's to 1e-3")
             check(ib["wave_vector"] == [0, 0], "honeycomb: at wave vector 0")
+
+    # at scale: the regular 20 x 20 supercell against the primitive cell (one process,
+    # the whole zone): its M-point critical mode is cell-periodic in the supercell.
+    # Measured 1.5e-4 low (docs/homogenization.md, "Paths under mpirun": a probe
+    # near the critical strain converges to a neighbouring unstable state); the
+    # test asks the location's tolerance, 1e-3.
+    prim, sup = os.path.join(d, "hc_prim.json"), os.path.join(d, "hc20.json")
+    for cells, out in (("1,1", prim), ("20,20", sup)):
+        run([rodnet, "generate", "honeycomb", "--periodic", "--cells", cells,
+             "--edges-per-rod", "4", "--joint-model", "rigid", "--model", "planar", "-o",
+             out], f"honeycomb {cells}: generate")
+    outs = [os.path.join(d, "hc_prim_r.json"), os.path.join(d, "hc20_r.json")]
+    args = ["--path", "-0.002,-0.002,0", "--steps", "8", "-q", "-o"]
+    run([rodnet, "homogenize", prim] + args + [outs[0]], "primitive cell: one process")
+    run(mpi + [rodnet, "homogenize", sup] + args + [outs[1]], "20 x 20: mpirun")
+    res = load_all(outs)
+    if res:
+        ia, ib = res[0]["instability"], res[1]["instability"]
+        check(ia is not None and ib is not None, "20 x 20: an instability on both")
+        if ia and ib:
+            ta, tb = ia["load_factor"], ib["load_factor"]
+            print(f"    load factor {ta:.9g} at {ia['wave_vector']} (primitive cell), "
+                  f"{tb:.9g} (20 x 20 on {np_} ranks), {(tb - ta) / ta:.3g} relative")
+            check([0.5, 0] in ia.get("equivalent_wave_vectors", []),
+                  "primitive cell: an M point")
+            check(abs(tb - ta) <= 1e-3 * ta, "20 x 20: the primitive cell's to 1e-3")
 
     # mixed control: uniaxial stress
     res = both(rodnet, mpi, scenes["honeycomb"], "-0.02,-,-", d, "hm", "honeycomb mixed")
