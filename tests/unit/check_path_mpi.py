@@ -40,6 +40,15 @@ def both(rodnet, mpi, scene, path, d, stem, name):
     return load_all(outs)
 
 
+def instabilities(res, name):
+    """The two results' instabilities, or None unless both have one."""
+    if not res:
+        return None
+    ia, ib = res[0]["instability"], res[1]["instability"]
+    check(ia is not None and ib is not None, f"{name}: an instability on both")
+    return (ia, ib) if ia and ib else None
+
+
 def main():
     rodnet, np_, d, mpi = setup(sys.argv)
     scenes = {}
@@ -79,17 +88,16 @@ def main():
 
     # honeycomb: local first, cell-periodic in the supercell
     res = both(rodnet, mpi, scenes["honeycomb"], "-0.004,-0.004,0", d, "hc", "honeycomb")
-    if res:
-        ia, ib = res[0]["instability"], res[1]["instability"]
-        check(ia is not None and ib is not None, "honeycomb: an instability on both")
-        if ia and ib:
-            ta, tb = ia["load_factor"], ib["load_factor"]
-            print(f"    load factor {ta:.9g} at {ia['wave_vector']} (one process), "
-                  f"{tb:.9g} at {ib['wave_vector']} ({np_} ranks)")
-            check(ia["kind"] == ib["kind"] == "local", "honeycomb: local on both")
-            check(tb >= ta * (1 - 1e-4) and tb <= ta * (1 + 1e-3),
-                  "honeycomb: the cell-periodic critical load factor is the zone's to 1e-3")
-            check(ib["wave_vector"] == [0, 0], "honeycomb: at wave vector 0")
+    pair = instabilities(res, "honeycomb")
+    if pair:
+        ia, ib = pair
+        ta, tb = ia["load_factor"], ib["load_factor"]
+        print(f"    load factor {ta:.9g} at {ia['wave_vector']} (one process), "
+              f"{tb:.9g} at {ib['wave_vector']} ({np_} ranks)")
+        check(ia["kind"] == ib["kind"] == "local", "honeycomb: local on both")
+        check(tb >= ta * (1 - 1e-4) and tb <= ta * (1 + 1e-3),
+              "honeycomb: the cell-periodic critical load factor is the zone's to 1e-3")
+        check(ib["wave_vector"] == [0, 0], "honeycomb: at wave vector 0")
 
     # at scale: the regular 20 x 20 supercell against the primitive cell (one process,
     # the whole zone): its M-point critical mode is cell-periodic in the supercell.
@@ -105,17 +113,15 @@ def main():
     args = ["--path", "-0.002,-0.002,0", "--steps", "8", "-q", "-o"]
     run([rodnet, "homogenize", prim] + args + [outs[0]], "primitive cell: one process")
     run(mpi + [rodnet, "homogenize", sup] + args + [outs[1]], "20 x 20: mpirun")
-    res = load_all(outs)
-    if res:
-        ia, ib = res[0]["instability"], res[1]["instability"]
-        check(ia is not None and ib is not None, "20 x 20: an instability on both")
-        if ia and ib:
-            ta, tb = ia["load_factor"], ib["load_factor"]
-            print(f"    load factor {ta:.9g} at {ia['wave_vector']} (primitive cell), "
-                  f"{tb:.9g} (20 x 20 on {np_} ranks), {(tb - ta) / ta:.3g} relative")
-            check([0.5, 0] in ia.get("equivalent_wave_vectors", []),
-                  "primitive cell: an M point")
-            check(abs(tb - ta) <= 1e-3 * ta, "20 x 20: the primitive cell's to 1e-3")
+    pair = instabilities(load_all(outs), "20 x 20")
+    if pair:
+        ia, ib = pair
+        ta, tb = ia["load_factor"], ib["load_factor"]
+        print(f"    load factor {ta:.9g} at {ia['wave_vector']} (primitive cell), "
+              f"{tb:.9g} (20 x 20 on {np_} ranks), {(tb - ta) / ta:.3g} relative")
+        check([0.5, 0] in ia.get("equivalent_wave_vectors", []),
+              "primitive cell: an M point")
+        check(abs(tb - ta) <= 1e-3 * ta, "20 x 20: the primitive cell's to 1e-3")
 
     # mixed control: uniaxial stress
     res = both(rodnet, mpi, scenes["honeycomb"], "-0.02,-,-", d, "hm", "honeycomb mixed")
