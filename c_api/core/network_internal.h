@@ -305,6 +305,9 @@ int rn_cell_owned_here(const rn_network *net);
  * their rows and columns those of the identity, the 1 on part 0).  Zeroes the
  * strain entries of a reduced vector v[nred]; no-op when not held. */
 void rn_cell_hold_zero(const rn_network *net, double *v);
+/* The strain rows of a held HVP Hv = H [v_u; 0]: v's strain entries on part 0, 0
+ * elsewhere (the identity rows, summed once over the parts). */
+void rn_cell_hold_hvp(const rn_network *net, const double *v, double *Hv);
 /* The Hessian values vals[nnz] with the held strain rows and columns replaced. */
 void rn_cell_hold_hessian(const rn_network *net, double *vals);
 static inline int rn_cell_held(const rn_network *net) {

@@ -697,12 +697,7 @@ rn_status rn_network_hvp(const rn_network *net, const double *x, const double *v
   rn_cell_hold_zero(net, vu);
   a.v = vu;
   st = eval_into(net, &a, Hv);
-  if (!st) {
-    rn_cell_hold_zero(net, Hv);
-    if (rn_cell_owned_here(net))
-      for (size_t i = 0; i < net->nred; ++i)
-        if (vu[i] != v[i]) Hv[i] += v[i];
-  }
+  if (!st) rn_cell_hold_hvp(net, v, Hv);
   free(vu);
   return st;
 }

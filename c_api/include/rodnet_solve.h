@@ -619,7 +619,10 @@ typedef struct rn_cell_relax_report {
   int indefinite;        /* 1 if the fluctuation block was not positive definite at
                             the solution (an unstable cell-periodic state) */
   double residual;       /* largest |dE/du| at the end */
-  double residual_scale; /* largest balancing force there (the test is relative) */
+  double residual_scale; /* largest balancing force there (the test is relative);
+                            on a part of a distributed cell the residual and
+                            this are rn_solve's force_residual and
+                            force_tolerance */
   int sparse_solves;     /* Newton steps on an indefinite K_uu solved by the sparse
                             route (MINRES, rn_cell_relax_method) */
 } rn_cell_relax_report;

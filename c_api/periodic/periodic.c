@@ -195,6 +195,13 @@ void rn_cell_hold_zero(const rn_network *net, double *v) {
     if (r[k] >= 0) v[r[k]] = 0.0;
 }
 
+void rn_cell_hold_hvp(const rn_network *net, const double *v, double *Hv) {
+  int64_t r[6];
+  if (!rn_cell_held(net)) return;
+  for (int k = 0, n = held_rows(net, r); k < n; ++k)
+    if (r[k] >= 0) Hv[r[k]] = rn_cell_owned_here(net) ? v[r[k]] : 0.0;
+}
+
 void rn_cell_hold_hessian(const rn_network *net, double *vals) {
   int64_t r[6];
   if (!rn_cell_held(net) || !vals) return;

@@ -73,6 +73,24 @@ void mul(int d, const double *A, const double *B, double *C) {
 
 } // namespace
 
+rn_status cell_state(rn_network *net, double *strain, double *stress, double *energy) {
+  double E[RN_TERM_COUNT];
+  size_t n = rn_network_num_dofs(net);
+  std::vector<double> x(n ? n : 1);
+  rn_status st = rn_network_get_dofs(net, x.data());
+  if (!st) st = rn_network_cell_strain(net, x.data(), strain);
+  if (!st) st = rn_network_cell_stress(net, x.data(), stress);
+  if (!st && energy) st = rn_network_energy_terms(net, x.data(), E);
+  if (!st && energy) *energy = E[RN_TERM_STRETCH] + E[RN_TERM_BEND] + E[RN_TERM_TWIST];
+  if (!st && rn_network_is_part(net)) { // the parts' shares (collective)
+    int ns = 0;
+    st = rn_network_cell_info(net, nullptr, &ns, nullptr, nullptr);
+    if (!st) st = rn_dist_allreduce_double(stress, ns, RN_DIST_SUM);
+    if (!st && energy) st = rn_dist_allreduce_double(energy, 1, RN_DIST_SUM);
+  }
+  return st;
+}
+
 void acoustic_from_tangent(int dim, double measure, const double *strain,
                            const double *stress, const double *C,
                            const std::vector<int> &amp, AcousticTensor &t) {
@@ -194,15 +212,8 @@ void acoustic_tangent(rn_network *net, rn_bloch_modes modes, rn_bloch_result *re
     return;
   }
   check_status(st, "rn_homogenize");
-  const size_t n = rn_network_num_dofs(net);
-  std::vector<double> x(n ? n : 1);
   double strain[6] = {0.0}, stress[6] = {0.0};
-  check_status(rn_network_get_dofs(net, x.data()), "rn_network_get_dofs");
-  check_status(rn_network_cell_strain(net, x.data(), strain), "rn_network_cell_strain");
-  check_status(rn_network_cell_stress(net, x.data(), stress), "rn_network_cell_stress");
-  if (rn_network_is_part(net)) // each part's share
-    check_status(rn_dist_allreduce_double(stress, ns, RN_DIST_SUM),
-                 "rn_dist_allreduce_double");
+  check_status(cell_state(net, strain, stress, nullptr), "rn_cell_acoustic_tangent");
   std::vector<int> amp;
   if (dim == 3 || modes == RN_BLOCH_ALL || modes == RN_BLOCH_IN_PLANE) amp = {0, 1};
   if (dim == 3) amp.push_back(2);

@@ -11,6 +11,10 @@
 
 namespace rodnet {
 
+// Strain and stress (and the elastic energy if energy) of the current state; on a
+// part the stress and energy summed over the parts (collective).
+rn_status cell_state(rn_network *net, double *strain, double *stress, double *energy);
+
 // rn_cell_relax on a part: the fluctuations' equilibrium at strain[nstrain] (the
 // components that are DOFs; the network's own for the prescribed ones) by the
 // distributed Newton solver (RN_SOLVER_NOX on grad E = 0, so the principal branch

@@ -11,6 +11,7 @@
 
 #include "base/shim_error.hpp"
 #include "periodic/homogenize.hpp"
+#include "periodic/cell_part.hpp"
 #include "rodnet_solve.h"
 
 namespace rodnet {
@@ -33,25 +34,6 @@ bool macro_unstable(const rn_bloch_result &b, const Path &p) {
 }
 bool unstable(const rn_bloch_result &b, const Path &p) {
   return local_unstable(b, p) || macro_unstable(b, p) || b.acoustic_valid == 0;
-}
-
-// Strain and stress of the current state (and its elastic energy if energy).
-rn_status state_of(rn_network *net, double *strain, double *stress, double *energy) {
-  double E[RN_TERM_COUNT];
-  size_t n = rn_network_num_dofs(net);
-  std::vector<double> x(n ? n : 1);
-  rn_status st = rn_network_get_dofs(net, x.data());
-  if (!st) st = rn_network_cell_strain(net, x.data(), strain);
-  if (!st) st = rn_network_cell_stress(net, x.data(), stress);
-  if (!st && energy) st = rn_network_energy_terms(net, x.data(), E);
-  if (!st && energy) *energy = E[RN_TERM_STRETCH] + E[RN_TERM_BEND] + E[RN_TERM_TWIST];
-  if (!st && rn_network_is_part(net)) { // the parts' shares (collective)
-    int ns = 0;
-    st = rn_network_cell_info(net, nullptr, &ns, nullptr, nullptr);
-    if (!st) st = rn_dist_allreduce_double(stress, ns, RN_DIST_SUM);
-    if (!st && energy) st = rn_dist_allreduce_double(energy, 1, RN_DIST_SUM);
-  }
-  return st;
 }
 
 // The effective tangent C (rn_homogenize) at the current state restricted to
@@ -163,7 +145,7 @@ int mixed_test(const Mixed &m, double tangent_scale, double *d) {
 rn_status accept(rn_network *net, rn_state **ok, Mixed &m, double *eps_ok) {
   rn_state_destroy(ok);
   rn_status st = rn_network_state_save(net, ok);
-  if (!st) st = state_of(net, m.eps, m.sig, nullptr);
+  if (!st) st = cell_state(net, m.eps, m.sig, nullptr);
   if (!st) std::memcpy(eps_ok, m.eps, sizeof(m.eps));
   return st;
 }
@@ -193,7 +175,7 @@ rn_status mixed_relax(rn_network *net, const Path &p, const int *stress,
   rn_state *ok = nullptr;
   s->converged = 0;
   s->newton = 0;
-  if ((st = state_of(net, m.eps, m.sig, nullptr))) return st;
+  if ((st = cell_state(net, m.eps, m.sig, nullptr))) return st;
   if ((st = rn_network_state_save(net, &ok))) return st;
   std::memcpy(eps_ok, m.eps, sizeof(m.eps));
   mixed_predict(net, m);
@@ -260,7 +242,7 @@ rn_status relax_at(rn_network *net, const Path &p, int j, double u,
     s->newton = rep.iterations;
     s->converged = rep.converged;
   }
-  return state_of(net, s->strain, s->stress, &s->energy);
+  return cell_state(net, s->strain, s->stress, &s->energy);
 }
 
 // The Bloch test at the current state: the full search (grid, refinement from the
@@ -583,7 +565,7 @@ rn_status start(rn_network *net, Path &p, rn_bloch_result *b) {
   s0->newton = rep.iterations;
   s0->converged = rep.converged;
   s0->tangent_min = NAN;
-  if ((st = state_of(net, s0->strain, s0->stress, &s0->energy))) return st;
+  if ((st = cell_state(net, s0->strain, s0->stress, &s0->energy))) return st;
   if ((st = bloch_at(net, p, nullptr, b))) return st;
   p.local_scale = b->local_scale;
   p.acoustic_scale = b->acoustic_scale;

@@ -685,6 +685,70 @@ static void acoustic_pair(rn_context *ctx, rn_network *net, const double *eps,
   CHECK_NEAR(rt.acoustic_scale, rb.acoustic_scale, 1e-7 * rb.acoustic_scale);
 }
 
+/* rn_network_cell_hold_strain on a compressed honeycomb cell: while held, the
+ * gradient's strain entries are 0, the HVP equals the held Hessian's CSR values
+ * times v (rows and columns of the identity at the strain) to 1e-12, and its
+ * fluctuation rows are the unheld HVP of v with the strain entries zeroed;
+ * released, gradient and HVP are the unheld ones again (bit for bit). */
+static void check_hold_strain(rn_context *ctx) {
+  double l;
+  rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 1, 4, &l);
+  rn_network *net = rn_scene_network(s);
+  const double e[3] = {-3e-4, 2e-4, 1e-4};
+  rn_cell_relax_report rep;
+  must(ctx, rn_cell_relax(net, e, &rep), "relax");
+  const size_t n = rn_network_num_dofs(net);
+  size_t nnz = 0;
+  const int64_t *rp = NULL;
+  const int32_t *col = NULL;
+  int64_t sidx[3];
+  must(ctx, rn_network_hessian_pattern(net, &nnz, &rp, &col), "pattern");
+  must(ctx, rn_network_cell_strain_dofs(net, sidx), "strain dofs");
+  double *x = malloc(n * sizeof(double)), *v = malloc(n * sizeof(double));
+  double *g = malloc(n * sizeof(double)), *g0 = malloc(n * sizeof(double));
+  double *hv = malloc(n * sizeof(double)), *hv0 = malloc(n * sizeof(double));
+  double *hc = malloc(n * sizeof(double)), *vals = malloc(nnz * sizeof(double));
+  double *vz = malloc(n * sizeof(double));
+  must(ctx, rn_network_get_dofs(net, x), "dofs");
+  for (size_t i = 0; i < n; ++i) v[i] = vz[i] = sin(1.0 + 0.7 * (double)i);
+  for (int k = 0; k < 3; ++k) vz[sidx[k]] = 0.0;
+  must(ctx, rn_network_gradient(net, x, NULL, g0), "gradient");
+  must(ctx, rn_network_hvp(net, x, vz, hv0), "hvp");
+  must(ctx, rn_network_cell_hold_strain(net, 1), "hold");
+  must(ctx, rn_network_gradient(net, x, NULL, g), "gradient held");
+  must(ctx, rn_network_hvp(net, x, v, hv), "hvp held");
+  must(ctx, rn_network_hessian_values(net, x, vals), "hessian held");
+  double scale = 0.0, dcsr = 0.0, du = 0.0, dg = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    hc[i] = 0.0;
+    for (int64_t q = rp[i]; q < rp[i + 1]; ++q) hc[i] += vals[q] * v[col[q]];
+    scale = fmax(scale, fabs(hv0[i]));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    int strain = 0;
+    for (int k = 0; k < 3; ++k) strain |= sidx[k] == (int64_t)i;
+    dcsr = fmax(dcsr, fabs(hc[i] - hv[i]));
+    if (strain) {
+      CHECK(g[i] == 0.0);
+      CHECK(hv[i] == v[i]);
+    } else {
+      du = fmax(du, fabs(hv[i] - hv0[i]));
+      dg = fmax(dg, fabs(g[i] - g0[i]));
+    }
+  }
+  printf("held strain: HVP against the held CSR %.2e, fluctuation rows against the "
+         "unheld HVP of [v_u; 0] %.2e (scale %.2e), gradient rows %.2e\n",
+         dcsr, du, scale, dg);
+  CHECK(dcsr <= 1e-12 * scale && du <= 1e-12 * scale && dg == 0.0);
+  must(ctx, rn_network_cell_hold_strain(net, 0), "release");
+  must(ctx, rn_network_gradient(net, x, NULL, g), "gradient released");
+  must(ctx, rn_network_hvp(net, x, vz, hv), "hvp released");
+  for (size_t i = 0; i < n; ++i) CHECK(g[i] == g0[i] && hv[i] == hv0[i]);
+  free(x), free(v), free(g), free(g0), free(hv), free(hv0), free(hc), free(vals),
+      free(vz);
+  rn_scene_destroy(&s);
+}
+
 static void check_acoustic_tangent(rn_context *ctx) {
   double l;
   rn_scene *s = cell(ctx, RN_LATTICE_HONEYCOMB, 1, 6, &l);
@@ -1132,6 +1196,7 @@ int main(int argc, char **argv) {
   check_sparse_eigen(ctx);
   check_sparse_relax(ctx);
   check_acoustic_tangent(ctx);
+  check_hold_strain(ctx);
   check_gradient(ctx);
   check_sparse_search(ctx);
   check_path_secant(ctx);
