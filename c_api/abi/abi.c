@@ -66,6 +66,7 @@ static const abi_field fields[] = {
     RN_ABI_FIELD(rn_solve_options, stability),
     RN_ABI_FIELD(rn_solve_options, stability_method),
     RN_ABI_FIELD(rn_solve_options, interrupt),
+    RN_ABI_FIELD(rn_solve_options, forcing),
     RN_ABI_FIELD(rn_stability, checked),
     RN_ABI_FIELD(rn_stability, lowest_eigenvalue),
     RN_ABI_FIELD(rn_stability, scale),

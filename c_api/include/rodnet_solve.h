@@ -240,6 +240,13 @@ typedef struct rn_solve_options {
    * (once per Newton iteration, after progress), and a non-zero value stops
    * the solve there with RN_STOP_INTERRUPTED, the network at that iterate. */
   const volatile int *interrupt;
+  /* The relative residual each Newton step's Krylov solve is asked for
+   * (RN_SOLVER_NOX): 0 (default) Eisenstat-Walker choice 2, at most 0.1 and at
+   * least max(krylov_tol, 1e-4) (docs/solvers.md, "Forcing terms"); in (0, 1):
+   * that constant forcing for every step.  The cell's relaxation on a part of a
+   * distributed periodic cell (rn_cell_relax) asks 1e-6: on the principal branch
+   * past an instability an inexact step may leave it for a buckled state. */
+  double forcing;
 } rn_solve_options;
 
 void rn_solve_options_default(rn_solve_options *opt);

@@ -309,6 +309,7 @@ static const solver_field solver_fields[] = {
     {"energy_tol", RN_J_NONNEG, 0},   {"krylov_max_iterations", RN_J_ANY, 1},
     {"krylov_tol", RN_J_POSITIVE, 0}, {"initial_radius", RN_J_NONNEG, 0},
     {"load_steps", RN_J_ANY, 0},      {"max_load_cuts", RN_J_ANY, 0},
+    {"forcing", RN_J_NONNEG, 0},
 };
 enum { N_SOLVER_FIELDS = (int)(sizeof solver_fields / sizeof solver_fields[0]) };
 #define SOLVER_BIT_METHOD (1u << N_SOLVER_FIELDS)
@@ -348,8 +349,11 @@ static void solver_field_ptr(rn_solve_options *o, int i, int **ip, double **dp) 
   case 8:
     *ip = &o->load_steps;
     break;
-  default:
+  case 9:
     *ip = &o->max_load_cuts;
+    break;
+  default:
+    *dp = &o->forcing;
     break;
   }
 }
@@ -448,21 +452,11 @@ static rn_status read_solver_predictor(rn_scene_parser *p, const cJSON *v) {
 }
 
 static rn_status read_solver(rn_scene_parser *p, const cJSON *v) {
-  static const char *const keys[] = {"method",
-                                     "factorization",
-                                     "max_iterations",
-                                     "gtol",
-                                     "gtol_abs",
-                                     "step_tol",
-                                     "energy_tol",
-                                     "krylov_max_iterations",
-                                     "krylov_tol",
-                                     "initial_radius",
-                                     "load_steps",
-                                     "max_load_cuts",
-                                     "predictor",
-                                     "preconditioner",
-                                     NULL};
+  static const char *const keys[] = {
+      "method",     "factorization",  "max_iterations", "gtol",
+      "gtol_abs",   "step_tol",       "energy_tol",     "krylov_max_iterations",
+      "krylov_tol", "initial_radius", "load_steps",     "max_load_cuts",
+      "predictor",  "preconditioner", "forcing",        NULL};
   rn_scene *s = p->scene;
   rn_status st = rn_json_check_keys(&p->w, v, keys);
   if (!st) st = read_solver_names(p, v);

@@ -539,7 +539,8 @@ _OPTION_FIELDS = {"gtol": "gtol_rel", "gtol_rel": "gtol_rel", "gtol_abs": "gtol_
                   "krylov_max_iterations": "krylov_max_iterations",
                   "krylov_tol": "krylov_tol", "initial_radius": "initial_radius",
                   "load_steps": "load_steps", "max_load_cuts": "max_load_cuts",
-                  "predictor": "predictor", "stability": "stability"}
+                  "predictor": "predictor", "stability": "stability",
+                  "forcing": "forcing"}
 _OPTION_TYPES = dict(_ffi.SolveOptions._fields_)
 _OPTION_WORDS = ("solver", "preconditioner", "factorization", "factorisation",
                  "stability_method", "progress")

@@ -100,7 +100,7 @@ class SolveOptions(ctypes.Structure):
                 ("progress_user", ctypes.c_void_p), ("factorization", ctypes.c_int),
                 ("predictor", ctypes.c_int), ("preconditioner", ctypes.c_int),
                 ("stability", ctypes.c_int), ("stability_method", ctypes.c_int),
-                ("interrupt", c_int_p)]
+                ("interrupt", c_int_p), ("forcing", ctypes.c_double)]
 
 
 class Stability(ctypes.Structure):

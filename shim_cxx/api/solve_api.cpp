@@ -76,6 +76,8 @@ rn_status validate_options(const rn_solve_options &o, rn_context *ctx) {
     bad = "krylov_max_iterations must be >= 1";
   else if (!(o.krylov_tol > 0.0 && o.krylov_tol < 1.0))
     bad = "krylov_tol must be in (0, 1)";
+  else if (!(o.forcing >= 0.0 && o.forcing < 1.0))
+    bad = "forcing must be 0 (Eisenstat-Walker) or in (0, 1)";
   else if (!(o.initial_radius >= 0.0) || !std::isfinite(o.initial_radius))
     bad = "initial_radius must be >= 0 (0: automatic)";
   else if (o.load_steps < 0)
@@ -570,6 +572,7 @@ void rn_solve_options_default(rn_solve_options *opt) {
   opt->energy_tol = 0.0; // off: a tiny energy change does not certify equilibrium
   opt->krylov_max_iterations = 500;
   opt->krylov_tol = 1e-10;
+  opt->forcing = 0.0;
   opt->initial_radius = 0.0;
   opt->load_steps = 0;
   opt->max_load_cuts = 8;

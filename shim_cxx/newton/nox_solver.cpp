@@ -349,6 +349,10 @@ Teuchos::RCP<Teuchos::ParameterList> newton_parameters(const rn_solve_options &o
   newton.set("Forcing Term Minimum Tolerance", std::max(opt.krylov_tol, 1e-4));
   newton.set("Forcing Term Alpha", 2.0);
   newton.set("Forcing Term Gamma", 0.9);
+  if (opt.forcing > 0.0) { // a constant forcing (rn_solve_options.forcing)
+    newton.set("Forcing Term Method", "Constant");
+    newton.sublist("Linear Solver").set("Tolerance", opt.forcing);
+  }
   params->sublist("Printing").set("Output Information", 0);
   params->sublist("Solver Options")
       .set<Teuchos::RCP<NOX::Observer>>("Observer",

@@ -242,6 +242,16 @@ void relax_part(rn_network *net, const double *strain, rn_cell_relax_report &r) 
   rn_solve_options_default(&o);
   o.solver = RN_SOLVER_NOX; // Newton on grad E = 0: stays on the principal branch
   o.stability = 0;          // rn_cell_bloch examines the state
+  // Every Newton step solved to 1e-6: past an instability the principal branch is a
+  // saddle, and a step with Eisenstat-Walker's 0.1 error along its soft mode led
+  // Newton to a buckled state (the regular 20 x 20 honeycomb on 2 ranks: at the
+  // step past its critical strain, whose bracket then located it 1.5e-4 low).
+  o.forcing = 1e-6;
+  // At a singular Jacobian (a trial at the critical strain itself) Newton does not
+  // converge: as the one-process relaxation, 100 iterations and no load cuts (the
+  // strain is held: a cut would repeat the same problem).
+  o.max_iterations = 100;
+  o.max_load_cuts = 0;
   rn_solve_report rep;
   check_status(rn_solve(net, &o, &rep), "rn_cell_relax");
   r.converged = rep.converged;

@@ -350,6 +350,8 @@ rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc
   double flo = critical_value(b.blo, macro), fhi = critical_value(b.bhi, macro);
   *ok = false;
   if (b.why != 0 || !(flo > 0.0) || !(fhi < 0.0)) return RN_OK;
+  // the values measured at the ends (flo, fhi are Illinois' halved ones)
+  double mlo = flo, mhi = fhi;
   int side = 0;
   double prev = NAN;
   for (int k = 0; k < 40; ++k) {
@@ -367,20 +369,39 @@ rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc
     rn_bloch_result r;
     if ((st = rn_network_state_restore(net, b.lo)) || (st = relax_at(net, p, b.j, u, &s)))
       return st;
-    if (limit_passed(s, nstress) || !s.converged || s.kuu_indefinite) return RN_OK;
-    if ((st = bloch_at(net, p, b.bhi.xi, &r, true, macro))) return st;
-    const double fu = critical_value(r, macro);
-    if (!std::isfinite(fu)) return RN_OK;
+    bool off = limit_passed(s, nstress) || !s.converged || s.kuu_indefinite;
+    double fu = NAN;
+    if (!off) {
+      if ((st = bloch_at(net, p, b.bhi.xi, &r, true, macro))) return st;
+      fu = critical_value(r, macro);
+    }
+    // A trial this close to the critical point left the branch: the Jacobian of the
+    // relaxation is singular there, and Newton, started a parameter step of at most
+    // 1e-6 from the stable end, converged elsewhere (an unconverged or indefinite
+    // relaxation, or a value far outside the ends' on a branch along which it is
+    // smooth: a distributed cell whose partition breaks the supercell's symmetry
+    // at the level of the linear solves; the regular 20 x 20 honeycomb on 2 ranks).
+    // The regula falsi of the measured ends is then the estimate (within the
+    // bracket's width).
+    const double lin = mlo + (mhi - mlo) * (u - b.u_lo) / w;
+    if (w <= 1e-6 * b.u_hi &&
+        (off || !std::isfinite(fu) ||
+         std::fabs(fu - lin) > std::max(std::fabs(mlo), std::fabs(mhi)))) {
+      *uc = b.u_lo + w * mlo / (mlo - mhi);
+      *ok = true;
+      return RN_OK;
+    }
+    if (off || !std::isfinite(fu)) return RN_OK;
     if (fu < 0.0) { // the unstable side; Illinois: halve the other end's value
       b.u_hi = u;
-      fhi = fu;
+      fhi = mhi = fu;
       if (side < 0) flo *= 0.5;
       side = -1;
     } else {
       rn_state_destroy(&b.lo);
       if ((st = rn_network_state_save(net, &b.lo))) return st;
       b.u_lo = u;
-      flo = fu;
+      flo = mlo = fu;
       if (side > 0) fhi *= 0.5;
       side = 1;
     }
@@ -534,7 +555,14 @@ rn_status locate(rn_network *net, const Path &p, Bracket b) {
     if (!st && in->found) {
       in->t = b.j + uc;
       if (!(st = rn_network_state_restore(net, b.lo)) &&
-          !(st = relax_at(net, p, b.j, uc, &s))) {
+          !(st = relax_at(net, p, b.j, uc, &s)) && !s.converged &&
+          !(st = rn_network_state_restore(net, b.lo))) {
+        // no equilibrium found at the critical parameter itself (a singular
+        // Jacobian: Newton from the stable end did not converge there): the state of
+        // the stable end, within the location's tolerance of it
+        st = cell_state(net, s.strain, s.stress, &s.energy);
+      }
+      if (!st) {
         std::memcpy(in->strain, s.strain, sizeof(in->strain));
         std::memcpy(in->stress, s.stress, sizeof(in->stress));
       }
