@@ -212,7 +212,9 @@ static void test_abi_table(void) {
   CHECK(rn_abi_offsetof("rn_solve_options", "nonsense") == -1);
   CHECK(rn_abi_offsetof(NULL, "x") == -1);
   CHECK(rn_abi_num_fields("rn_material") == 3 && rn_abi_num_fields("rn_section") == 5);
-  CHECK(rn_abi_num_fields("rn_solve_options") == 19);
+  CHECK(rn_abi_num_fields("rn_solve_options") == 20);
+  CHECK(rn_abi_offsetof("rn_solve_options", "forcing") ==
+        (long)offsetof(rn_solve_options, forcing));
 }
 
 /* Small-load cantilever against the discrete linear solution; returns
