@@ -369,12 +369,12 @@ rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc
     rn_bloch_result r;
     if ((st = rn_network_state_restore(net, b.lo)) || (st = relax_at(net, p, b.j, u, &s)))
       return st;
-    bool off = limit_passed(s, nstress) || !s.converged || s.kuu_indefinite;
     double fu = NAN;
-    if (!off) {
+    if (!limit_passed(s, nstress) && s.converged && !s.kuu_indefinite) {
       if ((st = bloch_at(net, p, b.bhi.xi, &r, true, macro))) return st;
       fu = critical_value(r, macro);
     }
+    const bool lost = !std::isfinite(fu); // no value at the trial
     // A trial this close to the critical point left the branch: the Jacobian of the
     // relaxation is singular there, and Newton, started a parameter step of at most
     // 1e-6 from the stable end, converged elsewhere (an unconverged or indefinite
@@ -385,13 +385,12 @@ rn_status secant(rn_network *net, const Path &p, Bracket &b, int *it, double *uc
     // bracket's width).
     const double lin = mlo + (mhi - mlo) * (u - b.u_lo) / w;
     if (w <= 1e-6 * b.u_hi &&
-        (off || !std::isfinite(fu) ||
-         std::fabs(fu - lin) > std::max(std::fabs(mlo), std::fabs(mhi)))) {
+        (lost || std::fabs(fu - lin) > std::max(std::fabs(mlo), std::fabs(mhi)))) {
       *uc = b.u_lo + w * mlo / (mlo - mhi);
       *ok = true;
       return RN_OK;
     }
-    if (off || !std::isfinite(fu)) return RN_OK;
+    if (lost) return RN_OK;
     if (fu < 0.0) { // the unstable side; Illinois: halve the other end's value
       b.u_hi = u;
       fhi = mhi = fu;
@@ -555,12 +554,12 @@ rn_status locate(rn_network *net, const Path &p, Bracket b) {
     if (!st && in->found) {
       in->t = b.j + uc;
       if (!(st = rn_network_state_restore(net, b.lo)) &&
-          !(st = relax_at(net, p, b.j, uc, &s)) && !s.converged &&
-          !(st = rn_network_state_restore(net, b.lo))) {
+          !(st = relax_at(net, p, b.j, uc, &s)) && !s.converged) {
         // no equilibrium found at the critical parameter itself (a singular
         // Jacobian: Newton from the stable end did not converge there): the state of
         // the stable end, within the location's tolerance of it
-        st = cell_state(net, s.strain, s.stress, &s.energy);
+        if (!(st = rn_network_state_restore(net, b.lo)))
+          st = cell_state(net, s.strain, s.stress, &s.energy);
       }
       if (!st) {
         std::memcpy(in->strain, s.strain, sizeof(in->strain));
